@@ -1,0 +1,67 @@
+// LCM plumbing both processes and the tools share: the URL (flag, else
+// LCM_DEFAULT_URL), namespaced channel names, and a checked LCM instance.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+namespace lcm_control {
+
+// Well-known channel names (before the namespace prefix).
+namespace channels {
+inline constexpr const char* kJointStates = "joint_states";
+inline constexpr const char* kHardwareState = "hardware/state";
+inline constexpr const char* kHardwareCommand = "hardware/command";
+inline constexpr const char* kCmRequest = "controller_manager/request";
+inline constexpr const char* kCmResponse = "controller_manager/response";
+inline constexpr const char* kCmStatistics = "controller_manager/statistics";
+inline constexpr const char* kSimStatistics = "sim_server/statistics";
+inline constexpr const char* kSimGainsOwner = "sim_server";
+inline constexpr const char* kEStop = "e_stop";
+inline constexpr const char* kClock = "clock";
+inline constexpr const char* kLinkPoses = "link_poses";
+}  // namespace channels
+
+// "<owner>/gains/set" and "<owner>/gains".
+std::string gains_set_channel(const std::string& owner);
+std::string gains_channel(const std::string& owner);
+
+class BusError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A namespace prefix "NS/" (empty for none) applied to every channel name.
+class Bus {
+ public:
+  // url "" means LCM_DEFAULT_URL, else LCM's default. Throws BusError with the
+  // URL and the multicast-route fix when LCM cannot start.
+  Bus(const std::string& url, const std::string& ns);
+
+  lcm::LCM& lcm() { return *lcm_; }
+  const std::string& url() const { return url_; }
+  const std::string& ns() const { return ns_; }
+  std::string channel(const std::string& name) const { return prefix_ + name; }
+
+  template <class Msg>
+  int publish(const std::string& name, const Msg& msg) {
+    return lcm_->publish(channel(name), &msg);
+  }
+
+  // Waits up to timeout_ms for messages; returns false on an LCM error.
+  bool handle(int timeout_ms);
+
+ private:
+  std::unique_ptr<lcm::LCM> lcm_;
+  std::string url_, ns_, prefix_;
+};
+
+// Microseconds on the monotonic and the wall clock.
+int64_t monotonic_us();
+int64_t wall_us();
+
+}  // namespace lcm_control

@@ -1,0 +1,142 @@
+// The robot as both processes see it: URDF kinematics and dynamics, the
+// transmissions that say which interface each joint takes, and the ros_control
+// YAML (controllers and gazebo_ros_control pid_gains), loaded and validated once
+// into plain structs.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+#include <yaml-cpp/yaml.h>
+
+#include "common/pid.hpp"
+#include "common/transmission.hpp"
+
+namespace lcm_control {
+
+// A user-caused problem with the inputs. what() is one line per problem, each
+// naming the file and the key, joint or link at fault and what to do.
+class ModelError : public std::runtime_error {
+ public:
+  explicit ModelError(const std::vector<std::string>& problems);
+  explicit ModelError(const std::string& problem) : ModelError(std::vector<std::string>{problem}) {}
+  const std::vector<std::string>& problems() const { return problems_; }
+
+ private:
+  std::vector<std::string> problems_;
+};
+
+enum class JointType { Revolute, Continuous, Prismatic, Fixed, Floating, Planar };
+const char* to_string(JointType t);
+
+enum class Interface { Position, Velocity, Effort };
+const char* to_string(Interface i);  // "PositionJointInterface", ...
+// Accepts "hardware_interface/PositionJointInterface" and "PositionJointInterface".
+std::optional<Interface> parse_interface(const std::string& name);
+
+struct Geometry {
+  enum class Type { Box, Cylinder, Sphere, Mesh } type = Type::Box;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // in the link frame
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();            // box
+  double radius = 0, length = 0;                             // cylinder (along z), sphere
+  std::string mesh_uri;                                      // as written in the URDF
+  std::string mesh_path;                                     // resolved file, "" if not found
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+};
+
+struct Inertial {
+  double mass = 0;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // COM frame in the link frame
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();         // about the COM, in the COM frame
+};
+
+struct Link {
+  std::string name;
+  std::optional<Inertial> inertial;
+  std::vector<Geometry> collisions;
+  std::vector<Geometry> visuals;
+  std::string parent_joint;  // "" for the root
+};
+
+struct Joint {
+  std::string name;
+  JointType type = JointType::Fixed;
+  std::string parent_link, child_link;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // child frame in the parent link frame
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();
+  bool has_position_limits = false;  // revolute and prismatic
+  double lower = 0, upper = 0;
+  double effort_limit = 0, velocity_limit = 0;  // 0 only for fixed joints (validated)
+  double damping = 0, friction = 0;
+};
+
+struct TransmissionSpec {
+  std::string name;
+  std::string type;  // "transmission_interface/SimpleTransmission"
+  std::string joint;
+  std::vector<Interface> interfaces;  // first one is the one the hardware takes
+  std::string actuator;
+  SimpleTransmission map;
+};
+
+struct ControllerSpec {
+  std::string name;
+  std::string type;
+  YAML::Node params;  // the whole YAML entry, `type` included
+};
+
+struct LoadOptions {
+  // Folders searched for `package://NAME/...`: DIR/NAME/... and, if DIR's own
+  // name is NAME, DIR/... . Defaults to $LCM_CONTROL_PACKAGE_PATH and
+  // $ROS_PACKAGE_PATH (colon-separated) when empty.
+  std::vector<std::string> package_path;
+};
+
+struct RobotModel {
+  std::string name;
+  std::string urdf_path, config_path;
+  std::string root_link;
+  std::vector<Link> links;                     // URDF order
+  std::vector<Joint> joints;                   // URDF order
+  std::vector<TransmissionSpec> transmissions;  // URDF order = actuator order on the wire
+  bool has_gazebo_ros_control_plugin = false;
+  std::string gazebo_plugin_namespace;         // <robotNamespace>, if given
+  std::vector<ControllerSpec> controllers;     // YAML order
+  std::map<std::string, PidGains> pid_gains;   // gazebo_ros_control/pid_gains/<joint>
+  std::vector<std::string> warnings;           // non-fatal findings, one line each
+
+  const Joint* joint(const std::string& name) const;
+  const Link* link(const std::string& name) const;
+  const TransmissionSpec* transmission_for_joint(const std::string& joint) const;
+  const ControllerSpec* controller(const std::string& name) const;
+  // Joints that have a transmission, in transmission order (the hardware's joints).
+  std::vector<std::string> actuated_joints() const;
+};
+
+// Loads and validates. Throws ModelError naming the file and culprit.
+RobotModel load_robot_model(const std::string& urdf_path, const std::string& config_path,
+                            const LoadOptions& options = {});
+
+// The parts, for tools and tests that need only one of them.
+void load_urdf_into(RobotModel& model, const std::string& urdf_path, const LoadOptions& options);
+void load_control_config_into(RobotModel& model, const std::string& config_path);
+// Reads a ros_control YAML's controller entries and pid gains (file used in messages).
+void parse_control_config(RobotModel& model, const YAML::Node& root, const std::string& file);
+// Cross-checks URDF, transmissions and YAML; throws ModelError listing every problem.
+void validate(RobotModel& model);
+
+// Resolves `package://NAME/rest`, `file://...`, absolute and relative (to base_dir) paths.
+// Returns "" when the file does not exist.
+std::string resolve_resource(const std::string& uri, const std::string& base_dir,
+                             const std::vector<std::string>& package_path);
+std::vector<std::string> default_package_path();
+// The folder of ROS package NAME on the path (`$(find NAME)`), "" if absent.
+std::string find_package_dir(const std::string& name, const std::vector<std::string>& package_path);
+
+// Human-readable multi-line description (the doctor command prints it).
+std::string describe(const RobotModel& model);
+
+}  // namespace lcm_control
