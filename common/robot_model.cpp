@@ -397,14 +397,23 @@ std::string resolve_resource(const std::string& uri, const std::string& base_dir
   return fs::exists(p, ec) ? fs::weakly_canonical(p, ec).string() : "";
 }
 
-void load_urdf_into(RobotModel& model, const std::string& urdf_path, const LoadOptions& options) {
+namespace {
+
+// Fills `model`; throws at once only when the file cannot be parsed at all,
+// otherwise adds every problem to `problems` so that all are reported together.
+void load_urdf_collect(RobotModel& model, const std::string& urdf_path, const LoadOptions& options,
+                       std::vector<std::string>& problems) {
   model.urdf_path = urdf_path;
   const std::string text = read_file(urdf_path, "URDF");
 
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS)
-    throw ModelError(fmt::format("{}:{}: malformed XML: {}", urdf_path, doc.ErrorLineNum(),
-                                 trim(doc.ErrorStr() ? doc.ErrorStr() : "parse error")));
+  if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
+    // ErrorStr() is "Error=NAME ErrorID=N (0xN) Line number=N: detail"; keep the name and the detail.
+    std::string detail = doc.ErrorStr() ? doc.ErrorStr() : "";
+    const auto colon = detail.find(": ");
+    detail = colon == std::string::npos ? "" : " at " + trim(detail.substr(colon + 2));
+    throw ModelError(fmt::format("{}:{}: malformed XML ({}{})", urdf_path, doc.ErrorLineNum(), doc.ErrorName(), detail));
+  }
   const tinyxml2::XMLElement* robot = doc.FirstChildElement("robot");
   if (!robot) throw ModelError(fmt::format("{}: no <robot> element; is this a URDF file?", urdf_path));
 
@@ -427,7 +436,6 @@ void load_urdf_into(RobotModel& model, const std::string& urdf_path, const LoadO
   const LoadOptions resolved{options.package_path.empty() ? default_package_path() : options.package_path};
   const std::string base_dir = fs::absolute(urdf_path).parent_path().string();
 
-  std::vector<std::string> problems;
   // URDF document order for links and joints (urdfdom stores them in maps).
   for (auto* le = robot->FirstChildElement("link"); le; le = le->NextSiblingElement("link")) {
     const char* n = le->Attribute("name");
@@ -494,6 +502,15 @@ void load_urdf_into(RobotModel& model, const std::string& urdf_path, const LoadO
     model.joints.push_back(std::move(j));
   }
   parse_transmissions(model, robot, urdf_path, problems);
+}
+
+void validate_collect(RobotModel& model, std::vector<std::string>& problems);
+
+}  // namespace
+
+void load_urdf_into(RobotModel& model, const std::string& urdf_path, const LoadOptions& options) {
+  std::vector<std::string> problems;
+  load_urdf_collect(model, urdf_path, options, problems);
   if (!problems.empty()) throw ModelError(problems);
 }
 
@@ -560,6 +577,12 @@ void load_control_config_into(RobotModel& model, const std::string& config_path)
 
 void validate(RobotModel& model) {
   std::vector<std::string> problems;
+  validate_collect(model, problems);
+  if (!problems.empty()) throw ModelError(problems);
+}
+
+namespace {
+void validate_collect(RobotModel& model, std::vector<std::string>& problems) {
   const std::string& u = model.urdf_path;
   const std::string& c = model.config_path;
 
@@ -641,26 +664,29 @@ void validate(RobotModel& model) {
     model.warnings.push_back(fmt::format("{}: no <gazebo><plugin filename=\"libgazebo_ros_control.so\"/>; not needed "
                                          "here, but ROS would not start ros_control without it",
                                          u));
-  if (!problems.empty()) throw ModelError(problems);
 }
+}  // namespace
 
 RobotModel load_robot_model(const std::string& urdf_path, const std::string& config_path, const LoadOptions& options) {
   RobotModel model;
   std::vector<std::string> problems;
+  bool parsed = true;
   try {
-    load_urdf_into(model, urdf_path, options);
+    load_urdf_collect(model, urdf_path, options, problems);
   } catch (const ModelError& e) {
+    parsed = false;
     problems.insert(problems.end(), e.problems().begin(), e.problems().end());
   }
   if (!config_path.empty()) {
     try {
       load_control_config_into(model, config_path);
     } catch (const ModelError& e) {
+      parsed = false;
       problems.insert(problems.end(), e.problems().begin(), e.problems().end());
     }
   }
+  if (parsed) validate_collect(model, problems);
   if (!problems.empty()) throw ModelError(problems);
-  validate(model);
   return model;
 }
 

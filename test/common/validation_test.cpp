@@ -1,0 +1,200 @@
+// Every user-caused input problem the robot model reports: one line, naming
+// the file and the culprit. doctor turns them into a non-zero exit.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include "common/robot_model.hpp"
+#include "test/support/process.hpp"
+
+using namespace lcm_control;
+namespace lt = lcm_control::testing;
+
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+std::string write(const std::string& dir, const std::string& name, const std::string& text) {
+  const std::string p = dir + "/" + name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+// turret_bot's URDF with `from` replaced by `to` (exactly once).
+std::string turret_urdf_with(const std::string& from, const std::string& to) {
+  std::string s = slurp(lt::source("config/turret_bot.urdf"));
+  const auto at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in turret_bot.urdf";
+  if (at != std::string::npos) s.replace(at, from.size(), to);
+  return s;
+}
+
+// Loads and returns the error text ("" if it loaded).
+std::string load_error(const std::string& urdf_text, const std::string& yaml_text, std::string* urdf_path = nullptr) {
+  const std::string dir = lt::temp_dir("validation");
+  const std::string u = write(dir, "robot.urdf", urdf_text);
+  const std::string y = write(dir, "robot.yaml", yaml_text);
+  if (urdf_path) *urdf_path = u;
+  try {
+    load_robot_model(u, y);
+  } catch (const ModelError& e) {
+    EXPECT_FALSE(e.problems().empty());
+    for (const auto& p : e.problems()) EXPECT_EQ(p.find('\n'), std::string::npos) << "one line per problem: " << p;
+    return e.what();
+  }
+  return "";
+}
+
+const std::string kYaml = slurp(lt::source("config/turret_bot.yaml"));
+
+}  // namespace
+
+TEST(Validation, ZeroReduction) {
+  std::string path;
+  const auto e = load_error(
+      turret_urdf_with("<mechanicalReduction>1</mechanicalReduction>", "<mechanicalReduction>0</mechanicalReduction>"),
+      kYaml, &path);
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+  EXPECT_NE(e.find("transmission 't1'"), std::string::npos) << e;
+  EXPECT_NE(e.find("actuator 'a1'"), std::string::npos) << e;
+  EXPECT_NE(e.find("cannot be zero"), std::string::npos) << e;
+}
+
+TEST(Validation, TransmissionNamesAJointNotInTheUrdf) {
+  const auto e = load_error(turret_urdf_with("<joint name=\"j2\">\n      <hardwareInterface>",
+                                             "<joint name=\"j9\">\n      <hardwareInterface>"),
+                            kYaml);
+  EXPECT_NE(e.find("transmission 't2' names joint 'j9', which is not in the URDF (moving joints: j1, j2)"),
+            std::string::npos)
+      << e;
+}
+
+TEST(Validation, UnknownHardwareInterface) {
+  const auto e = load_error(turret_urdf_with("hardware_interface/PositionJointInterface</hardwareInterface>\n    </joint>\n    <actuator name=\"a2\">",
+                                             "hardware_interface/PositionInterface</hardwareInterface>\n    </joint>\n    <actuator name=\"a2\">"),
+                            kYaml);
+  EXPECT_NE(e.find("transmission 't2'"), std::string::npos) << e;
+  EXPECT_NE(e.find("joint 'j2': unknown hardwareInterface 'hardware_interface/PositionInterface'"), std::string::npos)
+      << e;
+  EXPECT_NE(e.find("PositionJointInterface, VelocityJointInterface or EffortJointInterface"), std::string::npos) << e;
+}
+
+TEST(Validation, InterfaceWithoutPrefixIsAccepted) {
+  const auto e = load_error(turret_urdf_with("hardware_interface/PositionJointInterface", "PositionJointInterface"), kYaml);
+  EXPECT_EQ(e, "");
+}
+
+TEST(Validation, RevoluteLowerNotBelowUpper) {
+  const auto e = load_error(turret_urdf_with("lower=\"-3.14\" upper=\"3.14\"", "lower=\"1\" upper=\"1\""), kYaml);
+  EXPECT_NE(e.find("joint 'j2': limit lower 1 >= upper 1"), std::string::npos) << e;
+}
+
+TEST(Validation, RevoluteLimitsWiderThanTwoPiOverlap) {
+  const auto e = load_error(turret_urdf_with("lower=\"-3.14\" upper=\"3.14\"", "lower=\"-3.2\" upper=\"3.2\""), kYaml);
+  EXPECT_NE(e.find("joint 'j2': limits [-3.2, 3.2] span 6.4000 rad, more than 2*pi, so they overlap"),
+            std::string::npos)
+      << e;
+}
+
+TEST(Validation, ZeroEffortLimit) {
+  const auto e = load_error(turret_urdf_with("upper=\"1\" effort=\"1000\"", "upper=\"1\" effort=\"0\""), kYaml);
+  EXPECT_NE(e.find("joint 'j1': <limit effort=\"0\"> would freeze the joint"), std::string::npos) << e;
+}
+
+TEST(Validation, ZeroVelocityLimit) {
+  const auto e = load_error(turret_urdf_with("upper=\"3.14\" effort=\"1000\" velocity=\"50\"",
+                                             "upper=\"3.14\" effort=\"1000\" velocity=\"0\""),
+                            kYaml);
+  EXPECT_NE(e.find("joint 'j2': <limit velocity=\"0\"> would freeze the joint"), std::string::npos) << e;
+}
+
+TEST(Validation, UnknownTopLevelYamlEntryIsWarnedByName) {
+  const std::string dir = lt::temp_dir("validation");
+  const std::string y = write(dir, "c.yaml", kYaml + "j3_controler:\n  joint: j2\nsome_setting: 3\n");
+  const RobotModel m = load_robot_model(lt::source("config/turret_bot.urdf"), y);
+  ASSERT_EQ(m.warnings.size(), 2u);
+  EXPECT_NE(m.warnings[0].find("top-level entry 'j3_controler' is neither a controller (no 'type' key) nor "
+                               "gazebo_ros_control"),
+            std::string::npos)
+      << m.warnings[0];
+  EXPECT_NE(m.warnings[1].find("'some_setting'"), std::string::npos) << m.warnings[1];
+  EXPECT_EQ(m.controllers.size(), 3u);
+}
+
+TEST(Validation, PidGainsForAJointNotInTheUrdf) {
+  std::string y = kYaml;
+  y.replace(y.find("    j2:\n"), 8, "    j7:\n");
+  const auto e = load_error(slurp(lt::source("config/turret_bot.urdf")), y);
+  EXPECT_NE(e.find("gazebo_ros_control/pid_gains/j7: joint 'j7' is not in the URDF"), std::string::npos) << e;
+}
+
+TEST(Validation, PidGainsWithoutPOrWithUnknownKey) {
+  std::string y = kYaml;
+  y.replace(y.find("      p: 150\n"), 13, "      kp: 150\n");
+  const auto e = load_error(slurp(lt::source("config/turret_bot.urdf")), y);
+  EXPECT_NE(e.find("gazebo_ros_control/pid_gains/j1/kp: unknown key"), std::string::npos) << e;
+  EXPECT_NE(e.find("gazebo_ros_control/pid_gains/j1: no 'p' gain (required)"), std::string::npos) << e;
+}
+
+TEST(Validation, IWithoutIClampIsWarned) {
+  std::string y = kYaml;
+  y.replace(y.find("      i: 0\n"), 11, "      i: 5\n");
+  const std::string dir = lt::temp_dir("validation");
+  const RobotModel m = load_robot_model(lt::source("config/turret_bot.urdf"), write(dir, "c.yaml", y));
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_NE(m.warnings[0].find("pid_gains/j1: i is 5 but i_clamp is 0"), std::string::npos) << m.warnings[0];
+}
+
+TEST(Validation, EveryProblemIsReportedNotJustTheFirst) {
+  std::string u = turret_urdf_with("<mechanicalReduction>1</mechanicalReduction>", "<mechanicalReduction>0</mechanicalReduction>");
+  const std::string from = "upper=\"3.14\" effort=\"1000\" velocity=\"50\"";
+  u.replace(u.find(from), from.size(), "upper=\"3.14\" effort=\"1000\" velocity=\"0\"");
+  const auto e = load_error(u, kYaml);
+  EXPECT_NE(e.find("cannot be zero"), std::string::npos) << e;
+  EXPECT_NE(e.find("velocity=\"0\""), std::string::npos) << e;
+}
+
+// The doctor command: one clear line and a non-zero exit, never a trace or a crash.
+struct BadInput {
+  const char* name;
+  const char* urdf;  // file content, or nullptr for a missing file
+  const char* yaml;
+  const char* expect;
+};
+
+class DoctorRejects : public ::testing::TestWithParam<BadInput> {};
+
+TEST_P(DoctorRejects, WithOneClearLine) {
+  const BadInput& b = GetParam();
+  const std::string dir = lt::temp_dir("doctor");
+  const std::string u = b.urdf ? write(dir, "r.urdf", b.urdf) : dir + "/missing.urdf";
+  const std::string y = b.yaml ? write(dir, "r.yaml", b.yaml) : dir + "/missing.yaml";
+  lt::ChildProcess p({lt::bin("doctor"), "--urdf", u, "--config", y});
+  const int rc = p.wait(20);
+  const std::string out = p.output();
+  EXPECT_EQ(rc, 3) << out;
+  EXPECT_NE(out.find(b.expect), std::string::npos) << out;
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+  EXPECT_EQ(out.rfind("doctor: error: ", 0), 0u) << out;
+  EXPECT_EQ(out.find("terminate"), std::string::npos) << out;
+}
+
+const char* kGoodUrdf = R"(<robot name="r"><link name="a"/></robot>)";
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, DoctorRejects,
+    ::testing::Values(
+        BadInput{"MissingUrdf", nullptr, "{}", "missing.urdf: URDF file not found"},
+        BadInput{"MissingYaml", kGoodUrdf, nullptr, "missing.yaml: config file not found"},
+        BadInput{"MalformedXml", "<robot name='r'><link name='a'></robot>", "{}", "r.urdf:1: malformed XML"},
+        BadInput{"NotAUrdf", "<html/>", "{}", "no <robot> element"},
+        BadInput{"UrdfdomRejects", "<robot name='r'><link name='a'/><joint name='j' type='revolute'><parent link='a'/><child link='b'/></joint></robot>", "{}", "r.urdf: invalid URDF"},
+        BadInput{"MalformedYaml", kGoodUrdf, "a: [1,\n", "r.yaml:2:1: malformed YAML"},
+        BadInput{"YamlNotAMap", kGoodUrdf, "- 1\n- 2\n", "r.yaml: expected a map of controllers"},
+        BadInput{"EmptyYaml", kGoodUrdf, "", "r.yaml: the file is empty"}),
+    [](const auto& info) { return std::string(info.param.name); });

@@ -1,0 +1,42 @@
+// LCM for tests: a URL of its own for every test (a free UDP port on the
+// loopback multicast route), and helpers to wait for messages with a deadline.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <chrono>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <vector>
+
+namespace lcm_control::testing {
+
+// "udpm://239.255.76.67:PORT?ttl=0" with a port no other running test uses.
+std::string unique_lcm_url();
+
+// Pumps lc until pred() is true or timeout_s passes; returns pred().
+bool pump_until(lcm::LCM& lc, const std::function<bool()>& pred, double timeout_s);
+
+// Collects every message of type Msg on one channel.
+template <class Msg>
+class Recorder {
+ public:
+  Recorder(lcm::LCM& lc, const std::string& channel) {
+    sub_ = lc.subscribe(channel, &Recorder::on, this);
+    sub_->setQueueCapacity(0);
+  }
+  std::vector<Msg> messages;
+  std::vector<int64_t> receive_us;  // monotonic receive times
+
+ private:
+  void on(const lcm::ReceiveBuffer*, const std::string&, const Msg* m) {
+    messages.push_back(*m);
+    receive_us.push_back(std::chrono::duration_cast<std::chrono::microseconds>(
+                             std::chrono::steady_clock::now().time_since_epoch())
+                             .count());
+  }
+  lcm::Subscription* sub_ = nullptr;
+};
+
+}  // namespace lcm_control::testing

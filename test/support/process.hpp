@@ -1,0 +1,46 @@
+// A child process for end-to-end tests: started with its output captured to a
+// file, bounded waits, and always stopped by its pid (SIGINT, then SIGKILL).
+#pragma once
+
+#include <sys/types.h>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace lcm_control::testing {
+
+class ChildProcess {
+ public:
+  // argv[0] is a path; env entries are added to (or replace) the test's environment.
+  ChildProcess(std::vector<std::string> argv, std::map<std::string, std::string> env = {});
+  ~ChildProcess();  // stops the process if it still runs
+  ChildProcess(const ChildProcess&) = delete;
+  ChildProcess& operator=(const ChildProcess&) = delete;
+
+  pid_t pid() const { return pid_; }
+  bool running();
+  // Waits up to timeout_s; returns the exit code, 128+signal if killed, or -1 on timeout.
+  int wait(double timeout_s);
+  // SIGINT (or sig), waits up to grace_s, then SIGKILL. Returns the exit status as wait().
+  int stop(double grace_s = 5.0, int sig = 2);
+  // Everything the process wrote to stdout and stderr so far.
+  std::string output() const;
+  // Waits until output() contains text; false on timeout or if the process exits first.
+  bool wait_for_output(const std::string& text, double timeout_s);
+
+ private:
+  pid_t pid_ = -1;
+  int status_ = -1;
+  bool exited_ = false;
+  std::string log_path_;
+};
+
+// Path of a program built by this project (build/bin/NAME).
+std::string bin(const std::string& name);
+// Path of a file in the source tree (e.g. "config/turret_bot.urdf").
+std::string source(const std::string& relative);
+// A fresh, empty folder for one test's files.
+std::string temp_dir(const std::string& tag);
+
+}  // namespace lcm_control::testing
