@@ -1,0 +1,119 @@
+// Field paths: decoding by fingerprint and the flattened (path, value) pairs.
+#include "tools/fields.hpp"
+
+#include <gtest/gtest.h>
+
+#include "lcm_control/cm_response_t.hpp"
+#include "lcm_control/float64_array_t.hpp"
+#include "lcm_control/float64_t.hpp"
+#include "lcm_control/joint_state_t.hpp"
+#include "lcm_control/joint_trajectory_t.hpp"
+#include "lcm_control/link_poses_t.hpp"
+
+using namespace lcm_control;
+using namespace lcm_control::tools;
+
+namespace {
+template <class Msg>
+std::vector<uint8_t> encode(const Msg& m) {
+  std::vector<uint8_t> buf(size_t(m.getEncodedSize()));
+  m.encode(buf.data(), 0, int(buf.size()));
+  return buf;
+}
+std::vector<std::string> paths(const Decoded& d) {
+  std::vector<std::string> p;
+  for (const auto& f : d.fields) p.push_back(f.path);
+  return p;
+}
+}  // namespace
+
+TEST(Fields, JointStateColumns) {
+  joint_state_t m{};
+  m.utime = 1234567890123456;
+  m.num_joints = 2;
+  m.name = {"j1", "j2"};
+  m.position = {0.1, 0.2};
+  m.velocity = {1.5, -2};
+  m.effort = {3, 4};
+  const auto buf = encode(m);
+  const Decoded d = decode_fields(buf.data(), buf.size());
+  ASSERT_TRUE(d.ok()) << d.skip_reason;
+  EXPECT_EQ(d.type, "lcm_control.joint_state_t");
+  EXPECT_EQ(paths(d), (std::vector<std::string>{"utime", "position[0]", "position[1]", "velocity[0]", "velocity[1]",
+                                                "effort[0]", "effort[1]"}));
+  EXPECT_EQ(d.fields[0].text(), "1234567890123456");
+  EXPECT_EQ(d.fields[1].text(), "0.1");
+  EXPECT_EQ(d.fields[4].text(), "-2");
+}
+
+TEST(Fields, CommandsAndNestedTypes) {
+  float64_t f{};
+  f.data = 3.25;
+  auto buf = encode(f);
+  Decoded d = decode_fields(buf.data(), buf.size());
+  EXPECT_EQ(paths(d), (std::vector<std::string>{"utime", "data"}));
+  EXPECT_EQ(d.fields[1].value, 3.25);
+
+  float64_array_t a{};
+  a.size = 3;
+  a.data = {1, 2, 3};
+  buf = encode(a);
+  d = decode_fields(buf.data(), buf.size());
+  EXPECT_EQ(paths(d), (std::vector<std::string>{"utime", "data[0]", "data[1]", "data[2]"}));
+
+  link_poses_t lp{};
+  lp.num_links = 1;
+  lp.name = {"base"};
+  lp.position = {{1, 2, 3}};
+  lp.orientation = {{1, 0, 0, 0}};
+  buf = encode(lp);
+  d = decode_fields(buf.data(), buf.size());
+  EXPECT_EQ(paths(d)[3], "position[0][2]");
+  EXPECT_EQ(d.fields[3].value, 3);
+
+  joint_trajectory_t jt{};
+  jt.num_joints = 1;
+  jt.joint_names = {"j1"};
+  jt.num_points = 1;
+  jt.points.resize(1);
+  jt.points[0].time_from_start = 2;
+  jt.points[0].num_positions = 1;
+  jt.points[0].positions = {0.5};
+  buf = encode(jt);
+  d = decode_fields(buf.data(), buf.size());
+  EXPECT_EQ(paths(d), (std::vector<std::string>{"utime", "goal_id", "points[0].time_from_start",
+                                                "points[0].positions[0]"}));
+}
+
+TEST(Fields, SkippedTypesSayWhy) {
+  cm_response_t r{};
+  r.message = "hello";
+  auto buf = encode(r);
+  Decoded d = decode_fields(buf.data(), buf.size());
+  EXPECT_FALSE(d.ok());
+  EXPECT_EQ(d.type, "lcm_control.cm_response_t");
+  EXPECT_NE(d.skip_reason.find("no signals"), std::string::npos);
+
+  const std::string junk = "not an lcm message at all";
+  d = decode_fields(junk.data(), junk.size());
+  EXPECT_FALSE(d.ok());
+  EXPECT_EQ(d.type, "");
+  EXPECT_NE(d.skip_reason.find("fingerprint"), std::string::npos);
+
+  d = decode_fields(junk.data(), 4);
+  EXPECT_NE(d.skip_reason.find("too short"), std::string::npos);
+
+  // A truncated payload of a known type.
+  float64_array_t a{};
+  a.size = 3;
+  a.data = {1, 2, 3};
+  buf = encode(a);
+  d = decode_fields(buf.data(), buf.size() - 4);
+  EXPECT_EQ(d.skip_reason, "malformed payload (decode failed)");
+}
+
+TEST(Fields, CsvFileNames) {
+  EXPECT_EQ(csv_file_name("joint_states"), "joint_states.csv");
+  EXPECT_EQ(csv_file_name("j2_controller/command"), "j2_controller__command.csv");
+  EXPECT_EQ(csv_file_name("/robot1/joint_states"), "robot1__joint_states.csv");
+}

@@ -1,0 +1,103 @@
+// log2csv on logs written with lcm::LogFile and recorded by lcm-logger.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "lcm_control/joint_state_t.hpp"
+#include "test/support/lcm_test.hpp"
+#include "test/support/process.hpp"
+#include "test/tools/tool_test_util.hpp"
+
+using namespace lcm_control;
+using namespace lcm_control::testing;
+
+TEST(Log2Csv, OneCsvPerChannelOfOurTypesAndSaysWhatItSkipped) {
+  const std::string dir = temp_dir("log2csv");
+  write_test_log(dir + "/run.lcmlog");
+  ChildProcess p({bin("log2csv"), dir + "/run.lcmlog", "--output-dir", dir + "/csv"});
+  ASSERT_EQ(p.wait(10.0), 0) << p.output();
+  const std::string out = p.output();
+
+  const Csv js = read_csv(dir + "/csv/joint_states.csv");
+  EXPECT_EQ(js.header, (std::vector<std::string>{"utime", "position[0]", "position[1]", "velocity[0]", "velocity[1]",
+                                                 "effort[0]", "effort[1]"}));
+  ASSERT_EQ(js.rows.size(), 50u);
+  EXPECT_EQ(js.rows[7][0], "70000");
+  EXPECT_DOUBLE_EQ(std::stod(js.rows[7][2]), std::sin(0.7));
+  EXPECT_EQ(js.rows[49][5], "49");
+
+  const Csv cmd = read_csv(dir + "/csv/j2_controller__command.csv");
+  EXPECT_EQ(cmd.header, (std::vector<std::string>{"utime", "data"}));
+  EXPECT_EQ(cmd.rows.size(), 20u);
+
+  EXPECT_FALSE(std::filesystem::exists(dir + "/csv/controller_manager__response.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/csv/other_robot__blob.csv"));
+  EXPECT_NE(out.find("skipped controller_manager/response: lcm_control.cm_response_t: controller-manager answer"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("skipped other_robot/blob: not an lcm_control type"), std::string::npos) << out;
+  EXPECT_NE(out.find("joint_states.csv: 50 rows, 7 columns"), std::string::npos) << out;
+}
+
+TEST(Log2Csv, ChannelFilterAndLogTime) {
+  const std::string dir = temp_dir("log2csv_filter");
+  write_test_log(dir + "/run.lcmlog");
+  ChildProcess p({bin("log2csv"), dir + "/run.lcmlog", "--output-dir", dir, "--channel", "j2_.*", "--log-time"});
+  ASSERT_EQ(p.wait(10.0), 0) << p.output();
+  EXPECT_FALSE(std::filesystem::exists(dir + "/joint_states.csv"));
+  const Csv cmd = read_csv(dir + "/j2_controller__command.csv");
+  EXPECT_EQ(cmd.header, (std::vector<std::string>{"log_utime", "utime", "data"}));
+  ASSERT_EQ(cmd.rows.size(), 20u);
+  EXPECT_EQ(cmd.rows[1][0], "1025000");
+}
+
+TEST(Log2Csv, FailuresSayWhat) {
+  const std::string dir = temp_dir("log2csv_fail");
+  ChildProcess missing({bin("log2csv"), dir + "/nope.lcmlog"});
+  EXPECT_EQ(missing.wait(10.0), 1);
+  EXPECT_NE(missing.output().find("log2csv: error: " + dir + "/nope.lcmlog: no such log file"), std::string::npos)
+      << missing.output();
+  write_test_log(dir + "/run.lcmlog");
+  ChildProcess none({bin("log2csv"), dir + "/run.lcmlog", "--output-dir", dir, "--channel", "nothing"});
+  EXPECT_EQ(none.wait(10.0), 1);
+  EXPECT_NE(none.output().find("no channel of lcm_control types matching --channel"), std::string::npos)
+      << none.output();
+}
+
+// lcm-logger records what turret-cmd-like publishers send; log2csv reads it back.
+TEST(Log2Csv, ReadsWhatLcmLoggerRecorded) {
+  const std::string url = unique_lcm_url();
+  const std::string dir = temp_dir("log2csv_logger");
+  const std::string log_path = dir + "/rec.lcmlog";
+  ChildProcess logger({"/usr/bin/lcm-logger", "--lcm-url=" + url, "-f", log_path});
+  lcm::LCM lc(url);
+  // Publish on a warm-up channel until the logger has written something.
+  joint_state_t js{};
+  js.num_joints = 1;
+  js.name = {"j"};
+  js.position = {0};
+  js.velocity = {0};
+  js.effort = {0};
+  for (int k = 0; k < 250; ++k) {
+    lc.publish("warmup", &js);
+    std::error_code ec;
+    if (std::filesystem::file_size(log_path, ec) > 0 && !ec) break;
+    pump_until(lc, [] { return false; }, 0.02);
+  }
+  ASSERT_GT(std::filesystem::file_size(log_path), 0u) << logger.output();
+  for (int k = 0; k < 30; ++k) {
+    js.utime = k;
+    js.position = {0.1 * k};
+    lc.publish("joint_states", &js);
+    pump_until(lc, [] { return false; }, 0.002);
+  }
+  pump_until(lc, [] { return false; }, 0.3);
+  EXPECT_EQ(logger.stop(5.0), 0) << logger.output();
+  ChildProcess conv({bin("log2csv"), log_path, "--output-dir", dir, "--channel", "joint_states"});
+  ASSERT_EQ(conv.wait(10.0), 0) << conv.output();
+  const Csv csv = read_csv(dir + "/joint_states.csv");
+  EXPECT_EQ(csv.header, (std::vector<std::string>{"utime", "position[0]", "velocity[0]", "effort[0]"}));
+  ASSERT_EQ(csv.rows.size(), 30u);
+  EXPECT_EQ(csv.rows[29][0], "29");
+  EXPECT_DOUBLE_EQ(std::stod(csv.rows[29][1]), 0.1 * 29);
+}

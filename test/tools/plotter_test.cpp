@@ -1,0 +1,116 @@
+// plotter: the PNG exists and the data it fed gnuplot matches log2csv's CSV.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "lcm_control/joint_state_t.hpp"
+#include "test/support/lcm_test.hpp"
+#include "test/support/process.hpp"
+#include "test/tools/tool_test_util.hpp"
+
+using namespace lcm_control;
+using namespace lcm_control::testing;
+
+namespace {
+// Blocks of "t value" lines, one per path, as the plotter's --data file holds them.
+std::vector<std::vector<std::pair<double, double>>> read_blocks(const std::string& path) {
+  std::vector<std::vector<std::pair<double, double>>> blocks;
+  std::ifstream in(path);
+  std::string line;
+  bool new_block = true;
+  while (std::getline(in, line)) {
+    if (line.empty()) {
+      new_block = true;
+      continue;
+    }
+    if (line[0] == '#') continue;
+    if (new_block) blocks.emplace_back();
+    new_block = false;
+    const auto cells = split(line, ' ');
+    blocks.back().emplace_back(std::stod(cells.at(0)), std::stod(cells.at(1)));
+  }
+  return blocks;
+}
+}  // namespace
+
+TEST(Plotter, PngFromALogWhoseDataMatchesTheCsv) {
+  const std::string dir = temp_dir("plotter");
+  write_test_log(dir + "/run.lcmlog");
+  ChildProcess conv({bin("log2csv"), dir + "/run.lcmlog", "--output-dir", dir});
+  ASSERT_EQ(conv.wait(10.0), 0) << conv.output();
+  ChildProcess p({bin("plotter"), "joint_states.velocity[1]", "j2_controller/command.data", "--log",
+                  dir + "/run.lcmlog", "--output", dir + "/plot.png", "--data", dir + "/plot.dat"});
+  ASSERT_EQ(p.wait(30.0), 0) << p.output();
+
+  const std::string png = read_text(dir + "/plot.png");
+  ASSERT_GT(png.size(), 1000u);
+  EXPECT_EQ(png.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+
+  const auto blocks = read_blocks(dir + "/plot.dat");
+  ASSERT_EQ(blocks.size(), 2u);
+  const Csv js = read_csv(dir + "/joint_states.csv");
+  const Csv cmd = read_csv(dir + "/j2_controller__command.csv");
+  ASSERT_EQ(blocks[0].size(), js.rows.size());
+  ASSERT_EQ(blocks[1].size(), cmd.rows.size());
+  const int vel1 = js.column("velocity[1]"), data = cmd.column("data");
+  for (size_t k = 0; k < js.rows.size(); ++k) {
+    EXPECT_DOUBLE_EQ(blocks[0][k].second, std::stod(js.rows[k][vel1])) << k;
+    EXPECT_NEAR(blocks[0][k].first, 0.01 * double(k), 1e-9) << k;  // log time from the first message
+  }
+  for (size_t k = 0; k < cmd.rows.size(); ++k) {
+    EXPECT_DOUBLE_EQ(blocks[1][k].second, std::stod(cmd.rows[k][data])) << k;
+    EXPECT_NEAR(blocks[1][k].first, 0.02 * double(k) + 0.005, 1e-9) << k;
+  }
+}
+
+TEST(Plotter, RosStylePathsSvgAndMessageTime) {
+  const std::string dir = temp_dir("plotter_ros");
+  write_test_log(dir + "/run.lcmlog");
+  ChildProcess p({bin("plotter"), "/j2_controller/command", "/joint_states/position[0]", "--log", dir + "/run.lcmlog",
+                  "--output", dir + "/plot.svg", "--data", dir + "/plot.dat", "--time", "utime"});
+  ASSERT_EQ(p.wait(30.0), 0) << p.output();
+  EXPECT_NE(read_text(dir + "/plot.svg").find("<svg"), std::string::npos);
+  const auto blocks = read_blocks(dir + "/plot.dat");
+  ASSERT_EQ(blocks.size(), 2u);
+  EXPECT_EQ(blocks[0].size(), 20u);
+  EXPECT_NEAR(blocks[0][3].first, 0.065, 1e-9);  // utime 65000 us, first utime 0
+  EXPECT_NEAR(blocks[1][3].second, 0.03, 1e-12);
+}
+
+TEST(Plotter, UnknownPathListsWhatThereWas) {
+  const std::string dir = temp_dir("plotter_bad");
+  write_test_log(dir + "/run.lcmlog");
+  ChildProcess p({bin("plotter"), "joint_states.speed[0]", "--log", dir + "/run.lcmlog", "--output",
+                  dir + "/plot.png"});
+  EXPECT_EQ(p.wait(30.0), 1);
+  const std::string out = p.output();
+  EXPECT_NE(out.find("plotter: error: no data for joint_states.speed[0]"), std::string::npos) << out;
+  EXPECT_NE(out.find("joint_states.velocity[1]"), std::string::npos) << out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/plot.png"));
+}
+
+TEST(Plotter, LiveFromTheBus) {
+  const std::string url = unique_lcm_url();
+  const std::string dir = temp_dir("plotter_live");
+  ChildProcess p({bin("plotter"), "joint_states.position[0]", "--duration", "1.0", "--output", dir + "/live.png",
+                  "--data", dir + "/live.dat", "--lcm-url", url});
+  ASSERT_TRUE(p.wait_for_output("listening", 5.0)) << p.output();
+  lcm::LCM lc(url);
+  joint_state_t js{};
+  js.num_joints = 1;
+  js.name = {"j1"};
+  js.velocity = {0};
+  js.effort = {0};
+  for (int k = 0; k < 20; ++k) {
+    js.utime = k;
+    js.position = {double(k)};
+    lc.publish("joint_states", &js);
+    pump_until(lc, [] { return false; }, 0.01);
+  }
+  ASSERT_EQ(p.wait(10.0), 0) << p.output();
+  const auto blocks = read_blocks(dir + "/live.dat");
+  ASSERT_EQ(blocks.size(), 1u);
+  ASSERT_EQ(blocks[0].size(), 20u);
+  EXPECT_EQ(blocks[0][19].second, 19.0);
+  EXPECT_GT(std::filesystem::file_size(dir + "/live.png"), 1000u);
+}

@@ -1,0 +1,166 @@
+// turret-cmd against a subscriber on a private LCM URL: values, rate, message
+// types, channel naming, errors, and sim-time pacing by a fake clock.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lcm_control/float64_array_t.hpp"
+#include "lcm_control/float64_t.hpp"
+#include "lcm_control/sim_clock_t.hpp"
+#include "test/support/lcm_test.hpp"
+#include "test/support/process.hpp"
+
+using namespace lcm_control;
+using namespace lcm_control::testing;
+
+TEST(TurretCmd, SineAt60HzMatchesTheFormulaAndTheRate) {
+  const std::string url = unique_lcm_url();
+  lcm::LCM lc(url);
+  Recorder<float64_t> rec(lc, "j2_controller/command");
+  ChildProcess p({bin("turret-cmd"), "j2_controller", "3.14*sin(i/100)", "--rate", "60", "--count", "120",
+                  "--lcm-url", url});
+  ASSERT_TRUE(pump_until(lc, [&] { return rec.messages.size() >= 120; }, 6.0)) << p.output();
+  EXPECT_EQ(p.wait(3.0), 0) << p.output();
+  pump_until(lc, [] { return false; }, 0.1);
+  ASSERT_EQ(rec.messages.size(), 120u);
+  for (size_t i = 0; i < rec.messages.size(); ++i)
+    EXPECT_NEAR(rec.messages[i].data, 3.14 * std::sin(double(i) / 100.0), 1e-12) << "message " << i;
+  const double span_s = double(rec.receive_us.back() - rec.receive_us.front()) * 1e-6;
+  const double rate = 119.0 / span_s;
+  EXPECT_NEAR(rate, 60.0, 60.0 * 0.05) << "span " << span_s << " s";
+  // utime is the wall clock at sending: spaced by about 1/60 s too.
+  const double utime_rate = 119.0 / (double(rec.messages.back().utime - rec.messages.front().utime) * 1e-6);
+  EXPECT_NEAR(utime_rate, 60.0, 60.0 * 0.05);
+}
+
+TEST(TurretCmd, OnceWithoutRate) {
+  const std::string url = unique_lcm_url();
+  lcm::LCM lc(url);
+  Recorder<float64_t> rec(lc, "j1_controller/command");
+  ChildProcess p({bin("turret-cmd"), "j1_controller", "0.5", "--lcm-url", url});
+  EXPECT_EQ(p.wait(5.0), 0) << p.output();
+  pump_until(lc, [&] { return !rec.messages.empty(); }, 2.0);
+  ASSERT_EQ(rec.messages.size(), 1u);
+  EXPECT_EQ(rec.messages[0].data, 0.5);
+}
+
+TEST(TurretCmd, SeveralExpressionsSendAnArrayOnARawChannelWithNamespace) {
+  const std::string url = unique_lcm_url();
+  lcm::LCM lc(url);
+  Recorder<float64_array_t> rec(lc, "robot1/arm/goal");
+  ChildProcess p({bin("turret-cmd"), "/arm/goal", "i", "2*t", "pi", "--rate", "100", "--count", "5", "--namespace",
+                  "robot1", "--lcm-url", url});
+  ASSERT_TRUE(pump_until(lc, [&] { return rec.messages.size() >= 5; }, 5.0)) << p.output();
+  EXPECT_EQ(p.wait(3.0), 0);
+  for (size_t i = 0; i < 5; ++i) {
+    ASSERT_EQ(rec.messages[i].size, 3);
+    ASSERT_EQ(rec.messages[i].data.size(), 3u);
+    EXPECT_EQ(rec.messages[i].data[0], double(i));
+    EXPECT_NEAR(rec.messages[i].data[1], 2.0 * double(i) / 100.0, 1e-9);
+    EXPECT_NEAR(rec.messages[i].data[2], M_PI, 1e-12);
+  }
+}
+
+TEST(TurretCmd, ChannelFlagAndArrayFlag) {
+  const std::string url = unique_lcm_url();
+  lcm::LCM lc(url);
+  Recorder<float64_array_t> rec(lc, "setpoint");
+  ChildProcess p({bin("turret-cmd"), "setpoint", "7", "--channel", "--array", "--lcm-url", url});
+  EXPECT_EQ(p.wait(5.0), 0) << p.output();
+  pump_until(lc, [&] { return !rec.messages.empty(); }, 2.0);
+  ASSERT_EQ(rec.messages.size(), 1u);
+  EXPECT_EQ(rec.messages[0].data, std::vector<double>{7.0});
+}
+
+TEST(TurretCmd, BadExpressionFailsWithOneLine) {
+  ChildProcess p({bin("turret-cmd"), "j2_controller", "3.14*sin(", "--lcm-url", unique_lcm_url()});
+  EXPECT_EQ(p.wait(5.0), 1);
+  EXPECT_NE(p.output().find("turret-cmd: error: expression '3.14*sin('"), std::string::npos) << p.output();
+}
+
+TEST(TurretCmd, NanIsNeverSent) {
+  const std::string url = unique_lcm_url();
+  lcm::LCM lc(url);
+  Recorder<float64_t> rec(lc, "j2_controller/command");
+  ChildProcess p({bin("turret-cmd"), "j2_controller", "sqrt(2-i)", "--rate", "200", "--count", "10", "--lcm-url", url});
+  EXPECT_EQ(p.wait(5.0), 1);
+  pump_until(lc, [] { return false; }, 0.2);
+  EXPECT_EQ(rec.messages.size(), 3u);
+  EXPECT_NE(p.output().find("at i=3"), std::string::npos) << p.output();
+}
+
+TEST(TurretCmd, SimTimeWithoutClockTimesOut) {
+  ChildProcess p({bin("turret-cmd"), "j2_controller", "1", "--sim-time", "--clock-timeout", "0.5", "--lcm-url",
+                  unique_lcm_url()});
+  EXPECT_EQ(p.wait(5.0), 1);
+  EXPECT_NE(p.output().find("no sim_clock_t on 'clock'"), std::string::npos) << p.output();
+}
+
+// A fake lockstep sim: publishes clock k and waits for the command due at step
+// k+1 before it publishes clock k+1, as the controller manager would read it.
+TEST(TurretCmd, SimTimeSendsEachTickCommandBeforeTheTick) {
+  const std::string url = unique_lcm_url();
+  lcm::LCM lc(url);
+  Recorder<float64_t> rec(lc, "j2_controller/command");
+  ChildProcess p({bin("turret-cmd"), "j2_controller", "10*i + t", "--sim-time", "--count", "40", "--lcm-url", url});
+  const int64_t period_us = 1000, first_step = 500;
+  sim_clock_t clock{};
+  // Until turret-cmd listens, the first clocks go unheard; start counting at its first answer.
+  int64_t step = first_step;
+  auto publish_clock = [&](int64_t k) {
+    clock.step = k;
+    clock.utime = k * period_us;
+    lc.publish("clock", &clock);
+  };
+  while (rec.messages.empty()) {
+    ASSERT_LT(step, first_step + 200) << "turret-cmd never answered the clock\n" << p.output();
+    publish_clock(step);
+    pump_until(lc, [&] { return !rec.messages.empty(); }, 0.05);
+    if (rec.messages.empty()) ++step;
+  }
+  pump_until(lc, [] { return false; }, 0.1);
+  // Message 0 is for the first step it heard, message 1 for the next one.
+  const int64_t start = rec.messages[0].utime / period_us;
+  ASSERT_EQ(int64_t(rec.messages.size()), step - start + 2) << p.output();
+  for (int64_t k = step + 1; rec.messages.size() < 40; ++k) {
+    ASSERT_LT(k, start + 40) << p.output();
+    publish_clock(k);
+    const size_t want = size_t(k - start + 2);
+    ASSERT_TRUE(pump_until(lc, [&] { return rec.messages.size() >= want; }, 2.0)) << "step " << k;
+    EXPECT_EQ(rec.messages.size(), want);
+  }
+  EXPECT_EQ(p.wait(3.0), 0) << p.output();
+  ASSERT_EQ(rec.messages.size(), 40u);
+  for (size_t i = 0; i < rec.messages.size(); ++i) {
+    EXPECT_NEAR(rec.messages[i].data, 10.0 * double(i) + double(i) * 1e-3, 1e-9) << i;
+    EXPECT_EQ(rec.messages[i].utime, (start + int64_t(i)) * period_us) << i;
+  }
+}
+
+TEST(TurretCmd, SimTimeRateIsInSimSeconds) {
+  const std::string url = unique_lcm_url();
+  lcm::LCM lc(url);
+  Recorder<float64_t> rec(lc, "c/command");
+  // 100 Hz of sim time on a 1 kHz clock: one message every 10 steps.
+  ChildProcess p({bin("turret-cmd"), "c", "t", "--sim-time", "--rate", "100", "--duration", "0.05", "--lcm-url", url});
+  sim_clock_t clock{};
+  int64_t k = 1;
+  while (rec.messages.empty() && k < 2000) {
+    clock.step = k;
+    clock.utime = k * 1000;
+    lc.publish("clock", &clock);
+    pump_until(lc, [&] { return !rec.messages.empty(); }, 0.01);
+    ++k;
+  }
+  for (int n = 0; n < 60 && p.running(); ++n, ++k) {
+    clock.step = k;
+    clock.utime = k * 1000;
+    lc.publish("clock", &clock);
+    pump_until(lc, [] { return false; }, 0.005);
+  }
+  EXPECT_EQ(p.wait(3.0), 0) << p.output();
+  pump_until(lc, [] { return false; }, 0.1);
+  ASSERT_EQ(rec.messages.size(), 5u) << p.output();
+  for (size_t i = 0; i < 5; ++i) EXPECT_NEAR(rec.messages[i].data, 0.01 * double(i), 1e-12);
+  EXPECT_EQ(rec.messages[1].utime - rec.messages[0].utime, 10000);
+}

@@ -1,0 +1,39 @@
+// Field paths of our LCM messages, shared by state-logger, log2csv and plotter:
+// decode a payload by its fingerprint and flatten its numbers to (path, value)
+// pairs such as `utime`, `position[0]`, `data`, `data[2]` (the CSV columns).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lcm_control::tools {
+
+// One number of a message. Integers keep their exact value (utime, request ids).
+struct Field {
+  std::string path;
+  double value = 0;
+  int64_t exact = 0;
+  bool integer = false;
+  std::string text() const;  // the CSV cell: exact integers, shortest round-trip doubles
+};
+
+struct Decoded {
+  std::string type;         // "lcm_control.joint_state_t", "" if the fingerprint is not one of ours
+  std::string skip_reason;  // why this payload has no fields ("" when fields were decoded)
+  std::vector<Field> fields;
+  bool ok() const { return skip_reason.empty(); }
+};
+
+// Decodes one LCM payload by the fingerprint in its first 8 bytes. Strings and
+// array-length fields are left out (they are not signals); booleans are 0/1.
+Decoded decode_fields(const void* data, size_t size);
+
+// Every type decode_fields knows: "name" or "name (skipped: reason)", for --help texts.
+std::vector<std::string> known_types();
+
+// "j2_controller/command" -> "j2_controller__command.csv": one CSV per channel.
+std::string csv_file_name(const std::string& channel);
+
+}  // namespace lcm_control::tools

@@ -1,0 +1,99 @@
+// log2csv: converts an lcm-logger log file to one CSV per channel of our
+// types (rosbag to CSV), with the same columns as state-logger, and says
+// which channels it skipped and why.
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <regex>
+
+#include "common/cli.hpp"
+#include "tools/csv.hpp"
+#include "tools/fields.hpp"
+
+int main(int argc, char** argv) {
+  using namespace lcm_control;
+  using namespace lcm_control::tools;
+  CLI::App app{
+      "Convert an lcm-logger log to CSV: one file per channel of lcm_control types (name: the channel with '/' as "
+      "'__', e.g. j2_controller__command.csv), header = field paths (utime,position[0],...). Channels of other types "
+      "are listed as skipped, with the reason.\n"
+      "Examples:\n"
+      "  lcm-logger --lcm-url=udpm://239.255.76.67:7667?ttl=0 run.lcmlog   # record (Ctrl-C to stop)\n"
+      "  log2csv run.lcmlog --output-dir run_csv\n"
+      "  log2csv run.lcmlog --channel 'joint_states|j2_controller/.*' --log-time",
+      "log2csv"};
+  std::string log_path, output_dir = ".", channel_regex;
+  bool log_time = false;
+  app.add_option("LOGFILE", log_path, "log file written by lcm-logger")->required();
+  app.add_option("--output-dir", output_dir, "folder for the CSV files (created if needed)");
+  app.add_option("--channel", channel_regex, "only channels that this regular expression matches in full");
+  app.add_flag("--log-time", log_time, "add a first column log_utime: when lcm-logger received the message");
+  return run_program(app, argc, argv, [&] {
+    std::regex filter;
+    try {
+      filter = std::regex(channel_regex.empty() ? ".*" : channel_regex, std::regex::ECMAScript);
+    } catch (const std::regex_error& e) {
+      throw std::runtime_error(fmt::format("--channel '{}' is not a valid regular expression: {}", channel_regex,
+                                           e.what()));
+    }
+    if (!std::filesystem::is_regular_file(log_path)) throw std::runtime_error(log_path + ": no such log file");
+    lcm::LogFile log(log_path, "r");
+    if (!log.good()) throw std::runtime_error(log_path + ": cannot open as an LCM log");
+    std::error_code ec;
+    std::filesystem::create_directories(output_dir, ec);
+    if (ec) throw std::runtime_error("cannot create " + output_dir + ": " + ec.message());
+
+    struct Channel {
+      std::string type, skip_reason;
+      std::unique_ptr<CsvWriter> csv;
+      size_t other = 0;
+    };
+    std::map<std::string, Channel> seen;
+    size_t events = 0, filtered = 0;
+    for (const lcm::LogEvent* ev = log.readNextEvent(); ev; ev = log.readNextEvent()) {
+      ++events;
+      if (!std::regex_match(ev->channel, filter)) {
+        ++filtered;
+        continue;
+      }
+      Channel& c = seen[ev->channel];
+      if (!c.skip_reason.empty()) continue;
+      Decoded d = decode_fields(ev->data, size_t(ev->datalen));
+      if (!c.csv) {
+        if (ev->channel == "LCM_SELF_TEST") d.skip_reason = "LCM's own self-test traffic, not a message";
+        if (!d.ok()) {
+          c.type = d.type;
+          c.skip_reason = d.skip_reason;
+          continue;
+        }
+        c.type = d.type;
+        c.csv = std::make_unique<CsvWriter>(
+            (std::filesystem::path(output_dir) / csv_file_name(ev->channel)).string());
+      }
+      if (!d.ok() || d.type != c.type) {
+        ++c.other;
+        continue;
+      }
+      if (log_time) d.fields.insert(d.fields.begin(), Field{"log_utime", double(ev->timestamp), ev->timestamp, true});
+      c.csv->write(d.fields);
+    }
+    size_t written = 0;
+    for (auto& [name, c] : seen) {
+      if (c.csv) {
+        c.csv->flush();
+        ++written;
+        fmt::print("wrote {}: {} rows, {} columns ({}, channel {}){}\n", c.csv->path(), c.csv->rows(),
+                   c.csv->columns(), c.type, name,
+                   c.other ? fmt::format("; {} messages of another type left out", c.other) : "");
+      }
+    }
+    for (auto& [name, c] : seen)
+      if (!c.csv)
+        fmt::print("skipped {}: {}{}\n", name, c.type.empty() ? "" : c.type + ": ", c.skip_reason);
+    if (filtered) fmt::print("{} of {} messages were on channels --channel does not match\n", filtered, events);
+    if (written == 0)
+      throw std::runtime_error(fmt::format("{}: no channel of lcm_control types{} ({} messages read)", log_path,
+                                           channel_regex.empty() ? "" : " matching --channel", events));
+    return int(kExitOk);
+  });
+}

@@ -1,0 +1,280 @@
+// plotter: rqt_plot to a file. Plots field paths such as
+// `joint_states.velocity[1]` against time, from an lcm-logger log or live from
+// the bus for a while, to PNG or SVG through gnuplot.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+
+#include "common/cli.hpp"
+#include "tools/fields.hpp"
+#include "tools/support.hpp"
+
+namespace lcm_control::tools {
+namespace {
+
+// One requested path: channel + field, found when the first message of a
+// channel that can hold it arrives.
+struct Series {
+  std::string path;                 // as the user typed it
+  std::string channel, field;       // resolved
+  std::vector<std::pair<int64_t, double>> points;  // (time us, value)
+};
+
+// "joint_states.velocity[1]" matches channel "joint_states", field "velocity[1]";
+// ROS-style "/joint_states/velocity[1]" too; a bare channel whose message has
+// one value besides utime ("/j2_controller/command") means that value.
+std::optional<std::string> match(std::string path, const std::string& channel, const std::vector<Field>& fields) {
+  while (!path.empty() && path[0] == '/') path.erase(0, 1);
+  auto has = [&](const std::string& f) {
+    return std::any_of(fields.begin(), fields.end(), [&](const Field& x) { return x.path == f; });
+  };
+  if (path == channel) {
+    if (fields.size() == 2 && fields[0].path == "utime") return fields[1].path;
+    return std::nullopt;
+  }
+  if (path.size() > channel.size() + 1 && path.compare(0, channel.size(), channel) == 0 &&
+      (path[channel.size()] == '.' || path[channel.size()] == '/')) {
+    const std::string f = path.substr(channel.size() + 1);
+    if (has(f)) return f;
+  }
+  return std::nullopt;
+}
+
+class Collector {
+ public:
+  Collector(std::vector<Series>& series, bool use_utime) : series_(series), use_utime_(use_utime) {}
+
+  void add(const std::string& channel, int64_t receive_us, const void* data, size_t size) {
+    Decoded* d = nullptr;
+    Decoded decoded;
+    for (auto& s : series_) {
+      if (!s.channel.empty() && s.channel != channel) continue;
+      if (!d) {
+        decoded = decode_fields(data, size);
+        if (!decoded.ok()) return;
+        d = &decoded;
+        fields_seen_.emplace(channel, d->fields);
+      }
+      if (s.channel.empty()) {
+        const auto f = match(s.path, channel, d->fields);
+        if (!f) continue;
+        s.channel = channel;
+        s.field = *f;
+      }
+      for (const auto& f : d->fields)
+        if (f.path == s.field) {
+          int64_t t = receive_us;
+          if (use_utime_)
+            for (const auto& u : d->fields)
+              if (u.path == "utime") t = u.exact;
+          s.points.emplace_back(t, f.value);
+          break;
+        }
+    }
+    channels_.insert(channel);
+  }
+  // What the bus or log held, for an error that helps find the right path.
+  std::string hint() const {
+    std::string s;
+    for (const auto& [ch, fields] : fields_seen_) {
+      s += fmt::format("\n  {}:", ch);
+      for (size_t k = 0; k < fields.size() && k < 12; ++k) s += " " + ch + "." + fields[k].path;
+      if (fields.size() > 12) s += " ...";
+    }
+    std::string others;
+    for (const auto& c : channels_)
+      if (!fields_seen_.count(c)) others += " " + c;
+    if (!others.empty()) s += "\n  channels of other types:" + others;
+    return s.empty() ? "\n  (no messages at all)" : s;
+  }
+
+ private:
+  std::vector<Series>& series_;
+  bool use_utime_;
+  std::map<std::string, std::vector<Field>> fields_seen_;
+  std::set<std::string> channels_;
+};
+
+void read_log(const std::string& path, Collector& c) {
+  if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": no such log file");
+  lcm::LogFile log(path, "r");
+  if (!log.good()) throw std::runtime_error(path + ": cannot open as an LCM log");
+  for (const lcm::LogEvent* ev = log.readNextEvent(); ev; ev = log.readNextEvent())
+    c.add(ev->channel, ev->timestamp, ev->data, size_t(ev->datalen));
+}
+
+class LiveListener {
+ public:
+  LiveListener(Bus& bus, Collector& c) : bus_(bus), c_(c) {
+    bus.lcm().subscribe(".*", &LiveListener::on, this)->setQueueCapacity(10000);
+  }
+
+ private:
+  void on(const lcm::ReceiveBuffer* rbuf, const std::string& channel) {
+    const std::string prefix = bus_.channel("");
+    if (channel.compare(0, prefix.size(), prefix) != 0) return;
+    c_.add(channel.substr(prefix.size()), wall_us(), rbuf->data, size_t(rbuf->data_size));
+  }
+  Bus& bus_;
+  Collector& c_;
+};
+
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+// The data gnuplot reads: one block per path ("# path" then "t value" lines),
+// blocks separated by two blank lines; t in seconds from the first message.
+void write_data(const std::string& file, const std::vector<Series>& series, int64_t t0) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write " + file);
+  for (size_t k = 0; k < series.size(); ++k) {
+    if (k) out << "\n\n";
+    out << "# " << series[k].path << " (channel " << series[k].channel << ", field " << series[k].field << ")\n";
+    for (const auto& [t, v] : series[k].points) out << fmt::format("{:.6f} {}\n", double(t - t0) * 1e-6, v);
+  }
+  if (!out.flush()) throw std::runtime_error("cannot write " + file);
+}
+
+std::string gnuplot_script(const std::string& terminal, const std::string& output, const std::string& data,
+                           const std::vector<Series>& series, const std::string& title, const std::string& xlabel) {
+  std::string s = fmt::format("set terminal {}\n", terminal);
+  s += output.empty() ? std::string("set output\n") : fmt::format("set output {}\n", quoted(output));
+  s += "set termoption noenhanced\nset grid\nset key outside bottom center horizontal\n";
+  s += fmt::format("set xlabel {}\n", quoted(xlabel));
+  if (!title.empty()) s += fmt::format("set title {}\n", quoted(title));
+  s += "plot ";
+  for (size_t k = 0; k < series.size(); ++k)
+    s += fmt::format("{}{} index {} using 1:2 with {} title {}", k ? ", \\\n     " : "", quoted(data), k,
+                     series[k].points.size() < 2 ? "points pt 7" : "lines lw 1.5", quoted(series[k].path));
+  return s + "\n";
+}
+
+// A unique name in the temp folder for the data and script files.
+std::string temp_base() {
+  std::string tmpl = (std::filesystem::temp_directory_path() / "plotter_XXXXXX").string();
+  const int fd = mkstemp(tmpl.data());
+  if (fd < 0) throw std::runtime_error("cannot create a file in " + std::filesystem::temp_directory_path().string());
+  close(fd);
+  std::remove(tmpl.c_str());
+  return tmpl;
+}
+
+std::string run_gnuplot(const std::string& script_file) {
+  std::string out;
+  const int rc = run_and_wait({"gnuplot", script_file}, 30.0, &out);
+  if (rc != 0)
+    throw std::runtime_error(rc == -1 && out.rfind("cannot start", 0) == 0
+                                 ? out + " (install gnuplot-nox)"
+                                 : fmt::format("gnuplot failed (exit {}): {}", rc, out));
+  return out;
+}
+
+}  // namespace
+}  // namespace lcm_control::tools
+
+int main(int argc, char** argv) {
+  using namespace lcm_control;
+  using namespace lcm_control::tools;
+  CLI::App app{
+      "Plot message fields against time (rqt_plot) to PNG or SVG with gnuplot, from an lcm-logger log (--log) or "
+      "live from the bus (--duration). PATH is CHANNEL.FIELD with the field paths of state-logger / log2csv columns; "
+      "ROS-style /CHANNEL/FIELD works too, and a bare channel of a one-value message (float64_t) plots its data. "
+      "Time on x is seconds from the first message (receive time, or the messages' utime with --time utime).\n"
+      "Examples:\n"
+      "  plotter j2_controller/command.data joint_states.velocity[1] --log run.lcmlog --output run.png\n"
+      "  plotter /j2_controller/command /joint_states/velocity[1] --duration 10 --output live.svg\n"
+      "  plotter joint_states.position[0] --duration 5 --output - --terminal   # ASCII plot in the terminal",
+      "plotter"};
+  std::vector<std::string> paths;
+  std::string log_path, output, data_file, title, time_source = "receive";
+  double duration = 0;
+  int width = 1000, height = 600;
+  bool terminal = false;
+  BusFlags bus_flags;
+  app.add_option("PATH", paths, "CHANNEL.FIELD, e.g. joint_states.velocity[1]")->required();
+  auto* log_opt = app.add_option("--log", log_path, "read an lcm-logger log file");
+  auto* dur_opt = app.add_option("--duration", duration, "listen to the bus for S seconds")->check(CLI::PositiveNumber);
+  log_opt->excludes(dur_opt);
+  app.add_option("-o,--output", output, "image file: .png or .svg ('-' with --terminal: none)")->required();
+  app.add_option("--data", data_file, "also keep the data gnuplot plots in FILE (blocks of `t value` per path)");
+  app.add_option("--title", title, "plot title");
+  app.add_option("--time", time_source, "x axis: receive (log or receive time) or utime (the messages' own clock)")
+      ->check(CLI::IsMember({"receive", "utime"}));
+  app.add_option("--width", width, "image width in pixels")->check(CLI::Range(100, 10000));
+  app.add_option("--height", height, "image height in pixels")->check(CLI::Range(100, 10000));
+  app.add_flag("--terminal", terminal, "also draw the plot as text in the terminal");
+  add_bus_flags(app, bus_flags);
+  return run_program(app, argc, argv, [&] {
+    if (log_path.empty() && duration <= 0) throw std::runtime_error("give --log FILE or --duration S");
+    const std::string ext = std::filesystem::path(output).extension().string();
+    std::string term;
+    if (ext == ".png")
+      term = fmt::format("pngcairo size {},{}", width, height);
+    else if (ext == ".svg")
+      term = fmt::format("svg size {},{} dynamic", width, height);
+    else if (!(output == "-" && terminal))
+      throw std::runtime_error(fmt::format("--output '{}': the name must end in .png or .svg", output));
+
+    std::vector<Series> series;
+    for (const auto& p : paths) series.push_back(Series{p, "", "", {}});
+    Collector collector(series, time_source == "utime");
+    if (!log_path.empty()) {
+      read_log(log_path, collector);
+    } else {
+      install_stop_signals();
+      Bus bus(bus_flags.lcm_url, bus_flags.ns);
+      LiveListener listener(bus, collector);
+      fmt::print(stderr, "plotter: listening for {} on {}\n", seconds_text(duration), bus.url());
+      pump_until(bus, [] { return false; }, duration);
+    }
+    std::string missing;
+    for (const auto& s : series)
+      if (s.points.empty()) missing += (missing.empty() ? "" : ", ") + s.path;
+    if (!missing.empty())
+      throw std::runtime_error(fmt::format("no data for {} in {}; what there was:{}", missing,
+                                           log_path.empty() ? "the bus" : log_path, collector.hint()));
+    int64_t t0 = series[0].points.front().first;
+    for (const auto& s : series) t0 = std::min(t0, s.points.front().first);
+
+    const bool keep = !data_file.empty();
+    const std::string tmp = temp_base();
+    if (!keep) data_file = tmp + ".dat";
+    write_data(data_file, series, t0);
+    const std::string xlabel = time_source == "utime" ? "t [s] (message utime)" : "t [s]";
+    std::string script_file = tmp + ".gp";
+    {
+      std::ofstream sc(script_file);
+      if (!term.empty()) sc << gnuplot_script(term, output, data_file, series, title, xlabel);
+      if (terminal) sc << gnuplot_script("dumb size 100,30", "", data_file, series, title, xlabel);
+    }
+    std::string text;
+    try {
+      text = run_gnuplot(script_file);
+    } catch (...) {
+      std::remove(script_file.c_str());
+      if (!keep) std::remove(data_file.c_str());
+      throw;
+    }
+    std::remove(script_file.c_str());
+    if (!keep) std::remove(data_file.c_str());
+    if (terminal) std::fputs(text.c_str(), stdout);
+    if (!term.empty()) {
+      std::error_code ec;
+      if (std::filesystem::file_size(output, ec) == 0 || ec)
+        throw std::runtime_error("gnuplot wrote no image to " + output + ": " + text);
+      size_t n = 0;
+      for (const auto& s : series) n += s.points.size();
+      fmt::print(stderr, "plotter: {} points of {} paths -> {}\n", n, series.size(), output);
+    }
+    return int(kExitOk);
+  });
+}

@@ -1,0 +1,53 @@
+// What the tools share beyond common/cli.hpp: Ctrl-C / SIGTERM as a flag that
+// every bounded wait loop checks, and sleeping to absolute monotonic deadlines.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/bus.hpp"
+
+namespace lcm_control::tools {
+
+// SIGINT and SIGTERM set a flag instead of killing the process (no SA_RESTART,
+// so a blocking wait returns early). The signal number is kept for the exit code.
+void install_stop_signals();
+bool stop_requested();
+int stop_signal();
+void clear_stop();
+
+// Sleeps until the monotonic clock reaches deadline_us (common/bus.hpp's
+// monotonic_us()). Returns early when a stop is requested.
+void sleep_until_us(int64_t deadline_us);
+
+// Handles bus messages for up to timeout_ms. Throws on an LCM error; a wait cut
+// short by Ctrl-C / SIGTERM is not one.
+void handle_bus(Bus& bus, int timeout_ms);
+
+// Handles bus messages until `done()` is true, a stop is requested, or
+// timeout_s passes. Returns done().
+template <class Pred>
+bool pump_until(Bus& bus, Pred&& done, double timeout_s) {
+  const int64_t end = monotonic_us() + int64_t(timeout_s * 1e6);
+  while (!done()) {
+    if (stop_requested()) return false;
+    const int64_t left_ms = (end - monotonic_us()) / 1000;
+    if (left_ms <= 0) return done();
+    handle_bus(bus, int(left_ms < 50 ? left_ms : 50));
+  }
+  return true;
+}
+
+// A fresh id for matching an answer to its request (random, positive).
+int64_t new_request_id();
+
+// Runs argv (argv[0] searched on PATH) with stdin from /dev/null and stdout +
+// stderr collected into *output; kills it after timeout_s. Returns the exit code,
+// 128+signal if killed, or -1 if it could not start or timed out.
+int run_and_wait(const std::vector<std::string>& argv, double timeout_s, std::string* output);
+
+// Seconds as text for messages: "2 s", "0.5 s".
+std::string seconds_text(double s);
+
+}  // namespace lcm_control::tools

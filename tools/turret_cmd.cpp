@@ -1,0 +1,280 @@
+// turret-cmd: rqt's Message Publisher on the command line. Publishes muparser
+// expressions in i (message count) and t (seconds since start) to a controller's
+// command channel, once or at a fixed rate of wall time or of sim time.
+#include <fmt/ranges.h>
+#include <muParser.h>
+
+#include <cmath>
+#include <memory>
+#include <optional>
+
+#include "common/cli.hpp"
+#include "lcm_control/float64_array_t.hpp"
+#include "lcm_control/float64_t.hpp"
+#include "lcm_control/sim_clock_t.hpp"
+#include "tools/support.hpp"
+
+namespace lcm_control::tools {
+namespace {
+
+// The expressions, evaluated for one (i, t).
+class Expressions {
+ public:
+  explicit Expressions(const std::vector<std::string>& texts) : texts_(texts) {
+    for (const auto& text : texts) {
+      auto p = std::make_unique<mu::Parser>();
+      try {
+        p->DefineVar("i", &i_);
+        p->DefineVar("t", &t_);
+        p->DefineConst("pi", M_PI);
+        p->SetExpr(text);
+        p->Eval();
+      } catch (const mu::Parser::exception_type& e) {
+        throw std::runtime_error(fmt::format("expression '{}': {} (variables: i, t; constants: pi, _pi, _e)", text,
+                                             e.GetMsg()));
+      }
+      parsers_.push_back(std::move(p));
+    }
+  }
+  std::vector<double> eval(int64_t i, double t) {
+    i_ = double(i);
+    t_ = t;
+    std::vector<double> v;
+    for (size_t k = 0; k < parsers_.size(); ++k) {
+      const double x = parsers_[k]->Eval();
+      if (!std::isfinite(x))
+        throw std::runtime_error(fmt::format("expression '{}' is {} at i={} t={:g}; nothing sent for it", texts_[k], x,
+                                             i, t));
+      v.push_back(x);
+    }
+    return v;
+  }
+
+ private:
+  std::vector<std::string> texts_;
+  std::vector<std::unique_ptr<mu::Parser>> parsers_;
+  double i_ = 0, t_ = 0;
+};
+
+struct Options {
+  std::string target;
+  std::vector<std::string> exprs;
+  double rate = 0;
+  int64_t count = 0;
+  double duration = 0;
+  bool raw_channel = false, array = false, sim_time = false, print = false;
+  double clock_timeout = 5;
+};
+
+class Publisher {
+ public:
+  Publisher(Bus& bus, const Options& o)
+      : bus_(bus), o_(o), exprs_(o.exprs), array_(o.array || o.exprs.size() > 1) {
+    std::string t = o.target;
+    while (!t.empty() && t[0] == '/') t.erase(0, 1);  // ROS-style "/j2_controller/command"
+    if (t.empty()) throw std::runtime_error("TARGET is empty: give a controller name or a channel");
+    channel_ = (o.raw_channel || t.find('/') != std::string::npos) ? t : t + "/command";
+  }
+  const std::string& channel() const { return channel_; }
+  const char* type() const { return array_ ? "float64_array_t" : "float64_t"; }
+  int64_t sent() const { return sent_; }
+
+  void send(int64_t i, double t, int64_t utime) {
+    const std::vector<double> v = exprs_.eval(i, t);
+    if (array_) {
+      float64_array_t m;
+      m.utime = utime;
+      m.size = int32_t(v.size());
+      m.data = v;
+      bus_.publish(channel_, m);
+    } else {
+      float64_t m;
+      m.utime = utime;
+      m.data = v[0];
+      bus_.publish(channel_, m);
+    }
+    ++sent_;
+    if (o_.print) fmt::print("{} {:.6f} {}\n", i, t, fmt::join(v, " "));
+  }
+
+ private:
+  Bus& bus_;
+  const Options& o_;
+  Expressions exprs_;
+  bool array_;
+  std::string channel_;
+  int64_t sent_ = 0;
+};
+
+bool more(const Options& o, int64_t i, double t) {
+  if (o.count > 0 && i >= o.count) return false;
+  if (o.duration > 0 && t >= o.duration) return false;
+  return true;
+}
+
+// Wall clock: message i is due at start + i/rate on the monotonic clock. When the
+// process falls more than one period behind, it re-anchors instead of bursting.
+int run_wall(Publisher& pub, const Options& o) {
+  const int64_t start = monotonic_us();
+  if (o.rate <= 0) {
+    pub.send(0, 0.0, wall_us());
+    return kExitOk;
+  }
+  const double period_us = 1e6 / o.rate;
+  int64_t anchor = start, anchor_i = 0, late = 0;
+  for (int64_t i = 0; !stop_requested(); ++i) {
+    int64_t due = anchor + std::llround(double(i - anchor_i) * period_us);
+    const double t = double(due - start) / 1e6;
+    if (!more(o, i, t)) break;
+    sleep_until_us(due);
+    if (stop_requested()) break;
+    const int64_t now = monotonic_us();
+    if (now - due > int64_t(period_us)) {
+      anchor = due = now;
+      anchor_i = i;
+      ++late;
+    }
+    pub.send(i, double(due - start) / 1e6, wall_us());
+  }
+  if (late) fmt::print(stderr, "turret-cmd: fell behind the {:g} Hz schedule {} times\n", o.rate, late);
+  return kExitOk;
+}
+
+// Sim time: paced by sim_clock_t on `clock`. Message j is due at sim time
+// j/rate (or at every control step without --rate). On the clock of step k it
+// sends every message due up to step k+1, so in lockstep the command for a step
+// is normally on the bus before the controller manager reads that step. The
+// control period comes from the clock (utime / step), so on a first clock of
+// step 0 only message 0 goes out.
+class SimTimePacer {
+ public:
+  SimTimePacer(Bus& bus, Publisher& pub, const Options& o) : pub_(pub), o_(o) {
+    bus.lcm().subscribe(bus.channel(channels::kClock), &SimTimePacer::on_clock, this);
+  }
+  bool done() const { return done_; }
+  bool started() const { return started_; }
+  int64_t last_clock_us() const { return last_clock_mono_; }
+  int64_t sim_us() const { return last_utime_; }
+  const std::string& error() const { return error_; }
+
+ private:
+  void on_clock(const lcm::ReceiveBuffer*, const std::string&, const sim_clock_t* m) {
+    if (done_) return;
+    last_clock_mono_ = monotonic_us();
+    if (m->step > 0 && m->utime > 0) tick_us_ = double(m->utime) / double(m->step);
+    if (!started_ || m->utime < last_utime_) {
+      if (started_) fmt::print(stderr, "turret-cmd: sim time went back ({} -> {} us): restarting at i=0\n",
+                               last_utime_, m->utime);
+      started_ = true;
+      start_us_ = m->utime;
+      next_ = 0;
+    }
+    last_utime_ = m->utime;
+    const double msg_period = o_.rate > 0 ? 1e6 / o_.rate : tick_us_;
+    const double horizon = double(m->utime - start_us_) + tick_us_;
+    if (msg_period <= 0) {
+      if (next_ == 0) publish(0, 0.0);
+      return;
+    }
+    const int64_t last = int64_t(std::floor(horizon / msg_period + 1e-9));
+    for (int64_t j = next_; j <= last && !done_; ++j) {
+      const double t = double(j) * msg_period / 1e6;
+      if (o_.duration > 0 && double(j) * msg_period >= o_.duration * 1e6 - 0.5) {
+        done_ = true;
+        return;
+      }
+      publish(j, t);
+    }
+  }
+  void publish(int64_t j, double t) {
+    try {
+      pub_.send(j, t, start_us_ + std::llround(t * 1e6));
+    } catch (const std::exception& e) {
+      error_ = e.what();
+      done_ = true;
+    }
+    next_ = j + 1;
+    if (o_.count > 0 && next_ >= o_.count) done_ = true;
+  }
+
+  Publisher& pub_;
+  const Options& o_;
+  bool started_ = false, done_ = false;
+  int64_t start_us_ = 0, last_utime_ = 0, next_ = 0, last_clock_mono_ = 0;
+  double tick_us_ = 0;
+  std::string error_;
+};
+
+int run_sim_time(Bus& bus, Publisher& pub, const Options& o) {
+  SimTimePacer pacer(bus, pub, o);
+  const int64_t begin = monotonic_us();
+  const int64_t timeout_us = int64_t(o.clock_timeout * 1e6);
+  while (!pacer.done() && !stop_requested()) {
+    handle_bus(bus, 50);
+    const int64_t since = monotonic_us() - (pacer.started() ? pacer.last_clock_us() : begin);
+    if (since > timeout_us) {
+      if (!pacer.started())
+        throw std::runtime_error(fmt::format(
+            "no sim_clock_t on '{}' for {}: is sim_server running on this --lcm-url/--namespace?",
+            bus.channel(channels::kClock), seconds_text(o.clock_timeout)));
+      throw std::runtime_error(fmt::format(
+          "the clock on '{}' stopped at sim time {:.6f} s for {} after {} messages (sim_server paused or gone?)",
+          bus.channel(channels::kClock), double(pacer.sim_us()) * 1e-6, seconds_text(o.clock_timeout), pub.sent()));
+    }
+  }
+  if (!pacer.error().empty()) throw std::runtime_error(pacer.error());
+  return kExitOk;
+}
+
+}  // namespace
+}  // namespace lcm_control::tools
+
+int main(int argc, char** argv) {
+  using namespace lcm_control;
+  using namespace lcm_control::tools;
+  CLI::App app{
+      "Publish commands to a controller (rqt Message Publisher). EXPR is a muparser expression in i (message count "
+      "from 0) and t (seconds since start); one EXPR sends lcm_control.float64_t, several send float64_array_t (group "
+      "controllers). TARGET is a controller name (channel TARGET/command) or, if it contains '/' or with --channel, a "
+      "channel name.\n"
+      "Examples:\n"
+      "  turret-cmd j1_controller 0.5                                   # once\n"
+      "  turret-cmd j2_controller '3.14*sin(i/100)' --rate 60           # until Ctrl-C\n"
+      "  turret-cmd /j2_controller/command '3.14*sin(2*pi*0.5*t)' --rate 100 --duration 10\n"
+      "  turret-cmd arm_controller 0.1 '-0.2*t' --rate 50 --count 100   # float64_array_t\n"
+      "  turret-cmd j2_controller 'i<500 ? 0 : 1' --sim-time            # one message per sim control step",
+      "turret-cmd"};
+  Options o;
+  BusFlags bus_flags;
+  app.add_option("TARGET", o.target, "controller name, or a channel (contains '/', or with --channel)")->required();
+  app.add_option("EXPR", o.exprs, "expression(s) in i and t, one per joint")->required();
+  app.add_option("--rate", o.rate, "messages per second (default: publish once; with --sim-time: every control step)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--count", o.count, "stop after N messages")->check(CLI::PositiveNumber);
+  app.add_option("--duration", o.duration, "stop after S seconds (sim seconds with --sim-time)")
+      ->check(CLI::PositiveNumber);
+  app.add_flag("--channel", o.raw_channel, "TARGET is a channel name, used as given");
+  app.add_flag("--array", o.array, "send float64_array_t even for one EXPR");
+  app.add_flag("--sim-time", o.sim_time,
+               "pace by sim time from the `clock` channel instead of the wall clock (deterministic under lockstep)");
+  app.add_option("--clock-timeout", o.clock_timeout, "with --sim-time: give up after S seconds without a clock message")
+      ->check(CLI::PositiveNumber);
+  app.add_flag("--print", o.print, "print `i t value...` for every message sent");
+  add_bus_flags(app, bus_flags);
+  return run_program(app, argc, argv, [&] {
+    if (o.count > 1 && o.rate <= 0 && !o.sim_time) throw std::runtime_error("--count needs --rate (or --sim-time)");
+    if (o.duration > 0 && o.rate <= 0 && !o.sim_time)
+      throw std::runtime_error("--duration needs --rate (or --sim-time)");
+    install_stop_signals();
+    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    Publisher pub(bus, o);
+    if (o.rate > 0 || o.sim_time)
+      fmt::print(stderr, "turret-cmd: {} on '{}' {}{} (Ctrl-C to stop)\n", pub.type(), bus.channel(pub.channel()),
+                 o.rate > 0 ? fmt::format("at {:g} Hz", o.rate) : std::string("every control step"),
+                 o.sim_time ? " of sim time" : "");
+    const int rc = o.sim_time ? run_sim_time(bus, pub, o) : run_wall(pub, o);
+    fmt::print(stderr, "turret-cmd: sent {} message{} on '{}'\n", pub.sent(), pub.sent() == 1 ? "" : "s",
+               bus.channel(pub.channel()));
+    return rc;
+  });
+}
