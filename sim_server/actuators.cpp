@@ -1,0 +1,220 @@
+#include "sim_server/actuators.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/angles.hpp"
+#include "lcm_control/hardware_command_t.hpp"
+
+namespace lcm_control::sim {
+
+namespace {
+// Friction is -f*tanh(v/v0): v0 small enough to look like Coulomb friction, large enough that the
+// slope f/v0 stays a stable explicit damping for the joint's inertia.
+constexpr double kMinFrictionSpeed = 1e-3;
+constexpr double kUnlimitedEffort = 1e9;
+
+double finite_or(double v, double fallback) { return std::isfinite(v) ? v : fallback; }
+}  // namespace
+
+const char* to_string(ActuatorMode m) {
+  switch (m) {
+    case ActuatorMode::PositionPid: return "position PID";
+    case ActuatorMode::PositionDirect: return "position direct";
+    case ActuatorMode::VelocityPid: return "velocity PID";
+    case ActuatorMode::VelocityMotor: return "velocity motor";
+    case ActuatorMode::Effort: return "effort";
+  }
+  return "?";
+}
+
+Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
+  const double dt = mb.dt();
+  for (const TransmissionSpec& t : model.transmissions) {
+    const int k = mb.joint_index(t.joint);
+    if (k < 0)
+      throw ModelError(fmt::format("{}: transmission '{}': joint '{}' is not a moving joint of the robot",
+                                   model.urdf_path, t.name, t.joint));
+    const MultibodyJoint& mj = mb.joints()[k];
+    const Joint& j = *mj.urdf;
+    Actuator a;
+    a.name = t.actuator;
+    a.joint = t.joint;
+    a.map = t.map;
+    a.link = mj.link;
+    a.continuous = j.type == JointType::Continuous;
+    a.effort_limit = j.effort_limit;
+    a.velocity_limit = j.velocity_limit;
+    a.friction = j.friction;
+    a.damping = j.damping;
+    if (mj.effective_inertia > 0 && a.damping * dt > mj.effective_inertia) {
+      a.damping = mj.effective_inertia / dt;
+      warnings_.push_back(fmt::format("{}: joint '{}': damping {:g} is too stiff for a {:g} s step with inertia {:g}; "
+                                      "simulated with {:g}",
+                                      model.urdf_path, j.name, j.damping, dt, mj.effective_inertia, a.damping));
+    }
+    a.friction_speed =
+        mj.effective_inertia > 0 ? std::max(kMinFrictionSpeed, 2 * a.friction * dt / mj.effective_inertia) : 1.0;
+    JointLimits limits;
+    limits.has_position = j.has_position_limits;
+    limits.lower = j.lower;
+    limits.upper = j.upper;
+    limits.max_velocity = j.velocity_limit;
+    limits.max_effort = j.effort_limit;
+    a.saturation = PositionSaturation(limits);
+    const auto gains = model.pid_gains.find(t.joint);
+    const bool with_gains = gains != model.pid_gains.end();
+    switch (t.interfaces.front()) {
+      case Interface::Position:
+        a.mode = with_gains ? ActuatorMode::PositionPid : ActuatorMode::PositionDirect;
+        a.wire_mode = hardware_command_t::MODE_POSITION;
+        break;
+      case Interface::Velocity:
+        a.mode = with_gains ? ActuatorMode::VelocityPid : ActuatorMode::VelocityMotor;
+        a.wire_mode = hardware_command_t::MODE_VELOCITY;
+        break;
+      case Interface::Effort:
+        a.mode = ActuatorMode::Effort;
+        a.wire_mode = hardware_command_t::MODE_EFFORT;
+        break;
+    }
+    a.has_pid = a.mode == ActuatorMode::PositionPid || a.mode == ActuatorMode::VelocityPid;
+    if (a.has_pid) a.pid.set_gains(gains->second);
+    // Direct position is kinematic, as in Gazebo (a capped dead-beat motor would overshoot once it saturates);
+    // the velocity motor is capped by the effort limit.
+    if (a.mode == ActuatorMode::PositionDirect)
+      a.motor = mb.add_motor(a.link, kUnlimitedEffort * dt);
+    else if (a.mode == ActuatorMode::VelocityMotor)
+      a.motor = mb.add_motor(a.link, finite_or(a.effort_limit, kUnlimitedEffort) * dt);
+    a.q = a.hold_position = mb.position(a.link);
+    a.saturation.reset(a.q);
+    actuators_.push_back(std::move(a));
+  }
+}
+
+int Actuators::find_joint(const std::string& joint) const {
+  for (int i = 0; i < size(); ++i)
+    if (actuators_[i].joint == joint) return i;
+  return -1;
+}
+
+std::string Actuators::describe(int i) const {
+  const Actuator& a = actuators_[i];
+  std::string how;
+  switch (a.mode) {
+    case ActuatorMode::PositionPid:
+    case ActuatorMode::VelocityPid: {
+      const PidGains& g = a.pid.gains();
+      how = fmt::format("{} to effort (pid_gains p {:g} i {:g} d {:g} i_clamp [{:g}, {:g}]{})", to_string(a.mode), g.p,
+                        g.i, g.d, g.i_clamp_min, g.i_clamp_max, g.antiwindup ? " antiwindup" : "");
+      break;
+    }
+    case ActuatorMode::PositionDirect:
+      how = "position direct (no pid_gains): the joint follows the command kinematically (a stiff motor whose "
+            "force is reported as the effort)";
+      break;
+    case ActuatorMode::VelocityMotor:
+      how = "velocity motor (no pid_gains), capped at the effort limit";
+      break;
+    case ActuatorMode::Effort:
+      how = "effort, applied directly";
+      break;
+  }
+  return fmt::format("actuator '{}' -> joint '{}': {}; reduction {:g}, offset {:g}, effort limit {:g}, velocity limit "
+                     "{:g}",
+                     a.name, a.joint, how, a.map.reduction, a.map.offset, a.effort_limit, a.velocity_limit);
+}
+
+void Actuators::set_command(int i, int8_t wire_mode, double value) {
+  Actuator& a = actuators_[i];
+  a.commanded = wire_mode != hardware_command_t::MODE_NONE;
+  if (!a.commanded) return;
+  switch (a.wire_mode) {
+    case hardware_command_t::MODE_POSITION: a.command = a.map.actuator_to_joint_position(value); break;
+    case hardware_command_t::MODE_VELOCITY: a.command = a.map.actuator_to_joint_velocity(value); break;
+    default: a.command = a.map.actuator_to_joint_effort(value); break;
+  }
+}
+
+void Actuators::set_e_stop(bool engaged) {
+  if (engaged && !e_stop_)
+    for (Actuator& a : actuators_) {
+      a.hold_position = a.q;
+      a.holding = true;
+    }
+  e_stop_ = engaged;
+}
+
+bool Actuators::set_gains(int i, const PidGains& g) {
+  if (!actuators_[i].has_pid) return false;
+  actuators_[i].pid.set_gains(g);
+  return true;
+}
+
+double Actuators::position_goal(Actuator& a, bool hold, double dt) {
+  if (hold) {
+    a.saturation.reset(a.hold_position);
+    return a.hold_position;
+  }
+  return a.saturation.enforce(a.command, dt);
+}
+
+void Actuators::apply(double dt) {
+  for (Actuator& a : actuators_) {
+    const bool hold = e_stop_ || hold_all_ || !a.commanded;
+    if (hold && !a.holding) a.hold_position = a.q;
+    a.holding = hold;
+    const double q = a.q = mb_.position(a.link), qd = a.qd = mb_.velocity(a.link);
+    const double e_max = a.effort_limit;
+    a.effort = 0;
+    switch (a.mode) {
+      case ActuatorMode::PositionPid: {
+        const double goal = position_goal(a, hold, dt);
+        const double error = a.continuous ? shortest_angular_distance(q, goal) : goal - q;
+        a.effort = clamp_abs(a.pid.compute(error, dt), e_max);
+        break;
+      }
+      case ActuatorMode::PositionDirect: {
+        double goal = position_goal(a, hold, dt);
+        if (a.continuous) goal = q + shortest_angular_distance(q, goal);
+        a.motor->setPositionTarget(goal, 1.0);
+        a.motor->setVelocityTarget(0, 1.0);
+        break;
+      }
+      case ActuatorMode::VelocityPid: {
+        const double goal = hold ? 0.0 : clamp_abs(a.command, a.velocity_limit);
+        a.effort = clamp_abs(a.pid.compute(goal - qd, dt), e_max);
+        break;
+      }
+      case ActuatorMode::VelocityMotor:
+        a.motor->setPositionTarget(0, 0.0);
+        a.motor->setVelocityTarget(hold ? 0.0 : clamp_abs(a.command, a.velocity_limit), 1.0);
+        break;
+      case ActuatorMode::Effort:
+        a.effort = hold ? 0.0 : clamp_abs(a.command, e_max);
+        break;
+    }
+    const double passive = -a.damping * qd - a.friction * std::tanh(qd / a.friction_speed);
+    mb_.add_torque(a.link, a.effort + passive);
+  }
+}
+
+void Actuators::read(double dt) {
+  for (Actuator& a : actuators_) {
+    a.q = mb_.position(a.link);
+    a.qd = mb_.velocity(a.link);
+    a.applied = a.motor ? a.motor->getAppliedImpulse(0) / dt : a.effort;
+  }
+}
+
+double Actuators::position(int i) const {
+  return actuators_[i].map.joint_to_actuator_position(actuators_[i].q);
+}
+double Actuators::velocity(int i) const {
+  return actuators_[i].map.joint_to_actuator_velocity(actuators_[i].qd);
+}
+double Actuators::effort(int i) const { return actuators_[i].map.joint_to_actuator_effort(actuators_[i].applied); }
+
+}  // namespace lcm_control::sim

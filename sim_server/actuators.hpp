@@ -1,0 +1,93 @@
+// The simulated hardware behind each transmission: it takes actuator-space
+// commands in the mode its hardwareInterface declares and turns them, every
+// physics step, into joint torques or motor targets with gazebo_ros_control's
+// semantics (PID to effort with pid_gains, direct without), plus what that
+// plugin leaves out: transmissions, position/velocity/effort limits, URDF
+// damping and friction, e-stop latch and hold.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/joint_limits.hpp"
+#include "common/pid.hpp"
+#include "common/robot_model.hpp"
+#include "sim_server/multibody_builder.hpp"
+
+namespace lcm_control::sim {
+
+enum class ActuatorMode { PositionPid, PositionDirect, VelocityPid, VelocityMotor, Effort };
+const char* to_string(ActuatorMode m);
+
+class Actuators {
+ public:
+  // Reads the transmissions (in URDF order) and pid_gains; adds the motors the direct modes need.
+  Actuators(const RobotModel& model, Multibody& multibody);
+
+  int size() const { return int(actuators_.size()); }
+  const std::string& name(int i) const { return actuators_[i].name; }
+  const std::string& joint(int i) const { return actuators_[i].joint; }
+  ActuatorMode mode(int i) const { return actuators_[i].mode; }
+  int8_t wire_mode(int i) const { return actuators_[i].wire_mode; }  // hardware_command_t::MODE_*
+  int find_joint(const std::string& joint) const;                    // -1 if no actuator drives it
+  // One line per actuator for the INFO log: mode, reduction, limits, gains.
+  std::string describe(int i) const;
+  // Findings worth a WARN (damping capped so the explicit damping torque stays stable).
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+  // Commands in actuator units; MODE_NONE holds. Real-time safe.
+  void set_command(int i, int8_t wire_mode, double value);
+  // Watchdog or lost controller: every actuator holds while set.
+  void set_hold_all(bool hold) { hold_all_ = hold; }
+  // Position actuators latch their position when it engages; velocity and effort get 0.
+  void set_e_stop(bool engaged);
+  bool e_stop() const { return e_stop_; }
+
+  bool has_pid(int i) const { return actuators_[i].has_pid; }
+  const PidGains& gains(int i) const { return actuators_[i].pid.gains(); }
+  // Joint-space gains of a PID actuator, used from the next physics step on; false for direct modes.
+  bool set_gains(int i, const PidGains& g);
+
+  // The real-time path, around every physics step: no allocation, logging or locks.
+  void apply(double dt);  // torques and motor targets for the coming step
+  void read(double dt);   // state and applied effort after it
+
+  // State after the last step, in actuator units.
+  double position(int i) const;
+  double velocity(int i) const;
+  double effort(int i) const;
+  // The same in joint units.
+  double joint_position(int i) const { return actuators_[i].q; }
+  double joint_velocity(int i) const { return actuators_[i].qd; }
+  double joint_effort(int i) const { return actuators_[i].applied; }
+
+ private:
+  struct Actuator {
+    std::string name, joint;
+    ActuatorMode mode = ActuatorMode::Effort;
+    int8_t wire_mode = 0;
+    SimpleTransmission map;
+    int link = -1;
+    bool continuous = false;
+    double effort_limit = 0, velocity_limit = 0, damping = 0, friction = 0, friction_speed = 1;
+    PositionSaturation saturation;
+    bool has_pid = false;
+    Pid pid;
+    btMultiBodyJointMotor* motor = nullptr;
+    bool commanded = false;  // false: nobody commands it (MODE_NONE or none yet)
+    double command = 0;      // joint units
+    bool holding = true;
+    double hold_position = 0;
+    double q = 0, qd = 0, effort = 0, applied = 0;
+  };
+
+  double position_goal(Actuator& a, bool hold, double dt);
+
+  Multibody& mb_;
+  std::vector<Actuator> actuators_;
+  bool hold_all_ = false, e_stop_ = false;
+  std::vector<std::string> warnings_;
+};
+
+}  // namespace lcm_control::sim

@@ -1,0 +1,276 @@
+#include "sim_server/multibody_builder.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <functional>
+
+namespace lcm_control::sim {
+
+namespace {
+
+constexpr double kGravity = 9.81;
+constexpr double kMasslessLinkMass = 1e-3;   // kg, for moving links the URDF gives no mass
+constexpr double kMasslessLinkInertia = 1e-6;
+// Limits must stop a 1000 N actuator and the momentum of a fast heavy arm within one step; the cap is
+// only a safety net against a runaway solve.
+constexpr double kLimitMaxImpulse = 1e6;
+constexpr double kTinyColliderRadius = 1e-3;
+
+struct LinkInertia {
+  double mass = 0;
+  Eigen::Vector3d principal = Eigen::Vector3d::Zero();
+  Eigen::Isometry3d link_from_com = Eigen::Isometry3d::Identity();
+};
+
+// The URDF inertial as Bullet needs it: a diagonal tensor in a COM frame rotated onto the principal axes.
+LinkInertia principal_inertia(const Link& link, bool moving, const std::string& urdf,
+                              std::vector<std::string>& warnings) {
+  LinkInertia out;
+  if (link.inertial) out.link_from_com = link.inertial->origin;
+  if (!link.inertial || link.inertial->mass <= 0) {
+    if (moving) {
+      out.mass = kMasslessLinkMass;
+      out.principal.setConstant(kMasslessLinkInertia);
+      warnings.push_back(fmt::format("{}: link '{}' moves but has no mass; simulated with {} kg, inertia {} kg m^2",
+                                     urdf, link.name, kMasslessLinkMass, kMasslessLinkInertia));
+    }
+    return out;
+  }
+  out.mass = link.inertial->mass;
+  const Eigen::Matrix3d& I = link.inertial->inertia;
+  const double scale = I.diagonal().cwiseAbs().maxCoeff();
+  const bool diagonal = std::abs(I(0, 1)) <= 1e-12 * scale && std::abs(I(0, 2)) <= 1e-12 * scale &&
+                        std::abs(I(1, 2)) <= 1e-12 * scale;
+  if (diagonal) {
+    out.principal = I.diagonal();
+  } else {
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> es(I);
+    Eigen::Matrix3d axes = es.eigenvectors();
+    if (axes.determinant() < 0) axes.col(2) *= -1;
+    out.principal = es.eigenvalues();
+    out.link_from_com.linear() = out.link_from_com.linear() * axes;
+  }
+  const Eigen::Vector3d& p = out.principal;
+  const double tol = 1e-9 * std::max(scale, 1e-12);
+  if (p.minCoeff() < -tol || p.x() > p.y() + p.z() + tol || p.y() > p.x() + p.z() + tol ||
+      p.z() > p.x() + p.y() + tol)
+    warnings.push_back(fmt::format("{}: link '{}': inertia (principal moments {:g} {:g} {:g}) is not physical "
+                                   "(a moment exceeds the sum of the other two); simulated as given",
+                                   urdf, link.name, p.x(), p.y(), p.z()));
+  out.principal = out.principal.cwiseMax(0.0);
+  return out;
+}
+
+btVector3 bt(const Eigen::Vector3d& v) { return btVector3(v.x(), v.y(), v.z()); }
+
+btQuaternion bt_rotation(const Eigen::Matrix3d& r) {
+  btQuaternion q;
+  to_bt(Eigen::Isometry3d(r)).getBasis().getRotation(q);
+  return q;
+}
+
+}  // namespace
+
+Multibody::Multibody(const RobotModel& model, double dt) : dt_(dt) {
+  collision_config_ = std::make_unique<btDefaultCollisionConfiguration>();
+  dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_config_.get());
+  broadphase_ = std::make_unique<btDbvtBroadphase>();
+  solver_ = std::make_unique<btMultiBodyConstraintSolver>();
+  world_ = std::make_unique<btMultiBodyDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
+                                                      collision_config_.get());
+  world_->setGravity(btVector3(0, 0, -kGravity));
+  world_->getSolverInfo().m_numIterations = 50;
+  build(model);
+  compute_effective_inertias();
+}
+
+Multibody::~Multibody() {
+  for (auto& c : constraints_) world_->removeMultiBodyConstraint(c.get());
+  for (auto& c : colliders_) world_->removeCollisionObject(c.get());
+  if (body_) world_->removeMultiBody(body_.get());
+}
+
+void Multibody::build(const RobotModel& model) {
+  const std::string& urdf = model.urdf_path;
+  // Depth-first pre-order from the root, children in URDF order: a parent always precedes its children.
+  std::vector<const Joint*> order;
+  std::function<void(const std::string&)> visit = [&](const std::string& parent) {
+    for (const Joint& j : model.joints)
+      if (j.parent_link == parent) {
+        order.push_back(&j);
+        visit(j.child_link);
+      }
+  };
+  visit(model.root_link);
+
+  std::map<std::string, LinkInertia> inertia;
+  std::map<std::string, bool> welded_to_base{{model.root_link, true}};
+  const Link* root = model.link(model.root_link);
+  if (!root) throw ModelError(fmt::format("{}: root link '{}' not found", urdf, model.root_link));
+  inertia[root->name] = principal_inertia(*root, false, urdf, warnings_);
+  for (const Joint* j : order) {
+    const bool moving = j->type != JointType::Fixed;
+    inertia[j->child_link] = principal_inertia(*model.link(j->child_link), moving, urdf, warnings_);
+    welded_to_base[j->child_link] = !moving && welded_to_base[j->parent_link];
+  }
+
+  const LinkInertia& base = inertia[root->name];
+  body_ = std::make_unique<btMultiBody>(int(order.size()), base.mass, bt(base.principal), /*fixedBase=*/true,
+                                        /*canSleep=*/false);
+  body_->setBaseWorldTransform(to_bt(base.link_from_com));
+  link_index_[root->name] = -1;
+  link_from_com_[root->name] = base.link_from_com;
+
+  double max_velocity = 0;
+  for (int i = 0; i < int(order.size()); ++i) {
+    const Joint& j = *order[i];
+    const LinkInertia& child = inertia[j.child_link];
+    link_index_[j.child_link] = i;
+    link_from_com_[j.child_link] = child.link_from_com;
+    const int parent = link_index_.at(j.parent_link);
+    const Eigen::Isometry3d in_a = link_from_com_.at(j.parent_link).inverse() * j.origin;  // joint frame in parent COM
+    const Eigen::Isometry3d in_b = child.link_from_com.inverse();                         // child frame in child COM
+    const btQuaternion rot_parent_to_this = bt_rotation(in_b.linear() * in_a.linear().transpose());
+    const btVector3 parent_com_to_pivot = bt(in_a.translation());
+    const btVector3 pivot_to_com = bt(Eigen::Vector3d(-in_b.translation()));
+    const btVector3 axis = bt(Eigen::Vector3d(in_b.linear() * j.axis));
+    switch (j.type) {
+      case JointType::Revolute:
+      case JointType::Continuous:
+        body_->setupRevolute(i, child.mass, bt(child.principal), parent, rot_parent_to_this, axis,
+                             parent_com_to_pivot, pivot_to_com, true);
+        break;
+      case JointType::Prismatic:
+        body_->setupPrismatic(i, child.mass, bt(child.principal), parent, rot_parent_to_this, axis,
+                              parent_com_to_pivot, pivot_to_com, true);
+        break;
+      case JointType::Fixed:
+        body_->setupFixed(i, child.mass, bt(child.principal), parent, rot_parent_to_this, parent_com_to_pivot,
+                          pivot_to_com);
+        break;
+      default:
+        throw ModelError(fmt::format("{}: joint '{}' is {}; only revolute, continuous, prismatic and fixed joints "
+                                     "are supported",
+                                     urdf, j.name, to_string(j.type)));
+    }
+    if (j.type != JointType::Fixed) {
+      MultibodyJoint mj;
+      mj.urdf = &j;
+      mj.link = i;
+      joints_.push_back(mj);
+      if (std::isfinite(j.velocity_limit)) max_velocity = std::max(max_velocity, j.velocity_limit);
+    }
+  }
+
+  body_->finalizeMultiDof();
+  body_->setLinearDamping(0);
+  body_->setAngularDamping(0);
+  body_->setCanSleep(false);
+  body_->setHasSelfCollision(false);  // as Gazebo: links of one model do not collide unless asked
+  body_->setMaxCoordinateVelocity(max_velocity > 0 ? max_velocity : 1e4);
+  world_->addMultiBody(body_.get());
+
+  // Colliders on every link: a link without one has island tag -1 and Bullet silently skips its limit
+  // and motor rows, so geometry-less links get a tiny sphere that collides with nothing.
+  shapes_.push_back(std::make_unique<btSphereShape>(kTinyColliderRadius));
+  btCollisionShape* tiny = shapes_.back().get();
+  auto add_collider = [&](const Link& link, int index) {
+    btCollisionShape* shape = make_link_shape(link, link_from_com_.at(link.name).inverse(), shapes_, urdf);
+    auto col = std::make_unique<btMultiBodyLinkCollider>(body_.get(), index);
+    col->setCollisionShape(shape ? shape : tiny);
+    int group = btBroadphaseProxy::DefaultFilter, mask = btBroadphaseProxy::AllFilter;
+    if (welded_to_base.at(link.name)) {
+      col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
+      group = btBroadphaseProxy::StaticFilter;
+      mask = btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter;
+    }
+    if (!shape) group = mask = 0;
+    world_->addCollisionObject(col.get(), group, mask);
+    if (index < 0)
+      body_->setBaseCollider(col.get());
+    else
+      body_->getLink(index).m_collider = col.get();
+    colliders_.push_back(std::move(col));
+  };
+  add_collider(*root, -1);
+  for (int i = 0; i < int(order.size()); ++i) add_collider(*model.link(order[i]->child_link), i);
+
+  for (MultibodyJoint& mj : joints_) {
+    if (!mj.urdf->has_position_limits) continue;
+    auto limit = std::make_unique<SpeculativeJointLimit>(body_.get(), mj.link, mj.urdf->lower, mj.urdf->upper);
+    limit->setMaxAppliedImpulse(kLimitMaxImpulse);
+    world_->addMultiBodyConstraint(limit.get());
+    mj.limit = limit.get();
+    constraints_.push_back(std::move(limit));
+  }
+
+  btAlignedObjectArray<btQuaternion> world_to_local;
+  btAlignedObjectArray<btVector3> local_origin;
+  body_->forwardKinematics(world_to_local, local_origin);
+  body_->updateCollisionObjectWorldTransforms(world_to_local, local_origin);
+}
+
+void Multibody::compute_effective_inertias() {
+  // Run the articulated-body pass once without advancing time, then read (M^-1)_jj per joint.
+  btAlignedObjectArray<btScalar> scratch_r;
+  btAlignedObjectArray<btVector3> scratch_v;
+  btAlignedObjectArray<btMatrix3x3> scratch_m;
+  body_->clearForcesAndTorques();
+  body_->computeAccelerationsArticulatedBodyAlgorithmMultiDof(0, scratch_r, scratch_v, scratch_m, false, false, false);
+  const int n = 6 + body_->getNumDofs();
+  std::vector<btScalar> force(n, 0), response(n, 0);
+  for (MultibodyJoint& mj : joints_) {
+    const int dof = 6 + body_->getLink(mj.link).m_dofOffset;
+    force[dof] = 1;
+    body_->calcAccelerationDeltasMultiDof(force.data(), response.data(), scratch_r, scratch_v);
+    force[dof] = 0;
+    mj.effective_inertia = response[dof] > 0 ? 1.0 / response[dof] : 0;
+  }
+  body_->clearForcesAndTorques();
+}
+
+int Multibody::joint_index(const std::string& name) const {
+  for (int k = 0; k < int(joints_.size()); ++k)
+    if (joints_[k].urdf->name == name) return k;
+  return -1;
+}
+
+void Multibody::set_state(int link, double q, double qd) {
+  body_->setJointPos(link, q);
+  body_->setJointVel(link, qd);
+  btAlignedObjectArray<btQuaternion> world_to_local;
+  btAlignedObjectArray<btVector3> local_origin;
+  body_->forwardKinematics(world_to_local, local_origin);
+  body_->updateCollisionObjectWorldTransforms(world_to_local, local_origin);
+}
+
+btMultiBodyJointMotor* Multibody::add_motor(int link, double max_impulse) {
+  auto motor = std::make_unique<btMultiBodyJointMotor>(body_.get(), link, 0, 0, max_impulse);
+  motor->finalizeMultiDof();  // allocates the applied-impulse slot read before the first solve
+  world_->addMultiBodyConstraint(motor.get());
+  auto* raw = motor.get();
+  constraints_.push_back(std::move(motor));
+  return raw;
+}
+
+Eigen::Isometry3d Multibody::link_pose(const std::string& link) const {
+  const int i = link_index_.at(link);
+  btTransform world_from_com;
+  if (i < 0) {
+    world_from_com = body_->getBaseWorldTransform();
+  } else {
+    // Walk the cached parent-to-link rotations and offsets (valid after every step and set_state).
+    world_from_com.setOrigin(body_->localPosToWorld(i, btVector3(0, 0, 0)));
+    world_from_com.setBasis(body_->localFrameToWorld(i, btMatrix3x3::getIdentity()));
+  }
+  return from_bt(world_from_com) * link_from_com_.at(link).inverse();
+}
+
+Eigen::Vector3d Multibody::com_position(const std::string& link) const {
+  return link_pose(link) * link_from_com_.at(link).translation();
+}
+
+}  // namespace lcm_control::sim

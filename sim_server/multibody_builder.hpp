@@ -1,0 +1,91 @@
+// The robot model as a fixed-base btMultiBody in its own btMultiBodyDynamicsWorld:
+// links in depth-first order with COM frames on the inertia's principal axes,
+// fixed joints as fixed links, a collider on every link, limits that do not
+// overshoot, and none of Bullet's hidden defaults (damping, sleeping, motors,
+// the 100 rad/s velocity clamp).
+#pragma once
+
+#ifndef BT_USE_DOUBLE_PRECISION
+#error "sim_server needs Bullet in double precision: use pkg-config bullet-float64 (it defines BT_USE_DOUBLE_PRECISION)"
+#endif
+
+#include <BulletDynamics/Featherstone/btMultiBody.h>
+#include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
+#include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
+#include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
+#include <btBulletDynamicsCommon.h>
+
+#include <Eigen/Geometry>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/robot_model.hpp"
+#include "sim_server/collision_shapes.hpp"
+#include "sim_server/limit_constraint.hpp"
+
+namespace lcm_control::sim {
+
+// One moving (revolute, continuous, prismatic) joint of the multibody.
+struct MultibodyJoint {
+  const Joint* urdf = nullptr;
+  int link = -1;                       // Bullet link index
+  double effective_inertia = 0;        // 1 / (M^-1)_jj at the initial pose: kg m^2 or kg
+  SpeculativeJointLimit* limit = nullptr;  // null for continuous joints
+};
+
+class Multibody {
+ public:
+  Multibody(const RobotModel& model, double dt);
+  ~Multibody();
+  Multibody(const Multibody&) = delete;
+  Multibody& operator=(const Multibody&) = delete;
+
+  double dt() const { return dt_; }
+  // One physics step of exactly dt; joint torques added before it are consumed.
+  void step() { world_->stepSimulation(dt_, 0, dt_); }
+
+  const std::vector<MultibodyJoint>& joints() const { return joints_; }
+  // Index into joints() of a moving joint, -1 if there is none of that name.
+  int joint_index(const std::string& name) const;
+
+  double position(int link) const { return body_->getJointPos(link); }
+  double velocity(int link) const { return body_->getJointVel(link); }
+  void add_torque(int link, double tau) { body_->addJointTorque(link, tau); }
+  // Sets a joint's position and velocity (tests, initial poses) and refreshes the cached kinematics.
+  void set_state(int link, double q, double qd);
+  // A joint motor on the link (impulse per step capped at max_impulse), owned and added to the world here.
+  btMultiBodyJointMotor* add_motor(int link, double max_impulse);
+
+  // Pose of a URDF link frame and position of its centre of mass, in the world.
+  Eigen::Isometry3d link_pose(const std::string& link) const;
+  Eigen::Vector3d com_position(const std::string& link) const;
+
+  btMultiBody& body() { return *body_; }
+  btMultiBodyDynamicsWorld& world() { return *world_; }
+  // Findings worth a WARN (massless moving links, inertia fixes, damping capped for stability).
+  const std::vector<std::string>& warnings() const { return warnings_; }
+
+ private:
+  void build(const RobotModel& model);
+  void compute_effective_inertias();
+
+  double dt_;
+  std::unique_ptr<btDefaultCollisionConfiguration> collision_config_;
+  std::unique_ptr<btCollisionDispatcher> dispatcher_;
+  std::unique_ptr<btBroadphaseInterface> broadphase_;
+  std::unique_ptr<btMultiBodyConstraintSolver> solver_;
+  std::unique_ptr<btMultiBodyDynamicsWorld> world_;
+  std::unique_ptr<btMultiBody> body_;
+  ShapeStore shapes_;
+  std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders_;
+  std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints_;
+  std::vector<MultibodyJoint> joints_;
+  std::map<std::string, int> link_index_;               // URDF link -> Bullet link (-1: base)
+  std::map<std::string, Eigen::Isometry3d> link_from_com_;  // URDF link frame -> its Bullet COM frame
+  std::vector<std::string> warnings_;
+};
+
+}  // namespace lcm_control::sim

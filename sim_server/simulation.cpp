@@ -1,0 +1,43 @@
+#include "sim_server/simulation.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+namespace lcm_control::sim {
+
+namespace {
+int substeps_for(const SimulationRates& r) {
+  if (!(r.physics_hz > 0) || !(r.control_hz > 0) || !std::isfinite(r.physics_hz) || !std::isfinite(r.control_hz))
+    throw std::invalid_argument(
+        fmt::format("--physics-rate {:g} and --control-rate {:g} must be positive", r.physics_hz, r.control_hz));
+  const double ratio = r.physics_hz / r.control_hz;
+  const long n = std::lround(ratio);
+  if (n < 1 || std::abs(ratio - double(n)) > 1e-9 * ratio)
+    throw std::invalid_argument(fmt::format("--physics-rate {:g} Hz must be a whole multiple of --control-rate {:g} Hz",
+                                            r.physics_hz, r.control_hz));
+  return int(n);
+}
+}  // namespace
+
+Simulation::Simulation(const RobotModel& model, const SimulationRates& rates)
+    : control_period_(1.0 / rates.control_hz), control_hz_(rates.control_hz), substeps_(substeps_for(rates)) {
+  multibody_ = std::make_unique<Multibody>(model, 1.0 / rates.physics_hz);
+  actuators_ = std::make_unique<Actuators>(model, *multibody_);
+  actuators_->read(multibody_->dt());
+}
+
+void Simulation::step() {
+  const double dt = multibody_->dt();
+  for (int s = 0; s < substeps_; ++s) {
+    actuators_->apply(dt);
+    multibody_->step();
+    actuators_->read(dt);
+  }
+  ++steps_;
+}
+
+int64_t Simulation::time_us() const { return std::llround(double(steps_) * 1e6 / control_hz_); }
+
+}  // namespace lcm_control::sim

@@ -1,0 +1,48 @@
+// The simulated robot in one object: the multibody and its actuators, advanced
+// one control period (one or more physics steps) at a time. step() is the
+// real-time path: no allocation, logging, locks or wall-clock input.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "common/robot_model.hpp"
+#include "sim_server/actuators.hpp"
+#include "sim_server/multibody_builder.hpp"
+
+namespace lcm_control::sim {
+
+struct SimulationRates {
+  double physics_hz = 1000;
+  double control_hz = 1000;  // physics_hz must be a whole multiple of it
+};
+
+class Simulation {
+ public:
+  // Throws ModelError for a robot Bullet cannot take, std::invalid_argument for bad rates.
+  Simulation(const RobotModel& model, const SimulationRates& rates);
+
+  // One control period: substeps() times (actuators -> physics step -> read back).
+  void step();
+
+  int64_t step_count() const { return steps_; }                  // control steps taken
+  int64_t time_us() const;                                       // sim time of step_count()
+  double time() const { return double(steps_) * control_period_; }
+  double physics_dt() const { return multibody_->dt(); }
+  double control_period() const { return control_period_; }
+  int substeps() const { return substeps_; }
+
+  Multibody& multibody() { return *multibody_; }
+  Actuators& actuators() { return *actuators_; }
+  const Actuators& actuators() const { return *actuators_; }
+
+ private:
+  std::unique_ptr<Multibody> multibody_;
+  std::unique_ptr<Actuators> actuators_;
+  double control_period_;
+  double control_hz_;
+  int substeps_;
+  int64_t steps_ = 0;
+};
+
+}  // namespace lcm_control::sim
