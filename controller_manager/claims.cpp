@@ -1,0 +1,65 @@
+#include "controller_manager/claims.hpp"
+
+#include <fmt/format.h>
+
+#include <map>
+
+namespace lcm_control::cm {
+
+namespace {
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (size_t k = 0; k < v.size(); ++k) s += (k ? ", " : "") + v[k];
+  return s;
+}
+}  // namespace
+
+std::string check_interface(const RobotModel& model, const std::string& controller, const std::string& joint,
+                            Interface needed) {
+  const Joint* j = model.joint(joint);
+  if (!j) {
+    std::vector<std::string> moving;
+    for (const auto& x : model.joints)
+      if (x.type != JointType::Fixed) moving.push_back(x.name);
+    return fmt::format("controller '{}': joint '{}' is not in the URDF {} (moving joints: {})", controller, joint,
+                       model.urdf_path, join(moving));
+  }
+  const TransmissionSpec* t = model.transmission_for_joint(joint);
+  if (!t)
+    return fmt::format("controller '{}' needs {} on joint '{}', but the joint has no <transmission> in {} (actuated "
+                       "joints: {})",
+                       controller, to_string(needed), joint, model.urdf_path, join(model.actuated_joints()));
+  std::vector<std::string> offered;
+  for (Interface i : t->interfaces) offered.push_back(to_string(i));
+  if (t->interfaces.front() == needed) return "";
+  for (Interface i : t->interfaces)
+    if (i == needed)
+      return fmt::format("controller '{}' needs {} on joint '{}'; transmission '{}' offers {} but the hardware takes "
+                         "only the first, {}",
+                         controller, to_string(needed), joint, t->name, join(offered), offered.front());
+  return fmt::format("controller '{}' needs {} on joint '{}', but transmission '{}' offers only {}", controller,
+                     to_string(needed), joint, t->name, join(offered));
+}
+
+std::string Conflict::message() const {
+  return fmt::format("controllers '{}' and '{}' would both claim joint '{}'", first, second, joint);
+}
+
+std::optional<Conflict> find_conflict(const std::vector<std::pair<std::string, const Claim*>>& controllers) {
+  std::map<std::string, std::string> owner;
+  for (const auto& [name, claim] : controllers) {
+    if (!claim->interface) continue;
+    for (const auto& j : claim->joints) {
+      auto [it, fresh] = owner.emplace(j, name);
+      if (!fresh) return Conflict{it->second, name, j};
+    }
+  }
+  return std::nullopt;
+}
+
+std::string describe(const Claim& claim) {
+  if (!claim.interface) return "nothing (reads every joint)";
+  return fmt::format("{} on {}", to_string(*claim.interface), join(claim.joints));
+}
+
+}  // namespace lcm_control::cm

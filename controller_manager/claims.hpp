@@ -1,0 +1,32 @@
+// Who owns which joint on which interface. ROS's rule, kept exactly: a joint
+// belongs to at most one running controller, whatever the interfaces, and the
+// check is strict whatever the switch's strictness. State readers claim nothing.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/robot_model.hpp"
+#include "controller_manager/controller.hpp"
+
+namespace lcm_control::cm {
+
+// "" when `joint` can be commanded on `needed`, else a message naming the
+// controller, the joint, the interface needed and the interfaces offered.
+std::string check_interface(const RobotModel& model, const std::string& controller, const std::string& joint,
+                            Interface needed);
+
+struct Conflict {
+  std::string first, second, joint;
+  std::string message() const;  // "controllers 'a' and 'b' would both claim joint 'j'"
+};
+
+// The first joint claimed by two of `controllers` (name, claim), in list order.
+std::optional<Conflict> find_conflict(const std::vector<std::pair<std::string, const Claim*>>& controllers);
+
+// "PositionJointInterface on j1, j2" or "nothing (reads every joint)".
+std::string describe(const Claim& claim);
+
+}  // namespace lcm_control::cm

@@ -1,0 +1,98 @@
+// What a controller is: init() reads its YAML and claims joints (not real
+// time), then starting() / update() / stopping() run on the loop path and must
+// not allocate, log or lock. Commands reach a controller through LCM handlers
+// that run in the loop's own thread between cycles, so plain members suffice.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/bus.hpp"
+#include "common/pid.hpp"
+#include "common/robot_model.hpp"
+#include "controller_manager/hardware.hpp"
+#include "controller_manager/params.hpp"
+#include "controller_manager/port.hpp"
+
+namespace lcm_control::cm {
+
+struct Time {
+  int64_t utime = 0;  // hardware clock
+  double seconds() const { return static_cast<double>(utime) * 1e-6; }
+};
+
+// The joints a controller commands and the interface it needs; no interface
+// for state readers (joint_state_controller), which claim nothing.
+struct Claim {
+  std::optional<Interface> interface;
+  std::vector<std::string> joints;
+};
+
+class ControllerContext;
+
+class Controller {
+ public:
+  virtual ~Controller() = default;
+  virtual void init(ControllerContext& ctx) = 0;
+  virtual void starting(const Time& now) = 0;
+  virtual void update(const Time& now, double period) = 0;
+  virtual void stopping(const Time& now) { (void)now; }
+
+  // The controller's own PIDs by joint, for run-time gains.
+  virtual std::vector<std::string> pid_joints() const { return {}; }
+  virtual Pid* pid(const std::string& joint) { (void)joint; return nullptr; }
+
+  const Claim& claim() const { return claim_; }
+  int64_t dropped() const { return dropped_; }  // malformed or wrong-size commands
+
+ protected:
+  friend class ControllerContext;
+  Claim claim_;
+  int64_t dropped_ = 0;
+  bool running_ = false;  // set by the loop around starting()/stopping()
+  friend class Loop;
+};
+
+// What init() may use: its parameters, the robot, joint handles (claiming
+// checks the transmission offers the interface), and LCM endpoints named
+// `<controller>/...` under the namespace.
+class ControllerContext {
+ public:
+  ControllerContext(std::string name, std::string type, Params& params, const RobotModel& model, Hardware& hw,
+                    Bus& bus, Port& port)
+      : name_(std::move(name)), type_(std::move(type)), params_(params), model_(model), hw_(hw), bus_(bus), port_(port) {}
+
+  const std::string& name() const { return name_; }
+  const std::string& type() const { return type_; }
+  Params& params() { return params_; }
+  const RobotModel& model() const { return model_; }
+
+  // Claims `joint` on `iface`; throws ControllerError naming controller, joint,
+  // interface needed and interfaces offered.
+  JointData* claim(const std::string& joint, Interface iface);
+  // Reads a joint without claiming it.
+  const JointData* read(const std::string& joint, const std::string& key);
+  std::vector<std::string> actuated_joints() const;
+
+  std::string channel(const std::string& suffix) const { return bus_.channel(name_ + "/" + suffix); }
+  std::string root_channel(const std::string& name) const { return bus_.channel(name); }
+  Port& port() { return port_; }
+  Controller*& self() { return self_; }
+
+  // Non-fatal findings shown to the user once at load.
+  std::vector<std::string> notes;
+
+ private:
+  std::string name_, type_;
+  Params& params_;
+  const RobotModel& model_;
+  Hardware& hw_;
+  Bus& bus_;
+  Port& port_;
+  Controller* self_ = nullptr;
+};
+
+}  // namespace lcm_control::cm

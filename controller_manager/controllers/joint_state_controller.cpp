@@ -1,0 +1,100 @@
+// joint_state_controller/JointStateController: publishes `joint_states` at
+// publish_rate on the hardware clock, first on its first cycle; `joints` picks
+// and orders (default: URDF transmission order); `extra_joints` appends fixed
+// values. Unlike ROS it keeps its rate after a forward time jump and resumes
+// at once after a backward one (the loop restarts it).
+#include <fmt/format.h>
+
+#include "controller_manager/controllers/factories.hpp"
+#include "lcm_control/joint_state_t.hpp"
+#include "common/messages.hpp"
+
+namespace lcm_control::cm {
+
+namespace {
+
+class JointStateController : public Controller {
+ public:
+  void init(ControllerContext& ctx) override {
+    Params& p = ctx.params();
+    rate_ = p.number("publish_rate");
+    if (rate_ <= 0) throw p.error("publish_rate", fmt::format("{} Hz: must be > 0", rate_));
+    std::vector<std::string> names = p.has("joints") ? p.strings("joints") : ctx.actuated_joints();
+    for (const auto& n : names) joints_.push_back(ctx.read(n, "joints"));
+    const YAML::Node extra = p.node("extra_joints");
+    if (extra) {
+      if (!extra.IsSequence()) throw p.error("extra_joints", "expected a list of {name, position, velocity, effort}");
+      for (size_t k = 0; k < extra.size(); ++k) {
+        const YAML::Node e = extra[k];
+        const std::string where = fmt::format("{}/extra_joints[{}]", p.where(), k);
+        if (!e.IsMap() || !e["name"] || !e["name"].IsScalar())
+          throw ControllerError(where + ": expected a map with at least `name`");
+        const std::string n = e["name"].Scalar();
+        bool dup = false;
+        for (const auto& x : names) dup = dup || x == n;
+        if (dup) {
+          ctx.notes.push_back(where + ": joint '" + n + "' is already published; skipped");
+          continue;
+        }
+        Extra x{n, 0, 0, 0};
+        for (auto [key, out] : {std::pair{"position", &x.position}, {"velocity", &x.velocity}, {"effort", &x.effort}})
+          if (e[key]) {
+            try {
+              *out = e[key].as<double>();
+            } catch (const YAML::Exception&) {
+              throw ControllerError(fmt::format("{}/{}: '{}' is not a number", where, key, e[key].Scalar()));
+            }
+          }
+        names.push_back(n);
+        extra_.push_back(x);
+      }
+    }
+    resize(msg_, static_cast<int>(names.size()));
+    msg_.name = names;
+    pub_ = ctx.port().publisher<joint_state_t>(ctx.root_channel(channels::kJointStates));
+  }
+
+  void starting(const Time& now) override { last_ = now.seconds() - 1.001 / rate_; }
+
+  void update(const Time& now, double) override {
+    const double t = now.seconds(), dt = 1.0 / rate_;
+    if (t < last_) last_ = t - 1.001 * dt;
+    if (!(last_ + dt < t)) return;
+    last_ += dt;
+    if (t - last_ > dt) last_ = t;  // fell behind (time jump, slow loop): no burst to catch up
+    msg_.utime = now.utime;
+    size_t k = 0;
+    for (const JointData* j : joints_) {
+      msg_.position[k] = j->position;
+      msg_.velocity[k] = j->velocity;
+      msg_.effort[k] = j->effort;
+      ++k;
+    }
+    for (const Extra& e : extra_) {
+      msg_.position[k] = e.position;
+      msg_.velocity[k] = e.velocity;
+      msg_.effort[k] = e.effort;
+      ++k;
+    }
+    pub_.publish(msg_);
+  }
+
+ private:
+  struct Extra {
+    std::string name;
+    double position, velocity, effort;
+  };
+  double rate_ = 0, last_ = 0;
+  std::vector<const JointData*> joints_;
+  std::vector<Extra> extra_;
+  joint_state_t msg_;
+  Publisher<joint_state_t> pub_;
+};
+
+}  // namespace
+
+std::unique_ptr<Controller> make_joint_state_controller(const std::string&) {
+  return std::make_unique<JointStateController>();
+}
+
+}  // namespace lcm_control::cm

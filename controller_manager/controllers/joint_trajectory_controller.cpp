@@ -1,0 +1,324 @@
+// position_controllers/JointTrajectoryController and
+// effort_controllers/JointTrajectoryController (`gains/<joint>` PIDs on the
+// position error, velocity error as the D input). Parameters as
+// ros_controllers: `joints`, `constraints: {goal_time, stopped_velocity_tolerance,
+// <joint>: {trajectory, goal}}` (0 = not checked), `action_monitor_rate`.
+// Goals arrive on `<name>/command` (joint_trajectory_t, times relative to the
+// cycle that receives them; a new goal preempts the running one). Feedback on
+// `<name>/feedback`, one result per goal on `<name>/result` (trajectory_status_t),
+// naming the joint and the error when a tolerance is violated.
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "common/angles.hpp"
+#include "controller_manager/controllers/factories.hpp"
+#include "controller_manager/controllers/trajectory.hpp"
+#include "lcm_control/joint_trajectory_t.hpp"
+#include "lcm_control/trajectory_status_t.hpp"
+
+namespace lcm_control::cm {
+
+namespace {
+
+class JointTrajectoryController : public Controller {
+ public:
+  explicit JointTrajectoryController(Interface iface) : iface_(iface) {}
+
+  void init(ControllerContext& ctx) override {
+    Params& p = ctx.params();
+    name_ = ctx.name();
+    names_ = p.strings("joints");
+    for (const auto& n : names_) joints_.push_back(ctx.claim(n, iface_));
+    const size_t n = names_.size();
+    path_tol_.assign(n, 0.0);
+    goal_tol_.assign(n, 0.0);
+    const YAML::Node c = p.node("constraints");
+    if (c) {
+      if (!c.IsMap()) throw p.error("constraints", "expected a map");
+      const std::string where = p.where() + "/constraints";
+      auto num = [&](const YAML::Node& x, const std::string& key) {
+        try {
+          const double v = x.as<double>();
+          if (!std::isfinite(v) || v < 0) throw YAML::Exception(YAML::Mark::null_mark(), "");
+          return v;
+        } catch (const YAML::Exception&) {
+          throw ControllerError(fmt::format("{}/{}: expected a number >= 0", where, key));
+        }
+      };
+      for (const auto& kv : c) {
+        const std::string key = kv.first.as<std::string>();
+        if (key == "goal_time") {
+          goal_time_ = num(kv.second, key);
+        } else if (key == "stopped_velocity_tolerance") {
+          stopped_vel_tol_ = num(kv.second, key);
+        } else {
+          const auto it = std::find(names_.begin(), names_.end(), key);
+          if (it == names_.end())
+            throw ControllerError(fmt::format("{}/{}: not one of this controller's joints ({}) nor goal_time / "
+                                              "stopped_velocity_tolerance",
+                                              where, key, fmt::join(names_, ", ")));
+          if (!kv.second.IsMap()) throw ControllerError(fmt::format("{}/{}: expected {{trajectory, goal}}", where, key));
+          const size_t k = it - names_.begin();
+          for (const auto& t : kv.second) {
+            const std::string tk = t.first.as<std::string>();
+            if (tk == "trajectory")
+              path_tol_[k] = num(t.second, key + "/trajectory");
+            else if (tk == "goal")
+              goal_tol_[k] = num(t.second, key + "/goal");
+            else
+              throw ControllerError(fmt::format("{}/{}/{}: unknown key; use trajectory and goal", where, key, tk));
+          }
+        }
+      }
+    }
+    if (iface_ == Interface::Effort) {
+      const YAML::Node gains = p.node("gains");
+      if (!gains || !gains.IsMap()) throw p.error("gains", "missing (required): gains: {<joint>: {p, i, d}} per joint");
+      pids_.resize(n);
+      for (size_t k = 0; k < n; ++k) {
+        const std::string where = p.where() + "/gains/" + names_[k];
+        if (!gains[names_[k]]) throw ControllerError(where + ": missing (required): {p, i, d, i_clamp}");
+        pids_[k].set_gains(Params::pid_from(gains[names_[k]], where));
+      }
+    }
+    monitor_rate_ = p.number("action_monitor_rate", 20.0);
+    if (monitor_rate_ <= 0) throw p.error("action_monitor_rate", "must be > 0");
+
+    desired_.resize(n);
+    hold_pos_.assign(n, 0.0);
+    max_path_err_.assign(n, 0.0);
+    hold_ = Trajectory::hold(0, hold_pos_);
+    current_ = &hold_;
+    status_.num_joints = static_cast<int32_t>(n);
+    status_.joint_names = names_;
+    status_.desired.assign(n, 0.0);
+    status_.actual.assign(n, 0.0);
+    status_.error.assign(n, 0.0);
+    status_.message.reserve(512);
+    feedback_pub_ = ctx.port().publisher<trajectory_status_t>(ctx.channel("feedback"));
+    result_pub_ = ctx.port().publisher<trajectory_status_t>(ctx.channel("result"));
+    ctx.port().subscribe<joint_trajectory_t>(
+        ctx.channel("command"), [this](const joint_trajectory_t& g) { on_goal(g); },
+        [this](const std::string& why) {
+          ++dropped_;
+          spdlog::warn("{}: {}", name_, why);
+        });
+  }
+
+  std::vector<std::string> pid_joints() const override {
+    return iface_ == Interface::Effort ? names_ : std::vector<std::string>{};
+  }
+  Pid* pid(const std::string& joint) override {
+    for (size_t k = 0; k < pids_.size(); ++k)
+      if (names_[k] == joint) return &pids_[k];
+    return nullptr;
+  }
+
+  void starting(const Time& now) override {
+    if (goal_active_) finish(now, trajectory_status_t::PREEMPTED, "controller restarted");
+    for (size_t k = 0; k < joints_.size(); ++k) hold_pos_[k] = joints_[k]->position;
+    hold_.set_hold(now.seconds(), hold_pos_.data());
+    current_ = &hold_;
+    for (auto& pid : pids_) pid.reset();
+    last_t_ = now.seconds();
+  }
+
+  void stopping(const Time& now) override {
+    if (goal_active_) finish(now, trajectory_status_t::PREEMPTED, "controller stopped");
+  }
+
+  void update(const Time& now, double period) override {
+    const double t = now.seconds();
+    last_t_ = t;
+    size_t worst = 0;
+    double worst_excess = 0;
+    for (size_t k = 0; k < joints_.size(); ++k) {
+      JointData& j = *joints_[k];
+      current_->sample(t, k, desired_[k]);
+      const double e = j.continuous ? shortest_angular_distance(j.position, desired_[k].pos) : desired_[k].pos - j.position;
+      status_.desired[k] = desired_[k].pos;
+      status_.actual[k] = j.position;
+      status_.error[k] = e;
+      if (iface_ == Interface::Position) {
+        j.command = desired_[k].pos;
+      } else {
+        double u = pids_[k].compute(e, desired_[k].vel - j.velocity, period);
+        if (j.urdf && j.urdf->effort_limit > 0) u = std::clamp(u, -j.urdf->effort_limit, j.urdf->effort_limit);
+        j.command = u;
+      }
+      if (goal_active_ && std::abs(e) > max_path_err_[k]) max_path_err_[k] = std::abs(e);
+      if (goal_active_ && t < current_->end_time() && path_tol_[k] > 0 && std::abs(e) - path_tol_[k] > worst_excess) {
+        worst_excess = std::abs(e) - path_tol_[k];
+        worst = k;
+      }
+    }
+    if (!goal_active_) return;
+    if (worst_excess > 0) {
+      std::snprintf(text_, sizeof text_, "path tolerance violated on joint '%s': error %.6f exceeds %.6f at %.3f s of %.3f s",
+                    names_[worst].c_str(), status_.error[worst], path_tol_[worst], t - current_->start_time(),
+                    current_->end_time() - current_->start_time());
+      for (size_t k = 0; k < joints_.size(); ++k) hold_pos_[k] = joints_[k]->position;
+      finish(now, trajectory_status_t::PATH_TOLERANCE_VIOLATED, text_);
+      hold_.set_hold(t, hold_pos_.data());
+      current_ = &hold_;
+      return;
+    }
+    if (t >= current_->end_time()) {
+      bool within = true;
+      size_t bad = 0;
+      for (size_t k = 0; k < joints_.size() && within; ++k) {
+        const bool pos_ok = goal_tol_[k] <= 0 || std::abs(status_.error[k]) <= goal_tol_[k];
+        const bool vel_ok = stopped_vel_tol_ <= 0 || std::abs(joints_[k]->velocity) <= stopped_vel_tol_;
+        if (!pos_ok || !vel_ok) within = false, bad = k;
+      }
+      if (within) {
+        size_t wf = 0, wp = 0;
+        for (size_t k = 0; k < joints_.size(); ++k) {
+          if (std::abs(status_.error[k]) > std::abs(status_.error[wf])) wf = k;
+          if (max_path_err_[k] > max_path_err_[wp]) wp = k;
+        }
+        std::snprintf(text_, sizeof text_,
+                      "goal %lld reached: largest final error %.6f (joint '%s'), largest path error %.6f (joint '%s')",
+                      static_cast<long long>(goal_id_), std::abs(status_.error[wf]), names_[wf].c_str(),
+                      max_path_err_[wp], names_[wp].c_str());
+        finish(now, trajectory_status_t::SUCCEEDED, text_);
+      } else if (t > current_->end_time() + goal_time_) {
+        std::snprintf(text_, sizeof text_,
+                      "goal tolerance violated on joint '%s': error %.6f (tolerance %.6f), velocity %.6f (stopped "
+                      "tolerance %.6f), %.3f s after the trajectory end (goal_time %.3f)",
+                      names_[bad].c_str(), status_.error[bad], goal_tol_[bad], joints_[bad]->velocity,
+                      stopped_vel_tol_, t - current_->end_time(), goal_time_);
+        finish(now, trajectory_status_t::GOAL_TOLERANCE_VIOLATED, text_);
+      }
+    }
+    if (goal_active_ && t - last_feedback_ >= 1.0 / monitor_rate_) {
+      last_feedback_ = t;
+      status_.utime = now.utime;
+      status_.goal_id = goal_id_;
+      status_.status = trajectory_status_t::ACTIVE;
+      status_.message.clear();
+      feedback_pub_.publish(status_);
+    }
+  }
+
+ private:
+  void finish(const Time& now, int8_t status, const char* message) {
+    status_.utime = now.utime;
+    status_.goal_id = goal_id_;
+    status_.status = status;
+    status_.message.assign(message);
+    result_pub_.publish(status_);
+    goal_active_ = false;
+  }
+
+  void reject(const joint_trajectory_t& g, const std::string& why) {
+    trajectory_status_t r;
+    r.utime = g.utime;
+    r.goal_id = g.goal_id;
+    r.status = trajectory_status_t::REJECTED;
+    r.message = fmt::format("{}: goal {} rejected: {}", name_, g.goal_id, why);
+    r.num_joints = 0;
+    result_pub_.publish(r);
+    spdlog::warn("{}", r.message);
+  }
+
+  // Runs between cycles, in the loop's thread: may allocate.
+  void on_goal(const joint_trajectory_t& g) {
+    if (!running_) return reject(g, "the controller is not running");
+    const size_t n = names_.size();
+    if (g.num_joints != static_cast<int32_t>(g.joint_names.size()) || g.num_points != static_cast<int32_t>(g.points.size()))
+      return reject(g, "array sizes do not match num_joints / num_points");
+    std::vector<int> index(n, -1);  // controller joint -> goal column
+    for (size_t c = 0; c < g.joint_names.size(); ++c) {
+      const auto it = std::find(names_.begin(), names_.end(), g.joint_names[c]);
+      if (it == names_.end())
+        return reject(g, fmt::format("joint '{}' is not controlled here (joints: {})", g.joint_names[c], fmt::join(names_, ", ")));
+      if (index[it - names_.begin()] >= 0) return reject(g, fmt::format("joint '{}' is listed twice", g.joint_names[c]));
+      index[it - names_.begin()] = static_cast<int>(c);
+    }
+    for (size_t k = 0; k < n; ++k)
+      if (index[k] < 0) return reject(g, fmt::format("joint '{}' is missing (a goal must name all of: {})", names_[k], fmt::join(names_, ", ")));
+    if (g.points.empty()) return reject(g, "no points");
+    std::vector<Waypoint> points;
+    double prev = 0;
+    for (size_t i = 0; i < g.points.size(); ++i) {
+      const trajectory_point_t& p = g.points[i];
+      if (!std::isfinite(p.time_from_start) || p.time_from_start <= prev)
+        return reject(g, fmt::format("point {}: time_from_start {} must be greater than {}", i, p.time_from_start, prev));
+      prev = p.time_from_start;
+      const size_t m = g.joint_names.size();
+      if (p.num_positions != static_cast<int32_t>(m) || p.positions.size() != m)
+        return reject(g, fmt::format("point {}: {} positions for {} joints", i, p.positions.size(), m));
+      if (!p.velocities.empty() && p.velocities.size() != m)
+        return reject(g, fmt::format("point {}: {} velocities for {} joints (give none or one per joint)", i, p.velocities.size(), m));
+      if (!p.accelerations.empty() && (p.accelerations.size() != m || p.velocities.empty()))
+        return reject(g, fmt::format("point {}: accelerations need velocities and one value per joint", i));
+      Waypoint w;
+      w.time = last_t_ + p.time_from_start;
+      for (size_t k = 0; k < n; ++k) {
+        const int c = index[k];
+        const double pos = p.positions[c];
+        if (!std::isfinite(pos)) return reject(g, fmt::format("point {}: joint '{}' position is NaN/Inf", i, names_[k]));
+        const Joint* u = joints_[k]->urdf;
+        if (u && u->has_position_limits && (pos < u->lower || pos > u->upper))
+          return reject(g, fmt::format("point {}: joint '{}' position {} is outside its limits [{}, {}]", i, names_[k], pos, u->lower, u->upper));
+        w.pos.push_back(pos);
+        if (!p.velocities.empty()) w.vel.push_back(p.velocities[c]);
+        if (!p.accelerations.empty()) w.acc.push_back(p.accelerations[c]);
+      }
+      if (!std::all_of(w.vel.begin(), w.vel.end(), [](double v) { return std::isfinite(v); }) ||
+          !std::all_of(w.acc.begin(), w.acc.end(), [](double v) { return std::isfinite(v); }))
+        return reject(g, fmt::format("point {}: NaN/Inf velocity or acceleration", i));
+      points.push_back(std::move(w));
+    }
+    std::vector<SplineState> start(n);
+    for (size_t k = 0; k < n; ++k) {
+      current_->sample(last_t_, k, start[k]);
+      if (joints_[k]->continuous) {  // go the short way round to the first point
+        const double shift = points.front().pos[k] - (start[k].pos + shortest_angular_distance(start[k].pos, points.front().pos[k]));
+        for (auto& w : points) w.pos[k] -= shift;
+      }
+    }
+    Trajectory next = Trajectory::build(last_t_, start, points);
+    if (goal_active_) {
+      std::snprintf(text_, sizeof text_, "replaced by goal %lld", static_cast<long long>(g.goal_id));
+      finish(Time{static_cast<int64_t>(last_t_ * 1e6)}, trajectory_status_t::PREEMPTED, text_);
+    }
+    active_ = std::move(next);
+    current_ = &active_;
+    goal_id_ = g.goal_id;
+    goal_active_ = true;
+    last_feedback_ = -1e9;
+    std::fill(max_path_err_.begin(), max_path_err_.end(), 0.0);
+    spdlog::info("{}: goal {} accepted: {} points over {:.3f} s", name_, g.goal_id, points.size(), prev);
+  }
+
+  Interface iface_;
+  std::string name_;
+  std::vector<std::string> names_;
+  std::vector<JointData*> joints_;
+  std::vector<double> path_tol_, goal_tol_, hold_pos_, max_path_err_;
+  double goal_time_ = 0, stopped_vel_tol_ = 0.01, monitor_rate_ = 20, last_t_ = 0, last_feedback_ = 0;
+  std::vector<Pid> pids_;
+  std::vector<SplineState> desired_;
+  Trajectory hold_, active_;
+  const Trajectory* current_ = nullptr;
+  bool goal_active_ = false;
+  int64_t goal_id_ = 0;
+  trajectory_status_t status_;
+  char text_[512] = {};
+  Publisher<trajectory_status_t> feedback_pub_, result_pub_;
+};
+
+}  // namespace
+
+std::unique_ptr<Controller> make_joint_trajectory_controller(const std::string& type) {
+  return std::make_unique<JointTrajectoryController>(type.rfind("effort_controllers/", 0) == 0 ? Interface::Effort
+                                                                                                : Interface::Position);
+}
+
+}  // namespace lcm_control::cm

@@ -1,0 +1,118 @@
+#include "controller_manager/hardware.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace lcm_control::cm {
+
+int8_t to_mode(Interface i) {
+  switch (i) {
+    case Interface::Position: return hardware_command_t::MODE_POSITION;
+    case Interface::Velocity: return hardware_command_t::MODE_VELOCITY;
+    case Interface::Effort: return hardware_command_t::MODE_EFFORT;
+  }
+  return hardware_command_t::MODE_NONE;
+}
+
+namespace {
+const char* mode_name(int m) {
+  switch (m) {
+    case hardware_command_t::MODE_POSITION: return "position";
+    case hardware_command_t::MODE_VELOCITY: return "velocity";
+    case hardware_command_t::MODE_EFFORT: return "effort";
+    default: return "none";
+  }
+}
+}  // namespace
+
+Hardware::Hardware(const RobotModel& model) {
+  for (const auto& t : model.transmissions) {
+    JointData j;
+    j.name = t.joint;
+    j.actuator = t.actuator;
+    j.urdf = model.joint(t.joint);
+    j.map = t.map;
+    j.offered = t.interfaces;
+    j.continuous = j.urdf && j.urdf->type == JointType::Continuous;
+    joints_.push_back(j);
+  }
+  actuator_of_joint_.assign(joints_.size(), -1);
+}
+
+JointData* Hardware::find(const std::string& joint) {
+  for (auto& j : joints_)
+    if (j.name == joint) return &j;
+  return nullptr;
+}
+
+std::string Hardware::bind(const hardware_state_t& state, hardware_command_t& command) {
+  bound_ = false;
+  const int n = state.num_actuators;
+  joint_of_actuator_.assign(n, -1);
+  std::vector<std::string> problems;
+  for (size_t k = 0; k < joints_.size(); ++k) {
+    const JointData& j = joints_[k];
+    actuator_of_joint_[k] = -1;
+    for (int a = 0; a < n; ++a)
+      if (state.name[a] == j.actuator) actuator_of_joint_[k] = a;
+    const int a = actuator_of_joint_[k];
+    if (a < 0) {
+      problems.push_back(fmt::format("actuator '{}' (joint '{}') is missing", j.actuator, j.name));
+      continue;
+    }
+    joint_of_actuator_[a] = static_cast<int>(k);
+    if (state.mode[a] != to_mode(j.offered.front()))
+      problems.push_back(fmt::format("actuator '{}' takes {} commands but the URDF transmission of joint '{}' says {}",
+                                     j.actuator, mode_name(state.mode[a]), j.name, to_string(j.offered.front())));
+  }
+  if (!problems.empty()) {
+    std::string s = "hardware does not match the URDF: ";
+    for (size_t k = 0; k < problems.size(); ++k) s += (k ? "; " : "") + problems[k];
+    return s;
+  }
+  command.num_actuators = n;
+  command.name = state.name;
+  command.mode.assign(n, hardware_command_t::MODE_NONE);
+  command.command.assign(n, 0.0);
+  session_ = state.session;
+  bound_ = true;
+  return "";
+}
+
+void Hardware::read(const hardware_state_t& s) {
+  for (size_t k = 0; k < joints_.size(); ++k) {
+    JointData& j = joints_[k];
+    const int a = actuator_of_joint_[k];
+    j.position = j.map.actuator_to_joint_position(s.position[a]);
+    j.velocity = j.map.actuator_to_joint_velocity(s.velocity[a]);
+    j.effort = j.map.actuator_to_joint_effort(s.effort[a]);
+  }
+}
+
+void Hardware::write(const hardware_state_t& s, hardware_command_t& c) const {
+  c.utime = s.utime;
+  c.step = s.step;
+  c.session = s.session;
+  for (int a = 0; a < c.num_actuators; ++a) {
+    c.mode[a] = hardware_command_t::MODE_NONE;
+    c.command[a] = 0.0;
+  }
+  for (size_t k = 0; k < joints_.size(); ++k) {
+    const JointData& j = joints_[k];
+    if (!j.owner) continue;
+    const int a = actuator_of_joint_[k];
+    const Interface i = j.offered.front();
+    double v = 0;
+    switch (i) {
+      case Interface::Position: v = j.map.joint_to_actuator_position(j.command); break;
+      case Interface::Velocity: v = j.map.joint_to_actuator_velocity(j.command); break;
+      case Interface::Effort: v = j.map.joint_to_actuator_effort(j.command); break;
+    }
+    if (!std::isfinite(v)) continue;  // never send a NaN: the actuator holds instead
+    c.mode[a] = to_mode(i);
+    c.command[a] = v;
+  }
+}
+
+}  // namespace lcm_control::cm

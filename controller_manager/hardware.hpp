@@ -1,0 +1,60 @@
+// The robot as controllers see it: one JointData per transmission (URDF
+// transmission order), filled from hardware/state (actuator -> joint) and
+// turned into hardware/command (joint -> actuator) as docs/hardware-protocol.md
+// says. Binding a session (matching actuator names) is the only step that
+// allocates; read() and write() do not.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/robot_model.hpp"
+#include "lcm_control/hardware_command_t.hpp"
+#include "lcm_control/hardware_state_t.hpp"
+
+namespace lcm_control::cm {
+
+class Controller;
+
+int8_t to_mode(Interface i);  // hardware_command_t::MODE_*
+
+struct JointData {
+  std::string name;
+  std::string actuator;
+  const Joint* urdf = nullptr;
+  SimpleTransmission map;
+  std::vector<Interface> offered;  // from the transmission; offered.front() is what the hardware takes
+  bool continuous = false;
+  double position = 0, velocity = 0, effort = 0;  // joint space, from the last read
+  double command = 0;                             // joint space, written by the owning controller
+  const Controller* owner = nullptr;              // the running controller that claims it
+};
+
+class Hardware {
+ public:
+  explicit Hardware(const RobotModel& model);
+
+  std::vector<JointData>& joints() { return joints_; }
+  const std::vector<JointData>& joints() const { return joints_; }
+  JointData* find(const std::string& joint);
+
+  // Matches the message's actuators to the transmissions by name; returns "" or
+  // why this hardware does not fit the URDF. Sizes `command` for this session.
+  std::string bind(const hardware_state_t& state, hardware_command_t& command);
+  bool bound() const { return bound_; }
+  int64_t session() const { return session_; }
+  void unbind() { bound_ = false; }
+
+  void read(const hardware_state_t& state);
+  void write(const hardware_state_t& state, hardware_command_t& command) const;
+
+ private:
+  std::vector<JointData> joints_;
+  std::vector<int> actuator_of_joint_;  // index in the hardware message
+  std::vector<int> joint_of_actuator_;  // -1 for actuators we do not know
+  bool bound_ = false;
+  int64_t session_ = 0;
+};
+
+}  // namespace lcm_control::cm

@@ -1,0 +1,101 @@
+#include "controller_manager/loop.hpp"
+
+#include "common/bus.hpp"
+
+namespace lcm_control::cm {
+
+void Loop::start(ControllerSlot& s) {
+  for (JointData* j : s.claimed) j->owner = s.controller.get();
+  s.controller->running_ = true;
+  s.controller->starting(now_);
+  s.running = true;
+  s.ever_started = true;
+}
+
+void Loop::stop(ControllerSlot& s) {
+  s.controller->stopping(now_);
+  s.controller->running_ = false;
+  s.running = false;
+  for (JointData* j : s.claimed)
+    if (j->owner == s.controller.get()) j->owner = nullptr;
+}
+
+Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
+  const int64_t t0 = monotonic_us();
+  bool restart = restart_;
+  if (!have_state_ || st.session != session_) {
+    restart = true;
+  } else if (st.step == step_) {
+    return Outcome::Repeated;
+  } else if (st.step < step_ || st.utime < now_.utime) {
+    restart = true;
+  } else if (e_stop_ && !st.e_stop) {
+    restart = true;
+  } else if (st.step > step_ + 1) {
+    stats_.add_missed(st.step - step_ - 1);
+  }
+  const double period = restart ? st.period_us * 1e-6 : static_cast<double>(st.utime - now_.utime) * 1e-6;
+  have_state_ = true;
+  restart_ = false;
+  session_ = st.session;
+  step_ = st.step;
+  e_stop_ = st.e_stop;
+  now_.utime = st.utime;
+
+  hw_.read(st);
+  if (restart) {
+    ++restarts_;
+    for (auto& s : slots_)
+      if (s->running) {
+        s->controller->stopping(now_);
+        s->controller->starting(now_);
+      }
+  }
+  for (auto& s : slots_) {
+    if (!s->running) continue;
+    const int64_t c0 = monotonic_us();
+    s->controller->update(now_, period);
+    s->exec.add(static_cast<double>(monotonic_us() - c0));
+  }
+  if (pending_) {
+    apply_switch();
+    last_switch_step_ = step_;
+  }
+  hw_.write(st, cmd);
+  stats_.set_real_time_factor(st.real_time_factor);
+  stats_.add_cycle(t0, monotonic_us(), st.period_us);
+  return Outcome::Answered;
+}
+
+void Loop::set_pending_switch(const std::vector<ControllerSlot*>& stop, const std::vector<ControllerSlot*>& start) {
+  pending_stop_ = stop;
+  pending_start_ = start;
+  pending_ = true;
+}
+
+void Loop::apply_switch() {
+  for (ControllerSlot* s : pending_stop_) stop(*s);
+  for (ControllerSlot* s : pending_start_) start(*s);
+  pending_stop_.clear();  // keeps the capacity
+  pending_start_.clear();
+  pending_ = false;
+}
+
+void Loop::apply_now() {
+  if (!pending_) return;
+  apply_switch();
+  last_switch_step_ = -1;
+}
+
+void Loop::cancel_pending() {
+  pending_stop_.clear();
+  pending_start_.clear();
+  pending_ = false;
+}
+
+void Loop::stop_all() {
+  for (auto& s : slots_)
+    if (s->running) stop(*s);
+}
+
+}  // namespace lcm_control::cm

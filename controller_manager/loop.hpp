@@ -1,0 +1,77 @@
+// The real-time loop: one cycle per hardware state: read (actuator -> joint),
+// update every running controller in load order with the period measured on
+// the hardware clock, apply a pending switch (stopping() then starting(), all
+// in this cycle), write (joint -> actuator) tagged with the step it answers.
+// A new session, time or step going backwards, an e-stop release or a resume
+// after silence restarts the running controllers from the current state.
+// cycle() does not allocate, log or lock.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "controller_manager/controller.hpp"
+#include "controller_manager/hardware.hpp"
+#include "controller_manager/stats.hpp"
+
+namespace lcm_control::cm {
+
+struct ControllerSlot {
+  std::string name, type;
+  std::unique_ptr<Controller> controller;
+  std::unique_ptr<Port> port;       // declared after the controller: unsubscribes first
+  std::vector<JointData*> claimed;  // joints it commands
+  bool running = false;
+  bool ever_started = false;
+  ExecStats exec;
+  const char* state() const { return running ? "running" : ever_started ? "stopped" : "initialized"; }
+};
+
+class Loop {
+ public:
+  explicit Loop(Hardware& hw) : hw_(hw) {}
+
+  // Load order. Add and remove only between cycles.
+  std::vector<std::unique_ptr<ControllerSlot>>& slots() { return slots_; }
+
+  enum class Outcome { Answered, Repeated };
+  // One control step. Repeated: the same step again (a lockstep republish):
+  // controllers are not updated and `command` still holds the last answer.
+  Outcome cycle(const hardware_state_t& state, hardware_command_t& command);
+
+  // A switch to apply right after the next update (or now with apply_now()).
+  void set_pending_switch(const std::vector<ControllerSlot*>& stop, const std::vector<ControllerSlot*>& start);
+  bool switch_pending() const { return pending_; }
+  void apply_now();
+  void cancel_pending();
+  // Step and utime at which the last switch was applied (-1 if not in a cycle).
+  int64_t last_switch_step() const { return last_switch_step_; }
+
+  // After silence: the next cycle restarts the running controllers.
+  void restart_next_cycle() { restart_ = true; }
+  void stop_all();  // stopping() on every running controller, claims released
+
+  const Time& now() const { return now_; }
+  int64_t step() const { return step_; }
+  bool has_state() const { return have_state_; }
+  LoopStats& stats() { return stats_; }
+  int64_t restarts() const { return restarts_; }
+
+ private:
+  void apply_switch();
+  void start(ControllerSlot& s);
+  void stop(ControllerSlot& s);
+
+  Hardware& hw_;
+  std::vector<std::unique_ptr<ControllerSlot>> slots_;
+  std::vector<ControllerSlot*> pending_stop_, pending_start_;
+  bool pending_ = false;
+  bool have_state_ = false, restart_ = false, e_stop_ = false;
+  int64_t session_ = 0, step_ = -1, last_switch_step_ = -1, restarts_ = 0;
+  Time now_;
+  LoopStats stats_;
+};
+
+}  // namespace lcm_control::cm

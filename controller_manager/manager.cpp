@@ -1,0 +1,299 @@
+#include "controller_manager/manager.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+
+#include "common/messages.hpp"
+#include "controller_manager/claims.hpp"
+#include "controller_manager/gains.hpp"
+#include "controller_manager/switch_plan.hpp"
+#include "lcm_control/cm_request_t.hpp"
+
+namespace lcm_control::cm {
+
+namespace {
+std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
+  std::string s;
+  for (size_t k = 0; k < v.size(); ++k) s += (k ? sep : "") + v[k];
+  return s;
+}
+}  // namespace
+
+ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry& registry, ManagerOptions options)
+    : model_(std::move(model)),
+      bus_(bus),
+      registry_(registry),
+      options_(options),
+      hw_(model_),
+      loop_(hw_),
+      port_(bus.lcm()),
+      command_pub_(port_.publisher<hardware_command_t>(bus.channel(channels::kHardwareCommand))),
+      stats_pub_(port_.publisher<loop_stats_t>(bus.channel(channels::kCmStatistics))) {
+  port_.subscribe<hardware_state_t>(
+      bus.channel(channels::kHardwareState),
+      [this](const hardware_state_t& m) {
+        const std::string why = check(m);
+        if (!why.empty()) {
+          if (bad_state_logged_++ % 1000 == 0)
+            spdlog::warn("dropped a malformed hardware/state ({}); {} so far", why, bad_state_logged_);
+          ++dropped_;
+          return;
+        }
+        on_hardware_state(m);
+      },
+      [this](const std::string& why) {
+        if (bad_state_logged_++ % 1000 == 0) spdlog::warn("dropped hardware/state: {}", why);
+        ++dropped_;
+      });
+}
+
+ControllerManager::~ControllerManager() { shutdown(); }
+
+ControllerSlot* ControllerManager::find(const std::string& name) const {
+  for (const auto& s : const_cast<Loop&>(loop_).slots())
+    if (s->name == name) return s.get();
+  return nullptr;
+}
+
+std::string ControllerManager::names_loaded() const {
+  std::vector<std::string> v;
+  for (const auto& s : const_cast<Loop&>(loop_).slots()) v.push_back(s->name);
+  return v.empty() ? "none" : join(v);
+}
+
+Reply ControllerManager::load(const std::string& name) {
+  if (ControllerSlot* s = find(name))
+    return {false, fmt::format("cannot load '{}': it is already loaded (state: {})", name, s->state())};
+  const ControllerSpec* spec = model_.controller(name);
+  if (!spec) {
+    std::vector<std::string> configured;
+    for (const auto& c : model_.controllers) configured.push_back(c.name);
+    return {false, fmt::format("cannot load '{}': there is no '{}' entry with a type in the config {} (configured "
+                               "controllers: {})",
+                               name, name, model_.config_path, configured.empty() ? "none" : join(configured))};
+  }
+  auto controller = registry_.create(spec->type);
+  if (!controller)
+    return {false, fmt::format("cannot load '{}': {}: {}/type: {}", name, model_.config_path, name,
+                               registry_.unknown_type_message(spec->type))};
+  auto slot = std::make_unique<ControllerSlot>();
+  slot->name = name;
+  slot->type = spec->type;
+  slot->port = std::make_unique<Port>(bus_.lcm());
+  Params params(spec->params, fmt::format("{}: {}", model_.config_path, name));
+  ControllerContext ctx(name, spec->type, params, model_, hw_, bus_, *slot->port);
+  ctx.self() = controller.get();
+  try {
+    controller->init(ctx);
+  } catch (const ControllerError& e) {
+    return {false, fmt::format("cannot load '{}' ({}): {}", name, spec->type, e.what())};
+  } catch (const std::exception& e) {
+    return {false, fmt::format("cannot load '{}' ({}): {}", name, spec->type, e.what())};
+  }
+  if (controller->claim().interface)
+    for (const auto& j : controller->claim().joints) slot->claimed.push_back(hw_.find(j));
+  for (const auto& k : params.unused())
+    ctx.notes.push_back(fmt::format("{}/{}: not a parameter of {}; ignored", name, k, spec->type));
+  slot->controller = std::move(controller);
+  if (!slot->controller->pid_joints().empty()) serve_gains(*slot, bus_);
+  const std::string claims = describe(slot->controller->claim());
+  loop_.slots().push_back(std::move(slot));
+  for (const auto& n : ctx.notes) spdlog::warn("{}", n);
+  std::string msg = fmt::format("loaded '{}' ({}), claims {}; state initialized", name, spec->type, claims);
+  if (!ctx.notes.empty()) msg += "; note: " + join(ctx.notes, "; ");
+  return {true, msg};
+}
+
+Reply ControllerManager::unload(const std::string& name) {
+  ControllerSlot* s = find(name);
+  if (!s) return {false, fmt::format("cannot unload '{}': it is not loaded (loaded: {})", name, names_loaded())};
+  if (s->running)
+    return {false, fmt::format("cannot unload '{}': it is running; stop it first (switch with stop=[{}])", name, name)};
+  if (busy()) return {false, fmt::format("cannot unload '{}' now: a switch is being applied; retry", name)};
+  auto& slots = loop_.slots();
+  for (auto it = slots.begin(); it != slots.end(); ++it)
+    if (it->get() == s) {
+      slots.erase(it);
+      break;
+    }
+  return {true, fmt::format("unloaded '{}'", name)};
+}
+
+void ControllerManager::switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop,
+                                           int strictness, Done done) {
+  if (busy()) {
+    done({false, "another switch is being applied; retry"});
+    return;
+  }
+  std::vector<LoadedController> loaded;
+  for (const auto& s : loop_.slots()) loaded.push_back({s->name, s->state(), &s->controller->claim()});
+  SwitchPlan plan = plan_switch(loaded, start, stop, strictness);
+  const std::string notes = plan.notes.empty() ? "" : " (" + join(plan.notes, "; ") + ")";
+  if (!plan.ok) {
+    done({false, plan.message + notes});
+    return;
+  }
+  if (plan.empty()) {
+    done({true, "nothing to switch" + notes});
+    return;
+  }
+  std::vector<ControllerSlot*> stop_slots, start_slots;
+  std::vector<std::string> stop_names, start_names;
+  for (int k : plan.stop) stop_slots.push_back(loop_.slots()[k].get()), stop_names.push_back(loaded[k].name);
+  for (int k : plan.start) start_slots.push_back(loop_.slots()[k].get()), start_names.push_back(loaded[k].name);
+  pending_summary_ = fmt::format("stopped [{}], started [{}]{}", join(stop_names), join(start_names), notes);
+  loop_.set_pending_switch(stop_slots, start_slots);
+  pending_done_ = std::move(done);
+  if (!ticking()) {
+    loop_.apply_now();
+    pending_summary_ = fmt::format("switched at once ({}): {}",
+                                   loop_.has_state() ? "hardware is silent" : "no hardware state received yet",
+                                   pending_summary_);
+    complete_pending();
+  }
+}
+
+void ControllerManager::complete_pending() {
+  Done done = std::move(pending_done_);
+  pending_done_ = nullptr;
+  std::string msg = pending_summary_;
+  if (loop_.last_switch_step() >= 0 && msg.rfind("switched at once", 0) != 0)
+    msg = fmt::format("switched in one cycle at step {} (t={:.6f} s): {}", loop_.last_switch_step(),
+                      loop_.now().seconds(), msg);
+  if (done) done({true, msg});
+}
+
+void ControllerManager::reload(bool force, Done done) {
+  std::vector<std::string> loaded, running;
+  for (const auto& s : loop_.slots()) {
+    loaded.push_back(s->name);
+    if (s->running) running.push_back(s->name);
+  }
+  if (!loaded.empty() && !force) {
+    done({false, fmt::format("cannot reload: {} controller(s) loaded ({}); unload them first or reload with force",
+                             loaded.size(), join(loaded))});
+    return;
+  }
+  auto finish = [this, loaded, done](const Reply& stopped) {
+    if (!stopped.ok) {
+      done({false, "cannot reload: stopping failed: " + stopped.message});
+      return;
+    }
+    RobotModel fresh = model_;
+    fresh.controllers.clear();
+    try {
+      load_control_config_into(fresh, model_.config_path);
+      validate(fresh);
+    } catch (const ModelError& e) {
+      done({false, fmt::format("cannot reload: {}; nothing was changed", join(e.problems(), "; "))});
+      return;
+    }
+    loop_.slots().clear();
+    model_.controllers = fresh.controllers;
+    std::vector<std::string> configured;
+    for (const auto& c : model_.controllers) configured.push_back(c.name);
+    done({true, fmt::format("reloaded {}: {} controller(s) configured ({}); unloaded [{}]", model_.config_path,
+                            configured.size(), join(configured), join(loaded))});
+  };
+  if (running.empty()) {
+    finish({true, ""});
+    return;
+  }
+  switch_controllers({}, running, cm_request_t::STRICT, finish);
+}
+
+std::vector<controller_info_t> ControllerManager::list() const {
+  std::vector<controller_info_t> out;
+  for (const auto& s : const_cast<Loop&>(loop_).slots()) {
+    controller_info_t i;
+    i.name = s->name;
+    i.type = s->type;
+    i.state = s->state();
+    const Claim& c = s->controller->claim();
+    i.hardware_interface = c.interface ? to_string(*c.interface) : "";
+    i.joints = c.joints;
+    i.num_joints = static_cast<int32_t>(i.joints.size());
+    out.push_back(i);
+  }
+  return out;
+}
+
+void ControllerManager::on_hardware_state(const hardware_state_t& st) {
+  last_state_us_ = monotonic_us();
+  if (!hw_.bound() || st.session != hw_.session()) {
+    const std::string why = hw_.bind(st, command_);
+    if (!why.empty()) {
+      if (st.session != bad_session_) spdlog::error("hardware session {:x}: {}; not answering it", st.session, why);
+      bad_session_ = st.session;
+      return;
+    }
+    spdlog::info("hardware session {:x}: {} actuators, {}, period {} us, step {}", st.session, st.num_actuators,
+                 st.lockstep ? "lockstep" : "real time", st.period_us, st.step);
+  }
+  if (silent_) {
+    silent_ = false;
+    loop_.restart_next_cycle();
+    spdlog::info("hardware/state resumed at step {}: running controllers restart from the current state", st.step);
+  }
+  loop_.cycle(st, command_);
+  command_pub_.publish(command_);
+  if (pending_done_ && !loop_.switch_pending()) complete_pending();
+}
+
+void ControllerManager::poll(int64_t now, bool idle) {
+  if (idle && loop_.has_state() && !silent_ && now - last_state_us_ > options_.silence_us) {
+    silent_ = true;
+    spdlog::warn("no hardware/state for {} ms (last step {}): controllers are not updated until it resumes",
+                 (now - last_state_us_) / 1000, loop_.step());
+  }
+  if (pending_done_ && !ticking()) {
+    loop_.apply_now();
+    pending_summary_ = "switched at once (hardware is silent): " + pending_summary_;
+    complete_pending();
+  }
+  if (now - last_stats_us_ >= 1000000) {
+    last_stats_us_ = now;
+    stats_pub_.publish(statistics());
+  }
+}
+
+loop_stats_t ControllerManager::statistics() {
+  loop_stats_t m;
+  m.utime = wall_us();
+  m.process = "controller_manager";
+  loop_.stats().fill_and_reset(m);
+  int64_t dropped = dropped_;
+  for (const auto& s : loop_.slots()) {
+    m.item.push_back(s->name);
+    m.item_exec_mean_us.push_back(s->exec.mean_us());
+    m.item_exec_max_us.push_back(s->exec.max_us);
+    s->exec.reset();
+    dropped += s->controller->dropped();
+  }
+  m.dropped = std::max<int64_t>(0, dropped - reported_dropped_);
+  reported_dropped_ = dropped;
+  m.num_items = static_cast<int32_t>(m.item.size());
+  return m;
+}
+
+std::string ControllerManager::shutdown() {
+  std::vector<std::string> stopped, unloaded;
+  if (pending_done_) {
+    Done d = std::move(pending_done_);
+    pending_done_ = nullptr;
+    d({false, "the controller manager is shutting down"});
+  }
+  for (const auto& s : loop_.slots()) {
+    if (s->running) stopped.push_back(s->name);
+    unloaded.push_back(s->name);
+  }
+  loop_.cancel_pending();
+  loop_.stop_all();
+  auto& slots = loop_.slots();
+  while (!slots.empty()) slots.pop_back();
+  return fmt::format("stopped [{}], unloaded [{}]", join(stopped), join(unloaded));
+}
+
+}  // namespace lcm_control::cm

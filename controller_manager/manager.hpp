@@ -1,0 +1,93 @@
+// The controller manager without its LCM request plumbing: load / unload /
+// switch / reload / list with ros_control semantics and replies that say what
+// happened and why, the hardware side (session binding, silence, publishing
+// the command) around the real-time Loop, and loop statistics.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/bus.hpp"
+#include "common/robot_model.hpp"
+#include "controller_manager/hardware.hpp"
+#include "controller_manager/loop.hpp"
+#include "controller_manager/registry.hpp"
+#include "lcm_control/controller_info_t.hpp"
+#include "lcm_control/hardware_command_t.hpp"
+#include "lcm_control/loop_stats_t.hpp"
+
+namespace lcm_control::cm {
+
+struct Reply {
+  bool ok = false;
+  std::string message;
+};
+using Done = std::function<void(const Reply&)>;
+
+struct ManagerOptions {
+  int64_t silence_us = 250000;  // no hardware state for this long: the loop is not ticking
+};
+
+class ControllerManager {
+ public:
+  ControllerManager(RobotModel model, Bus& bus, const Registry& registry = builtin_registry(),
+                    ManagerOptions options = {});
+  ~ControllerManager();
+  ControllerManager(const ControllerManager&) = delete;
+  ControllerManager& operator=(const ControllerManager&) = delete;
+
+  const RobotModel& model() const { return model_; }
+  Hardware& hardware() { return hw_; }
+  Loop& loop() { return loop_; }
+
+  Reply load(const std::string& name);
+  Reply unload(const std::string& name);
+  // Applied after the next update when hardware is ticking, at once otherwise;
+  // `done` gets the reply when the switch has happened or was refused.
+  void switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop,
+                          int strictness, Done done);
+  // Unloads everything (with force: stops the running ones first) and re-reads the config file.
+  void reload(bool force, Done done);
+  std::vector<controller_info_t> list() const;
+  std::vector<std::string> types() const { return registry_.types(); }
+  bool busy() const { return static_cast<bool>(pending_done_); }
+
+  // One hardware/state message (already checked): bind, cycle, publish the command.
+  void on_hardware_state(const hardware_state_t& state);
+  // Housekeeping between messages: silence (only when `idle`, i.e. nothing was
+  // waiting), a pending switch without hardware, statistics at 1 Hz.
+  void poll(int64_t monotonic_now_us, bool idle);
+  bool ticking() const { return loop_.has_state() && !silent_; }
+  void count_dropped(int64_t n) { dropped_ += n; }
+  const hardware_command_t& last_command() const { return command_; }
+
+  loop_stats_t statistics();  // the current window, then a new one
+  // Stops and unloads every controller; returns what was done.
+  std::string shutdown();
+
+ private:
+  ControllerSlot* find(const std::string& name) const;
+  void complete_pending();
+  std::string names_loaded() const;
+
+  RobotModel model_;
+  Bus& bus_;
+  const Registry& registry_;
+  ManagerOptions options_;
+  Hardware hw_;
+  Loop loop_;
+  Port port_;
+  hardware_command_t command_{};
+  Publisher<hardware_command_t> command_pub_;
+  Publisher<loop_stats_t> stats_pub_;
+  Done pending_done_;
+  std::string pending_summary_;
+  int64_t last_state_us_ = 0, last_stats_us_ = 0, bad_session_ = 0, dropped_ = 0, bad_state_logged_ = 0,
+          reported_dropped_ = 0;
+  bool silent_ = false;
+};
+
+}  // namespace lcm_control::cm

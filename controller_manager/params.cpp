@@ -1,0 +1,135 @@
+#include "controller_manager/params.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+namespace lcm_control::cm {
+
+namespace {
+std::string kind(const YAML::Node& n) {
+  if (n.IsSequence()) return "a list";
+  if (n.IsMap()) return "a map";
+  if (n.IsScalar()) return "'" + n.Scalar() + "'";
+  return "nothing";
+}
+
+double to_number(const YAML::Node& n, const std::string& where) {
+  if (!n.IsScalar()) throw ControllerError(fmt::format("{}: expected a number, got {}", where, kind(n)));
+  try {
+    const double v = n.as<double>();
+    if (!std::isfinite(v)) throw YAML::Exception(YAML::Mark::null_mark(), "not finite");
+    return v;
+  } catch (const YAML::Exception&) {
+    throw ControllerError(fmt::format("{}: '{}' is not a finite number", where, n.Scalar()));
+  }
+}
+}  // namespace
+
+Params::Params(YAML::Node node, std::string where) : node_(std::move(node)), where_(std::move(where)) {}
+
+bool Params::has(const std::string& key) const { return node_.IsMap() && node_[key]; }
+
+YAML::Node Params::node(const std::string& key) const {
+  read_.insert(key);
+  if (!node_.IsMap()) return YAML::Node();
+  return node_[key];
+}
+
+ControllerError Params::error(const std::string& key, const std::string& problem) const {
+  return ControllerError(fmt::format("{}/{}: {}", where_, key, problem));
+}
+
+std::string Params::string(const std::string& key) const {
+  const YAML::Node n = node(key);
+  if (!n) throw error(key, "missing (required)");
+  if (!n.IsScalar() || n.Scalar().empty()) throw error(key, "expected a name, got " + kind(n));
+  return n.Scalar();
+}
+
+double Params::number(const std::string& key) const {
+  const YAML::Node n = node(key);
+  if (!n) throw error(key, "missing (required)");
+  return to_number(n, where_ + "/" + key);
+}
+
+double Params::number(const std::string& key, double fallback) const {
+  const YAML::Node n = node(key);
+  if (!n) return fallback;
+  return to_number(n, where_ + "/" + key);
+}
+
+bool Params::boolean(const std::string& key, bool fallback) const {
+  const YAML::Node n = node(key);
+  if (!n) return fallback;
+  try {
+    return n.as<bool>();
+  } catch (const YAML::Exception&) {
+    throw error(key, "expected true or false, got " + kind(n));
+  }
+}
+
+std::vector<std::string> Params::strings(const std::string& key) const {
+  const YAML::Node n = node(key);
+  if (!n) throw error(key, "missing (required): a list of joint names");
+  if (!n.IsSequence() || n.size() == 0) throw error(key, "expected a non-empty list of names, got " + kind(n));
+  std::vector<std::string> out;
+  for (const auto& e : n) {
+    if (!e.IsScalar() || e.Scalar().empty()) throw error(key, "every entry must be a name, got " + kind(e));
+    for (const auto& s : out)
+      if (s == e.Scalar()) throw error(key, "'" + s + "' is listed twice");
+    out.push_back(e.Scalar());
+  }
+  return out;
+}
+
+PidGains Params::pid(const std::string& key) const {
+  const YAML::Node n = node(key);
+  if (!n) throw error(key, "missing (required): a map like {p: 100, i: 0, d: 10, i_clamp: 0}");
+  return pid_from(n, where_ + "/" + key);
+}
+
+PidGains Params::pid_from(const YAML::Node& n, const std::string& where) {
+  if (!n.IsMap()) throw ControllerError(fmt::format("{}: expected a map like {{p: 100, i: 0, d: 10}}, got {}", where, kind(n)));
+  static const std::set<std::string> known = {"p", "i", "d", "i_clamp", "i_clamp_min", "i_clamp_max", "antiwindup",
+                                              "publish_state"};
+  for (const auto& kv : n) {
+    const std::string k = kv.first.as<std::string>();
+    if (!known.count(k))
+      throw ControllerError(fmt::format("{}/{}: unknown key; valid keys are p, i, d, i_clamp, i_clamp_min, i_clamp_max, "
+                                        "antiwindup",
+                                        where, k));
+  }
+  PidGains g;
+  if (!n["p"]) throw ControllerError(fmt::format("{}: no 'p' gain (required); add p: <value>", where));
+  g.p = to_number(n["p"], where + "/p");
+  if (n["i"]) g.i = to_number(n["i"], where + "/i");
+  if (n["d"]) g.d = to_number(n["d"], where + "/d");
+  if (n["i_clamp"]) {
+    const double c = std::abs(to_number(n["i_clamp"], where + "/i_clamp"));
+    g.i_clamp_min = -c;
+    g.i_clamp_max = c;
+  }
+  if (n["i_clamp_min"]) g.i_clamp_min = -std::abs(to_number(n["i_clamp_min"], where + "/i_clamp_min"));
+  if (n["i_clamp_max"]) g.i_clamp_max = std::abs(to_number(n["i_clamp_max"], where + "/i_clamp_max"));
+  if (n["antiwindup"]) {
+    try {
+      g.antiwindup = n["antiwindup"].as<bool>();
+    } catch (const YAML::Exception&) {
+      throw ControllerError(fmt::format("{}/antiwindup: expected true or false", where));
+    }
+  }
+  return g;
+}
+
+std::vector<std::string> Params::unused() const {
+  std::vector<std::string> out;
+  if (!node_.IsMap()) return out;
+  for (const auto& kv : node_) {
+    const std::string k = kv.first.as<std::string>();
+    if (k != "type" && !read_.count(k)) out.push_back(k);
+  }
+  return out;
+}
+
+}  // namespace lcm_control::cm

@@ -1,0 +1,82 @@
+// LCM endpoints of one owner (a controller, the services): subscriptions that
+// decode into a message kept between calls (no allocation once warm) and are
+// removed with the Port, and publishers that encode into a reused buffer.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace lcm_control::cm {
+
+// Publishes one message type on one channel; after the first message of a given
+// size it neither allocates nor formats (safe on the loop path).
+template <class Msg>
+class Publisher {
+ public:
+  Publisher() = default;
+  Publisher(lcm::LCM* lc, std::string channel) : lc_(lc), channel_(std::move(channel)) { buf_.resize(256); }
+  bool valid() const { return lc_ != nullptr; }
+  const std::string& channel() const { return channel_; }
+  int publish(const Msg& m) {
+    const int n = m.getEncodedSize();
+    if (n > static_cast<int>(buf_.size())) buf_.resize(n);
+    if (m.encode(buf_.data(), 0, n) != n) return -1;
+    return lc_->publish(channel_, buf_.data(), static_cast<unsigned>(n));
+  }
+
+ private:
+  lcm::LCM* lc_ = nullptr;
+  std::string channel_;
+  std::vector<uint8_t> buf_;
+};
+
+class Port {
+ public:
+  explicit Port(lcm::LCM& lc) : lc_(lc) {}
+  ~Port();
+  Port(const Port&) = delete;
+  Port& operator=(const Port&) = delete;
+
+  lcm::LCM& lcm() { return lc_; }
+
+  // Raw bytes; the handler runs in the thread that calls handle().
+  void subscribe_raw(const std::string& channel, std::function<void(const lcm::ReceiveBuffer&)> handler);
+
+  // Decodes into a message kept by the Port; on_bad gets the reason when the
+  // bytes are not a Msg.
+  template <class Msg>
+  void subscribe(const std::string& channel, std::function<void(const Msg&)> on_msg,
+                 std::function<void(const std::string&)> on_bad = {}) {
+    auto msg = std::make_shared<Msg>();
+    subscribe_raw(channel, [msg, on_msg, on_bad, channel](const lcm::ReceiveBuffer& rb) {
+      if (msg->decode(rb.data, 0, rb.data_size) < 0) {
+        if (on_bad)
+          on_bad("could not decode " + std::to_string(rb.data_size) + " bytes on '" + channel + "' as " +
+                 Msg::getTypeName());
+        return;
+      }
+      on_msg(*msg);
+    });
+  }
+
+  template <class Msg>
+  Publisher<Msg> publisher(const std::string& channel) {
+    return Publisher<Msg>(&lc_, channel);
+  }
+
+ private:
+  struct Handler {
+    std::function<void(const lcm::ReceiveBuffer&)> fn;
+    void on(const lcm::ReceiveBuffer* rb, const std::string&) { fn(*rb); }
+  };
+  lcm::LCM& lc_;
+  std::vector<std::unique_ptr<Handler>> handlers_;
+  std::vector<lcm::Subscription*> subs_;
+};
+
+}  // namespace lcm_control::cm

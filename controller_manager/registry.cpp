@@ -1,0 +1,79 @@
+#include "controller_manager/registry.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "controller_manager/controllers/factories.hpp"
+
+namespace lcm_control::cm {
+
+void register_builtin(Registry& r) {
+  r.add("joint_state_controller/JointStateController", make_joint_state_controller);
+  r.add("position_controllers/JointPositionController", make_forward_command_controller);
+  r.add("velocity_controllers/JointVelocityController", make_forward_command_controller);
+  r.add("effort_controllers/JointEffortController", make_forward_command_controller);
+  r.add("position_controllers/JointGroupPositionController", make_forward_command_controller);
+  r.add("velocity_controllers/JointGroupVelocityController", make_forward_command_controller);
+  r.add("effort_controllers/JointGroupEffortController", make_forward_command_controller);
+  r.add("effort_controllers/JointPositionController", make_pid_controller);
+  r.add("effort_controllers/JointVelocityController", make_pid_controller);
+  r.add("velocity_controllers/JointPositionController", make_pid_controller);
+  r.add("position_controllers/JointTrajectoryController", make_joint_trajectory_controller);
+  r.add("effort_controllers/JointTrajectoryController", make_joint_trajectory_controller);
+}
+
+const Registry& builtin_registry() {
+  static const Registry r = [] {
+    Registry x;
+    register_builtin(x);
+    return x;
+  }();
+  return r;
+}
+
+void Registry::add(const std::string& type, Factory factory) { factories_[type] = std::move(factory); }
+
+std::unique_ptr<Controller> Registry::create(const std::string& type) const {
+  auto it = factories_.find(type);
+  return it == factories_.end() ? nullptr : it->second(type);
+}
+
+std::vector<std::string> Registry::types() const {
+  std::vector<std::string> v;
+  for (const auto& [t, f] : factories_) v.push_back(t);
+  return v;
+}
+
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+std::string Registry::closest(const std::string& type) const {
+  std::string best;
+  size_t best_d = SIZE_MAX;
+  const bool bare = type.find('/') == std::string::npos;
+  for (const auto& [t, f] : factories_) {
+    size_t d = edit_distance(type, t);
+    if (bare) d = std::min(d, edit_distance(type, t.substr(t.find('/') + 1)));
+    if (d < best_d) best_d = d, best = t;
+  }
+  return best;
+}
+
+std::string Registry::unknown_type_message(const std::string& type) const {
+  std::string valid;
+  for (const auto& t : types()) valid += (valid.empty() ? "" : ", ") + t;
+  return fmt::format("controller type '{}' does not exist; did you mean '{}'? Valid types: {}", type, closest(type),
+                     valid);
+}
+
+}  // namespace lcm_control::cm

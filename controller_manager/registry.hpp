@@ -1,0 +1,41 @@
+// Controller types by name (ros_controllers' pluginlib names), statically
+// linked: no plugin to build, install or source. Unknown names get the list
+// of valid types and the closest one by edit distance.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "controller_manager/controller.hpp"
+
+namespace lcm_control::cm {
+
+// Creates a controller of `type` (one factory may serve a family of types).
+using Factory = std::function<std::unique_ptr<Controller>(const std::string& type)>;
+
+class Registry {
+ public:
+  void add(const std::string& type, Factory factory);
+  bool has(const std::string& type) const { return factories_.count(type) > 0; }
+  std::unique_ptr<Controller> create(const std::string& type) const;  // nullptr if unknown
+  std::vector<std::string> types() const;  // sorted
+  // The registered type nearest to `type` (edit distance; a bare class name
+  // such as "JointPositionControler" is compared with the class part too).
+  std::string closest(const std::string& type) const;
+  // "controller type 'x' does not exist; did you mean 'y'? Valid types: ..."
+  std::string unknown_type_message(const std::string& type) const;
+
+ private:
+  std::map<std::string, Factory> factories_;
+};
+
+// Every built-in type (see registry.cpp for the list).
+const Registry& builtin_registry();
+void register_builtin(Registry& registry);
+
+size_t edit_distance(const std::string& a, const std::string& b);
+
+}  // namespace lcm_control::cm

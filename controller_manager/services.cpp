@@ -1,0 +1,139 @@
+#include "controller_manager/services.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+namespace lcm_control::cm {
+
+namespace {
+std::string join(const std::vector<std::string>& v) {
+  std::string s;
+  for (size_t k = 0; k < v.size(); ++k) s += (k ? ", " : "") + v[k];
+  return s;
+}
+const char* op_name(int op) {
+  switch (op) {
+    case cm_request_t::LIST: return "list";
+    case cm_request_t::LIST_TYPES: return "list-types";
+    case cm_request_t::LOAD: return "load";
+    case cm_request_t::UNLOAD: return "unload";
+    case cm_request_t::SWITCH: return "switch";
+    case cm_request_t::RELOAD: return "reload";
+    default: return "unknown";
+  }
+}
+}  // namespace
+
+std::string describe(const cm_request_t& r) {
+  switch (r.op) {
+    case cm_request_t::LOAD:
+    case cm_request_t::UNLOAD: return fmt::format("{} [{}]", op_name(r.op), join(r.names));
+    case cm_request_t::SWITCH:
+      return fmt::format("switch start [{}] stop [{}] {}", join(r.start), join(r.stop),
+                         r.strictness == cm_request_t::STRICT ? "STRICT" : "BEST_EFFORT");
+    case cm_request_t::RELOAD: return r.force ? "reload (force)" : "reload";
+    default: return op_name(r.op);
+  }
+}
+
+Services::Services(ControllerManager& cm, Bus& bus)
+    : cm_(cm), port_(bus.lcm()), pub_(port_.publisher<cm_response_t>(bus.channel(channels::kCmResponse))) {
+  const std::string channel = bus.channel(channels::kCmRequest);
+  port_.subscribe<cm_request_t>(
+      channel, [this](const cm_request_t& r) { handle(r); },
+      [this, channel](const std::string& why) {
+        ++malformed_;
+        cm_.count_dropped(1);
+        cm_request_t r;
+        r.request_id = -1;
+        r.op = 0;
+        const Reply reply{false, "malformed request: " + why + "; dropped (request_id unknown, answered as -1)"};
+        spdlog::warn("{}", reply.message);
+        answer(r, reply);
+      });
+}
+
+void Services::answer(const cm_request_t& req, const Reply& reply, bool with_types) {
+  cm_response_t m;
+  m.utime = wall_us();
+  m.request_id = req.request_id;
+  m.op = req.op;
+  m.ok = reply.ok;
+  m.message = reply.message;
+  m.controllers = cm_.list();
+  m.num_controllers = static_cast<int32_t>(m.controllers.size());
+  if (with_types) m.types = cm_.types();
+  m.num_types = static_cast<int32_t>(m.types.size());
+  pub_.publish(m);
+  if (req.request_id >= 0)
+    spdlog::info("request {}{}: {} -> {}: {}", req.request_id, req.client.empty() ? "" : " from " + req.client,
+                 describe(req), reply.ok ? "ok" : "refused", reply.message);
+}
+
+void Services::drain() {
+  while (!deferred_.empty() && !cm_.busy()) {
+    cm_request_t r = std::move(deferred_.front());
+    deferred_.pop_front();
+    handle(r);
+  }
+}
+
+void Services::handle(const cm_request_t& r) {
+  if (cm_.busy()) {
+    deferred_.push_back(r);
+    return;
+  }
+  auto names_ok = [&](const std::vector<std::string>& v, const char* field) -> std::string {
+    for (size_t k = 0; k < v.size(); ++k)
+      if (v[k].empty()) return fmt::format("malformed request: {}[{}] is an empty name", field, k);
+    return "";
+  };
+  switch (r.op) {
+    case cm_request_t::LIST:
+      answer(r, {true, fmt::format("{} controller(s) loaded", cm_.list().size())});
+      return;
+    case cm_request_t::LIST_TYPES:
+      answer(r, {true, fmt::format("{} controller types", cm_.types().size())}, true);
+      return;
+    case cm_request_t::LOAD:
+    case cm_request_t::UNLOAD: {
+      if (r.names.empty())
+        return answer(r, {false, fmt::format("malformed request: {} needs at least one controller name in names[]",
+                                             op_name(r.op))});
+      if (auto why = names_ok(r.names, "names"); !why.empty()) return answer(r, {false, why});
+      Reply all{true, ""};
+      for (const auto& n : r.names) {
+        const Reply one = r.op == cm_request_t::LOAD ? cm_.load(n) : cm_.unload(n);
+        all.ok = all.ok && one.ok;
+        all.message += (all.message.empty() ? "" : "; ") + one.message;
+      }
+      answer(r, all);
+      return;
+    }
+    case cm_request_t::SWITCH: {
+      for (auto [v, f] : {std::pair{&r.start, "start"}, {&r.stop, "stop"}})
+        if (auto why = names_ok(*v, f); !why.empty()) return answer(r, {false, why});
+      cm_request_t copy = r;
+      cm_.switch_controllers(r.start, r.stop, r.strictness, [this, copy](const Reply& reply) {
+        answer(copy, reply);
+        drain();
+      });
+      return;
+    }
+    case cm_request_t::RELOAD: {
+      cm_request_t copy = r;
+      cm_.reload(r.force, [this, copy](const Reply& reply) {
+        answer(copy, reply);
+        drain();
+      });
+      return;
+    }
+    default:
+      ++malformed_;
+      answer(r, {false, fmt::format("malformed request: unknown op {}; valid ops are 1 LIST, 2 LIST_TYPES, 3 LOAD, "
+                                    "4 UNLOAD, 5 SWITCH, 6 RELOAD",
+                                    static_cast<int>(r.op))});
+  }
+}
+
+}  // namespace lcm_control::cm

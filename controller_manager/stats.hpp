@@ -1,0 +1,46 @@
+// Loop timing over a window (1 s by default): wall-clock period between cycles,
+// the loop's own work per cycle, overruns, missed steps, dropped messages and
+// per-controller execution time. add_*() are on the loop path: no allocation.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include "lcm_control/loop_stats_t.hpp"
+
+namespace lcm_control::cm {
+
+struct ExecStats {
+  double sum_us = 0, max_us = 0;
+  int64_t n = 0;
+  void add(double us) {
+    sum_us += us;
+    if (us > max_us) max_us = us;
+    ++n;
+  }
+  double mean_us() const { return n ? sum_us / static_cast<double>(n) : 0.0; }
+  void reset() { *this = ExecStats{}; }
+};
+
+class LoopStats {
+ public:
+  // One cycle that started at start_us and finished at end_us (monotonic); an
+  // overrun is a cycle whose work took longer than the nominal period.
+  void add_cycle(int64_t start_us, int64_t end_us, int64_t nominal_period_us);
+  void add_missed(int64_t n) { missed_ += n; }
+  void add_dropped(int64_t n) { dropped_ += n; }
+  void set_real_time_factor(double f) { rtf_ = f; }
+
+  // Fills the timing fields (not the items) and starts a new window.
+  void fill_and_reset(loop_stats_t& m);
+  int64_t cycles() const { return cycles_; }
+
+ private:
+  int64_t cycles_ = 0, periods_ = 0, overruns_ = 0, missed_ = 0, dropped_ = 0;
+  int64_t last_start_us_ = -1;
+  double p_sum_ = 0, p_sq_ = 0, p_min_ = std::numeric_limits<double>::infinity(), p_max_ = 0;
+  ExecStats exec_;
+  double rtf_ = 0;
+};
+
+}  // namespace lcm_control::cm

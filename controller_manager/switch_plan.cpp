@@ -1,0 +1,91 @@
+#include "controller_manager/switch_plan.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "controller_manager/claims.hpp"
+#include "lcm_control/cm_request_t.hpp"
+
+namespace lcm_control::cm {
+
+namespace {
+std::string names(const std::vector<LoadedController>& loaded) {
+  if (loaded.empty()) return "none";
+  std::string s;
+  for (size_t k = 0; k < loaded.size(); ++k) s += (k ? ", " : "") + loaded[k].name;
+  return s;
+}
+int index_of(const std::vector<LoadedController>& loaded, const std::string& n) {
+  for (size_t k = 0; k < loaded.size(); ++k)
+    if (loaded[k].name == n) return static_cast<int>(k);
+  return -1;
+}
+}  // namespace
+
+SwitchPlan plan_switch(const std::vector<LoadedController>& loaded, const std::vector<std::string>& start,
+                       const std::vector<std::string>& stop, int strictness) {
+  SwitchPlan plan;
+  auto refuse = [&](std::string why) {
+    plan.ok = false;
+    plan.message = std::move(why);
+    plan.start.clear();
+    plan.stop.clear();
+    return plan;
+  };
+  if (strictness == 0) {
+    plan.notes.push_back("strictness 0 treated as BEST_EFFORT");
+    strictness = cm_request_t::BEST_EFFORT;
+  }
+  if (strictness != cm_request_t::BEST_EFFORT && strictness != cm_request_t::STRICT)
+    return refuse(fmt::format("strictness {} is neither 1 (BEST_EFFORT) nor 2 (STRICT)", strictness));
+  const bool strict = strictness == cm_request_t::STRICT;
+  for (const auto& s : start)
+    if (std::find(stop.begin(), stop.end(), s) != stop.end())
+      return refuse(fmt::format("'{}' is in both the start and the stop list", s));
+
+  for (const auto& n : stop) {
+    const int k = index_of(loaded, n);
+    std::string why;
+    if (k < 0)
+      why = fmt::format("cannot stop '{}': it is not loaded (loaded: {})", n, names(loaded));
+    else if (loaded[k].state != "running")
+      why = fmt::format("cannot stop '{}': it is not running (state: {})", n, loaded[k].state);
+    if (!why.empty()) {
+      if (strict) return refuse(why + " [STRICT]");
+      plan.notes.push_back("ignored: " + why);
+      continue;
+    }
+    if (std::find(plan.stop.begin(), plan.stop.end(), k) == plan.stop.end()) plan.stop.push_back(k);
+  }
+  for (const auto& n : start) {
+    const int k = index_of(loaded, n);
+    std::string why;
+    if (k < 0)
+      why = fmt::format("cannot start '{}': it is not loaded (loaded: {})", n, names(loaded));
+    else if (loaded[k].state == "running")
+      why = fmt::format("cannot start '{}': it is already running", n);
+    if (!why.empty()) {
+      if (strict) return refuse(why + " [STRICT]");
+      plan.notes.push_back("ignored: " + why);
+      continue;
+    }
+    if (std::find(plan.start.begin(), plan.start.end(), k) == plan.start.end()) plan.start.push_back(k);
+  }
+  std::sort(plan.stop.begin(), plan.stop.end());
+  std::sort(plan.start.begin(), plan.start.end());
+
+  // The set running after the switch: controllers kept first, then the started ones.
+  std::vector<std::pair<std::string, const Claim*>> after;
+  for (size_t k = 0; k < loaded.size(); ++k)
+    if (loaded[k].state == "running" &&
+        std::find(plan.stop.begin(), plan.stop.end(), static_cast<int>(k)) == plan.stop.end())
+      after.emplace_back(loaded[k].name, loaded[k].claim);
+  for (int k : plan.start) after.emplace_back(loaded[k].name, loaded[k].claim);
+  if (auto c = find_conflict(after))
+    return refuse("cannot switch: " + c->message() + " (claim conflicts are refused whatever the strictness)");
+  plan.ok = true;
+  return plan;
+}
+
+}  // namespace lcm_control::cm

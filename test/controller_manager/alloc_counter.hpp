@@ -1,0 +1,11 @@
+// Counts C++ heap allocations (global operator new) while counting is on, to
+// prove a code path allocates nothing. Linked into one test binary only.
+#pragma once
+
+namespace lcm_control::testing {
+
+void count_allocations(bool on);
+long allocations();
+void reset_allocations();
+
+}  // namespace lcm_control::testing

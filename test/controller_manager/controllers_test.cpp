@@ -1,0 +1,367 @@
+// Each controller family driven in-process through the real loop (memq:// bus,
+// simulated actuators): what it commands, how it starts, its parameters.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "controller_manager/gains.hpp"
+#include "lcm_control/controller_state_t.hpp"
+#include "lcm_control/float64_array_t.hpp"
+#include "lcm_control/float64_t.hpp"
+#include "lcm_control/joint_state_t.hpp"
+#include "lcm_control/joint_trajectory_t.hpp"
+#include "lcm_control/trajectory_status_t.hpp"
+#include "test/controller_manager/rig.hpp"
+#include "test/support/lcm_test.hpp"
+
+using namespace lcm_control;
+using namespace lcm_control::cm;
+using lcm_control::testing::Recorder;
+using lcm_control::testing::Rig;
+
+namespace {
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+float64_t value(double v) {
+  float64_t m{};
+  m.data = v;
+  return m;
+}
+float64_array_t values(std::vector<double> v) {
+  float64_array_t m{};
+  m.size = static_cast<int32_t>(v.size());
+  m.data = v;
+  return m;
+}
+// Loads and starts `name` on a ticking loop (a controller started before the
+// first hardware state restarts, and forgets its command, when it arrives).
+void start(Rig& rig, const std::string& name) {
+  if (!rig.cm->loop().has_state()) rig.cycle();
+  const Reply l = rig.load(name);
+  ASSERT_TRUE(l.ok) << l.message;
+  const Reply s = rig.switch_({name}, {});
+  ASSERT_TRUE(s.ok) << s.message;
+}
+joint_trajectory_t goal(int64_t id, std::vector<std::string> joints, std::vector<std::pair<double, std::vector<double>>> pts) {
+  joint_trajectory_t g{};
+  g.goal_id = id;
+  g.joint_names = joints;
+  g.num_joints = static_cast<int32_t>(joints.size());
+  for (auto& [t, pos] : pts) {
+    trajectory_point_t p{};
+    p.time_from_start = t;
+    p.positions = pos;
+    p.num_positions = static_cast<int32_t>(pos.size());
+    g.points.push_back(p);
+  }
+  g.num_points = static_cast<int32_t>(g.points.size());
+  return g;
+}
+}  // namespace
+
+TEST(Load, RefusalsSayWhy) {
+  Rig rig;
+  Reply r = rig.load("nothere");
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "no 'nothere' entry with a type in the config")) << r.message;
+  EXPECT_TRUE(has(r.message, "joint_state_controller, jsc_subset")) << r.message;
+  r = rig.load("typo_type");
+  EXPECT_TRUE(has(r.message, "controller type 'position_controllers/JointPositionControler' does not exist; did you "
+                             "mean 'position_controllers/JointPositionController'?"))
+      << r.message;
+  r = rig.load("wrong_interface");
+  EXPECT_TRUE(has(r.message, "controller 'wrong_interface' needs VelocityJointInterface on joint 'slide', but "
+                             "transmission 't_slide' offers only PositionJointInterface"))
+      << r.message;
+  r = rig.load("missing_joint");
+  EXPECT_TRUE(has(r.message, "joint 'elbow' is not in the URDF")) << r.message;
+  r = rig.load("no_publish_rate");
+  EXPECT_TRUE(has(r.message, "no_publish_rate/publish_rate: missing (required)")) << r.message;
+  EXPECT_TRUE(rig.load("slide_position").ok);
+  r = rig.load("slide_position");
+  EXPECT_TRUE(has(r.message, "already loaded")) << r.message;
+  EXPECT_EQ(rig.cm->list().size(), 1u);
+}
+
+TEST(Load, UnloadIsRefusedWhileRunning) {
+  Rig rig;
+  start(rig, "slide_position");
+  Reply r = rig.cm->unload("slide_position");
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "cannot unload 'slide_position': it is running; stop it first")) << r.message;
+  EXPECT_TRUE(rig.switch_({}, {"slide_position"}).ok);
+  EXPECT_EQ(rig.cm->list()[0].state, "stopped");
+  EXPECT_TRUE(rig.cm->unload("slide_position").ok);
+  EXPECT_FALSE(rig.cm->unload("slide_position").ok);
+}
+
+TEST(ForwardCommand, PositionStartsAtTheCurrentPositionThenFollows) {
+  Rig rig;
+  rig.actuator("slide_motor").position = 0.3;
+  rig.cycle(3);
+  start(rig, "slide_position");
+  rig.cycle(5);
+  EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.3);  // held, no jump to 0
+  rig.publish("slide_position/command", value(0.8));
+  rig.cycle(2);
+  EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.8);
+  rig.publish("slide_position/command", value(NAN));
+  rig.cycle(2);
+  EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.8);
+}
+
+TEST(ForwardCommand, VelocityGoesThroughTheTransmission) {
+  Rig rig;
+  start(rig, "wheel_velocity");
+  rig.cycle(3);
+  EXPECT_EQ(rig.actuator("wheel_motor").velocity, 0.0);
+  rig.publish("wheel_velocity/command", value(2.0));
+  rig.cycle(1001);
+  EXPECT_DOUBLE_EQ(rig.actuator("wheel_motor").velocity, 20.0);  // reduction 10
+  EXPECT_NEAR(rig.joint("wheel").velocity, 2.0, 1e-12);
+  EXPECT_NEAR(rig.joint("wheel").position, 0.5 + 2.0, 0.01);      // offset 0.5, 1 s at 2 rad/s
+}
+
+TEST(ForwardCommand, EffortStartsAtZeroThenForwards) {
+  Rig rig;
+  start(rig, "arm_effort");
+  rig.cycle(2);
+  EXPECT_EQ(rig.commands.back().command[2], 0.0);
+  rig.publish("arm_effort/command", value(5.0));
+  rig.cycle(2);
+  EXPECT_EQ(rig.commands.back().mode[2], hardware_command_t::MODE_EFFORT);
+  EXPECT_EQ(rig.commands.back().command[2], 5.0);
+  EXPECT_GT(rig.actuator("arm_motor").velocity, 0.0);
+}
+
+TEST(ForwardCommand, GroupsTakeOneValuePerJointAndCountWrongSizes) {
+  Rig rig;
+  start(rig, "pos_group");
+  start(rig, "vel_group");
+  start(rig, "eff_group");
+  rig.publish("pos_group/command", values({0.2, -1.0}));
+  rig.publish("vel_group/command", values({1.0, -2.0}));
+  rig.publish("eff_group/command", values({3.0, 4.0}));
+  rig.cycle(2);
+  EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.2);
+  EXPECT_DOUBLE_EQ(rig.actuator("tilt_motor").position, -1.0);
+  EXPECT_DOUBLE_EQ(rig.actuator("wheel_motor").velocity, 10.0);
+  EXPECT_DOUBLE_EQ(rig.actuator("roll_motor").velocity, -2.0);
+  EXPECT_DOUBLE_EQ(rig.actuator("spin_motor").effort, 3.0);
+  EXPECT_DOUBLE_EQ(rig.actuator("arm_motor").effort, 4.0);
+  rig.publish("pos_group/command", values({0.5}));
+  rig.publish("pos_group/command", values({0.5, 0.6, 0.7}));
+  rig.cycle(2);
+  EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.2);
+  const auto stats = rig.cm->statistics();
+  EXPECT_EQ(stats.dropped, 2);
+}
+
+TEST(JointStateController, PublishesFirstCycleAtItsRateInTransmissionOrder) {
+  Rig rig;
+  Recorder<joint_state_t> js(rig.bus.lcm(), "joint_states");
+  start(rig, "joint_state_controller");
+  rig.cycle(1);
+  ASSERT_EQ(js.messages.size(), 1u);  // first cycle
+  rig.cycle(999);
+  EXPECT_NEAR(static_cast<double>(js.messages.size()), 60.0, 1.0);
+  EXPECT_EQ(js.messages[0].name, (std::vector<std::string>{"tilt", "slide", "arm", "wheel", "spin", "roll"}));
+  EXPECT_DOUBLE_EQ(js.messages[0].position[3], 0.5);  // wheel: actuator 0 + offset
+  // Intervals are 1/60 s on the hardware clock, to the step.
+  for (size_t k = 2; k < js.messages.size(); ++k)
+    EXPECT_NEAR(js.messages[k].utime - js.messages[k - 1].utime, 16667, 1000);
+}
+
+TEST(JointStateController, KeepsItsRateAfterTimeJumps) {
+  Rig rig;
+  Recorder<joint_state_t> js(rig.bus.lcm(), "joint_states");
+  start(rig, "joint_state_controller");
+  rig.cycle(500);
+  size_t n = js.messages.size();
+  rig.time_offset_us = 100000000;  // +100 s: no burst to catch up
+  rig.cycle(500);
+  EXPECT_NEAR(static_cast<double>(js.messages.size() - n), 30.0, 1.0);
+  n = js.messages.size();
+  rig.time_offset_us = -400000;  // back in time (a reset): publishes at once, same rate
+  rig.cycle(1);
+  EXPECT_EQ(js.messages.size(), n + 1);
+  rig.cycle(499);
+  EXPECT_NEAR(static_cast<double>(js.messages.size() - n), 30.0, 1.0);
+}
+
+TEST(JointStateController, SubsetOrderAndExtraJoints) {
+  Rig rig;
+  Recorder<joint_state_t> js(rig.bus.lcm(), "joint_states");
+  const Reply r = rig.load("jsc_subset");
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_TRUE(has(r.message, "extra_joints[1]: joint 'slide' is already published; skipped")) << r.message;
+  ASSERT_TRUE(rig.switch_({"jsc_subset"}, {}).ok);
+  rig.actuator("arm_motor").position = 0.25;
+  rig.cycle(1);
+  ASSERT_FALSE(js.messages.empty());
+  const auto& m = js.messages.back();
+  EXPECT_EQ(m.name, (std::vector<std::string>{"arm", "slide", "virtual"}));
+  EXPECT_DOUBLE_EQ(m.position[0], 0.25);
+  EXPECT_DOUBLE_EQ(m.position[2], 1.0);
+  EXPECT_DOUBLE_EQ(m.velocity[2], 0.5);
+  EXPECT_DOUBLE_EQ(m.effort[2], 2.0);
+}
+
+TEST(PidControllers, EffortPositionHoldsAGravityLoadedJoint) {
+  Rig rig;
+  auto& arm = rig.actuator("arm_motor");
+  arm.gravity = 10.0;
+  arm.inertia = 0.2;
+  arm.position = 0.5;
+  start(rig, "arm_position");
+  double worst = 0;
+  for (int k = 0; k < 3000; ++k) {
+    rig.cycle();
+    worst = std::max(worst, std::abs(rig.actuator("arm_motor").position - 0.5));
+  }
+  EXPECT_LT(worst, 0.01);
+  rig.publish("arm_position/command", value(1.0));
+  rig.cycle(3000);
+  EXPECT_NEAR(rig.actuator("arm_motor").position, 1.0, 0.01);
+}
+
+TEST(PidControllers, PositionErrorIsShortestAngleOnlyForContinuousJoints) {
+  Rig rig;
+  rig.actuator("wheel_motor").position = (0.2 - 0.5) * 10;  // wheel joint at 0.2
+  rig.actuator("arm_motor").position = -2.9;
+  start(rig, "wheel_position");
+  start(rig, "arm_position");
+  rig.publish("wheel_position/command", value(2 * M_PI - 0.2));
+  rig.publish("arm_position/command", value(2.9));
+  rig.cycle(1);
+  EXPECT_LT(rig.commands.back().command[3], 0.0);  // wheel goes -0.4 rad, not +5.88
+  EXPECT_GT(rig.commands.back().command[2], 0.0);  // revolute arm goes the long way: its limits say so
+  rig.cycle(3000);
+  EXPECT_NEAR(rig.joint("wheel").position, -0.2, 0.01);
+}
+
+TEST(PidControllers, EffortVelocityReachesItsSetPointAndPublishesState) {
+  Rig rig;
+  Recorder<controller_state_t> st(rig.bus.lcm(), "spin_velocity/state");
+  start(rig, "spin_velocity");
+  rig.publish("spin_velocity/command", value(3.0));
+  rig.cycle(3000);
+  EXPECT_NEAR(rig.actuator("spin_motor").velocity, 3.0, 0.05);
+  ASSERT_GE(st.messages.size(), 299u);  // every 10th update
+  EXPECT_EQ(st.messages.back().joint, "spin");
+  EXPECT_DOUBLE_EQ(st.messages.back().set_point, 3.0);
+  EXPECT_NEAR(st.messages.back().process_value, 3.0, 0.05);
+}
+
+TEST(PidControllers, GainsAtRunTime) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("arm_position").ok);
+  Controller& c = *rig.cm->loop().slots()[0]->controller;
+  pid_gains_t req, ans;
+  req.query = true;
+  apply_gains_request(c, "arm_position", req, ans);
+  EXPECT_TRUE(ans.ok) << ans.message;
+  EXPECT_EQ(ans.joint, "arm");
+  EXPECT_EQ(ans.p, 1000);
+  EXPECT_EQ(ans.i_clamp_max, 20);
+  req = pid_gains_t{};
+  req.joint = "arm";
+  req.p = 7;
+  req.d = 1;
+  req.i_clamp_min = -2;
+  req.i_clamp_max = 2;
+  apply_gains_request(c, "arm_position", req, ans);
+  EXPECT_TRUE(ans.ok) << ans.message;
+  EXPECT_EQ(c.pid("arm")->gains().p, 7);
+  req.p = NAN;
+  apply_gains_request(c, "arm_position", req, ans);
+  EXPECT_FALSE(ans.ok);
+  EXPECT_TRUE(has(ans.message, "p is not a finite number")) << ans.message;
+  EXPECT_EQ(ans.p, 7);
+  req.joint = "slide";
+  apply_gains_request(c, "arm_position", req, ans);
+  EXPECT_FALSE(ans.ok);
+  EXPECT_TRUE(has(ans.message, "no PID for joint 'slide'")) << ans.message;
+}
+
+TEST(PidControllers, GainsOverLcm) {
+  Rig rig;
+  Recorder<pid_gains_t> answers(rig.bus.lcm(), "spin_velocity/gains");
+  ASSERT_TRUE(rig.load("spin_velocity").ok);
+  pid_gains_t req{};
+  req.request_id = 9;
+  req.p = 11;
+  rig.publish("spin_velocity/gains/set", req);
+  ASSERT_EQ(answers.messages.size(), 1u);
+  EXPECT_TRUE(answers.messages[0].ok) << answers.messages[0].message;
+  EXPECT_EQ(answers.messages[0].request_id, 9);
+  EXPECT_EQ(answers.messages[0].p, 11);
+}
+
+TEST(TrajectoryController, FollowsThreeWaypointsAndSucceeds) {
+  Rig rig;
+  Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory/result");
+  Recorder<trajectory_status_t> feedback(rig.bus.lcm(), "trajectory/feedback");
+  start(rig, "trajectory");
+  rig.cycle(2);
+  rig.publish("trajectory/command", goal(1, {"tilt", "slide"}, {{0.5, {0.3, 0.2}}, {1.0, {-0.4, 0.6}}, {1.5, {0.1, 0.5}}}));
+  rig.cycle(2500);
+  ASSERT_EQ(result.messages.size(), 1u);
+  const auto& r = result.messages[0];
+  EXPECT_EQ(r.status, trajectory_status_t::SUCCEEDED) << r.message;
+  EXPECT_TRUE(has(r.message, "goal 1 reached")) << r.message;
+  EXPECT_NEAR(rig.actuator("tilt_motor").position, 0.1, 1e-9);
+  EXPECT_NEAR(rig.actuator("slide_motor").position, 0.5, 1e-9);
+  EXPECT_GE(feedback.messages.size(), 25u);  // 20 Hz over ~1.5 s
+}
+
+TEST(TrajectoryController, ImpossiblePathToleranceFailsNamingJointAndError) {
+  Rig rig;
+  Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory_tight/result");
+  start(rig, "trajectory_tight");
+  rig.publish("trajectory_tight/command", goal(2, {"slide", "tilt"}, {{0.5, {0.3, 0.0}}, {1.0, {0.6, 0.0}}, {1.5, {0.5, 0.0}}}));
+  rig.cycle(2000);
+  ASSERT_EQ(result.messages.size(), 1u);
+  const auto& r = result.messages[0];
+  EXPECT_EQ(r.status, trajectory_status_t::PATH_TOLERANCE_VIOLATED);
+  EXPECT_TRUE(has(r.message, "path tolerance violated on joint 'slide': error ")) << r.message;
+  EXPECT_TRUE(has(r.message, "exceeds 0.000001")) << r.message;
+}
+
+TEST(TrajectoryController, BadGoalsAreRejectedAndNewGoalsPreempt) {
+  Rig rig;
+  Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory/result");
+  start(rig, "trajectory");
+  rig.publish("trajectory/command", goal(3, {"tilt"}, {{1.0, {0.3}}}));
+  rig.publish("trajectory/command", goal(4, {"tilt", "slide"}, {{1.0, {0.3, 5.0}}}));
+  rig.publish("trajectory/command", goal(5, {"tilt", "slide"}, {{1.0, {0.3, 0.5}}, {0.5, {0.3, 0.5}}}));
+  ASSERT_EQ(result.messages.size(), 3u);
+  EXPECT_TRUE(has(result.messages[0].message, "joint 'slide' is missing")) << result.messages[0].message;
+  EXPECT_TRUE(has(result.messages[1].message, "outside its limits [0, 1]")) << result.messages[1].message;
+  EXPECT_TRUE(has(result.messages[2].message, "time_from_start 0.5 must be greater than 1")) << result.messages[2].message;
+  for (const auto& m : result.messages) EXPECT_EQ(m.status, trajectory_status_t::REJECTED);
+  rig.publish("trajectory/command", goal(6, {"tilt", "slide"}, {{1.0, {0.3, 0.5}}}));
+  rig.cycle(100);
+  rig.publish("trajectory/command", goal(7, {"tilt", "slide"}, {{1.0, {0.0, 0.0}}}));
+  ASSERT_EQ(result.messages.size(), 4u);
+  EXPECT_EQ(result.messages[3].status, trajectory_status_t::PREEMPTED);
+  EXPECT_EQ(result.messages[3].goal_id, 6);
+  rig.cycle(1700);
+  ASSERT_EQ(result.messages.size(), 5u);
+  EXPECT_EQ(result.messages[4].status, trajectory_status_t::SUCCEEDED) << result.messages[4].message;
+}
+
+TEST(TrajectoryController, EffortVariantTracksWithItsGains) {
+  Rig rig;
+  Recorder<trajectory_status_t> result(rig.bus.lcm(), "effort_trajectory/result");
+  auto& arm = rig.actuator("arm_motor");
+  arm.gravity = 10.0;
+  arm.inertia = 0.2;
+  rig.actuator("spin_motor").inertia = 0.1;
+  start(rig, "effort_trajectory");
+  rig.publish("effort_trajectory/command",
+              goal(8, {"arm", "spin"}, {{1.0, {0.5, 1.0}}, {2.0, {1.0, 3.0}}, {3.0, {0.8, 6.0}}}));
+  rig.cycle(4500);
+  ASSERT_EQ(result.messages.size(), 1u);
+  EXPECT_EQ(result.messages[0].status, trajectory_status_t::SUCCEEDED) << result.messages[0].message;
+  EXPECT_NEAR(rig.actuator("arm_motor").position, 0.8, 0.02);
+}

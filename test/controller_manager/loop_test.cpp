@@ -1,0 +1,237 @@
+// The loop itself: one-cycle switching, restarts, silence, statistics, and no
+// allocation on the loop path.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <optional>
+
+#include "controller_manager/loop.hpp"
+#include "controller_manager/registry.hpp"
+#include "lcm_control/float64_array_t.hpp"
+#include "lcm_control/float64_t.hpp"
+#include "lcm_control/joint_trajectory_t.hpp"
+#include "test/controller_manager/alloc_counter.hpp"
+#include "test/controller_manager/rig.hpp"
+
+using namespace lcm_control;
+using namespace lcm_control::cm;
+using lcm_control::testing::data;
+using lcm_control::testing::Rig;
+
+namespace {
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// Writes `value` to its joint and logs the time of every update it makes.
+std::map<std::string, std::vector<int64_t>> g_updates;
+class RecorderController : public Controller {
+ public:
+  void init(ControllerContext& ctx) override {
+    name_ = ctx.name();
+    joint_ = ctx.claim(ctx.params().string("joint"), Interface::Position);
+    value_ = ctx.params().number("value");
+  }
+  void starting(const Time&) override {}
+  void update(const Time& now, double) override {
+    joint_->command = value_;
+    g_updates[name_].push_back(now.utime);
+  }
+
+ private:
+  std::string name_;
+  JointData* joint_ = nullptr;
+  double value_ = 0;
+};
+
+const Registry& test_registry() {
+  static const Registry r = [] {
+    Registry x;
+    register_builtin(x);
+    x.add("test/Recorder", [](const std::string&) { return std::make_unique<RecorderController>(); });
+    return x;
+  }();
+  return r;
+}
+}  // namespace
+
+TEST(Loop, StopAStartBOnOneJointHappensInOneCycle) {
+  g_updates.clear();
+  Rig rig(test_registry(), data("test_bot.urdf"), data("switch_test.yaml"));
+  ASSERT_TRUE(rig.load("rec_a").ok);
+  ASSERT_TRUE(rig.load("rec_b").ok);
+  ASSERT_TRUE(rig.switch_({"rec_a"}, {}).ok);
+  rig.cycle(10);
+  const Reply r = rig.switch_({"rec_b"}, {"rec_a"});
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_TRUE(has(r.message, "switched in one cycle at step 10")) << r.message;
+  rig.cycle(10);
+  const auto& a = g_updates["rec_a"];
+  const auto& b = g_updates["rec_b"];
+  ASSERT_EQ(a.size(), 11u);  // steps 0..10: the switch comes after step 10's update
+  ASSERT_EQ(b.size(), 10u);  // steps 11..20
+  EXPECT_EQ(a.back(), 10000);
+  EXPECT_EQ(b.front(), 11000);
+  // Every cycle: exactly one of them commanded tilt, and the hardware got a position command.
+  for (size_t k = 0; k < rig.commands.size(); ++k) {
+    const auto& c = rig.commands[k];
+    EXPECT_EQ(c.mode[0], hardware_command_t::MODE_POSITION) << "step " << c.step;
+    EXPECT_EQ(c.command[0], c.step <= 10 ? 1.0 : 2.0) << "step " << c.step;
+  }
+}
+
+TEST(Loop, SwitchWithoutHardwareAppliesAtOnce) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  std::optional<Reply> got;
+  rig.cm->switch_controllers({"slide_position"}, {}, 2, [&](const Reply& r) { got = r; });
+  ASSERT_TRUE(got);
+  EXPECT_TRUE(got->ok);
+  EXPECT_TRUE(has(got->message, "switched at once (no hardware state received yet)")) << got->message;
+}
+
+TEST(Loop, SilenceStopsUpdatesAndResumeRestartsFromTheCurrentState) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
+  rig.cycle(5);
+  EXPECT_TRUE(rig.cm->ticking());
+  rig.cm->poll(monotonic_us() + 1000000, true);
+  EXPECT_FALSE(rig.cm->ticking());
+  // A switch while silent applies at once.
+  ASSERT_TRUE(rig.load("tilt_position").ok);
+  std::optional<Reply> got;
+  rig.cm->switch_controllers({"tilt_position"}, {}, 2, [&](const Reply& r) { got = r; });
+  ASSERT_TRUE(got);
+  EXPECT_TRUE(has(got->message, "hardware is silent")) << got->message;
+  // Somebody moved the joint meanwhile: on resume the controller holds where it is now.
+  rig.actuator("slide_motor").position = 0.7;
+  const int64_t restarts = rig.cm->loop().restarts();
+  rig.cycle(2);
+  EXPECT_EQ(rig.cm->loop().restarts(), restarts + 1);
+  EXPECT_TRUE(rig.cm->ticking());
+  EXPECT_DOUBLE_EQ(rig.commands.back().command[1], 0.7);
+}
+
+TEST(Loop, NewSessionOrTimeGoingBackwardsRestartsControllers) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
+  rig.cycle(3);
+  float64_t cmd{};
+  cmd.data = 0.9;
+  rig.publish("slide_position/command", cmd);
+  rig.cycle(3);
+  EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.9);
+  rig.session = 43;  // the simulator restarted: the joint is back at 0.1
+  rig.step = 0;
+  rig.actuator("slide_motor").position = 0.1;
+  rig.cycle(3);
+  EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.1);
+  rig.publish("slide_position/command", cmd);
+  rig.cycle(2);
+  rig.step = 1;  // same session, time going backwards
+  rig.actuator("slide_motor").position = 0.2;
+  rig.cycle(1);
+  EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.2);
+}
+
+TEST(Loop, RepeatedStepIsAnsweredWithoutUpdating) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("arm_position").ok);
+  ASSERT_TRUE(rig.switch_({"arm_position"}, {}).ok);
+  rig.cycle(5);
+  const auto before = rig.cm->loop().stats().cycles();
+  fill_state(rig.state, rig.act, rig.step - 1, rig.session, 1000, true);
+  rig.cm->on_hardware_state(rig.state);
+  EXPECT_EQ(rig.cm->loop().stats().cycles(), before);
+  EXPECT_EQ(rig.cm->last_command().step, rig.step - 1);
+}
+
+TEST(Loop, UnclaimedActuatorsGetModeNone) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("wheel_velocity").ok);
+  ASSERT_TRUE(rig.switch_({"wheel_velocity"}, {}).ok);
+  rig.cycle(1);
+  const auto& c = rig.commands.back();
+  for (int a = 0; a < c.num_actuators; ++a)
+    EXPECT_EQ(c.mode[a], c.name[a] == "wheel_motor" ? hardware_command_t::MODE_VELOCITY : hardware_command_t::MODE_NONE)
+        << c.name[a];
+}
+
+TEST(Loop, HardwareThatDoesNotMatchTheUrdfIsNotAnswered) {
+  Rig rig;
+  rig.actuator("arm_motor").mode = hardware_command_t::MODE_POSITION;
+  rig.cycle(1);
+  EXPECT_FALSE(rig.cm->loop().has_state());
+}
+
+TEST(Loop, StatisticsCoverCyclesAndControllers) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("joint_state_controller").ok);
+  ASSERT_TRUE(rig.load("arm_position").ok);
+  ASSERT_TRUE(rig.switch_({"joint_state_controller", "arm_position"}, {}).ok);
+  rig.cycle(200);
+  const auto s = rig.cm->statistics();
+  EXPECT_GE(s.cycles, 199);
+  EXPECT_GT(s.period_mean_us, 0);
+  EXPECT_LE(s.period_min_us, s.period_max_us);
+  EXPECT_GE(s.period_jitter_us, 0);
+  EXPECT_EQ(s.item, (std::vector<std::string>{"joint_state_controller", "arm_position"}));
+  EXPECT_GT(s.item_exec_mean_us[1], 0);
+  EXPECT_EQ(rig.cm->statistics().cycles, 0);
+}
+
+TEST(Loop, ReloadRefusesWhileLoadedUnlessForced) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
+  rig.cycle(2);
+  std::optional<Reply> got;
+  rig.cm->reload(false, [&](const Reply& r) { got = r; });
+  ASSERT_TRUE(got);
+  EXPECT_FALSE(got->ok);
+  EXPECT_TRUE(has(got->message, "1 controller(s) loaded (slide_position)")) << got->message;
+  got.reset();
+  rig.cm->reload(true, [&](const Reply& r) { got = r; });
+  rig.cycle(1);
+  ASSERT_TRUE(got);
+  EXPECT_TRUE(got->ok) << got->message;
+  EXPECT_TRUE(rig.cm->list().empty());
+}
+
+TEST(Loop, NoAllocationOnTheLoopPath) {
+  Rig rig;
+  for (const char* n : {"joint_state_controller", "trajectory", "vel_group", "arm_position", "spin_velocity"})
+    ASSERT_TRUE(rig.load(n).ok) << n;
+  ASSERT_TRUE(rig.switch_({"joint_state_controller", "trajectory", "vel_group", "arm_position", "spin_velocity"}, {}).ok);
+  rig.commands.reserve(10000);
+  rig.cycle(50);
+  joint_trajectory_t g{};
+  g.goal_id = 1;
+  g.joint_names = {"slide", "tilt"};
+  g.num_joints = 2;
+  for (double t : {0.1, 0.2, 0.3}) {
+    trajectory_point_t p{};
+    p.time_from_start = t;
+    p.positions = {t, -t};
+    p.num_positions = 2;
+    g.points.push_back(p);
+  }
+  g.num_points = 3;
+  rig.publish("trajectory/command", g);
+  float64_array_t v{};
+  v.size = 2;
+  v.data = {1.0, 2.0};
+  rig.publish("vel_group/command", v);
+  rig.cycle(2);
+  fill_state(rig.state, rig.act, rig.step, rig.session, 1000, true);
+  lcm_control::testing::reset_allocations();
+  for (int k = 0; k < 500; ++k) {  // goal runs, finishes (result published), joint_states, PID states
+    rig.state.step = rig.step;
+    rig.state.utime = rig.step * 1000;
+    lcm_control::testing::count_allocations(true);
+    rig.cm->on_hardware_state(rig.state);
+    lcm_control::testing::count_allocations(false);
+    ++rig.step;
+  }
+  EXPECT_EQ(lcm_control::testing::allocations(), 0);
+}

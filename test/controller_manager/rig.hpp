@@ -1,0 +1,72 @@
+// In-process test rig: a ControllerManager on an in-memory LCM (memq://) fed
+// by simulated actuators (fake_hardware's dynamics) one cycle at a time, so
+// unit tests drive the real loop deterministically without processes.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/bus.hpp"
+#include "common/robot_model.hpp"
+#include "controller_manager/manager.hpp"
+#include "test/controller_manager/fake_hardware.hpp"
+#include "test/support/process.hpp"
+
+namespace lcm_control::testing {
+
+inline std::string data(const std::string& file) { return source("test/controller_manager/data/" + file); }
+
+struct Rig {
+  explicit Rig(const cm::Registry& registry = cm::builtin_registry(), const std::string& urdf = data("test_bot.urdf"),
+               const std::string& yaml = data("test_bot.yaml"))
+      : model(load_robot_model(urdf, yaml)), bus("memq://", "") {
+    act = actuators_for(model);
+    cm = std::make_unique<cm::ControllerManager>(model, bus, registry);
+  }
+
+  // n control steps of `period_us` each.
+  void cycle(int n = 1) {
+    for (int k = 0; k < n; ++k) {
+      fill_state(state, act, step, session, period_us, true);
+      state.utime += time_offset_us;
+      cm->on_hardware_state(state);
+      const hardware_command_t& c = cm->last_command();
+      const bool answered = c.step == step && c.session == session && c.num_actuators == static_cast<int>(act.size());
+      if (answered) commands.push_back(c);
+      simulate(act, answered ? &c : nullptr, period_us * 1e-6);
+      ++step;
+      pump();
+    }
+  }
+  void pump() {
+    while (bus.lcm().handleTimeout(0) > 0) {
+    }
+  }
+  cm::Reply load(const std::string& name) { return cm->load(name); }
+  // Switches and runs cycles until the reply comes (at once when no cycle ran yet).
+  cm::Reply switch_(const std::vector<std::string>& start, const std::vector<std::string>& stop, int strictness = 2) {
+    std::optional<cm::Reply> got;
+    cm->switch_controllers(start, stop, strictness, [&](const cm::Reply& r) { got = r; });
+    for (int k = 0; k < 5 && !got; ++k) cycle();
+    return got.value_or(cm::Reply{false, "no reply"});
+  }
+  template <class Msg>
+  void publish(const std::string& channel, const Msg& m) {
+    bus.lcm().publish(channel, &m);
+    pump();
+  }
+  FakeActuator& actuator(const std::string& name) { return find_actuator(act, name); }
+  const cm::JointData& joint(const std::string& name) { return *cm->hardware().find(name); }
+
+  RobotModel model;
+  Bus bus;
+  std::unique_ptr<cm::ControllerManager> cm;
+  std::vector<FakeActuator> act;
+  std::vector<hardware_command_t> commands;
+  hardware_state_t state;
+  int64_t step = 0, session = 42, time_offset_us = 0;
+  int period_us = 1000;
+};
+
+}  // namespace lcm_control::testing
