@@ -37,7 +37,8 @@ void install_stop_signals() {
 
 bool stop_requested() { return g_signal.load() != 0; }
 int stop_signal() { return g_signal.load(); }
-void clear_stop() { g_signal.store(0); }
+void request_stop(int sig) { g_signal.store(sig); }
+int clear_stop() { return g_signal.exchange(0); }
 
 void sleep_until_us(int64_t deadline_us) {
   // monotonic_us() is steady_clock, which is CLOCK_MONOTONIC on Linux.

@@ -15,7 +15,10 @@ namespace lcm_control::tools {
 void install_stop_signals();
 bool stop_requested();
 int stop_signal();
-void clear_stop();
+void request_stop(int sig);
+// Clears the flag so that a shutdown can still talk to its peers; a second
+// Ctrl-C during it sets the flag again and cuts it short. Returns the signal.
+int clear_stop();
 
 // Sleeps until the monotonic clock reaches deadline_us (common/bus.hpp's
 // monotonic_us()). Returns early when a stop is requested.

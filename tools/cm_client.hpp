@@ -1,0 +1,62 @@
+// Client of the controller manager's services for cmctl, spawner and launch:
+// one cm_request_t on `controller_manager/request`, the cm_response_t with the
+// same request_id back on `controller_manager/response`, within a timeout.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/bus.hpp"
+#include "lcm_control/cm_request_t.hpp"
+#include "lcm_control/cm_response_t.hpp"
+
+namespace lcm_control::tools {
+
+// No answer in time. A BusError, so run_program exits with kExitBus.
+class CmTimeout : public BusError {
+ public:
+  using BusError::BusError;
+};
+
+class CmClient {
+ public:
+  CmClient(Bus& bus, std::string client);
+  CmClient(const CmClient&) = delete;
+  CmClient& operator=(const CmClient&) = delete;
+
+  // Sends req (request_id and client filled in) and waits up to timeout_s for
+  // its answer. Throws CmTimeout naming both channels; returns refusals as they are.
+  cm_response_t call(cm_request_t req, double timeout_s);
+
+  cm_response_t list(double timeout_s);
+  cm_response_t list_types(double timeout_s);
+  cm_response_t load(const std::vector<std::string>& names, double timeout_s);
+  cm_response_t unload(const std::vector<std::string>& names, double timeout_s);
+  cm_response_t switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop,
+                                   bool strict, double timeout_s);
+  cm_response_t reload(bool force, double timeout_s);
+
+  // Asks LIST every 0.5 s until the manager answers (it may still be starting).
+  // Throws CmTimeout after timeout_s; on_wait runs once if the first try is not answered.
+  cm_response_t wait_for_manager(double timeout_s, const std::function<void()>& on_wait = {});
+
+  std::string request_channel() const;
+  std::string response_channel() const;
+
+ private:
+  void on_response(const lcm::ReceiveBuffer*, const std::string&, const cm_response_t* m);
+  std::string no_answer(const std::string& what, double timeout_s) const;
+
+  Bus& bus_;
+  std::string client_;
+  lcm::Subscription* sub_ = nullptr;
+  int64_t waiting_for_ = 0;
+  bool answered_ = false;
+  cm_response_t answer_;
+};
+
+// "name  type  state  joints  interface" as an aligned table, one controller a line.
+std::string controller_table(const std::vector<controller_info_t>& controllers);
+
+}  // namespace lcm_control::tools

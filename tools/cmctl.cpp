@@ -1,0 +1,71 @@
+// cmctl: the controller_manager command line (list, list-types, load, unload,
+// start, stop, switch, reload) over controller_manager/request and /response.
+#include <fmt/ranges.h>
+
+#include "common/cli.hpp"
+#include "tools/cm_client.hpp"
+#include "tools/support.hpp"
+
+int main(int argc, char** argv) {
+  using namespace lcm_control;
+  using namespace lcm_control::tools;
+  CLI::App app{
+      "Talk to the controller manager (ROS's `rosrun controller_manager controller_manager ...`). Every request waits "
+      "at most --timeout for the answer; a refused request prints the manager's reason and exits 1, no answer exits 4.\n"
+      "Examples:\n"
+      "  cmctl list\n"
+      "  cmctl load j1_controller && cmctl start j1_controller\n"
+      "  cmctl switch --start j2_effort_controller --stop j2_controller\n"
+      "  cmctl --namespace robot1 list-types",
+      "cmctl"};
+  BusFlags bus_flags;
+  double timeout = 3;
+  add_bus_flags(app, bus_flags);
+  app.add_option("--timeout", timeout, "seconds to wait for each answer")->check(CLI::PositiveNumber);
+  app.require_subcommand(1);
+  std::vector<std::string> names, start, stop;
+  bool best_effort = false, force = false;
+  auto* list = app.add_subcommand("list", "controllers with type, state, joints and interface");
+  auto* types = app.add_subcommand("list-types", "controller types this manager can load");
+  auto* load = app.add_subcommand("load", "load (configure) controllers from the YAML");
+  auto* unload = app.add_subcommand("unload", "unload stopped controllers");
+  auto* start_cmd = app.add_subcommand("start", "start controllers (one strict switch)");
+  auto* stop_cmd = app.add_subcommand("stop", "stop controllers (one strict switch)");
+  auto* sw = app.add_subcommand("switch", "stop some and start others in one switch");
+  auto* reload = app.add_subcommand("reload", "reload_controller_libraries: unload all and re-read the config");
+  for (auto* sc : {load, unload, start_cmd, stop_cmd}) sc->add_option("NAME", names, "controller names")->required();
+  sw->add_option("--start", start, "controllers to start");
+  sw->add_option("--stop", stop, "controllers to stop");
+  sw->add_flag("--best-effort", best_effort, "start/stop what can be, skip what cannot (default: strict, all or none)");
+  reload->add_flag("--force", force, "stop and unload running controllers first");
+  return run_program(app, argc, argv, [&] {
+    install_stop_signals();
+    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    CmClient cm(bus, "cmctl");
+    cm_response_t r;
+    if (list->parsed()) {
+      r = cm.list(timeout);
+      if (r.ok) fmt::print("{}", r.controllers.empty() ? "no controllers loaded\n" : controller_table(r.controllers));
+    } else if (types->parsed()) {
+      r = cm.list_types(timeout);
+      if (r.ok)
+        for (const auto& t : r.types) fmt::print("{}\n", t);
+    } else if (load->parsed()) {
+      r = cm.load(names, timeout);
+    } else if (unload->parsed()) {
+      r = cm.unload(names, timeout);
+    } else if (start_cmd->parsed()) {
+      r = cm.switch_controllers(names, {}, true, timeout);
+    } else if (stop_cmd->parsed()) {
+      r = cm.switch_controllers({}, names, true, timeout);
+    } else if (sw->parsed()) {
+      if (start.empty() && stop.empty()) throw std::runtime_error("switch needs --start and/or --stop");
+      r = cm.switch_controllers(start, stop, !best_effort, timeout);
+    } else if (reload->parsed()) {
+      r = cm.reload(force, timeout);
+    }
+    if (!r.ok) throw std::runtime_error(r.message.empty() ? "refused (no reason given)" : r.message);
+    if (!list->parsed() && !types->parsed()) fmt::print("{}\n", r.message.empty() ? "ok" : r.message);
+    return int(kExitOk);
+  });
+}

@@ -1,0 +1,85 @@
+#include "tools/spawn.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <set>
+
+#include "tools/support.hpp"
+
+namespace lcm_control::tools {
+
+Spawner::Spawner(CmClient& cm, std::vector<std::string> names, SpawnOptions options)
+    : cm_(cm), names_(std::move(names)), o_(std::move(options)) {}
+
+void Spawner::say(const std::string& line) const {
+  if (o_.say) o_.say(line);
+}
+
+void Spawner::spawn() {
+  std::set<std::string> unique;
+  for (const auto& n : names_)
+    if (!unique.insert(n).second) throw std::runtime_error(fmt::format("controller '{}' is named twice", n));
+  try {
+    cm_.wait_for_manager(o_.timeout_s, [&] {
+      say(fmt::format("waiting up to {} for the controller manager on '{}'", seconds_text(o_.timeout_s),
+                      cm_.request_channel()));
+    });
+    for (const auto& n : names_) {
+      const cm_response_t r = cm_.load({n}, o_.timeout_s);
+      if (!r.ok) throw std::runtime_error(fmt::format("controller '{}' failed to load: {}", n, r.message));
+      loaded_.push_back(n);
+      say(fmt::format("loaded {}", n));
+    }
+    if (o_.stopped) return;
+    const cm_response_t r = cm_.switch_controllers(names_, {}, true, o_.timeout_s);
+    if (!r.ok)
+      throw std::runtime_error(fmt::format("could not start [{}] (one strict switch, so none started): {}",
+                                           fmt::join(names_, ", "), r.message));
+    started_ = true;
+    say(fmt::format("started {}", fmt::join(names_, ", ")));
+  } catch (const std::exception&) {
+    // Undo, even after Ctrl-C (a second one cuts it short); keep the stop request.
+    const int sig = clear_stop();
+    teardown(std::min(2.0, o_.timeout_s));
+    if (sig) request_stop(sig);
+    throw;
+  }
+}
+
+bool Spawner::teardown(double timeout_s) {
+  if (loaded_.empty()) return true;
+  const int64_t end = monotonic_us() + int64_t(timeout_s * 1e6);
+  auto left = [&] { return std::max(0.05, double(end - monotonic_us()) / 1e6); };
+  bool all_ok = true;
+  try {
+    if (started_) {
+      const cm_response_t r = cm_.switch_controllers({}, loaded_, true, left());
+      if (!r.ok) {
+        say(fmt::format("stopping [{}] was refused: {}", fmt::join(loaded_, ", "), r.message));
+        all_ok = false;
+      }
+      started_ = false;
+    }
+    while (!loaded_.empty()) {
+      const std::string n = loaded_.back();
+      const cm_response_t r = cm_.unload({n}, left());
+      if (!r.ok) {
+        say(fmt::format("unloading {} was refused: {}", n, r.message));
+        all_ok = false;
+      } else {
+        say(fmt::format("unloaded {}", n));
+      }
+      loaded_.pop_back();
+    }
+  } catch (const std::exception& e) {
+    say(fmt::format("gave up stopping and unloading [{}]: {}", fmt::join(loaded_, ", "), e.what()));
+    loaded_.clear();
+    started_ = false;
+    return false;
+  }
+  return all_ok;
+}
+
+}  // namespace lcm_control::tools
