@@ -262,7 +262,7 @@ TEST(PidControllers, GainsAtRunTime) {
   EXPECT_TRUE(ans.ok) << ans.message;
   EXPECT_EQ(ans.joint, "arm");
   EXPECT_EQ(ans.p, 1000);
-  EXPECT_EQ(ans.i_clamp_max, 20);
+  EXPECT_EQ(ans.i_clamp_max, 10);
   req = pid_gains_t{};
   req.joint = "arm";
   req.p = 7;

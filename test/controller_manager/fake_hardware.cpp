@@ -176,6 +176,20 @@ void FakeHardware::publish_state() {
   lcm_.publish(options_.ns.empty() ? "hardware/state" : options_.ns + "/hardware/state", &s);
 }
 
+void FakeHardware::record(const hardware_command_t* c) {
+  Record r;
+  r.step = step_;
+  if (c) {
+    r.mode = c->mode;
+    r.command = c->command;
+  } else {
+    r.mode.assign(act_.size(), hardware_command_t::MODE_NONE);
+    r.command.assign(act_.size(), 0.0);
+  }
+  for (const auto& a : act_) r.position.push_back(a.position);
+  records_.push_back(std::move(r));
+}
+
 void FakeHardware::run() {
   const double dt = options_.period_us * 1e-6;
   auto next = std::chrono::steady_clock::now();
@@ -213,8 +227,8 @@ void FakeHardware::run() {
       }
       if (!got) continue;
       std::lock_guard<std::mutex> l(mutex_);
-      records_.push_back({step_, last_.mode, last_.command});
       dropped_ += simulate(act_, &last_, dt);
+      record(&last_);
       ++step_;
     } else {
       next += std::chrono::microseconds(options_.period_us);
@@ -222,8 +236,8 @@ void FakeHardware::run() {
       }
       {
         std::lock_guard<std::mutex> l(mutex_);
-        if (have_command_) records_.push_back({step_, last_.mode, last_.command});
         dropped_ += simulate(act_, have_command_ ? &last_ : nullptr, dt);
+        record(have_command_ ? &last_ : nullptr);
         ++step_;
       }
       publish_state();

@@ -51,6 +51,7 @@ class FakeHardware {
     int64_t step;
     std::vector<int8_t> mode;
     std::vector<double> command;
+    std::vector<double> position;  // after the step
   };
 
   FakeHardware(const std::string& url, std::vector<FakeActuator> actuators, FakeHardwareOptions options = {});
@@ -75,6 +76,7 @@ class FakeHardware {
   void run();
   void on_command(const lcm::ReceiveBuffer*, const std::string&, const hardware_command_t* m);
   void publish_state();
+  void record(const hardware_command_t* command);  // with mutex_ held
 
   lcm::LCM lcm_;
   FakeHardwareOptions options_;
