@@ -1,1 +1,69 @@
-int main(){}
+// sim_server: the URDF robot in Bullet, playing the hardware over LCM for a
+// controller_manager (docs/hardware-protocol.md). Flags and wiring only.
+#include <csignal>
+
+#include <atomic>
+
+#include "common/cli.hpp"
+#include "common/log.hpp"
+#include "sim_server/sim_io.hpp"
+#include "sim_server/simulation.hpp"
+#include "sim_server/stepper.hpp"
+
+namespace {
+std::atomic<bool> g_stop{false};
+void on_signal(int) { g_stop = true; }
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace lcm_control;
+  CLI::App app{
+      "Simulate a URDF robot in Bullet and play its hardware over LCM (hardware/state, hardware/command, clock, "
+      "e_stop, sim_server/gains).\n"
+      "Example: sim_server --urdf config/turret_bot.urdf --config config/turret_bot.yaml --lockstep",
+      "sim_server"};
+  std::string urdf, config, log_level;
+  std::vector<std::string> package_path;
+  BusFlags bus_flags;
+  sim::SimulationRates rates;
+  sim::StepperOptions opt;
+  app.add_option("--urdf", urdf, "URDF with <transmission> tags")->required();
+  app.add_option("--config", config, "ros_control YAML (gazebo_ros_control/pid_gains); none: every joint direct");
+  app.add_flag("--lockstep", opt.lockstep, "step only when the controller manager answers (deterministic)");
+  app.add_option("--physics-rate", rates.physics_hz, "physics steps per second")->capture_default_str();
+  app.add_option("--control-rate", rates.control_hz, "hardware state/command exchanges per second (divides "
+                                                      "--physics-rate)")
+      ->capture_default_str();
+  app.add_option("--duration", opt.duration_s, "stop after this many seconds of sim time (0: run until stopped)");
+  app.add_option("--lockstep-timeout", opt.lockstep_timeout_s,
+                 "lockstep: republish the state this often (s) while no command comes")
+      ->capture_default_str();
+  app.add_option("--watchdog", opt.watchdog_s, "real time: hold every actuator after this long (s) without a command")
+      ->capture_default_str();
+  app.add_option("--log-level", log_level, "debug, info, warn or error");
+  add_bus_flags(app, bus_flags);
+  add_package_path_flag(app, package_path);
+
+  return run_program(app, argc, argv, [&] {
+    sim::substeps_for(rates);  // bad rates fail before anything else is said
+    setup_logging("sim_server", log_level);
+    const RobotModel model = load_robot_model(urdf, config, LoadOptions{package_path});
+    for (const auto& w : model.warnings) spdlog::warn("{}", w);
+    sim::Simulation sim(model, rates);
+    for (const auto& w : sim.multibody().warnings()) spdlog::warn("{}", w);
+    for (const auto& w : sim.actuators().warnings()) spdlog::warn("{}", w);
+    for (int i = 0; i < sim.actuators().size(); ++i) spdlog::info("{}", sim.actuators().describe(i));
+    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    sim::SimIo io(bus, sim, opt.lockstep);
+    sim::Stepper stepper(sim, io, opt);
+    std::signal(SIGINT, on_signal);
+    std::signal(SIGTERM, on_signal);
+    spdlog::info("ready ({}, {} actuators, physics {:g} Hz, control {:g} Hz, lcm {}{}, session {})",
+                 opt.lockstep ? "lockstep" : "real time", sim.actuators().size(), rates.physics_hz, rates.control_hz,
+                 bus.url(), bus.ns().empty() ? "" : ", namespace " + bus.ns(), io.session());
+    if (!stepper.run(g_stop)) throw BusError("LCM stopped working (handle failed); is the multicast route still there?");
+    spdlog::info("stopped at step {} (sim time {:.3f} s); {} commands dropped", sim.step_count(), sim.time(),
+                 io.dropped());
+    return int(kExitOk);
+  });
+}

@@ -1,0 +1,242 @@
+#include "sim_server/sim_io.hpp"
+
+#include <fmt/format.h>
+#include <poll.h>
+#include <spdlog/spdlog.h>
+
+#include <cerrno>
+#include <cstring>
+#include <random>
+
+#include "common/messages.hpp"
+
+namespace lcm_control::sim {
+
+namespace {
+constexpr int kMaxActuatorsOnWire = 4096;  // anything larger is garbage; refuse before decoding
+constexpr int kMaxMessagesPastDeadline = 100;
+
+int64_t random_session() {
+  std::random_device rd;
+  const int64_t s = (int64_t(rd()) << 31) ^ int64_t(rd());
+  return s == 0 ? 1 : s;
+}
+
+// num_actuators sits after the fingerprint and three int64 fields (big-endian on the wire).
+int32_t peek_num_actuators(const lcm::ReceiveBuffer* rbuf) {
+  const auto* p = static_cast<const uint8_t*>(rbuf->data) + 32;
+  return int32_t(uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]));
+}
+
+const char* mode_name(int8_t m) {
+  switch (m) {
+    case hardware_command_t::MODE_NONE: return "none";
+    case hardware_command_t::MODE_POSITION: return "position";
+    case hardware_command_t::MODE_VELOCITY: return "velocity";
+    case hardware_command_t::MODE_EFFORT: return "effort";
+  }
+  return "unknown";
+}
+}  // namespace
+
+SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep)
+    : bus_(bus),
+      sim_(sim),
+      lockstep_(lockstep),
+      session_(random_session()),
+      state_channel_(bus.channel(channels::kHardwareState)),
+      clock_channel_(bus.channel(channels::kClock)),
+      gains_channel_(bus.channel(gains_channel(channels::kSimGainsOwner))),
+      stats_channel_(bus.channel(channels::kSimStatistics)) {
+  const Actuators& act = sim.actuators();
+  const int n = act.size();
+  resize(state_, n);
+  for (int i = 0; i < n; ++i) {
+    state_.name[i] = act.name(i);
+    state_.mode[i] = act.wire_mode(i);
+  }
+  state_.session = session_;
+  state_.lockstep = lockstep;
+  state_.period_us = int32_t(std::llround(sim.control_period() * 1e6));
+  state_buf_.resize(state_.getEncodedSize());
+  clock_buf_.resize(clock_.getEncodedSize());
+  resize(cmd_, n);
+  pending_mode_.assign(n, hardware_command_t::MODE_NONE);
+  pending_value_.assign(n, 0.0);
+
+  auto& lc = bus.lcm();
+  subs_.push_back(lc.subscribe(bus.channel(channels::kHardwareCommand), &SimIo::on_command, this));
+  subs_.push_back(lc.subscribe(bus.channel(channels::kEStop), &SimIo::on_e_stop, this));
+  subs_.push_back(lc.subscribe(bus.channel(gains_set_channel(channels::kSimGainsOwner)), &SimIo::on_gains, this));
+}
+
+SimIo::~SimIo() {
+  for (auto* s : subs_) bus_.lcm().unsubscribe(s);
+}
+
+void SimIo::publish_state(double real_time_factor) {
+  const Actuators& act = sim_.actuators();
+  state_.utime = sim_.time_us();
+  state_.step = sim_.step_count();
+  state_.e_stop = act.e_stop();
+  state_.real_time_factor = real_time_factor;
+  for (int i = 0; i < act.size(); ++i) {
+    state_.position[i] = act.position(i);
+    state_.velocity[i] = act.velocity(i);
+    state_.effort[i] = act.effort(i);
+  }
+  const int n = state_.encode(state_buf_.data(), 0, int(state_buf_.size()));
+  if (n > 0) bus_.lcm().publish(state_channel_, state_buf_.data(), unsigned(n));
+  clock_.utime = state_.utime;
+  clock_.step = state_.step;
+  clock_.real_time_factor = real_time_factor;
+  const int m = clock_.encode(clock_buf_.data(), 0, int(clock_buf_.size()));
+  if (m > 0) bus_.lcm().publish(clock_channel_, clock_buf_.data(), unsigned(m));
+}
+
+void SimIo::publish_statistics(const loop_stats_t& stats) { bus_.lcm().publish(stats_channel_, &stats); }
+
+bool SimIo::poll_until(int64_t deadline_us, bool until_command) {
+  pollfd p{bus_.lcm().getFileno(), POLLIN, 0};
+  for (int late = 0; late < kMaxMessagesPastDeadline;) {
+    const int64_t left = std::max<int64_t>(0, deadline_us - monotonic_us());
+    if (left == 0) ++late;
+    const timespec ts{time_t(left / 1000000), long(left % 1000000) * 1000};
+    const int r = ppoll(&p, 1, &ts, nullptr);
+    if (r < 0) return errno == EINTR;
+    if (r == 0) return true;
+    if (bus_.lcm().handle() < 0) return false;
+    if (until_command && has_pending_) return true;
+  }
+  return true;
+}
+
+bool SimIo::take_command() {
+  if (!has_pending_) return false;
+  Actuators& act = sim_.actuators();
+  for (int i = 0; i < act.size(); ++i) act.set_command(i, pending_mode_[i], pending_value_[i]);
+  has_pending_ = false;
+  return true;
+}
+
+std::string SimIo::why_rejected() {
+  std::string problem = check(cmd_);
+  if (!problem.empty()) return problem;
+  const Actuators& act = sim_.actuators();
+  if (cmd_.session != session_)
+    return fmt::format("session {} is not this sim_server's session {} (answer the latest hardware/state)",
+                       cmd_.session, session_);
+  if (cmd_.num_actuators != act.size())
+    return fmt::format("{} actuators, but this robot has {}", cmd_.num_actuators, act.size());
+  for (int i = 0; i < act.size(); ++i) {
+    if (cmd_.name[i] != act.name(i))
+      return fmt::format("actuator {} is '{}', expected '{}' (URDF transmission order)", i, cmd_.name[i], act.name(i));
+    if (cmd_.mode[i] != hardware_command_t::MODE_NONE && cmd_.mode[i] != act.wire_mode(i))
+      return fmt::format("actuator '{}' got a {} command but takes {}", act.name(i), mode_name(cmd_.mode[i]),
+                         mode_name(act.wire_mode(i)));
+  }
+  return "";
+}
+
+void SimIo::drop(const std::string& why) {
+  ++dropped_;
+  const int64_t now = monotonic_us();
+  if (dropped_logged_ == 0 || now - last_drop_log_us_ > 1000000) {
+    spdlog::warn("dropped a hardware/command ({} so far): {}", dropped_, why);
+    dropped_logged_ = dropped_;
+    last_drop_log_us_ = now;
+  }
+}
+
+void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  if (rbuf->data_size < 36) return drop("message too short for a hardware_command_t");
+  const int32_t n = peek_num_actuators(rbuf);
+  if (n < 0 || n > kMaxActuatorsOnWire) return drop(fmt::format("num_actuators {} is not plausible", n));
+  try {
+    if (cmd_.decode(rbuf->data, 0, int(rbuf->data_size)) < 0)
+      return drop("not a hardware_command_t (wrong fingerprint or truncated)");
+  } catch (const std::exception& e) {
+    return drop(fmt::format("undecodable: {}", e.what()));
+  }
+  const std::string why = why_rejected();
+  if (!why.empty()) return drop(why);
+  if (lockstep_ ? cmd_.step != expected_step_ : cmd_.step < last_step_) {
+    ++stale_;
+    return;
+  }
+  for (int i = 0; i < n; ++i) {
+    pending_mode_[i] = cmd_.mode[i];
+    pending_value_[i] = cmd_.command[i];
+  }
+  has_pending_ = true;
+  last_step_ = cmd_.step;
+  last_command_us_ = monotonic_us();
+}
+
+void SimIo::on_e_stop(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  if (e_stop_msg_.decode(rbuf->data, 0, int(rbuf->data_size)) < 0) return drop("e_stop: not an e_stop_t");
+  Actuators& act = sim_.actuators();
+  if (e_stop_msg_.engaged != act.e_stop()) {
+    const std::string who = e_stop_msg_.source.empty() ? "" : fmt::format(" by '{}'", e_stop_msg_.source);
+    if (e_stop_msg_.engaged)
+      spdlog::warn("e-stop engaged{} at step {}: position actuators hold where they are, velocity and effort get 0",
+                   who, sim_.step_count());
+    else
+      spdlog::info("e-stop released{} at step {}: commands resume", who, sim_.step_count());
+  }
+  act.set_e_stop(e_stop_msg_.engaged);
+}
+
+void SimIo::on_gains(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  pid_gains_t req;
+  if (req.decode(rbuf->data, 0, int(rbuf->data_size)) < 0) return drop("gains/set: not a pid_gains_t");
+  pid_gains_t ans = req;
+  ans.utime = sim_.time_us();
+  ans.owner = channels::kSimGainsOwner;
+  Actuators& act = sim_.actuators();
+  const int i = act.find_joint(req.joint);
+  if (i < 0) {
+    std::string joints;
+    for (int k = 0; k < act.size(); ++k)
+      if (act.has_pid(k)) joints += (joints.empty() ? "" : ", ") + act.joint(k);
+    ans.ok = false;
+    ans.message = fmt::format("no actuated joint '{}'; joints with pid_gains: {}", req.joint,
+                              joints.empty() ? "none" : joints);
+    return answer_gains(ans);
+  }
+  if (!act.has_pid(i)) {
+    ans.ok = false;
+    ans.message = fmt::format("joint '{}' runs {} (no pid_gains); add gazebo_ros_control/pid_gains/{} to the YAML for "
+                              "a PID",
+                              req.joint, to_string(act.mode(i)), req.joint);
+    return answer_gains(ans);
+  }
+  if (!req.query) {
+    const PidGains g{req.p, req.i, req.d, req.i_clamp_min, req.i_clamp_max, req.antiwindup != 0};
+    const std::string problem = check_gains(g);
+    if (problem.empty()) {
+      act.set_gains(i, g);
+      spdlog::info("pid_gains of '{}' set to p {:g} i {:g} d {:g} i_clamp [{:g}, {:g}]{} from step {}", req.joint, g.p,
+                   g.i, g.d, g.i_clamp_min, g.i_clamp_max, g.antiwindup ? " antiwindup" : "", sim_.step_count());
+      ans.message = fmt::format("applied from step {}", sim_.step_count());
+    } else {
+      ans.message = fmt::format("refused: {}", problem);
+    }
+    ans.ok = problem.empty();
+  } else {
+    ans.ok = true;
+    ans.message = "gains in force";
+  }
+  const PidGains& now = act.gains(i);
+  ans.p = now.p;
+  ans.i = now.i;
+  ans.d = now.d;
+  ans.i_clamp_min = now.i_clamp_min;
+  ans.i_clamp_max = now.i_clamp_max;
+  ans.antiwindup = now.antiwindup;
+  answer_gains(ans);
+}
+
+void SimIo::answer_gains(pid_gains_t answer) { bus_.lcm().publish(gains_channel_, &answer); }
+
+}  // namespace lcm_control::sim

@@ -7,7 +7,6 @@
 
 namespace lcm_control::sim {
 
-namespace {
 int substeps_for(const SimulationRates& r) {
   if (!(r.physics_hz > 0) || !(r.control_hz > 0) || !std::isfinite(r.physics_hz) || !std::isfinite(r.control_hz))
     throw std::invalid_argument(
@@ -19,7 +18,6 @@ int substeps_for(const SimulationRates& r) {
                                             r.physics_hz, r.control_hz));
   return int(n);
 }
-}  // namespace
 
 Simulation::Simulation(const RobotModel& model, const SimulationRates& rates)
     : control_period_(1.0 / rates.control_hz), control_hz_(rates.control_hz), substeps_(substeps_for(rates)) {

@@ -17,6 +17,9 @@ struct SimulationRates {
   double control_hz = 1000;  // physics_hz must be a whole multiple of it
 };
 
+// Physics steps per control step; throws std::invalid_argument unless physics_hz is a whole multiple of control_hz.
+int substeps_for(const SimulationRates& rates);
+
 class Simulation {
  public:
   // Throws ModelError for a robot Bullet cannot take, std::invalid_argument for bad rates.

@@ -1,0 +1,80 @@
+// sim_server's side of the LCM hardware loop (docs/hardware-protocol.md):
+// publishes hardware/state and clock from preallocated buffers; takes
+// hardware/command (checked, and dropped and counted when malformed, NaN,
+// wrong-size, from another session or in the wrong mode), e_stop and
+// sim_server/gains/set; publishes the gains in force and the statistics.
+// Handlers run inside poll_until(), i.e. between control steps.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/bus.hpp"
+#include "lcm_control/e_stop_t.hpp"
+#include "lcm_control/hardware_command_t.hpp"
+#include "lcm_control/hardware_state_t.hpp"
+#include "lcm_control/loop_stats_t.hpp"
+#include "lcm_control/pid_gains_t.hpp"
+#include "lcm_control/sim_clock_t.hpp"
+#include "sim_server/simulation.hpp"
+
+namespace lcm_control::sim {
+
+class SimIo {
+ public:
+  SimIo(Bus& bus, Simulation& sim, bool lockstep);
+  ~SimIo();
+  SimIo(const SimIo&) = delete;
+  SimIo& operator=(const SimIo&) = delete;
+
+  int64_t session() const { return session_; }
+
+  // hardware/state and clock for the simulation's current step.
+  void publish_state(double real_time_factor);
+  void publish_statistics(const loop_stats_t& stats);
+
+  // Handles LCM messages as they come until `deadline_us` (monotonic_us()), or until a command is
+  // accepted if `until_command`; at least one non-blocking pass. False if LCM failed.
+  bool poll_until(int64_t deadline_us, bool until_command = false);
+
+  // Lockstep: only a command tagged with this step is accepted (others are ignored, counted stale).
+  void expect_step(int64_t step) { expected_step_ = step; }
+  bool has_command() const { return has_pending_; }
+  // Hands the newest accepted command to the actuators; false if none arrived since the last call.
+  bool take_command();
+  // monotonic_us() when the newest command was accepted, -1 before the first.
+  int64_t last_command_us() const { return last_command_us_; }
+
+  int64_t dropped() const { return dropped_; }  // malformed, NaN, wrong size, session or mode
+  int64_t stale() const { return stale_; }      // well-formed but for another step
+
+ private:
+  void on_command(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void on_e_stop(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void on_gains(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  std::string why_rejected();
+  void drop(const std::string& why);
+  void answer_gains(pid_gains_t answer);
+
+  Bus& bus_;
+  Simulation& sim_;
+  const bool lockstep_;
+  const int64_t session_;
+  const std::string state_channel_, clock_channel_, gains_channel_, stats_channel_;
+  std::vector<lcm::Subscription*> subs_;
+
+  hardware_state_t state_;
+  sim_clock_t clock_;
+  std::vector<uint8_t> state_buf_, clock_buf_;
+
+  hardware_command_t cmd_;  // decoded in place: its arrays keep their capacity
+  std::vector<int8_t> pending_mode_;
+  std::vector<double> pending_value_;
+  bool has_pending_ = false;
+  int64_t expected_step_ = -1, last_step_ = -1, last_command_us_ = -1;
+  int64_t dropped_ = 0, stale_ = 0, dropped_logged_ = 0, last_drop_log_us_ = 0;
+  e_stop_t e_stop_msg_;
+};
+
+}  // namespace lcm_control::sim

@@ -1,0 +1,54 @@
+// Paces the simulation and runs the hardware loop around it: real time
+// (absolute deadlines on the monotonic clock, newest command, watchdog hold)
+// or lockstep (publish state k, wait for the command tagged k, step; time
+// stands still while nobody answers). Publishes 1 Hz statistics.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "sim_server/sim_io.hpp"
+#include "sim_server/simulation.hpp"
+
+namespace lcm_control::sim {
+
+struct StepperOptions {
+  bool lockstep = false;
+  double lockstep_timeout_s = 1.0;  // lockstep: republish the state this often while waiting
+  double watchdog_s = 0.1;          // real time: hold every actuator after this long without a command
+  double duration_s = 0;            // sim seconds to run; 0 runs until stopped
+};
+
+class Stepper {
+ public:
+  Stepper(Simulation& sim, SimIo& io, const StepperOptions& options);
+
+  // Runs until `stop` is set or the duration is reached (true), or LCM fails (false).
+  bool run(const std::atomic<bool>& stop);
+
+ private:
+  bool run_lockstep(const std::atomic<bool>& stop);
+  bool run_real_time(const std::atomic<bool>& stop);
+  bool done() const;
+  double real_time_factor() const;
+  void step_timed(int64_t deadline_us);
+  void watchdog(int64_t now_us);
+  void tick_statistics(int64_t now_us);
+
+  Simulation& sim_;
+  SimIo& io_;
+  StepperOptions opt_;
+  double period_us_;
+  int64_t start_us_ = 0, start_step_ = 0;
+  bool watchdog_holding_ = false;
+  int64_t last_cycle_us_ = -1;
+
+  // The current statistics window (1 s of wall time).
+  struct Window {
+    int64_t start_us = 0, start_step = 0, cycles = 0, periods = 0, overruns = 0, missed = 0, dropped_before = 0;
+    double period_sum = 0, period_sq = 0, period_min = 0, period_max = 0;
+    double step_sum = 0, step_max = 0, publish_sum = 0, publish_max = 0;
+  } w_;
+};
+
+}  // namespace lcm_control::sim
