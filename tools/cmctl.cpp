@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   add_bus_flags(app, bus_flags);
   app.add_option("--timeout", timeout, "seconds to wait for each answer")->check(CLI::PositiveNumber);
   app.require_subcommand(1);
+  app.fallthrough();  // `cmctl list --lcm-url URL` as well as `cmctl --lcm-url URL list`
   std::vector<std::string> names, start, stop;
   bool best_effort = false, force = false;
   auto* list = app.add_subcommand("list", "controllers with type, state, joints and interface");

@@ -1,0 +1,427 @@
+#include "tools/launch_file.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <tinyxml2.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "common/robot_model.hpp"
+
+namespace fs = std::filesystem;
+
+namespace lcm_control::tools {
+
+namespace {
+
+using Args = std::vector<std::pair<std::string, std::string>>;
+
+std::string read_text(const std::string& path) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) throw ModelError(fmt::format("{}: launch file not found", path));
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string absolute_from(const std::string& p, const std::string& base_dir) {
+  if (p.empty()) return p;
+  fs::path f(p);
+  if (f.is_relative()) f = fs::path(base_dir) / f;
+  return fs::weakly_canonical(f).string();
+}
+
+std::vector<std::string> split_words(const std::string& s) {
+  std::vector<std::string> out;
+  std::istringstream in(s);
+  std::string w;
+  while (in >> w) out.push_back(w);
+  return out;
+}
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\n");
+  if (b == std::string::npos) return "";
+  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
+}
+
+std::vector<std::string> packages_of(const std::vector<std::string>& package_path) {
+  return package_path.empty() ? default_package_path() : package_path;
+}
+
+}  // namespace
+
+std::string substitute(const std::string& text, const std::vector<std::string>& package_path, const Args& args,
+                       const std::string& where) {
+  std::string out;
+  size_t pos = 0;
+  while (true) {
+    const size_t start = text.find("$(", pos);
+    if (start == std::string::npos) break;
+    const size_t end = text.find(')', start);
+    if (end == std::string::npos) throw ModelError(fmt::format("{}: unclosed '$(' in '{}'", where, text));
+    out += text.substr(pos, start - pos);
+    const auto words = split_words(text.substr(start + 2, end - start - 2));
+    const std::string kind = words.empty() ? "" : words[0];
+    if (kind == "find" && words.size() == 2) {
+      const auto path = packages_of(package_path);
+      const std::string dir = find_package_dir(words[1], path);
+      if (dir.empty())
+        throw ModelError(fmt::format(
+            "{}: $(find {}): package '{}' is not on the package path ({}); give the folder that holds it with "
+            "--package-path DIR or LCM_CONTROL_PACKAGE_PATH",
+            where, words[1], words[1], path.empty() ? "empty" : fmt::format("{}", fmt::join(path, ":"))));
+      out += fs::absolute(dir).string();
+    } else if (kind == "arg" && words.size() == 2) {
+      bool found = false;
+      for (const auto& [k, v] : args)
+        if (k == words[1]) {
+          out += v;
+          found = true;
+        }
+      if (!found)
+        throw ModelError(fmt::format("{}: $(arg {}): no <arg name=\"{}\"> with a value or default", where, words[1],
+                                     words[1]));
+    } else if ((kind == "env" && words.size() == 2) || (kind == "optenv" && words.size() >= 2)) {
+      const char* v = std::getenv(words[1].c_str());
+      if (v)
+        out += v;
+      else if (kind == "optenv")
+        for (size_t k = 2; k < words.size(); ++k) out += (k > 2 ? " " : "") + words[k];
+      else
+        throw ModelError(fmt::format("{}: $(env {}): the environment variable is not set", where, words[1]));
+    } else {
+      throw ModelError(fmt::format("{}: '{}' is not supported (supported: $(find PKG), $(arg NAME), $(env VAR), "
+                                   "$(optenv VAR [default]))",
+                                   where, text.substr(start, end - start + 1)));
+    }
+    pos = end + 1;
+  }
+  return out + text.substr(pos);
+}
+
+// ---------------------------------------------------------------------------
+// YAML: see config/turret_bot.launch.yaml for the keys.
+
+LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::string>& package_path) {
+  const std::string text = read_text(path);
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ModelError(fmt::format("{}:{}: malformed YAML: {}", path, e.mark.line + 1, e.msg));
+  }
+  if (!root.IsMap()) throw ModelError(fmt::format("{}: expected a map of launch keys (urdf, config, ...)", path));
+  const std::string dir = fs::absolute(path).parent_path().string();
+  LaunchPlan plan;
+  plan.file = path;
+  std::vector<std::string> problems;
+  auto where = [&](const YAML::Node& n, const std::string& key) {
+    return fmt::format("{}:{}: '{}'", path, n.Mark().line + 1, key);
+  };
+  auto str = [&](const YAML::Node& n, const std::string& key) {
+    if (!n.IsScalar()) {
+      problems.push_back(where(n, key) + " must be a single value");
+      return std::string();
+    }
+    return substitute(n.as<std::string>(), package_path, {}, where(n, key));
+  };
+  auto list = [&](const YAML::Node& n, const std::string& key) {
+    std::vector<std::string> out;
+    if (n.IsScalar()) return split_words(str(n, key));
+    if (!n.IsSequence()) {
+      problems.push_back(where(n, key) + " must be a list");
+      return out;
+    }
+    for (const auto& e : n) out.push_back(str(e, key));
+    return out;
+  };
+  auto number = [&](const YAML::Node& n, const std::string& key) {
+    try {
+      const double v = n.as<double>();
+      if (v > 0) return v;
+    } catch (const YAML::Exception&) {
+    }
+    problems.push_back(where(n, key) + " must be a positive number");
+    return 0.0;
+  };
+  auto boolean = [&](const YAML::Node& n, const std::string& key) {
+    try {
+      return n.as<bool>();
+    } catch (const YAML::Exception&) {
+      problems.push_back(where(n, key) + " must be true or false");
+      return false;
+    }
+  };
+  const std::set<std::string> known = {"urdf",         "config",          "mode",
+                                       "physics_rate", "control_rate",    "sim_server_args",
+                                       "controller_manager_args", "controllers", "spawner_args",
+                                       "state_publisher", "processes"};
+  for (const auto& kv : root) {
+    const std::string key = kv.first.as<std::string>();
+    const YAML::Node& v = kv.second;
+    try {
+      if (!known.count(key)) {
+        problems.push_back(fmt::format("{}: unknown key; valid keys: {}", where(kv.first, key), fmt::join(known, ", ")));
+      } else if (key == "urdf") {
+        plan.urdf = absolute_from(str(v, key), dir);
+      } else if (key == "config") {
+        plan.config = absolute_from(str(v, key), dir);
+      } else if (key == "mode") {
+        plan.mode = str(v, key);
+        if (plan.mode != "realtime" && plan.mode != "lockstep")
+          problems.push_back(where(v, key) + " must be realtime or lockstep, not '" + plan.mode + "'");
+      } else if (key == "physics_rate") {
+        plan.physics_rate = number(v, key);
+      } else if (key == "control_rate") {
+        plan.control_rate = number(v, key);
+      } else if (key == "sim_server_args") {
+        plan.sim_args = list(v, key);
+      } else if (key == "controller_manager_args") {
+        plan.cm_args = list(v, key);
+      } else if (key == "controllers") {
+        plan.controllers = list(v, key);
+      } else if (key == "spawner_args") {
+        plan.spawner_args = list(v, key);
+      } else if (key == "state_publisher") {
+        plan.state_publisher = boolean(v, key);
+      } else if (key == "processes") {
+        if (!v.IsSequence()) {
+          problems.push_back(where(v, key) + " must be a list of {name, command, required}");
+          continue;
+        }
+        for (const auto& p : v) {
+          ProcessSpec spec;
+          spec.required = false;
+          if (!p.IsMap() || !p["name"] || !p["command"]) {
+            problems.push_back(where(p, key) + " entries need name and command");
+            continue;
+          }
+          for (const auto& pk : p) {
+            const std::string k = pk.first.as<std::string>();
+            if (k != "name" && k != "command" && k != "required")
+              problems.push_back(where(pk.first, "processes." + k) + ": unknown key; valid: name, command, required");
+          }
+          spec.name = str(p["name"], "processes.name");
+          spec.argv = list(p["command"], "processes.command");
+          if (p["required"]) spec.required = boolean(p["required"], "processes.required");
+          if (spec.argv.empty()) problems.push_back(where(p, key) + " '" + spec.name + "' has an empty command");
+          plan.processes.push_back(spec);
+        }
+      }
+    } catch (const ModelError& e) {
+      problems.insert(problems.end(), e.problems().begin(), e.problems().end());
+    }
+  }
+  if (plan.urdf.empty()) problems.push_back(fmt::format("{}: 'urdf' is missing: the robot's URDF file", path));
+  if (plan.config.empty()) problems.push_back(fmt::format("{}: 'config' is missing: the ros_control YAML", path));
+  if (!problems.empty()) throw ModelError(problems);
+  return plan;
+}
+
+// ---------------------------------------------------------------------------
+// ROS launch XML, mapped onto our programs.
+
+namespace {
+
+struct RosReader {
+  const std::string& path;
+  const std::vector<std::string>& package_path;
+  LaunchPlan& plan;
+  Args args;
+  std::vector<std::pair<std::string, std::string>> textfile_params;  // name -> file
+  bool gazebo = false, spawn_model = false;
+  std::string spawn_param;
+  int rosparam_files = 0;
+  std::vector<std::string> problems;
+
+  std::string where(const tinyxml2::XMLElement* e) const {
+    return fmt::format("{}:{}: <{}{}>", path, e->GetLineNum(), e->Name(),
+                       e->Attribute("name") ? fmt::format(" name=\"{}\"", e->Attribute("name")) : "");
+  }
+  std::string attr(const tinyxml2::XMLElement* e, const char* name) {
+    const char* v = e->Attribute(name);
+    return v ? trim(substitute(v, package_path, args, where(e))) : "";
+  }
+  bool enabled(const tinyxml2::XMLElement* e) {
+    for (const char* cond : {"if", "unless"}) {
+      if (!e->Attribute(cond)) continue;
+      const std::string v = attr(e, cond);
+      const bool truth = v == "true" || v == "1";
+      if (v != "true" && v != "false" && v != "1" && v != "0")
+        throw ModelError(fmt::format("{}: {}=\"{}\" must be true/false/1/0", where(e), cond, v));
+      if (truth != (std::string(cond) == "if")) return false;
+    }
+    return true;
+  }
+  static std::string strip_slash(std::string s) {
+    while (!s.empty() && s[0] == '/') s.erase(0, 1);
+    return s;
+  }
+
+  void node(const tinyxml2::XMLElement* e) {
+    const std::string pkg = attr(e, "pkg"), type = attr(e, "type"), name = attr(e, "name");
+    const auto words = split_words(attr(e, "args"));
+    if (attr(e, "respawn") == "true") plan.notes.push_back(where(e) + ": respawn is not supported; ignored");
+    if (pkg == "robot_state_publisher" && (type == "robot_state_publisher" || type == "state_publisher")) {
+      plan.state_publisher = true;
+      if (!name.empty()) plan.state_publisher_name = name;
+      plan.notes.push_back(where(e) + ": robot_state_publisher -> state-publisher (link_poses)");
+    } else if (pkg == "gazebo_ros" && type == "spawn_model") {
+      spawn_model = true;
+      for (size_t k = 0; k < words.size(); ++k) {
+        if (words[k] == "-param" && k + 1 < words.size()) spawn_param = strip_slash(words[k + 1]);
+        if (words[k] == "-file" && k + 1 < words.size()) plan.urdf = words[k + 1];
+      }
+      plan.notes.push_back(where(e) + ": gazebo_ros spawn_model -> sim_server loads the URDF");
+    } else if (pkg == "controller_manager" && type == "spawner") {
+      if (!name.empty()) plan.spawner_name = name;
+      for (size_t k = 0; k < words.size(); ++k) {
+        const std::string& w = words[k];
+        if (w == "--stopped") {
+          plan.spawner_args.push_back(w);
+        } else if ((w == "--timeout" || w == "--shutdown-timeout") && k + 1 < words.size()) {
+          if (std::atof(words[k + 1].c_str()) > 0) {
+            plan.spawner_args.push_back(w);
+            plan.spawner_args.push_back(words[k + 1]);
+          }
+          ++k;
+        } else if (w == "--namespace" || w == "--wait-for") {
+          plan.notes.push_back(where(e) + ": spawner " + w + " is not supported; ignored");
+          ++k;
+        } else if (w.rfind("-", 0) == 0) {
+          plan.notes.push_back(where(e) + ": spawner flag " + w + " ignored");
+        } else if (w.size() > 5 && w.substr(w.size() - 5) == ".yaml") {
+          problems.push_back(where(e) + ": spawner argument " + w +
+                             " is a YAML file; name the controllers instead (the config is the <rosparam> file)");
+        } else {
+          plan.controllers.push_back(w);
+        }
+      }
+    } else {
+      plan.notes.push_back(fmt::format("{}: node {}/{} has no lcm_control equivalent; ignored", where(e), pkg, type));
+    }
+  }
+
+  void element(const tinyxml2::XMLElement* e) {
+    if (!enabled(e)) return;
+    const std::string tag = e->Name();
+    if (tag == "arg") {
+      const std::string name = attr(e, "name");
+      const char* value = e->Attribute("value") ? "value" : (e->Attribute("default") ? "default" : nullptr);
+      if (value) args.emplace_back(name, attr(e, value));
+    } else if (tag == "param") {
+      const std::string name = strip_slash(attr(e, "name"));
+      if (e->Attribute("textfile")) {
+        textfile_params.emplace_back(name, attr(e, "textfile"));
+      } else if (e->Attribute("command")) {
+        problems.push_back(where(e) + ": command= (xacro) is not supported; run xacro once and use textfile=");
+      } else {
+        plan.notes.push_back(where(e) + ": a plain parameter; ignored (controllers read the <rosparam> YAML)");
+      }
+    } else if (tag == "rosparam") {
+      const std::string cmd = attr(e, "command");
+      if (cmd != "load" && !cmd.empty()) {
+        plan.notes.push_back(where(e) + ": rosparam command=\"" + cmd + "\" ignored");
+        return;
+      }
+      if (!e->Attribute("file")) {
+        problems.push_back(where(e) + ": inline <rosparam> YAML is not supported; use file=");
+        return;
+      }
+      if (e->Attribute("ns")) plan.notes.push_back(where(e) + ": ns=\"" + attr(e, "ns") + "\" ignored");
+      if (++rosparam_files > 1)
+        problems.push_back(where(e) + ": a second <rosparam> file; lcm_control takes one ros_control YAML, merge them");
+      plan.config = attr(e, "file");
+    } else if (tag == "node") {
+      node(e);
+    } else if (tag == "include") {
+      const char* raw = e->Attribute("file");
+      const std::string file = raw ? raw : "";
+      if (file.find("gazebo_ros") != std::string::npos && file.find("world") != std::string::npos) {
+        gazebo = true;
+        for (auto* a = e->FirstChildElement("arg"); a; a = a->NextSiblingElement("arg")) {
+          const std::string n = attr(a, "name"), v = attr(a, "value");
+          if (n == "paused" && v == "true")
+            plan.notes.push_back(where(a) + ": paused=true: sim_server starts running (use mode lockstep to hold it)");
+        }
+        plan.notes.push_back(where(e) + ": gazebo_ros world -> sim_server + controller_manager");
+      } else {
+        plan.notes.push_back(where(e) + ": include of " + file + " not followed; ignored");
+      }
+    } else if (tag == "group") {
+      if (e->Attribute("ns")) plan.notes.push_back(where(e) + ": group ns ignored (use launch --namespace)");
+      for (auto* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) element(c);
+    } else if (tag == "remap" || tag == "machine" || tag == "env" || tag == "test") {
+      plan.notes.push_back(where(e) + ": ignored");
+    } else {
+      problems.push_back(where(e) + ": unknown launch tag");
+    }
+  }
+};
+
+}  // namespace
+
+LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::string>& package_path) {
+  std::string text = read_text(path);
+  LaunchPlan plan;
+  plan.file = path;
+  // Copied from a web page, the tutorial's file carries stray "</pre>" inside tags.
+  size_t stray = 0;
+  for (size_t p; (p = text.find("</pre>")) != std::string::npos; ++stray) text.erase(p, 6);
+  if (stray) plan.notes.push_back(fmt::format("{}: removed {} stray '</pre>' (copied from a web page)", path, stray));
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS)
+    throw ModelError(fmt::format("{}:{}: malformed XML: {}", path, doc.ErrorLineNum(),
+                                 doc.ErrorStr() ? trim(doc.ErrorStr()) : "parse error"));
+  const tinyxml2::XMLElement* root = doc.FirstChildElement("launch");
+  if (!root) throw ModelError(fmt::format("{}: no <launch> element; is this a ROS launch file?", path));
+  RosReader r{path, package_path, plan, {}, {}, false, false, "", 0, {}};
+  for (auto* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    try {
+      r.element(e);
+    } catch (const ModelError& err) {
+      r.problems.insert(r.problems.end(), err.problems().begin(), err.problems().end());
+    }
+  }
+  const bool earlier = !r.problems.empty();
+  if (plan.urdf.empty()) {
+    const std::string want = r.spawn_param.empty() ? "robot_description" : r.spawn_param;
+    for (const auto& [name, file] : r.textfile_params)
+      if (name == want) plan.urdf = file;
+    if (plan.urdf.empty() && !earlier)
+      r.problems.push_back(fmt::format("{}: no URDF: expected <param name=\"{}\" textfile=\"...\"/>", path, want));
+  }
+  if (plan.config.empty() && !earlier)
+    r.problems.push_back(fmt::format("{}: no ros_control YAML: expected <rosparam command=\"load\" file=\"...\"/>", path));
+  plan.sim = plan.controller_manager = r.gazebo || r.spawn_model;
+  if (!plan.sim)
+    r.problems.push_back(fmt::format(
+        "{}: nothing to simulate: no <include> of gazebo_ros's world launch file and no spawn_model node", path));
+  if (!r.problems.empty()) throw ModelError(r.problems);
+  const std::string dir = fs::absolute(path).parent_path().string();
+  plan.urdf = absolute_from(plan.urdf, dir);
+  plan.config = absolute_from(plan.config, dir);
+  return plan;
+}
+
+LaunchPlan read_launch_file(const std::string& path, const std::vector<std::string>& package_path) {
+  const std::string text = read_text(path);
+  const auto first = text.find_first_not_of(" \t\r\n");
+  LaunchPlan plan = first != std::string::npos && text[first] == '<' ? read_ros_launch(path, package_path)
+                                                                    : read_launch_yaml(path, package_path);
+  std::vector<std::string> problems;
+  std::error_code ec;
+  for (const auto& [what, file] : {std::pair{"URDF", plan.urdf}, {"ros_control YAML", plan.config}})
+    if (!fs::is_regular_file(file, ec)) problems.push_back(fmt::format("{}: the {} {} does not exist", path, what, file));
+  if (!problems.empty()) throw ModelError(problems);
+  return plan;
+}
+
+}  // namespace lcm_control::tools

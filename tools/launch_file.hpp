@@ -1,0 +1,44 @@
+// Launch files for the launch program: our YAML format
+// (config/turret_bot.launch.yaml) and ROS launch XML such as the tutorial's
+// gazebo_ros_control.launch, both read into one plan of what to start.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace lcm_control::tools {
+
+struct ProcessSpec {
+  std::string name;               // output prefix
+  std::vector<std::string> argv;  // argv[0]: a program next to launch, on PATH, or a path
+  bool required = true;           // its exit stops everything
+};
+
+struct LaunchPlan {
+  std::string file;
+  std::string urdf, config;          // absolute paths
+  std::string mode = "realtime";     // realtime | lockstep
+  double physics_rate = 0, control_rate = 0;  // 0: sim_server's defaults
+  bool sim = true, controller_manager = true;
+  std::vector<std::string> sim_args, cm_args;  // extra flags
+  std::vector<std::string> controllers;        // spawned in one strict switch
+  std::vector<std::string> spawner_args;       // e.g. --stopped, --timeout 5
+  bool state_publisher = false;
+  std::string sim_name = "sim_server", cm_name = "controller_manager", spawner_name = "spawner",
+              state_publisher_name = "state_publisher";
+  std::vector<ProcessSpec> processes;  // extra processes
+  std::vector<std::string> notes;      // what was mapped or ignored, one line each
+};
+
+// Reads either format (XML if the file starts with '<' after blanks, else YAML).
+// Throws ModelError naming the file, line or key at fault.
+LaunchPlan read_launch_file(const std::string& path, const std::vector<std::string>& package_path);
+LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::string>& package_path);
+LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::string>& package_path);
+
+// $(find PKG), $(arg NAME), $(env VAR), $(optenv VAR [default]) in text.
+// Throws ModelError (with `where`) for an unknown package, arg or substitution.
+std::string substitute(const std::string& text, const std::vector<std::string>& package_path,
+                       const std::vector<std::pair<std::string, std::string>>& args, const std::string& where);
+
+}  // namespace lcm_control::tools
