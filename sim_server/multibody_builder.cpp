@@ -232,6 +232,29 @@ void Multibody::compute_effective_inertias() {
   body_->clearForcesAndTorques();
 }
 
+void Multibody::size_solver_buffers() {
+  std::vector<std::pair<double, double>> state;
+  for (const MultibodyJoint& j : joints_) {
+    state.emplace_back(position(j.link), velocity(j.link));
+    if (j.limit) {
+      j.limit->setLowerBound(state.back().first);  // a zero gap on both sides: both rows active
+      j.limit->setUpperBound(state.back().first);
+    }
+  }
+  step();
+  for (size_t k = 0; k < joints_.size(); ++k) {
+    const MultibodyJoint& j = joints_[k];
+    if (j.limit) {
+      j.limit->setLowerBound(j.urdf->lower);
+      j.limit->setUpperBound(j.urdf->upper);
+    }
+    body_->setJointPos(j.link, state[k].first);
+    body_->setJointVel(j.link, state[k].second);
+  }
+  body_->clearForcesAndTorques();
+  set_state_refresh();
+}
+
 int Multibody::joint_index(const std::string& name) const {
   for (int k = 0; k < int(joints_.size()); ++k)
     if (joints_[k].urdf->name == name) return k;
@@ -241,6 +264,10 @@ int Multibody::joint_index(const std::string& name) const {
 void Multibody::set_state(int link, double q, double qd) {
   body_->setJointPos(link, q);
   body_->setJointVel(link, qd);
+  set_state_refresh();
+}
+
+void Multibody::set_state_refresh() {
   btAlignedObjectArray<btQuaternion> world_to_local;
   btAlignedObjectArray<btVector3> local_origin;
   body_->forwardKinematics(world_to_local, local_origin);

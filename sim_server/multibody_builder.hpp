@@ -59,6 +59,10 @@ class Multibody {
   // A joint motor on the link (impulse per step capped at max_impulse), owned and added to the world here.
   btMultiBodyJointMotor* add_motor(int link, double max_impulse);
 
+  // Takes one throw-away step with every limit row (and every motor) active, then restores the state: Bullet
+  // sizes its solver buffers to that high-water mark, so later steps do not allocate. Call after adding motors.
+  void size_solver_buffers();
+
   // Pose of a URDF link frame and position of its centre of mass, in the world.
   Eigen::Isometry3d link_pose(const std::string& link) const;
   Eigen::Vector3d com_position(const std::string& link) const;
@@ -71,6 +75,7 @@ class Multibody {
  private:
   void build(const RobotModel& model);
   void compute_effective_inertias();
+  void set_state_refresh();  // forward kinematics and collider transforms after a state change
 
   double dt_;
   std::unique_ptr<btDefaultCollisionConfiguration> collision_config_;

@@ -23,6 +23,7 @@ Simulation::Simulation(const RobotModel& model, const SimulationRates& rates)
     : control_period_(1.0 / rates.control_hz), control_hz_(rates.control_hz), substeps_(substeps_for(rates)) {
   multibody_ = std::make_unique<Multibody>(model, 1.0 / rates.physics_hz);
   actuators_ = std::make_unique<Actuators>(model, *multibody_);
+  multibody_->size_solver_buffers();
   actuators_->read(multibody_->dt());
 }
 
