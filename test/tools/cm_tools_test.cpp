@@ -1,0 +1,150 @@
+// cmctl and spawner against a real controller_manager (no hardware: switches
+// apply at once) on a private LCM URL per test.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "test/support/lcm_test.hpp"
+#include "test/support/process.hpp"
+#include "test/tools/tool_test_util.hpp"
+
+using namespace lcm_control::testing;
+
+namespace {
+
+class CmTools : public ::testing::Test {
+ protected:
+  void SetUp() override { start_manager(source("config/turret_bot.yaml")); }
+  void start_manager(const std::string& config) {
+    cm_ = std::make_unique<ChildProcess>(std::vector<std::string>{
+        bin("controller_manager"), "--urdf", source("config/turret_bot.urdf"), "--config", config, "--lcm-url", url_});
+    ASSERT_TRUE(cm_->wait_for_output("ready", 10.0)) << cm_->output();
+  }
+  // Runs a tool to completion; returns (exit code, output).
+  std::pair<int, std::string> run(std::vector<std::string> argv, double timeout_s = 10.0) {
+    argv.insert(argv.end(), {"--lcm-url", url_});
+    ChildProcess p(argv);
+    const int rc = p.wait(timeout_s);
+    return {rc, p.output()};
+  }
+  std::string url_ = unique_lcm_url();
+  std::unique_ptr<ChildProcess> cm_;
+};
+
+}  // namespace
+
+TEST_F(CmTools, SpawnerStartsTheTutorialControllersAndCmctlListsThemRunning) {
+  ChildProcess spawner({bin("spawner"), "joint_state_controller", "j1_controller", "j2_controller", "--lcm-url", url_});
+  ASSERT_TRUE(spawner.wait_for_output("spawner: ready", 10.0)) << spawner.output();
+  auto [rc, out] = run({bin("cmctl"), "list"});
+  ASSERT_EQ(rc, 0) << out;
+  const auto lines = split(out.substr(0, out.size() - 1), '\n');
+  ASSERT_EQ(lines.size(), 4u) << out;
+  EXPECT_EQ(split(lines[0], ' ')[0], "NAME");
+  EXPECT_NE(lines[0].find("TYPE"), std::string::npos);
+  EXPECT_NE(lines[0].find("INTERFACE"), std::string::npos);
+  for (const std::string name : {"joint_state_controller", "j1_controller", "j2_controller"}) {
+    bool found = false;
+    for (const auto& l : lines)
+      if (l.rfind(name + " ", 0) == 0) {
+        found = true;
+        EXPECT_NE(l.find(" running "), std::string::npos) << l;
+      }
+    EXPECT_TRUE(found) << name << "\n" << out;
+  }
+  EXPECT_NE(out.find("position_controllers/JointPositionController  running  j2"), std::string::npos) << out;
+
+  EXPECT_EQ(spawner.stop(5.0), 0) << spawner.output();
+  EXPECT_NE(spawner.output().find("stopped and unloaded"), std::string::npos) << spawner.output();
+  std::tie(rc, out) = run({bin("cmctl"), "list"});
+  EXPECT_EQ(out, "no controllers loaded\n");
+}
+
+TEST_F(CmTools, SpawnerFailureExitsNonZeroWithTheReasonAndLeavesNothingLoaded) {
+  auto [rc, out] = run({bin("spawner"), "joint_state_controller", "j3_controller"});
+  EXPECT_EQ(rc, 1) << out;
+  EXPECT_NE(out.find("spawner: error: controller 'j3_controller' failed to load: cannot load 'j3_controller': there "
+                     "is no 'j3_controller' entry"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("unloaded joint_state_controller"), std::string::npos) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "list"});
+  EXPECT_EQ(out, "no controllers loaded\n");
+}
+
+TEST_F(CmTools, SpawnerConflictStartsNoneAndSaysWhy) {
+  cm_->stop(5.0);
+  const std::string dir = temp_dir("spawner_conflict");
+  std::ofstream(dir + "/c.yaml") << read_text(source("config/turret_bot.yaml"))
+                                 << "j1_other:\n  type: position_controllers/JointPositionController\n  joint: j1\n";
+  start_manager(dir + "/c.yaml");
+  auto [rc, out] = run({bin("spawner"), "j1_controller", "j1_other"});
+  EXPECT_EQ(rc, 1) << out;
+  EXPECT_NE(out.find("spawner: error: could not start [j1_controller, j1_other] (one strict switch, so none "
+                     "started): "),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("j1"), std::string::npos);
+  std::tie(rc, out) = run({bin("cmctl"), "list"});
+  EXPECT_EQ(out, "no controllers loaded\n");
+}
+
+TEST_F(CmTools, SpawnerExitsPromptlyWhenTheManagerIsGone) {
+  ChildProcess spawner({bin("spawner"), "j1_controller", "--lcm-url", url_});
+  ASSERT_TRUE(spawner.wait_for_output("spawner: ready", 10.0)) << spawner.output();
+  EXPECT_EQ(cm_->stop(5.0), 0);
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_EQ(spawner.stop(5.0), 0) << spawner.output();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 3.0);
+  EXPECT_NE(spawner.output().find("gave up stopping and unloading [j1_controller]"), std::string::npos)
+      << spawner.output();
+}
+
+TEST_F(CmTools, CmctlLoadStartSwitchStopUnloadReload) {
+  auto [rc, out] = run({bin("cmctl"), "load", "j1_controller", "j2_controller"});
+  ASSERT_EQ(rc, 0) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "start", "j1_controller"});
+  ASSERT_EQ(rc, 0) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "list"});
+  EXPECT_NE(out.find("j1_controller  position_controllers/JointPositionController  running"), std::string::npos)
+      << out;
+  std::tie(rc, out) = run({bin("cmctl"), "switch", "--stop", "j1_controller", "--start", "j2_controller"});
+  ASSERT_EQ(rc, 0) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "list"});
+  EXPECT_NE(out.find("j2_controller  position_controllers/JointPositionController  running"), std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("j1_controller  position_controllers/JointPositionController  running"), std::string::npos)
+      << out;
+  std::tie(rc, out) = run({bin("cmctl"), "stop", "j2_controller"});
+  EXPECT_EQ(rc, 0) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "unload", "j1_controller", "j2_controller"});
+  EXPECT_EQ(rc, 0) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "list-types"});
+  EXPECT_NE(out.find("position_controllers/JointPositionController\n"), std::string::npos) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "reload", "--force"});
+  EXPECT_EQ(rc, 0) << out;
+}
+
+TEST_F(CmTools, CmctlRefusalAndSilence) {
+  auto [rc, out] = run({bin("cmctl"), "start", "j1_controller"});
+  EXPECT_EQ(rc, 1) << out;
+  EXPECT_NE(out.find("cmctl: error: "), std::string::npos) << out;
+  EXPECT_NE(out.find("j1_controller"), std::string::npos) << out;
+
+  ChildProcess lonely({bin("cmctl"), "list", "--timeout", "0.5", "--lcm-url", unique_lcm_url()});
+  EXPECT_EQ(lonely.wait(5.0), 4);
+  EXPECT_NE(lonely.output().find("cmctl: error: no answer from the controller manager within 0.5 s to list (sent on "
+                                 "'controller_manager/request', nothing came back on 'controller_manager/response')"),
+            std::string::npos)
+      << lonely.output();
+}
+
+TEST(Spawner, WithoutAManagerGivesUpWithinTheTimeout) {
+  ChildProcess p({bin("spawner"), "j1_controller", "--timeout", "1", "--lcm-url", unique_lcm_url()});
+  EXPECT_EQ(p.wait(5.0), 4) << p.output();
+  EXPECT_NE(p.output().find("waiting up to 1 s for the controller manager on 'controller_manager/request'"),
+            std::string::npos)
+      << p.output();
+  EXPECT_NE(p.output().find("spawner: error: no answer from the controller manager within 1 s"), std::string::npos)
+      << p.output();
+}

@@ -1,0 +1,139 @@
+// Launch files read into plans: our YAML, the tutorial's ROS launch XML (as a
+// user writes it, and as copied with the web page's stray </pre>), and errors.
+#include "tools/launch_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "common/robot_model.hpp"
+#include "test/support/process.hpp"
+#include "test/tools/tool_test_util.hpp"
+
+using namespace lcm_control;
+using namespace lcm_control::tools;
+namespace lt = lcm_control::testing;
+
+namespace {
+const std::vector<std::string> kControllers{"joint_state_controller", "j1_controller", "j2_controller"};
+
+std::string write(const std::string& dir, const std::string& name, const std::string& text) {
+  std::ofstream(dir + "/" + name) << text;
+  return dir + "/" + name;
+}
+
+std::string problems_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const ModelError& e) {
+    std::string s;
+    for (const auto& p : e.problems()) s += p + "\n";
+    return s;
+  }
+  return "";
+}
+}  // namespace
+
+TEST(LaunchFile, TurretBotYaml) {
+  const LaunchPlan plan = read_launch_file(lt::source("config/turret_bot.launch.yaml"), {});
+  EXPECT_EQ(plan.urdf, lt::source("config/turret_bot.urdf"));
+  EXPECT_EQ(plan.config, lt::source("config/turret_bot.yaml"));
+  EXPECT_EQ(plan.mode, "realtime");
+  EXPECT_EQ(plan.physics_rate, 1000);
+  EXPECT_EQ(plan.controllers, kControllers);
+  EXPECT_TRUE(plan.state_publisher);
+  EXPECT_TRUE(plan.sim);
+  EXPECT_TRUE(plan.controller_manager);
+}
+
+TEST(LaunchFile, TutorialRosLaunchWithThePackagePath) {
+  const std::string pkg = lt::source("test/tools/data/turret_bot");
+  const LaunchPlan plan = read_launch_file(pkg + "/launch/gazebo_ros_control.launch", {lt::source("test/tools/data")});
+  EXPECT_EQ(plan.urdf, pkg + "/urdf/turret_bot.urdf");
+  EXPECT_EQ(plan.config, pkg + "/config/config.yaml");
+  EXPECT_EQ(plan.controllers, kControllers);
+  EXPECT_TRUE(plan.state_publisher);
+  EXPECT_EQ(plan.state_publisher_name, "robot_state_publisher");
+  EXPECT_EQ(plan.spawner_name, "controller_spawner");
+  EXPECT_TRUE(plan.sim);
+  EXPECT_EQ(plan.mode, "realtime");
+  // The package's copies are the robot in config/.
+  EXPECT_EQ(lt::read_text(pkg + "/urdf/turret_bot.urdf"), lt::read_text(lt::source("config/turret_bot.urdf")));
+  EXPECT_EQ(lt::read_text(pkg + "/config/config.yaml"), lt::read_text(lt::source("config/turret_bot.yaml")));
+}
+
+// Section 3.3 of the tutorial, character for character, </pre> artefacts included.
+TEST(LaunchFile, TutorialTextAsPrintedWithStrayPre) {
+  const std::string dir = lt::temp_dir("launch_pre");
+  const std::string file = write(dir, "gazebo_ros_control.launch", R"L(<?xml version="1.0"?>
+<launch>
+    <param name = "/robot_description"</pre>
+           textfile="$(find turret_bot)/urdf/turret_bot.urdf"/>
+    <rosparam command="load"</pre>
+              file="$(find turret_bot)/config/config.yaml"/>
+    <node name="robot_state_publisher"</pre>
+          pkg="robot_state_publisher"
+          type="robot_state_publisher"/>
+    <include file = "$(find gazebo_ros)/launch/empty_world.launch"/>
+    <node name="urdf_spawner" pkg="gazebo_ros" type="spawn_model"</pre>
+        args=" -unpause -urdf -model turret_bot
+            -param robot_description " respawn="false"/>
+    <node name="controller_spawner"</pre>
+          pkg = "controller_manager"
+          type = "spawner" respawn = "false"
+          args = "joint_state_controller j1_controller j2_controller" />
+</launch>
+)L");
+  const LaunchPlan plan = read_launch_file(file, {lt::source("test/tools/data")});
+  EXPECT_EQ(plan.controllers, kControllers);
+  EXPECT_EQ(plan.urdf, lt::source("test/tools/data/turret_bot/urdf/turret_bot.urdf"));
+  bool noted = false;
+  for (const auto& n : plan.notes) noted = noted || n.find("removed 5 stray '</pre>'") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
+TEST(LaunchFile, ArgsConditionsAndSpawnerFlags) {
+  const std::string dir = lt::temp_dir("launch_args");
+  const std::string file = write(dir, "x.launch", R"L(<launch>
+  <arg name="controllers" default="j1_controller j2_controller"/>
+  <arg name="rsp" default="false"/>
+  <param name="robot_description" textfile="$(find turret_bot)/urdf/turret_bot.urdf"/>
+  <rosparam command="load" file="$(find turret_bot)/config/config.yaml"/>
+  <node name="rsp" pkg="robot_state_publisher" type="robot_state_publisher" if="$(arg rsp)"/>
+  <node name="jsp" pkg="joint_state_publisher" type="joint_state_publisher"/>
+  <node name="urdf_spawner" pkg="gazebo_ros" type="spawn_model" args="-urdf -param robot_description -model x"/>
+  <node name="sp" pkg="controller_manager" type="spawner" args="--stopped --timeout 5 $(arg controllers)"/>
+</launch>)L");
+  const LaunchPlan plan = read_launch_file(file, {lt::source("test/tools/data")});
+  EXPECT_EQ(plan.controllers, (std::vector<std::string>{"j1_controller", "j2_controller"}));
+  EXPECT_EQ(plan.spawner_args, (std::vector<std::string>{"--stopped", "--timeout", "5"}));
+  EXPECT_FALSE(plan.state_publisher);
+  bool ignored = false;
+  for (const auto& n : plan.notes) ignored = ignored || n.find("joint_state_publisher/joint_state_publisher has no") != std::string::npos;
+  EXPECT_TRUE(ignored);
+}
+
+TEST(LaunchFile, ErrorsNameTheFileLineAndKey) {
+  const std::string dir = lt::temp_dir("launch_bad");
+  std::string p = problems_of([&] {
+    read_launch_file(write(dir, "a.yaml", "urdf: x.urdf\nconfig: y.yaml\ncontroler: [a]\n"), {});
+  });
+  EXPECT_NE(p.find("a.yaml:3: 'controler': unknown key"), std::string::npos) << p;
+
+  p = problems_of([&] { read_launch_file(write(dir, "b.yaml", "urdf: missing.urdf\nconfig: y.yaml\n"), {}); });
+  EXPECT_NE(p.find("the URDF " + dir + "/missing.urdf does not exist"), std::string::npos) << p;
+
+  p = problems_of([&] {
+    read_launch_file(lt::source("test/tools/data/turret_bot/launch/gazebo_ros_control.launch"), {dir});
+  });
+  EXPECT_NE(p.find(":3: <param name=\"/robot_description\">: $(find turret_bot): package 'turret_bot' is not on the "
+                   "package path"),
+            std::string::npos)
+      << p;
+
+  p = problems_of([&] { read_launch_file(write(dir, "c.launch", "<launch><param name='x'</launch>"), {}); });
+  EXPECT_NE(p.find("c.launch:1: malformed XML"), std::string::npos) << p;
+
+  p = problems_of([&] { read_launch_file(write(dir, "d.yaml", "urdf: x\nmode: fast\n"), {}); });
+  EXPECT_NE(p.find("'mode' must be realtime or lockstep, not 'fast'"), std::string::npos) << p;
+}

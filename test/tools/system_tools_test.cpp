@@ -1,0 +1,243 @@
+// The tools against the real sim_server and controller_manager: launch up and
+// down (pids checked), a child's death, the tutorial's ROS launch file, tune's
+// effect on the step response, and turret-cmd --sim-time under lockstep.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <cerrno>
+#include <cmath>
+#include <fstream>
+#include <regex>
+
+#include "lcm_control/float64_t.hpp"
+#include "lcm_control/hardware_command_t.hpp"
+#include "lcm_control/joint_state_t.hpp"
+#include "lcm_control/link_poses_t.hpp"
+#include "test/support/lcm_test.hpp"
+#include "test/support/process.hpp"
+#include "test/tools/tool_test_util.hpp"
+
+using namespace lcm_control;
+using namespace lcm_control::testing;
+
+namespace {
+
+// "[launch] started NAME (pid N)" lines.
+std::map<std::string, pid_t> started_pids(const std::string& out) {
+  std::map<std::string, pid_t> pids;
+  const std::regex re(R"(\[launch\] started (\S+) \(pid (\d+)\))");
+  for (auto it = std::sregex_iterator(out.begin(), out.end(), re); it != std::sregex_iterator(); ++it)
+    pids[(*it)[1]] = pid_t(std::stoi((*it)[2]));
+  return pids;
+}
+
+bool gone(pid_t pid) { return kill(pid, 0) != 0 && errno == ESRCH; }
+
+std::pair<int, std::string> run(std::vector<std::string> argv, const std::string& url, double timeout_s = 10.0) {
+  argv.insert(argv.end(), {"--lcm-url", url});
+  ChildProcess p(argv);
+  const int rc = p.wait(timeout_s);
+  return {rc, p.output()};
+}
+
+void expect_three_running(const std::string& url) {
+  auto [rc, out] = run({bin("cmctl"), "list"}, url);
+  ASSERT_EQ(rc, 0) << out;
+  for (const std::string name : {"joint_state_controller ", "j1_controller ", "j2_controller "}) {
+    const auto at = out.find(name);
+    ASSERT_NE(at, std::string::npos) << out;
+    EXPECT_NE(out.substr(at, out.find('\n', at) - at).find(" running "), std::string::npos) << out;
+  }
+}
+
+// Ctrl-C: exit 0 within the 5 s budget, every child gone.
+void stop_and_check(ChildProcess& launch, const std::map<std::string, pid_t>& pids) {
+  const auto t0 = std::chrono::steady_clock::now();
+  EXPECT_EQ(launch.stop(8.0, SIGINT), 0) << launch.output();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 5.5);
+  for (const auto& [name, pid] : pids) EXPECT_TRUE(gone(pid)) << name << " (pid " << pid << ") is still there";
+}
+
+}  // namespace
+
+TEST(Launch, TurretBotUpAndDownCleanly) {
+  const std::string url = unique_lcm_url();
+  ChildProcess launch({bin("launch"), source("config/turret_bot.launch.yaml"), "--lcm-url", url});
+  ASSERT_TRUE(launch.wait_for_output("[launch] up:", 25.0)) << launch.output();
+  const auto pids = started_pids(launch.output());
+  ASSERT_EQ(pids.size(), 4u) << launch.output();
+  for (const std::string name : {"sim_server", "controller_manager", "state_publisher", "spawner"})
+    EXPECT_TRUE(pids.count(name)) << name;
+  expect_three_running(url);
+  lcm::LCM lc(url);
+  Recorder<link_poses_t> poses(lc, "link_poses");
+  EXPECT_TRUE(pump_until(lc, [&] { return !poses.messages.empty(); }, 3.0));
+
+  stop_and_check(launch, pids);
+  const std::string out = launch.output();
+  // Controllers first (the spawner unloads), then the servers.
+  const auto unloaded = out.find("[spawner] unloaded joint_state_controller");
+  const auto cm_down = out.find("[controller_manager] info: shutting down");
+  ASSERT_NE(unloaded, std::string::npos) << out;
+  ASSERT_NE(cm_down, std::string::npos) << out;
+  EXPECT_LT(unloaded, cm_down);
+  EXPECT_NE(out.find("[launch] all 4 processes stopped"), std::string::npos) << out;
+}
+
+TEST(Launch, AChildsDeathStopsEverythingWithANonZeroExit) {
+  const std::string url = unique_lcm_url();
+  ChildProcess launch({bin("launch"), source("config/turret_bot.launch.yaml"), "--lcm-url", url});
+  ASSERT_TRUE(launch.wait_for_output("[launch] up:", 25.0)) << launch.output();
+  const auto pids = started_pids(launch.output());
+  ASSERT_TRUE(pids.count("sim_server"));
+  kill(pids.at("sim_server"), SIGKILL);
+  EXPECT_EQ(launch.wait(8.0), 1) << launch.output();
+  EXPECT_NE(launch.output().find("[launch] stopping (sim_server died of signal 9"), std::string::npos)
+      << launch.output();
+  EXPECT_NE(launch.output().find("launch: error: sim_server died of signal 9"), std::string::npos) << launch.output();
+  for (const auto& [name, pid] : pids) EXPECT_TRUE(gone(pid)) << name;
+}
+
+TEST(Launch, FailedSpawnStopsEverythingAndSaysWhy) {
+  const std::string url = unique_lcm_url();
+  const std::string dir = temp_dir("launch_fail");
+  std::ofstream(dir + "/bad.launch.yaml") << "urdf: " << source("config/turret_bot.urdf") << "\nconfig: "
+                                          << source("config/turret_bot.yaml")
+                                          << "\ncontrollers: [j1_controller, j3_controller]\n";
+  ChildProcess launch({bin("launch"), dir + "/bad.launch.yaml", "--lcm-url", url});
+  EXPECT_EQ(launch.wait(25.0), 1) << launch.output();
+  const std::string out = launch.output();
+  EXPECT_NE(out.find("[spawner] error: controller 'j3_controller' failed to load"), std::string::npos) << out;
+  EXPECT_NE(out.find("launch: error: spawner exited with code 1"), std::string::npos) << out;
+  for (const auto& [name, pid] : started_pids(out)) EXPECT_TRUE(gone(pid)) << name;
+}
+
+TEST(Launch, TheTutorialsRosLaunchFileWithOnlyThePackagePath) {
+  const std::string url = unique_lcm_url();
+  ChildProcess launch({bin("launch"), source("test/tools/data/turret_bot/launch/gazebo_ros_control.launch"),
+                       "--package-path", source("test/tools/data"), "--lcm-url", url});
+  ASSERT_TRUE(launch.wait_for_output("[launch] up:", 25.0)) << launch.output();
+  const auto pids = started_pids(launch.output());
+  for (const std::string name : {"sim_server", "controller_manager", "robot_state_publisher", "controller_spawner"})
+    EXPECT_TRUE(pids.count(name)) << name << "\n" << launch.output();
+  expect_three_running(url);
+  lcm::LCM lc(url);
+  Recorder<link_poses_t> poses(lc, "link_poses");
+  EXPECT_TRUE(pump_until(lc, [&] { return !poses.messages.empty(); }, 3.0));
+  stop_and_check(launch, pids);
+}
+
+namespace {
+
+struct Trace {
+  std::vector<double> t, q;
+};
+
+// Rise time of a step from `from` to `to`: 10 % to 90 % of the way.
+double rise_time(const Trace& tr, double from, double to) {
+  double t10 = -1, t90 = -1;
+  for (size_t k = 0; k < tr.q.size(); ++k) {
+    const double frac = (tr.q[k] - from) / (to - from);
+    if (t10 < 0 && frac >= 0.1) t10 = tr.t[k];
+    if (t90 < 0 && frac >= 0.9) t90 = tr.t[k];
+  }
+  return t10 >= 0 && t90 >= 0 ? t90 - t10 : 1e9;
+}
+
+// Sends j2 to `target` and records j2's position for `seconds` of joint_states.
+Trace step_j2(lcm::LCM& lc, const std::string& url, double target, double seconds) {
+  Recorder<joint_state_t> js(lc, "joint_states");
+  auto [rc, out] = run({bin("turret-cmd"), "j2_controller", std::to_string(target)}, url);
+  EXPECT_EQ(rc, 0) << out;
+  const int64_t n = int64_t(seconds * 60);
+  pump_until(lc, [&] { return int64_t(js.messages.size()) >= n; }, seconds + 3.0);
+  Trace tr;
+  for (const auto& m : js.messages)
+    for (int k = 0; k < m.num_joints; ++k)
+      if (m.name[k] == "j2") {
+        tr.t.push_back(double(m.utime) * 1e-6);
+        tr.q.push_back(m.position[k]);
+      }
+  return tr;
+}
+
+}  // namespace
+
+TEST(Tune, ChangesTheSimGainsAndTheStepResponse) {
+  const std::string url = unique_lcm_url();
+  ChildProcess launch({bin("launch"), source("config/turret_bot.launch.yaml"), "--lcm-url", url});
+  ASSERT_TRUE(launch.wait_for_output("[launch] up:", 25.0)) << launch.output();
+  lcm::LCM lc(url);
+
+  auto [rc, out] = run({bin("tune"), "j2"}, url);
+  ASSERT_EQ(rc, 0) << out;
+  EXPECT_EQ(out, "j2 (sim_server): p 1  i 0  d 0.3  i_clamp [0, 0]  antiwindup false\n");
+  // The tutorial's gains: a slow step (rotor inertia about j2 ~ 0.058 kg m^2).
+  const Trace slow = step_j2(lc, url, 1.0, 2.5);
+  ASSERT_FALSE(slow.q.empty());
+  EXPECT_NEAR(slow.q.back(), 1.0, 0.05);
+
+  std::tie(rc, out) = run({bin("tune"), "j2", "--p", "20", "--d", "1"}, url);
+  ASSERT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("j2 (sim_server): p 20  i 0  d 1  "), std::string::npos) << out;
+  std::tie(rc, out) = run({bin("tune"), "j2"}, url);
+  EXPECT_EQ(out, "j2 (sim_server): p 20  i 0  d 1  i_clamp [0, 0]  antiwindup false\n");
+  const Trace fast = step_j2(lc, url, 0.0, 1.0);
+  ASSERT_FALSE(fast.q.empty());
+  EXPECT_NEAR(fast.q.back(), 0.0, 0.05);
+
+  const double slow_rise = rise_time(slow, 0.0, 1.0), fast_rise = rise_time(fast, 1.0, 0.0);
+  std::printf("j2 rise time 10-90%%: %.3f s with p 1 d 0.3, %.3f s with p 20 d 1\n", slow_rise, fast_rise);
+  EXPECT_LT(slow_rise, 5.0);
+  EXPECT_LT(fast_rise, 0.5 * slow_rise);
+
+  std::tie(rc, out) = run({bin("tune"), "j9"}, url);
+  EXPECT_EQ(rc, 1) << out;
+  EXPECT_NE(out.find("tune: error: sim_server refused the query for 'j9'"), std::string::npos) << out;
+  launch.stop(8.0);
+}
+
+// Under lockstep, turret-cmd --sim-time sends the command for step k on the
+// clock of step k-1; the hardware command shows at which step the controller
+// used it. Message i carries 0.001*(i+1) and is due at the step of its utime.
+TEST(TurretCmd, SimTimeUnderLockstepReachesTheHardwareOnTime) {
+  const std::string url = unique_lcm_url();
+  ChildProcess launch({bin("launch"), source("config/turret_bot.launch.yaml"), "--mode", "lockstep", "--lcm-url", url});
+  ASSERT_TRUE(launch.wait_for_output("[launch] up:", 25.0)) << launch.output();
+  lcm::LCM lc(url);
+  Recorder<hardware_command_t> cmds(lc, "hardware/command");
+  Recorder<float64_t> sent(lc, "j2_controller/command");
+  ChildProcess cmd({bin("turret-cmd"), "j2_controller", "0.001*(i+1)", "--sim-time", "--count", "500", "--lcm-url",
+                    url});
+  ASSERT_EQ(cmd.wait(20.0), 0) << cmd.output();
+  pump_until(lc, [&] { return sent.messages.size() >= 500; }, 2.0);
+  pump_until(lc, [] { return false; }, 0.2);
+  ASSERT_EQ(sent.messages.size(), 500u);
+  // Message i is due at the step of its utime (1 kHz control: 1000 us a step).
+  std::map<int64_t, int64_t> due_step;
+  for (size_t i = 0; i < sent.messages.size(); ++i) {
+    EXPECT_EQ(sent.messages[i].utime % 1000, 0);
+    due_step[int64_t(i)] = sent.messages[i].utime / 1000;
+  }
+  for (size_t i = 1; i < sent.messages.size(); ++i) EXPECT_EQ(due_step[int64_t(i)], due_step[0] + int64_t(i));
+  // At each step, which message was in force: lag = step - its due step.
+  std::map<int64_t, int> lags;
+  int seen = 0;
+  for (const auto& c : cmds.messages) {
+    if (c.num_actuators < 2 || c.mode[1] == hardware_command_t::MODE_NONE) continue;
+    const int64_t i = std::llround(c.command[1] * 1000.0) - 1;
+    if (i < 0 || i >= 500 || c.step > due_step[499]) continue;
+    ++seen;
+    ++lags[c.step - due_step[i]];
+  }
+  std::printf("turret-cmd --sim-time under lockstep, %d steps: ", seen);
+  for (const auto& [lag, n] : lags) std::printf("%s%d at lag %lld", lag == lags.begin()->first ? "" : ", ", n, (long long)lag);
+  std::printf("\n");
+  // The controller reads the newest command, so a command that loses the race
+  // with the hardware loop lands a step late; one a step early would mean
+  // turret-cmd ran ahead of the sim.
+  EXPECT_GT(seen, 400);
+  EXPECT_GE(lags.begin()->first, -1);
+  EXPECT_GE(lags[0] + lags[1], int(0.8 * seen));
+  launch.stop(8.0);
+}
