@@ -17,6 +17,10 @@ constexpr double kMinFrictionSpeed = 1e-3;
 constexpr double kUnlimitedEffort = 1e9;
 
 double finite_or(double v, double fallback) { return std::isfinite(v) ? v : fallback; }
+
+double passive_torque(double qd, double damping, double friction, double friction_speed) {
+  return -damping * qd - friction * std::tanh(qd / friction_speed);
+}
 }  // namespace
 
 const char* to_string(ActuatorMode m) {
@@ -47,16 +51,10 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
     a.continuous = j.type == JointType::Continuous;
     a.effort_limit = j.effort_limit;
     a.velocity_limit = j.velocity_limit;
-    a.friction = j.friction;
-    a.damping = j.damping;
-    if (mj.effective_inertia > 0 && a.damping * dt > mj.effective_inertia) {
-      a.damping = mj.effective_inertia / dt;
-      warnings_.push_back(fmt::format("{}: joint '{}': damping {:g} is too stiff for a {:g} s step with inertia {:g}; "
-                                      "simulated with {:g}",
-                                      model.urdf_path, j.name, j.damping, dt, mj.effective_inertia, a.damping));
-    }
-    a.friction_speed =
-        mj.effective_inertia > 0 ? std::max(kMinFrictionSpeed, 2 * a.friction * dt / mj.effective_inertia) : 1.0;
+    const Passive passive = passive_for(mj, model.urdf_path);
+    a.damping = passive.damping;
+    a.friction = passive.friction;
+    a.friction_speed = passive.friction_speed;
     JointLimits limits;
     limits.has_position = j.has_position_limits;
     limits.lower = j.lower;
@@ -92,6 +90,27 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
     a.saturation.reset(a.q);
     actuators_.push_back(std::move(a));
   }
+  for (const MultibodyJoint& mj : mb.joints())
+    if (!model.transmission_for_joint(mj.urdf->name) && (mj.urdf->damping > 0 || mj.urdf->friction > 0))
+      passive_.push_back(passive_for(mj, model.urdf_path));
+}
+
+Actuators::Passive Actuators::passive_for(const MultibodyJoint& mj, const std::string& urdf) {
+  const double dt = mb_.dt();
+  const Joint& j = *mj.urdf;
+  Passive p;
+  p.link = mj.link;
+  p.friction = j.friction;
+  p.damping = j.damping;
+  if (mj.effective_inertia > 0 && p.damping * dt > mj.effective_inertia) {
+    p.damping = mj.effective_inertia / dt;
+    warnings_.push_back(fmt::format("{}: joint '{}': damping {:g} is too stiff for a {:g} s step with inertia {:g}; "
+                                    "simulated with {:g}",
+                                    urdf, j.name, j.damping, dt, mj.effective_inertia, p.damping));
+  }
+  p.friction_speed =
+      mj.effective_inertia > 0 ? std::max(kMinFrictionSpeed, 2 * p.friction * dt / mj.effective_inertia) : 1.0;
+  return p;
 }
 
 int Actuators::find_joint(const std::string& joint) const {
@@ -196,9 +215,10 @@ void Actuators::apply(double dt) {
         a.effort = hold ? 0.0 : clamp_abs(a.command, e_max);
         break;
     }
-    const double passive = -a.damping * qd - a.friction * std::tanh(qd / a.friction_speed);
-    mb_.add_torque(a.link, a.effort + passive);
+    mb_.add_torque(a.link, a.effort + passive_torque(qd, a.damping, a.friction, a.friction_speed));
   }
+  for (const Passive& p : passive_)
+    mb_.add_torque(p.link, passive_torque(mb_.velocity(p.link), p.damping, p.friction, p.friction_speed));
 }
 
 void Actuators::read(double dt) {

@@ -82,10 +82,18 @@ class Actuators {
     double q = 0, qd = 0, effort = 0, applied = 0;
   };
 
+  // URDF damping and friction of a joint no transmission drives (they act on every moving joint).
+  struct Passive {
+    int link = -1;
+    double damping = 0, friction = 0, friction_speed = 1;
+  };
+
   double position_goal(Actuator& a, bool hold, double dt);
+  Passive passive_for(const MultibodyJoint& j, const std::string& urdf);
 
   Multibody& mb_;
   std::vector<Actuator> actuators_;
+  std::vector<Passive> passive_;
   bool hold_all_ = false, e_stop_ = false;
   std::vector<std::string> warnings_;
 };

@@ -93,6 +93,28 @@ TEST(sim_multibody, PendulumEnergyDriftOver10sIsBelowOnePercent) {
   EXPECT_LT(worst, 0.01);
 }
 
+TEST(sim_multibody, UrdfDampingActsOnJointsWithoutATransmissionToo) {
+  const std::string dir = lcm_control::testing::temp_dir("sim_passive");
+  std::ifstream in(data("pendulum.urdf"));
+  std::string urdf((std::istreambuf_iterator<char>(in)), {});
+  urdf.erase(urdf.find("<transmission"), urdf.find("</transmission>") + 15 - urdf.find("<transmission"));
+  urdf.replace(urdf.find("damping=\"0\""), 11, "damping=\"0.5\"");
+  std::ofstream(dir + "/passive.urdf") << urdf;
+  const RobotModel m = load_robot_model(dir + "/passive.urdf", "");
+  ASSERT_TRUE(m.transmissions.empty());
+  const PendulumTheory theory(m);
+  Simulation sim(m, {});
+  const int link = sim.multibody().joints()[0].link;
+  sim.multibody().set_state(link, theory.rest_angle + 1.0, 0.0);
+  const double swing = theory.energy(theory.rest_angle + 1.0, 0) - theory.energy(theory.rest_angle, 0);
+  run(sim, 5000, {});
+  // Damping ratio 0.5 / (2 sqrt(I m g d)) ~ 0.11: over 5 s (~3.4 periods) the swing energy falls below 2 %.
+  const double left = theory.energy(sim.multibody().position(link), sim.multibody().velocity(link)) -
+                      theory.energy(theory.rest_angle, 0);
+  EXPECT_LT(left / swing, 0.02) << left / swing;
+  EXPECT_GT(left / swing, 0.0);
+}
+
 TEST(sim_multibody, LinkPosesFollowTheUrdfFrames) {
   const RobotModel m = turret();
   Multibody mb(m, 1e-3);
