@@ -58,7 +58,7 @@ std::optional<Conflict> find_conflict(const std::vector<std::pair<std::string, c
 }
 
 std::string describe(const Claim& claim) {
-  if (!claim.interface) return "nothing (reads every joint)";
+  if (!claim.interface) return "nothing (reads joint state only)";
   return fmt::format("{} on {}", to_string(*claim.interface), join(claim.joints));
 }
 

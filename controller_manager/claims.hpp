@@ -26,7 +26,7 @@ struct Conflict {
 // The first joint claimed by two of `controllers` (name, claim), in list order.
 std::optional<Conflict> find_conflict(const std::vector<std::pair<std::string, const Claim*>>& controllers);
 
-// "PositionJointInterface on j1, j2" or "nothing (reads every joint)".
+// "PositionJointInterface on j1, j2" or "nothing (reads joint state only)".
 std::string describe(const Claim& claim);
 
 }  // namespace lcm_control::cm

@@ -58,7 +58,7 @@ joint_trajectory_t goal(int64_t id, std::vector<std::string> joints, std::vector
 }
 }  // namespace
 
-TEST(Load, RefusalsSayWhy) {
+TEST(CmLoad, RefusalsSayWhy) {
   Rig rig;
   Reply r = rig.load("nothere");
   EXPECT_FALSE(r.ok);
@@ -82,7 +82,7 @@ TEST(Load, RefusalsSayWhy) {
   EXPECT_EQ(rig.cm->list().size(), 1u);
 }
 
-TEST(Load, UnloadIsRefusedWhileRunning) {
+TEST(CmLoad, UnloadIsRefusedWhileRunning) {
   Rig rig;
   start(rig, "slide_position");
   Reply r = rig.cm->unload("slide_position");
@@ -94,7 +94,7 @@ TEST(Load, UnloadIsRefusedWhileRunning) {
   EXPECT_FALSE(rig.cm->unload("slide_position").ok);
 }
 
-TEST(ForwardCommand, PositionStartsAtTheCurrentPositionThenFollows) {
+TEST(CmForwardCommand, PositionStartsAtTheCurrentPositionThenFollows) {
   Rig rig;
   rig.actuator("slide_motor").position = 0.3;
   rig.cycle(3);
@@ -109,7 +109,7 @@ TEST(ForwardCommand, PositionStartsAtTheCurrentPositionThenFollows) {
   EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.8);
 }
 
-TEST(ForwardCommand, VelocityGoesThroughTheTransmission) {
+TEST(CmForwardCommand, VelocityGoesThroughTheTransmission) {
   Rig rig;
   start(rig, "wheel_velocity");
   rig.cycle(3);
@@ -121,7 +121,7 @@ TEST(ForwardCommand, VelocityGoesThroughTheTransmission) {
   EXPECT_NEAR(rig.joint("wheel").position, 0.5 + 2.0, 0.01);      // offset 0.5, 1 s at 2 rad/s
 }
 
-TEST(ForwardCommand, EffortStartsAtZeroThenForwards) {
+TEST(CmForwardCommand, EffortStartsAtZeroThenForwards) {
   Rig rig;
   start(rig, "arm_effort");
   rig.cycle(2);
@@ -133,7 +133,7 @@ TEST(ForwardCommand, EffortStartsAtZeroThenForwards) {
   EXPECT_GT(rig.actuator("arm_motor").velocity, 0.0);
 }
 
-TEST(ForwardCommand, GroupsTakeOneValuePerJointAndCountWrongSizes) {
+TEST(CmForwardCommand, GroupsTakeOneValuePerJointAndCountWrongSizes) {
   Rig rig;
   start(rig, "pos_group");
   start(rig, "vel_group");
@@ -156,7 +156,7 @@ TEST(ForwardCommand, GroupsTakeOneValuePerJointAndCountWrongSizes) {
   EXPECT_EQ(stats.dropped, 2);
 }
 
-TEST(JointStateController, PublishesFirstCycleAtItsRateInTransmissionOrder) {
+TEST(CmJointStateController, PublishesFirstCycleAtItsRateInTransmissionOrder) {
   Rig rig;
   Recorder<joint_state_t> js(rig.bus.lcm(), "joint_states");
   start(rig, "joint_state_controller");
@@ -171,7 +171,7 @@ TEST(JointStateController, PublishesFirstCycleAtItsRateInTransmissionOrder) {
     EXPECT_NEAR(js.messages[k].utime - js.messages[k - 1].utime, 16667, 1000);
 }
 
-TEST(JointStateController, KeepsItsRateAfterTimeJumps) {
+TEST(CmJointStateController, KeepsItsRateAfterTimeJumps) {
   Rig rig;
   Recorder<joint_state_t> js(rig.bus.lcm(), "joint_states");
   start(rig, "joint_state_controller");
@@ -188,7 +188,7 @@ TEST(JointStateController, KeepsItsRateAfterTimeJumps) {
   EXPECT_NEAR(static_cast<double>(js.messages.size() - n), 30.0, 1.0);
 }
 
-TEST(JointStateController, SubsetOrderAndExtraJoints) {
+TEST(CmJointStateController, SubsetOrderAndExtraJoints) {
   Rig rig;
   Recorder<joint_state_t> js(rig.bus.lcm(), "joint_states");
   const Reply r = rig.load("jsc_subset");
@@ -206,7 +206,7 @@ TEST(JointStateController, SubsetOrderAndExtraJoints) {
   EXPECT_DOUBLE_EQ(m.effort[2], 2.0);
 }
 
-TEST(PidControllers, EffortPositionHoldsAGravityLoadedJoint) {
+TEST(CmPidControllers, EffortPositionHoldsAGravityLoadedJoint) {
   Rig rig;
   auto& arm = rig.actuator("arm_motor");
   arm.gravity = 10.0;
@@ -224,7 +224,7 @@ TEST(PidControllers, EffortPositionHoldsAGravityLoadedJoint) {
   EXPECT_NEAR(rig.actuator("arm_motor").position, 1.0, 0.01);
 }
 
-TEST(PidControllers, PositionErrorIsShortestAngleOnlyForContinuousJoints) {
+TEST(CmPidControllers, PositionErrorIsShortestAngleOnlyForContinuousJoints) {
   Rig rig;
   rig.actuator("wheel_motor").position = (0.2 - 0.5) * 10;  // wheel joint at 0.2
   rig.actuator("arm_motor").position = -2.9;
@@ -239,7 +239,7 @@ TEST(PidControllers, PositionErrorIsShortestAngleOnlyForContinuousJoints) {
   EXPECT_NEAR(rig.joint("wheel").position, -0.2, 0.01);
 }
 
-TEST(PidControllers, EffortVelocityReachesItsSetPointAndPublishesState) {
+TEST(CmPidControllers, EffortVelocityReachesItsSetPointAndPublishesState) {
   Rig rig;
   Recorder<controller_state_t> st(rig.bus.lcm(), "spin_velocity/state");
   start(rig, "spin_velocity");
@@ -252,7 +252,7 @@ TEST(PidControllers, EffortVelocityReachesItsSetPointAndPublishesState) {
   EXPECT_NEAR(st.messages.back().process_value, 3.0, 0.05);
 }
 
-TEST(PidControllers, GainsAtRunTime) {
+TEST(CmPidControllers, GainsAtRunTime) {
   Rig rig;
   ASSERT_TRUE(rig.load("arm_position").ok);
   Controller& c = *rig.cm->loop().slots()[0]->controller;
@@ -283,7 +283,7 @@ TEST(PidControllers, GainsAtRunTime) {
   EXPECT_TRUE(has(ans.message, "no PID for joint 'slide'")) << ans.message;
 }
 
-TEST(PidControllers, GainsOverLcm) {
+TEST(CmPidControllers, GainsOverLcm) {
   Rig rig;
   Recorder<pid_gains_t> answers(rig.bus.lcm(), "spin_velocity/gains");
   ASSERT_TRUE(rig.load("spin_velocity").ok);
@@ -297,7 +297,7 @@ TEST(PidControllers, GainsOverLcm) {
   EXPECT_EQ(answers.messages[0].p, 11);
 }
 
-TEST(TrajectoryController, FollowsThreeWaypointsAndSucceeds) {
+TEST(CmTrajectoryController, FollowsThreeWaypointsAndSucceeds) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory/result");
   Recorder<trajectory_status_t> feedback(rig.bus.lcm(), "trajectory/feedback");
@@ -314,7 +314,7 @@ TEST(TrajectoryController, FollowsThreeWaypointsAndSucceeds) {
   EXPECT_GE(feedback.messages.size(), 25u);  // 20 Hz over ~1.5 s
 }
 
-TEST(TrajectoryController, ImpossiblePathToleranceFailsNamingJointAndError) {
+TEST(CmTrajectoryController, ImpossiblePathToleranceFailsNamingJointAndError) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory_tight/result");
   start(rig, "trajectory_tight");
@@ -327,7 +327,7 @@ TEST(TrajectoryController, ImpossiblePathToleranceFailsNamingJointAndError) {
   EXPECT_TRUE(has(r.message, "exceeds 0.000001")) << r.message;
 }
 
-TEST(TrajectoryController, BadGoalsAreRejectedAndNewGoalsPreempt) {
+TEST(CmTrajectoryController, BadGoalsAreRejectedAndNewGoalsPreempt) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory/result");
   start(rig, "trajectory");
@@ -350,7 +350,7 @@ TEST(TrajectoryController, BadGoalsAreRejectedAndNewGoalsPreempt) {
   EXPECT_EQ(result.messages[4].status, trajectory_status_t::SUCCEEDED) << result.messages[4].message;
 }
 
-TEST(TrajectoryController, EffortVariantTracksWithItsGains) {
+TEST(CmTrajectoryController, EffortVariantTracksWithItsGains) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "effort_trajectory/result");
   auto& arm = rig.actuator("arm_motor");

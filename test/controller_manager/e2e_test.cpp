@@ -34,10 +34,11 @@ RobotModel test_bot() { return load_robot_model(data("test_bot.urdf"), data("tes
 
 // A controller_manager process plus a client on the same fresh URL.
 struct Session {
-  explicit Session(const std::string& yaml = data("test_bot.yaml"), std::vector<std::string> extra = {})
+  explicit Session(const std::string& yaml = data("test_bot.yaml"), std::vector<std::string> extra = {},
+                   const std::string& urdf = data("test_bot.urdf"))
       : url(unique_lcm_url()),
         proc([&] {
-          std::vector<std::string> a{bin("controller_manager"), "--urdf", data("test_bot.urdf"), "--config", yaml,
+          std::vector<std::string> a{bin("controller_manager"), "--urdf", urdf, "--config", yaml,
                                      "--lcm-url", url, "--silence-timeout", "0.25"};
           a.insert(a.end(), extra.begin(), extra.end());
           return a;
@@ -516,4 +517,33 @@ TEST(ControllerManagerE2E, BadInputExitsNonZeroWithOneClearLine) {
                         "--lcm-url", "foo://bar"});
   EXPECT_EQ(bad_url.wait(10), 4);
   std::filesystem::remove_all(dir);
+}
+
+// The tutorial robot against the real sim_server in real time (skipped when
+// sim_server is not part of the build).
+TEST(ControllerManagerWithSimServer, TurretTutorialMovesAndPublishesJointStatesAt60Hz) {
+#ifndef LCM_CONTROL_HAVE_SIM_SERVER
+  GTEST_SKIP() << "sim_server is not built";
+#else
+  Session s(source("config/turret_bot.yaml"), {}, source("config/turret_bot.urdf"));
+  ASSERT_TRUE(s.ready) << s.proc.output();
+  ChildProcess sim({bin("sim_server"), "--urdf", source("config/turret_bot.urdf"), "--config",
+                    source("config/turret_bot.yaml"), "--lcm-url", s.url});
+  ASSERT_TRUE(sim.wait_for_output("ready (", 10)) << sim.output();
+  s.load_and_start({"joint_state_controller", "j1_controller", "j2_controller"});
+  Recorder<joint_state_t> js(s.lc, "joint_states");
+  s.command("j1_controller", 0.5);
+  s.command("j2_controller", 1.0);
+  pump_until(s.lc, [] { return false; }, 3.0);
+  ASSERT_GT(js.messages.size(), 100u) << s.proc.output() << sim.output();
+  const double rate = (js.messages.size() - 1) / ((js.receive_us.back() - js.receive_us.front()) * 1e-6);
+  std::printf("turret with sim_server: joint_states %.2f Hz over %zu messages; j1 %.4f (cmd 0.5), j2 %.4f (cmd 1.0)\n",
+              rate, js.messages.size(), js.messages.back().position[0], js.messages.back().position[1]);
+  EXPECT_NEAR(rate, 60.0, 3.0);
+  EXPECT_EQ(js.messages.back().name, (std::vector<std::string>{"j1", "j2"}));
+  EXPECT_NEAR(js.messages.back().position[0], 0.5, 0.1);
+  EXPECT_NEAR(js.messages.back().position[1], 1.0, 0.2);
+  EXPECT_EQ(s.proc.stop(5.0, SIGINT), 0);
+  EXPECT_EQ(sim.stop(5.0, SIGINT), 0);
+#endif
 }

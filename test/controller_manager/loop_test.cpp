@@ -53,7 +53,7 @@ const Registry& test_registry() {
 }
 }  // namespace
 
-TEST(Loop, StopAStartBOnOneJointHappensInOneCycle) {
+TEST(CmLoop, StopAStartBOnOneJointHappensInOneCycle) {
   g_updates.clear();
   Rig rig(test_registry(), data("test_bot.urdf"), data("switch_test.yaml"));
   ASSERT_TRUE(rig.load("rec_a").ok);
@@ -78,7 +78,7 @@ TEST(Loop, StopAStartBOnOneJointHappensInOneCycle) {
   }
 }
 
-TEST(Loop, SwitchWithoutHardwareAppliesAtOnce) {
+TEST(CmLoop, SwitchWithoutHardwareAppliesAtOnce) {
   Rig rig;
   ASSERT_TRUE(rig.load("slide_position").ok);
   std::optional<Reply> got;
@@ -88,7 +88,7 @@ TEST(Loop, SwitchWithoutHardwareAppliesAtOnce) {
   EXPECT_TRUE(has(got->message, "switched at once (no hardware state received yet)")) << got->message;
 }
 
-TEST(Loop, SilenceStopsUpdatesAndResumeRestartsFromTheCurrentState) {
+TEST(CmLoop, SilenceStopsUpdatesAndResumeRestartsFromTheCurrentState) {
   Rig rig;
   ASSERT_TRUE(rig.load("slide_position").ok);
   ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
@@ -111,7 +111,7 @@ TEST(Loop, SilenceStopsUpdatesAndResumeRestartsFromTheCurrentState) {
   EXPECT_DOUBLE_EQ(rig.commands.back().command[1], 0.7);
 }
 
-TEST(Loop, NewSessionOrTimeGoingBackwardsRestartsControllers) {
+TEST(CmLoop, NewSessionOrTimeGoingBackwardsRestartsControllers) {
   Rig rig;
   ASSERT_TRUE(rig.load("slide_position").ok);
   ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
@@ -134,7 +134,7 @@ TEST(Loop, NewSessionOrTimeGoingBackwardsRestartsControllers) {
   EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.2);
 }
 
-TEST(Loop, RepeatedStepIsAnsweredWithoutUpdating) {
+TEST(CmLoop, RepeatedStepIsAnsweredWithoutUpdating) {
   Rig rig;
   ASSERT_TRUE(rig.load("arm_position").ok);
   ASSERT_TRUE(rig.switch_({"arm_position"}, {}).ok);
@@ -146,7 +146,7 @@ TEST(Loop, RepeatedStepIsAnsweredWithoutUpdating) {
   EXPECT_EQ(rig.cm->last_command().step, rig.step - 1);
 }
 
-TEST(Loop, UnclaimedActuatorsGetModeNone) {
+TEST(CmLoop, UnclaimedActuatorsGetModeNone) {
   Rig rig;
   ASSERT_TRUE(rig.load("wheel_velocity").ok);
   ASSERT_TRUE(rig.switch_({"wheel_velocity"}, {}).ok);
@@ -157,14 +157,14 @@ TEST(Loop, UnclaimedActuatorsGetModeNone) {
         << c.name[a];
 }
 
-TEST(Loop, HardwareThatDoesNotMatchTheUrdfIsNotAnswered) {
+TEST(CmLoop, HardwareThatDoesNotMatchTheUrdfIsNotAnswered) {
   Rig rig;
   rig.actuator("arm_motor").mode = hardware_command_t::MODE_POSITION;
   rig.cycle(1);
   EXPECT_FALSE(rig.cm->loop().has_state());
 }
 
-TEST(Loop, StatisticsCoverCyclesAndControllers) {
+TEST(CmLoop, StatisticsCoverCyclesAndControllers) {
   Rig rig;
   ASSERT_TRUE(rig.load("joint_state_controller").ok);
   ASSERT_TRUE(rig.load("arm_position").ok);
@@ -180,7 +180,7 @@ TEST(Loop, StatisticsCoverCyclesAndControllers) {
   EXPECT_EQ(rig.cm->statistics().cycles, 0);
 }
 
-TEST(Loop, ReloadRefusesWhileLoadedUnlessForced) {
+TEST(CmLoop, ReloadRefusesWhileLoadedUnlessForced) {
   Rig rig;
   ASSERT_TRUE(rig.load("slide_position").ok);
   ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
@@ -198,7 +198,7 @@ TEST(Loop, ReloadRefusesWhileLoadedUnlessForced) {
   EXPECT_TRUE(rig.cm->list().empty());
 }
 
-TEST(Loop, NoAllocationOnTheLoopPath) {
+TEST(CmLoop, NoAllocationOnTheLoopPath) {
   Rig rig;
   for (const char* n : {"joint_state_controller", "trajectory", "vel_group", "arm_position", "spin_velocity"})
     ASSERT_TRUE(rig.load(n).ok) << n;
@@ -234,4 +234,19 @@ TEST(Loop, NoAllocationOnTheLoopPath) {
     ++rig.step;
   }
   EXPECT_EQ(lcm_control::testing::allocations(), 0);
+}
+
+TEST(CmLoop, EStopReleaseRestartsControllers) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
+  rig.cycle(2);
+  const int64_t restarts = rig.cm->loop().restarts();
+  fill_state(rig.state, rig.act, rig.step++, rig.session, 1000, true);
+  rig.state.e_stop = true;
+  rig.cm->on_hardware_state(rig.state);
+  rig.actuator("slide_motor").position = 0.4;  // moved by hand while stopped
+  rig.cycle(1);                                 // released
+  EXPECT_EQ(rig.cm->loop().restarts(), restarts + 1);
+  EXPECT_DOUBLE_EQ(rig.commands.back().command[1], 0.4);
 }

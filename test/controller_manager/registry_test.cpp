@@ -4,14 +4,14 @@
 
 using namespace lcm_control::cm;
 
-TEST(Registry, EveryBuiltinTypeCanBeCreated) {
+TEST(CmRegistry, EveryBuiltinTypeCanBeCreated) {
   const auto& r = builtin_registry();
   EXPECT_EQ(r.types().size(), 12u);
   for (const auto& t : r.types()) EXPECT_NE(r.create(t), nullptr) << t;
   EXPECT_EQ(r.create("nope/Nope"), nullptr);
 }
 
-TEST(Registry, ClosestMatchByEditDistance) {
+TEST(CmRegistry, ClosestMatchByEditDistance) {
   const auto& r = builtin_registry();
   EXPECT_EQ(r.closest("position_controllers/JointPositionControler"), "position_controllers/JointPositionController");
   EXPECT_EQ(r.closest("effort_controller/JointEffortController"), "effort_controllers/JointEffortController");
@@ -21,7 +21,7 @@ TEST(Registry, ClosestMatchByEditDistance) {
   for (const auto& t : r.types()) EXPECT_NE(m.find(t), std::string::npos) << t;
 }
 
-TEST(Registry, EditDistance) {
+TEST(CmRegistry, EditDistance) {
   EXPECT_EQ(edit_distance("", "abc"), 3u);
   EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
   EXPECT_EQ(edit_distance("same", "same"), 0u);

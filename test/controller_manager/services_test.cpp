@@ -1,0 +1,64 @@
+// The LCM request/response layer in-process: answers carry the request id and
+// the controllers; requests that arrive during a switch wait for it, in order.
+#include "controller_manager/services.hpp"
+
+#include <gtest/gtest.h>
+
+#include "test/controller_manager/rig.hpp"
+#include "test/support/lcm_test.hpp"
+
+using namespace lcm_control;
+using namespace lcm_control::cm;
+using lcm_control::testing::Recorder;
+using lcm_control::testing::Rig;
+
+namespace {
+cm_request_t request(int64_t id, int8_t op, std::vector<std::string> names = {}, std::vector<std::string> start = {},
+                     std::vector<std::string> stop = {}) {
+  cm_request_t r{};
+  r.request_id = id;
+  r.op = op;
+  r.names = names;
+  r.num_names = static_cast<int32_t>(names.size());
+  r.start = start;
+  r.num_start = static_cast<int32_t>(start.size());
+  r.stop = stop;
+  r.num_stop = static_cast<int32_t>(stop.size());
+  r.strictness = cm_request_t::STRICT;
+  return r;
+}
+}  // namespace
+
+TEST(CmServices, RequestsDuringASwitchWaitForItInOrder) {
+  Rig rig;
+  Services services(*rig.cm, rig.bus);
+  Recorder<cm_response_t> responses(rig.bus.lcm(), "controller_manager/response");
+  rig.cycle(2);  // hardware ticking: switches wait for the next cycle
+  rig.publish("controller_manager/request", request(1, cm_request_t::LOAD, {"slide_position", "tilt_position"}));
+  rig.publish("controller_manager/request", request(2, cm_request_t::SWITCH, {}, {"slide_position"}));
+  rig.publish("controller_manager/request", request(3, cm_request_t::UNLOAD, {"slide_position"}));
+  rig.publish("controller_manager/request", request(4, cm_request_t::LIST));
+  ASSERT_EQ(responses.messages.size(), 1u);  // 2 waits for a cycle, 3 and 4 wait for 2
+  rig.cycle(1);
+  ASSERT_EQ(responses.messages.size(), 4u);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(responses.messages[k].request_id, k + 1);
+  EXPECT_TRUE(responses.messages[1].ok) << responses.messages[1].message;
+  EXPECT_FALSE(responses.messages[2].ok);  // slide_position is running by then
+  EXPECT_NE(responses.messages[2].message.find("it is running"), std::string::npos);
+  const auto& list = responses.messages[3];
+  ASSERT_EQ(list.num_controllers, 2);
+  EXPECT_EQ(list.controllers[0].state, "running");
+  EXPECT_EQ(list.controllers[1].state, "initialized");
+}
+
+TEST(CmServices, ListTypesAndEmptyNames) {
+  Rig rig;
+  Services services(*rig.cm, rig.bus);
+  Recorder<cm_response_t> responses(rig.bus.lcm(), "controller_manager/response");
+  rig.publish("controller_manager/request", request(7, cm_request_t::LIST_TYPES));
+  rig.publish("controller_manager/request", request(8, cm_request_t::SWITCH, {}, {""}));
+  ASSERT_EQ(responses.messages.size(), 2u);
+  EXPECT_EQ(responses.messages[0].num_types, 12);
+  EXPECT_FALSE(responses.messages[1].ok);
+  EXPECT_EQ(responses.messages[1].message, "malformed request: start[0] is an empty name");
+}
