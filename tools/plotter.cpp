@@ -192,13 +192,14 @@ int main(int argc, char** argv) {
       "Examples:\n"
       "  plotter j2_controller/command.data joint_states.velocity[1] --log run.lcmlog --output run.png\n"
       "  plotter /j2_controller/command /joint_states/velocity[1] --duration 10 --output live.svg\n"
-      "  plotter joint_states.position[0] --duration 5 --output - --terminal   # ASCII plot in the terminal",
+      "  plotter joint_states.position[0] --duration 5 --output - --terminal   # ASCII plot in the terminal\n"
+      "  plotter joint_states.velocity[1] --duration 60 --live --output run.png # live text view, PNG at the end",
       "plotter"};
   std::vector<std::string> paths;
   std::string log_path, output, data_file, title, time_source = "receive";
   double duration = 0;
   int width = 1000, height = 600;
-  bool terminal = false;
+  bool terminal = false, live = false;
   BusFlags bus_flags;
   app.add_option("PATH", paths, "CHANNEL.FIELD, e.g. joint_states.velocity[1]")->required();
   auto* log_opt = app.add_option("--log", log_path, "read an lcm-logger log file");
@@ -212,6 +213,7 @@ int main(int argc, char** argv) {
   app.add_option("--width", width, "image width in pixels")->check(CLI::Range(100, 10000));
   app.add_option("--height", height, "image height in pixels")->check(CLI::Range(100, 10000));
   app.add_flag("--terminal", terminal, "also draw the plot as text in the terminal");
+  app.add_flag("--live", live, "with --duration: redraw a text plot in the terminal every second");
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
     if (log_path.empty() && duration <= 0) throw std::runtime_error("give --log FILE or --duration S");
@@ -227,6 +229,36 @@ int main(int argc, char** argv) {
     std::vector<Series> series;
     for (const auto& p : paths) series.push_back(Series{p, "", "", {}});
     Collector collector(series, time_source == "utime");
+    const std::string xlabel = time_source == "utime" ? "t [s] (message utime)" : "t [s]";
+    const bool keep = !data_file.empty();
+    const std::string tmp = temp_base();
+    if (!keep) data_file = tmp + ".dat";
+    const std::string script_file = tmp + ".gp";
+    // Writes the data and runs gnuplot: the image (with_image) and/or a text plot it returns.
+    auto render = [&](bool with_image, bool with_text) {
+      std::vector<Series> have;
+      for (const auto& s : series)
+        if (!s.points.empty()) have.push_back(s);
+      if (have.empty()) return std::string("(no data yet)\n");
+      int64_t t0 = have[0].points.front().first;
+      for (const auto& s : have) t0 = std::min(t0, s.points.front().first);
+      write_data(data_file, have, t0);
+      {
+        std::ofstream sc(script_file);
+        if (with_image) sc << gnuplot_script(term, output, data_file, have, title, xlabel);
+        if (with_text) sc << gnuplot_script("dumb size 100,30", "", data_file, have, title, xlabel);
+      }
+      std::string text;
+      try {
+        text = run_gnuplot(script_file);
+      } catch (...) {
+        std::remove(script_file.c_str());
+        if (!keep) std::remove(data_file.c_str());
+        throw;
+      }
+      std::remove(script_file.c_str());
+      return text;
+    };
     if (!log_path.empty()) {
       read_log(log_path, collector);
     } else {
@@ -234,37 +266,25 @@ int main(int argc, char** argv) {
       Bus bus(bus_flags.lcm_url, bus_flags.ns);
       LiveListener listener(bus, collector);
       fmt::print(stderr, "plotter: listening for {} on {}\n", seconds_text(duration), bus.url());
-      pump_until(bus, [] { return false; }, duration);
+      const int64_t end = monotonic_us() + int64_t(duration * 1e6);
+      while (!stop_requested() && monotonic_us() < end) {
+        pump_until(bus, [] { return false; }, std::min(1.0, double(end - monotonic_us()) / 1e6));
+        if (live && !stop_requested() && monotonic_us() < end)
+          fmt::print("\033[H\033[2J{}plotter: {:.0f} s left (Ctrl-C ends early and still writes {})\n",
+                     render(false, true), double(end - monotonic_us()) / 1e6, output);
+        std::fflush(stdout);
+      }
+      clear_stop();
     }
     std::string missing;
     for (const auto& s : series)
       if (s.points.empty()) missing += (missing.empty() ? "" : ", ") + s.path;
-    if (!missing.empty())
+    if (!missing.empty()) {
+      if (!keep) std::remove(data_file.c_str());
       throw std::runtime_error(fmt::format("no data for {} in {}; what there was:{}", missing,
                                            log_path.empty() ? "the bus" : log_path, collector.hint()));
-    int64_t t0 = series[0].points.front().first;
-    for (const auto& s : series) t0 = std::min(t0, s.points.front().first);
-
-    const bool keep = !data_file.empty();
-    const std::string tmp = temp_base();
-    if (!keep) data_file = tmp + ".dat";
-    write_data(data_file, series, t0);
-    const std::string xlabel = time_source == "utime" ? "t [s] (message utime)" : "t [s]";
-    std::string script_file = tmp + ".gp";
-    {
-      std::ofstream sc(script_file);
-      if (!term.empty()) sc << gnuplot_script(term, output, data_file, series, title, xlabel);
-      if (terminal) sc << gnuplot_script("dumb size 100,30", "", data_file, series, title, xlabel);
     }
-    std::string text;
-    try {
-      text = run_gnuplot(script_file);
-    } catch (...) {
-      std::remove(script_file.c_str());
-      if (!keep) std::remove(data_file.c_str());
-      throw;
-    }
-    std::remove(script_file.c_str());
+    const std::string text = render(!term.empty(), terminal);
     if (!keep) std::remove(data_file.c_str());
     if (terminal) std::fputs(text.c_str(), stdout);
     if (!term.empty()) {

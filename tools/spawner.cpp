@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
       "spawner"};
   std::vector<std::string> names;
   SpawnOptions o;
-  double shutdown_timeout = 2;
+  double shutdown_timeout = 1.5;
   BusFlags bus_flags;
   app.add_option("NAME", names, "controllers (top-level keys of the ros_control YAML)")->required();
   app.add_flag("--stopped", o.stopped, "load only, do not start");

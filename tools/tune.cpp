@@ -27,7 +27,10 @@ class GainsClient {
           "no answer from '{}' within {} (sent on '{}', nothing came back on '{}'): is {} running on {}{}?", owner_,
           seconds_text(timeout_s), bus_.channel(gains_set_channel(owner_)), bus_.channel(gains_channel(owner_)),
           owner_ == channels::kSimGainsOwner ? "sim_server" : "controller_manager with '" + owner_ + "' loaded",
-          bus_.url(), bus_.ns().empty() ? "" : " with namespace '" + bus_.ns() + "'"));
+          bus_.url(), bus_.ns().empty() ? "" : " with namespace '" + bus_.ns() + "'") +
+          (owner_ == channels::kSimGainsOwner ? ""
+                                               : " Only controllers with a PID of their own (effort_controllers/..., "
+                                                 "velocity_controllers/JointPositionController) answer."));
     return answer_;
   }
 
