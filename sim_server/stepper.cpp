@@ -118,7 +118,7 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
       base_us = now;
       base_step = sim_.step_count();
     }
-    io_.take_command();
+    if (!io_.take_command() && io_.last_command_us() >= 0) ++w_.missed;  // the controller did not answer in time
     watchdog(now);
     step_timed(deadline + std::llround(period_us_));
     tick_statistics(monotonic_us());
