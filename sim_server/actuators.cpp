@@ -18,9 +18,6 @@ constexpr double kUnlimitedEffort = 1e9;
 
 double finite_or(double v, double fallback) { return std::isfinite(v) ? v : fallback; }
 
-double passive_torque(double qd, double damping, double friction, double friction_speed) {
-  return -damping * qd - friction * std::tanh(qd / friction_speed);
-}
 }  // namespace
 
 const char* to_string(ActuatorMode m) {
@@ -51,10 +48,7 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
     a.continuous = j.type == JointType::Continuous;
     a.effort_limit = j.effort_limit;
     a.velocity_limit = j.velocity_limit;
-    const Passive passive = passive_for(mj, model.urdf_path);
-    a.damping = passive.damping;
-    a.friction = passive.friction;
-    a.friction_speed = passive.friction_speed;
+    a.passive = passive_for(mj, model.urdf_path);
     JointLimits limits;
     limits.has_position = j.has_position_limits;
     limits.lower = j.lower;
@@ -215,10 +209,13 @@ void Actuators::apply(double dt) {
         a.effort = hold ? 0.0 : clamp_abs(a.command, e_max);
         break;
     }
-    mb_.add_torque(a.link, a.effort + passive_torque(qd, a.damping, a.friction, a.friction_speed));
+    mb_.add_torque(a.link, a.effort + passive_torque(a.passive, qd));
   }
-  for (const Passive& p : passive_)
-    mb_.add_torque(p.link, passive_torque(mb_.velocity(p.link), p.damping, p.friction, p.friction_speed));
+  for (const Passive& p : passive_) mb_.add_torque(p.link, passive_torque(p, mb_.velocity(p.link)));
+}
+
+double Actuators::passive_torque(const Passive& p, double qd) {
+  return -p.damping * qd - p.friction * std::tanh(qd / p.friction_speed);
 }
 
 void Actuators::read(double dt) {

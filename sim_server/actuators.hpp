@@ -63,6 +63,12 @@ class Actuators {
   double joint_effort(int i) const { return actuators_[i].applied; }
 
  private:
+  // URDF damping and friction of a moving joint (torques -d*v and -f*tanh(v/friction_speed)).
+  struct Passive {
+    int link = -1;
+    double damping = 0, friction = 0, friction_speed = 1;
+  };
+
   struct Actuator {
     std::string name, joint;
     ActuatorMode mode = ActuatorMode::Effort;
@@ -70,7 +76,8 @@ class Actuators {
     SimpleTransmission map;
     int link = -1;
     bool continuous = false;
-    double effort_limit = 0, velocity_limit = 0, damping = 0, friction = 0, friction_speed = 1;
+    double effort_limit = 0, velocity_limit = 0;
+    Passive passive;
     PositionSaturation saturation;
     bool has_pid = false;
     Pid pid;
@@ -82,18 +89,13 @@ class Actuators {
     double q = 0, qd = 0, effort = 0, applied = 0;
   };
 
-  // URDF damping and friction of a joint no transmission drives (they act on every moving joint).
-  struct Passive {
-    int link = -1;
-    double damping = 0, friction = 0, friction_speed = 1;
-  };
-
   double position_goal(Actuator& a, bool hold, double dt);
   Passive passive_for(const MultibodyJoint& j, const std::string& urdf);
+  static double passive_torque(const Passive& p, double qd);
 
   Multibody& mb_;
   std::vector<Actuator> actuators_;
-  std::vector<Passive> passive_;
+  std::vector<Passive> passive_;  // joints without a transmission
   bool hold_all_ = false, e_stop_ = false;
   std::vector<std::string> warnings_;
 };
