@@ -10,6 +10,9 @@ namespace lcm_control::sim {
 namespace {
 constexpr int64_t kMaxWaitSliceUs = 50000;  // check the stop flag at least this often
 constexpr int64_t kStatsPeriodUs = 1000000;
+// Real time: after a stall shorter than this the steps run back to back until sim time has caught up with
+// the wall clock; after a longer one (a suspended machine) the missed steps are skipped and counted.
+constexpr int64_t kMaxCatchUpUs = 500000;
 }  // namespace
 
 Stepper::Stepper(Simulation& sim, SimIo& io, const StepperOptions& options)
@@ -112,8 +115,7 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
     }
     const int64_t now = monotonic_us();
     const int64_t late = now - deadline;
-    if (late > std::max<int64_t>(50000, std::llround(10 * period_us_))) {
-      // Too far behind to catch up by stepping back to back: skip ahead and count the skipped steps.
+    if (late > std::max<int64_t>(kMaxCatchUpUs, std::llround(10 * period_us_))) {
       w_.missed += std::llround(double(late) / period_us_);
       base_us = now;
       base_step = sim_.step_count();
