@@ -110,7 +110,7 @@ TEST(sim_turret, EStopHoldsJ1Within1mmUnderAContraryCommand) {
     sim.actuators().set_command(kJ1, kPos, j1);
     sim.actuators().set_command(kJ2, kPos, 0.0);
   };
-  run(sim, 3000, [&](int) { command(0.5); });
+  run(sim, 6000, [&](int) { command(0.5); });  // settled: what moves after this is the e-stop's doing
   const double latched = sim.actuators().joint_position(kJ1);
   sim.actuators().set_e_stop(true);
   double worst = 0;

@@ -120,7 +120,7 @@ TEST(sim_e2e, EStopHoldsTheJointWithin1mmUnderAContraryCommand) {
   std::string why;
   ASSERT_TRUE(server.start({"--lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) << why;
   FakeController cm(server.lc);
-  constexpr int64_t kEngage = 3000, kRelease = 6000;
+  constexpr int64_t kEngage = 6000, kRelease = 9000;  // engaged once j1 has settled at 0.5
   cm.policy = [](const hardware_state_t& s, hardware_command_t& c) {
     c.command[0] = s.step < kEngage ? 0.5 : 0.0;
     c.command[1] = 0.0;
@@ -134,7 +134,7 @@ TEST(sim_e2e, EStopHoldsTheJointWithin1mmUnderAContraryCommand) {
   };
   ASSERT_TRUE(cm.run_until_step(kRelease + 3000, 30.0)) << server.output();
   const double latched = cm.states[kEngage].position[0];
-  ASSERT_NEAR(latched, 0.5, 0.01);
+  ASSERT_NEAR(latched, 0.5, 1e-3);
   double worst = 0;
   for (int64_t k = kEngage + 1; k <= kRelease; ++k) {
     worst = std::max(worst, std::abs(cm.states[k].position[0] - latched));
