@@ -18,10 +18,8 @@ std::string CmClient::request_channel() const { return bus_.channel(channels::kC
 std::string CmClient::response_channel() const { return bus_.channel(channels::kCmResponse); }
 
 void CmClient::on_response(const lcm::ReceiveBuffer*, const std::string&, const cm_response_t* m) {
-  if (waiting_for_ != 0 && m->request_id == waiting_for_) {
-    answer_ = *m;
-    answered_ = true;
-  }
+  const auto it = answers_.find(m->request_id);
+  if (it != answers_.end()) it->second = *m;
 }
 
 std::string CmClient::no_answer(const std::string& what, double timeout_s) const {
@@ -47,7 +45,7 @@ std::string what_of(const cm_request_t& r) {
 }
 }  // namespace
 
-cm_response_t CmClient::call(cm_request_t req, double timeout_s) {
+int64_t CmClient::send(cm_request_t& req, std::set<int64_t>& ids) {
   req.utime = wall_us();
   req.request_id = new_request_id();
   req.client = client_;
@@ -55,16 +53,80 @@ cm_response_t CmClient::call(cm_request_t req, double timeout_s) {
   req.num_start = int32_t(req.start.size());
   req.num_stop = int32_t(req.stop.size());
   if (req.strictness == 0) req.strictness = cm_request_t::STRICT;
-  waiting_for_ = req.request_id;
-  answered_ = false;
+  ids.insert(req.request_id);
+  answers_[req.request_id].request_id = 0;  // placeholder until the answer comes
   bus_.publish(channels::kCmRequest, req);
-  const bool ok = pump_until(bus_, [&] { return answered_; }, timeout_s);
-  waiting_for_ = 0;
-  if (!ok) {
-    if (stop_requested()) throw std::runtime_error(fmt::format("interrupted while waiting for {}", what_of(req)));
-    throw CmTimeout(no_answer(what_of(req), timeout_s));
+  return req.request_id;
+}
+
+std::optional<cm_response_t> CmClient::wait_answer(const std::set<int64_t>& ids, double timeout_s) {
+  std::optional<cm_response_t> got;
+  pump_until(
+      bus_,
+      [&] {
+        for (int64_t id : ids) {
+          const auto it = answers_.find(id);
+          if (it != answers_.end() && it->second.request_id == id) {
+            got = it->second;
+            return true;
+          }
+        }
+        return false;
+      },
+      timeout_s);
+  return got;
+}
+
+namespace {
+bool shows_done(const cm_request_t& r, const cm_response_t& list) {
+  auto state_of = [&](const std::string& name) -> std::string {
+    for (const auto& c : list.controllers)
+      if (c.name == name) return c.state;
+    return "";
+  };
+  switch (r.op) {
+    case cm_request_t::LOAD:
+      return std::all_of(r.names.begin(), r.names.end(), [&](const auto& n) { return !state_of(n).empty(); });
+    case cm_request_t::UNLOAD:
+      return std::all_of(r.names.begin(), r.names.end(), [&](const auto& n) { return state_of(n).empty(); });
+    case cm_request_t::SWITCH:
+      return std::all_of(r.start.begin(), r.start.end(), [&](const auto& n) { return state_of(n) == "running"; }) &&
+             std::all_of(r.stop.begin(), r.stop.end(), [&](const auto& n) { return state_of(n) != "running"; });
+    default: return false;
   }
-  return answer_;
+}
+}  // namespace
+
+cm_response_t CmClient::call(cm_request_t req, double timeout_s) {
+  const int64_t end = monotonic_us() + int64_t(timeout_s * 1e6);
+  auto left = [&] { return double(end - monotonic_us()) / 1e6; };
+  const bool checkable =
+      req.op == cm_request_t::LOAD || req.op == cm_request_t::UNLOAD || req.op == cm_request_t::SWITCH;
+  std::set<int64_t> ids, list_ids;
+  cm_request_t list_req{};
+  list_req.op = cm_request_t::LIST;
+  std::optional<cm_response_t> answer;
+  while (!stop_requested() && left() > 0) {
+    send(req, ids);
+    if ((answer = wait_answer(ids, std::min(1.0, left())))) break;
+    if (!checkable || left() <= 0) continue;
+    send(list_req, list_ids);
+    const auto listed = wait_answer(list_ids, std::min(1.0, left()));
+    if ((answer = wait_answer(ids, 0))) break;
+    if (listed && shows_done(req, *listed)) {
+      answer = *listed;
+      answer->op = req.op;
+      answer->request_id = req.request_id;
+      answer->ok = true;
+      answer->message = "done (its answer was lost on the bus; the controller list shows it)";
+      break;
+    }
+  }
+  for (int64_t id : ids) answers_.erase(id);
+  for (int64_t id : list_ids) answers_.erase(id);
+  if (answer) return *answer;
+  if (stop_requested()) throw std::runtime_error(fmt::format("interrupted while waiting for {}", what_of(req)));
+  throw CmTimeout(no_answer(what_of(req), timeout_s));
 }
 
 cm_response_t CmClient::list(double t) {

@@ -4,6 +4,9 @@
 #pragma once
 
 #include <functional>
+#include <map>
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -27,6 +30,11 @@ class CmClient {
 
   // Sends req (request_id and client filled in) and waits up to timeout_s for
   // its answer. Throws CmTimeout naming both channels; returns refusals as they are.
+  // UDP can lose the request or the answer (a busy bus overflows a slow
+  // reader's socket), so after each second without an answer it asks LIST:
+  // if the list shows the load / unload / switch done, that is the answer
+  // (ok, message says so); if not, it sends the request again. LIST and
+  // LIST_TYPES are simply sent again.
   cm_response_t call(cm_request_t req, double timeout_s);
 
   cm_response_t list(double timeout_s);
@@ -47,13 +55,15 @@ class CmClient {
  private:
   void on_response(const lcm::ReceiveBuffer*, const std::string&, const cm_response_t* m);
   std::string no_answer(const std::string& what, double timeout_s) const;
+  // Publishes req under a fresh id, remembered in ids; returns the id.
+  int64_t send(cm_request_t& req, std::set<int64_t>& ids);
+  // Waits up to timeout_s for an answer to any of ids.
+  std::optional<cm_response_t> wait_answer(const std::set<int64_t>& ids, double timeout_s);
 
   Bus& bus_;
   std::string client_;
   lcm::Subscription* sub_ = nullptr;
-  int64_t waiting_for_ = 0;
-  bool answered_ = false;
-  cm_response_t answer_;
+  std::map<int64_t, cm_response_t> answers_;
 };
 
 // "name  type  state  joints  interface" as an aligned table, one controller a line.

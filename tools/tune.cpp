@@ -2,6 +2,7 @@
 // joint, or sets some of them and confirms from the owner's answer.
 #include <cmath>
 #include <optional>
+#include <set>
 
 #include "common/cli.hpp"
 #include "lcm_control/pid_gains_t.hpp"
@@ -15,14 +16,24 @@ class GainsClient {
   GainsClient(Bus& bus, std::string owner) : bus_(bus), owner_(std::move(owner)) {
     bus_.lcm().subscribe(bus_.channel(gains_channel(owner_)), &GainsClient::on_answer, this);
   }
+  // Sends req and waits up to timeout_s for the owner's answer, sending it
+  // again every second (a query or the same gains twice change nothing) in
+  // case UDP lost the request or the answer.
   pid_gains_t call(pid_gains_t req, double timeout_s) {
-    req.utime = wall_us();
-    req.request_id = new_request_id();
     req.owner = owner_;
-    waiting_for_ = req.request_id;
+    ids_.clear();
     answered_ = false;
-    bus_.publish(gains_set_channel(owner_), req);
-    if (!pump_until(bus_, [&] { return answered_; }, timeout_s))
+    const int64_t end = monotonic_us() + int64_t(timeout_s * 1e6);
+    while (!answered_ && !stop_requested()) {
+      const double left = double(end - monotonic_us()) / 1e6;
+      if (left <= 0) break;
+      req.utime = wall_us();
+      req.request_id = new_request_id();
+      ids_.insert(req.request_id);
+      bus_.publish(gains_set_channel(owner_), req);
+      pump_until(bus_, [&] { return answered_; }, std::min(1.0, left));
+    }
+    if (!answered_)
       throw BusError(fmt::format(
           "no answer from '{}' within {} (sent on '{}', nothing came back on '{}'): is {} running on {}{}?", owner_,
           seconds_text(timeout_s), bus_.channel(gains_set_channel(owner_)), bus_.channel(gains_channel(owner_)),
@@ -36,14 +47,14 @@ class GainsClient {
 
  private:
   void on_answer(const lcm::ReceiveBuffer*, const std::string&, const pid_gains_t* m) {
-    if (m->request_id == waiting_for_) {
+    if (!answered_ && ids_.count(m->request_id)) {
       answer_ = *m;
       answered_ = true;
     }
   }
   Bus& bus_;
   std::string owner_;
-  int64_t waiting_for_ = 0;
+  std::set<int64_t> ids_;
   bool answered_ = false;
   pid_gains_t answer_;
 };
