@@ -108,12 +108,13 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
   io_.publish_state(1.0);
   while (!stop && !done()) {
     const int64_t deadline = base_us + std::llround(double(sim_.step_count() + 1 - base_step) * period_us_);
-    for (int64_t now = monotonic_us(); now < deadline; now = monotonic_us()) {
+    int64_t now = monotonic_us();
+    do {  // at least one pass, so messages are handled even while catching up
       if (stop) return true;
       tick_statistics(now);
       if (!io_.poll_until(std::min({deadline, now + kMaxWaitSliceUs, w_.start_us + kStatsPeriodUs}))) return false;
-    }
-    const int64_t now = monotonic_us();
+      now = monotonic_us();
+    } while (now < deadline);
     const int64_t late = now - deadline;
     if (late > std::max<int64_t>(kMaxCatchUpUs, std::llround(10 * period_us_))) {
       w_.missed += std::llround(double(late) / period_us_);

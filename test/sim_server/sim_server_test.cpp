@@ -166,6 +166,20 @@ TEST(sim_e2e, ActuatorSpaceOnTheWireReductionTwoMovesTheJointToHalfTheCommand) {
   EXPECT_NE(server.output().find("position direct (no pid_gains)"), std::string::npos);
 }
 
+TEST(sim_e2e, ControlRateBelowThePhysicsRateSetsThePeriodAndSimTime) {
+  SimServerProcess server;
+  std::string why;
+  ASSERT_TRUE(server.start({"--lockstep", "--lockstep-timeout", "0.1", "--physics-rate", "2000", "--control-rate",
+                            "500", "--duration", "0.2"},
+                           kTurretUrdf, kTurretYaml, &why))
+      << why;
+  FakeController cm(server.lc);
+  ASSERT_TRUE(cm.run_until_step(100, 10.0)) << server.output();
+  EXPECT_EQ(cm.states.back().period_us, 2000);
+  EXPECT_EQ(cm.states.back().utime, 200000);
+  EXPECT_EQ(server.process->wait(5.0), 0) << server.output();  // --duration 0.2 s of sim time: done
+}
+
 TEST(sim_e2e, MalformedNanWrongSizeAndForeignCommandsAreDroppedAndCounted) {
   SimServerProcess server;
   std::string why;
