@@ -337,6 +337,39 @@ TEST(ControllerManagerE2E, TrajectoryFollowsWithinToleranceThenFailsWhenItIsImpo
   std::printf("tight trajectory: %s\n", t.message.c_str());
 }
 
+TEST(ControllerManagerE2E, EffortTrajectoryControllerTracksAGravityLoadedJoint) {
+  Session s;
+  ASSERT_TRUE(s.ready) << s.proc.output();
+  Recorder<trajectory_status_t> result(s.lc, "effort_trajectory/result");
+  auto act = actuators_for(test_bot());
+  find_actuator(act, "arm_motor").gravity = 10.0;
+  find_actuator(act, "arm_motor").inertia = 0.2;
+  find_actuator(act, "spin_motor").inertia = 0.1;
+  FakeHardware hw(s.url, act);
+  hw.pause(true);
+  hw.start();
+  s.load_and_start({"effort_trajectory"});
+  hw.pause(false);
+  ASSERT_TRUE(hw.run_steps(10, 10));
+  joint_trajectory_t g{};
+  g.goal_id = 3;
+  g.joint_names = {"spin", "arm"};
+  g.num_joints = 2;
+  for (auto [t, spin, arm] : {std::tuple{1.0, 1.0, 0.5}, {2.0, 3.0, 1.0}, {3.0, 6.0, 0.8}}) {
+    trajectory_point_t p{};
+    p.time_from_start = t;
+    p.positions = {spin, arm};
+    p.num_positions = 2;
+    g.points.push_back(p);
+  }
+  g.num_points = 3;
+  s.lc.publish("effort_trajectory/command", &g);
+  ASSERT_TRUE(pump_until(s.lc, [&] { return !result.messages.empty(); }, 30.0)) << s.proc.output();
+  EXPECT_EQ(result.messages[0].status, trajectory_status_t::SUCCEEDED) << result.messages[0].message;
+  std::printf("effort trajectory: %s\n", result.messages[0].message.c_str());
+  EXPECT_NEAR(hw.actuator("arm_motor").position, 0.8, 0.02);
+}
+
 TEST(ControllerManagerE2E, JointStatesAtPublishRateInTransmissionOrder) {
   Session s;
   ASSERT_TRUE(s.ready) << s.proc.output();
