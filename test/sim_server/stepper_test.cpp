@@ -19,8 +19,10 @@ using lcm_control::testing::Recorder;
 using lcm_control::testing::source;
 
 // Wall-clock assertions mean nothing when the machine runs several times more work than it has cores
-// (stalls of 100+ ms were seen at a load of 10 on 2 cores); those runs skip them and say why.
+// (stalls of 100+ ms were seen at a load of 10 on 2 cores); those runs skip them and say why, unless
+// LCM_CONTROL_REALTIME_TESTS=force.
 bool overloaded(std::string& why) {
+  if (const char* force = getenv("LCM_CONTROL_REALTIME_TESTS"); force && std::string(force) == "force") return false;
   double load[1] = {0};
   const long cores = sysconf(_SC_NPROCESSORS_ONLN);
   if (getloadavg(load, 1) != 1 || load[0] <= 2.0 * double(cores)) return false;
