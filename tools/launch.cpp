@@ -46,11 +46,14 @@ void say(const std::string& line) {
 
 class Supervisor {
  public:
-  Supervisor(Bus& bus, std::vector<std::pair<std::string, std::string>> env) : bus_(bus), env_(std::move(env)) {
+  Supervisor(Bus* bus, std::vector<std::pair<std::string, std::string>> env) : bus_(bus), env_(std::move(env)) {
     exe_dir_ = std::filesystem::read_symlink("/proc/self/exe").parent_path().string();
-    bus_.lcm().subscribe(bus_.channel(channels::kHardwareState), &Supervisor::on_state, this);
-    bus_.lcm().subscribe(bus_.channel(channels::kCmResponse), &Supervisor::on_cm, this);
+    state_sub_ = bus_->lcm().subscribe(bus_->channel(channels::kHardwareState), &Supervisor::on_state, this);
+    bus_->lcm().subscribe(bus_->channel(channels::kCmResponse), &Supervisor::on_cm, this);
   }
+  // Once everything is up launch needs no bus; the caller then closes it (a
+  // udpm socket receives every message, which costs CPU the simulation could use).
+  void drop_bus() { bus_ = nullptr; }
 
   Child& start(const std::string& name, std::vector<std::string> argv, bool required) {
     auto c = std::make_unique<Child>();
@@ -100,11 +103,17 @@ class Supervisor {
         pfds.push_back({c->fd, POLLIN, 0});
         owners.push_back(c.get());
       }
-    pfds.push_back({bus_.lcm().getFileno(), POLLIN, 0});
+    if (bus_) pfds.push_back({bus_->lcm().getFileno(), POLLIN, 0});
     poll(pfds.data(), pfds.size(), timeout_ms);
     for (size_t k = 0; k < owners.size(); ++k)
       if (pfds[k].revents) read_output(*owners[k]);
-    if (pfds.back().revents & POLLIN) bus_.lcm().handleTimeout(0);
+    if (bus_ && (pfds.back().revents & POLLIN))
+      for (int n = 0; n < 100 && bus_->lcm().handleTimeout(0) > 0; ++n) {
+      }
+    if (bus_ && state_seen_ && state_sub_) {  // one hardware/state is all launch needs
+      bus_->lcm().unsubscribe(state_sub_);
+      state_sub_ = nullptr;
+    }
     for (auto& c : children_) reap(*c, false);
   }
 
@@ -154,7 +163,7 @@ class Supervisor {
 
   // Sends LIST every 0.5 s until the controller manager answers.
   void poll_manager() {
-    if (cm_answered_) return;
+    if (cm_answered_ || !bus_) return;
     const int64_t now = monotonic_us();
     if (now - last_list_us_ < 500000) return;
     last_list_us_ = now;
@@ -164,7 +173,7 @@ class Supervisor {
     r.client = "launch";
     r.op = cm_request_t::LIST;
     r.strictness = cm_request_t::STRICT;
-    bus_.publish(channels::kCmRequest, r);
+    bus_->publish(channels::kCmRequest, r);
   }
   bool manager_answered() const { return cm_answered_; }
   bool hardware_seen() const { return state_seen_; }
@@ -228,7 +237,8 @@ class Supervisor {
     if (!c.clean() || !c.signalled) say(exit_text(c));
   }
 
-  Bus& bus_;
+  Bus* bus_;
+  lcm::Subscription* state_sub_ = nullptr;
   std::vector<std::pair<std::string, std::string>> env_;
   std::string exe_dir_;
   std::vector<std::unique_ptr<Child>> children_;
@@ -306,10 +316,10 @@ int main(int argc, char** argv) {
     }
 
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, ns);
-    std::vector<std::pair<std::string, std::string>> env{{"LCM_DEFAULT_URL", bus.url()}};
+    auto bus = std::make_unique<Bus>(bus_flags.lcm_url, ns);
+    std::vector<std::pair<std::string, std::string>> env{{"LCM_DEFAULT_URL", bus->url()}};
     if (!package_path.empty()) env.emplace_back("LCM_CONTROL_PACKAGE_PATH", fmt::format("{}", fmt::join(package_path, ":")));
-    Supervisor sup(bus, env);
+    Supervisor sup(bus.get(), env);
     Child *sim_c = nullptr, *cm_c = nullptr, *spawner_c = nullptr;
     std::vector<Child*> others;
     std::string failure;
@@ -330,13 +340,15 @@ int main(int argc, char** argv) {
       std::vector<std::string> waiting;
       if (sim_c && !sim_c->ready) waiting.push_back(plan.sim_name + " (no 'ready' line)");
       if (sim_c && sim_c->ready && !sup.hardware_seen())
-        waiting.push_back(fmt::format("{} (nothing on '{}')", plan.sim_name, bus.channel(channels::kHardwareState)));
+        waiting.push_back(fmt::format("{} (nothing on '{}')", plan.sim_name, bus->channel(channels::kHardwareState)));
       if (cm_c && !cm_c->ready) waiting.push_back(plan.cm_name + " (no 'ready' line)");
       if (cm_c && cm_c->ready && !sup.manager_answered())
-        waiting.push_back(fmt::format("{} (no answer on '{}')", plan.cm_name, bus.channel(channels::kCmResponse)));
+        waiting.push_back(fmt::format("{} (no answer on '{}')", plan.cm_name, bus->channel(channels::kCmResponse)));
       failure = fmt::format("not up within {}: {}", seconds_text(ready_timeout), fmt::join(waiting, ", "));
     }
     if (failure.empty() && !broken()) {
+      sup.drop_bus();
+      bus.reset();
       if (plan.state_publisher) others.push_back(&sup.start(plan.state_publisher_name, with_ns(rsp, ns), true));
       for (const auto& p : plan.processes) others.push_back(&sup.start(p.name, p.argv, p.required));
       if (!plan.controllers.empty()) {

@@ -10,30 +10,30 @@
 
 namespace lcm_control::tools {
 
-Spawner::Spawner(CmClient& cm, std::vector<std::string> names, SpawnOptions options)
-    : cm_(cm), names_(std::move(names)), o_(std::move(options)) {}
+Spawner::Spawner(std::vector<std::string> names, SpawnOptions options)
+    : names_(std::move(names)), o_(std::move(options)) {}
 
 void Spawner::say(const std::string& line) const {
   if (o_.say) o_.say(line);
 }
 
-void Spawner::spawn() {
+void Spawner::spawn(CmClient& cm) {
   std::set<std::string> unique;
   for (const auto& n : names_)
     if (!unique.insert(n).second) throw std::runtime_error(fmt::format("controller '{}' is named twice", n));
   try {
-    cm_.wait_for_manager(o_.timeout_s, [&] {
+    cm.wait_for_manager(o_.timeout_s, [&] {
       say(fmt::format("waiting up to {} for the controller manager on '{}'", seconds_text(o_.timeout_s),
-                      cm_.request_channel()));
+                      cm.request_channel()));
     });
     for (const auto& n : names_) {
-      const cm_response_t r = cm_.load({n}, o_.timeout_s);
+      const cm_response_t r = cm.load({n}, o_.timeout_s);
       if (!r.ok) throw std::runtime_error(fmt::format("controller '{}' failed to load: {}", n, r.message));
       loaded_.push_back(n);
       say(fmt::format("loaded {}", n));
     }
     if (o_.stopped) return;
-    const cm_response_t r = cm_.switch_controllers(names_, {}, true, o_.timeout_s);
+    const cm_response_t r = cm.switch_controllers(names_, {}, true, o_.timeout_s);
     if (!r.ok)
       throw std::runtime_error(fmt::format("could not start [{}] (one strict switch, so none started): {}",
                                            fmt::join(names_, ", "), r.message));
@@ -42,20 +42,20 @@ void Spawner::spawn() {
   } catch (const std::exception&) {
     // Undo, even after Ctrl-C (a second one cuts it short); keep the stop request.
     const int sig = clear_stop();
-    teardown(std::min(2.0, o_.timeout_s));
+    teardown(cm, std::min(2.0, o_.timeout_s));
     if (sig) request_stop(sig);
     throw;
   }
 }
 
-bool Spawner::teardown(double timeout_s) {
+bool Spawner::teardown(CmClient& cm, double timeout_s) {
   if (loaded_.empty()) return true;
   const int64_t end = monotonic_us() + int64_t(timeout_s * 1e6);
   auto left = [&] { return std::max(0.05, double(end - monotonic_us()) / 1e6); };
   bool all_ok = true;
   try {
     if (started_) {
-      const cm_response_t r = cm_.switch_controllers({}, loaded_, true, left());
+      const cm_response_t r = cm.switch_controllers({}, loaded_, true, left());
       if (!r.ok) {
         say(fmt::format("stopping [{}] was refused: {}", fmt::join(loaded_, ", "), r.message));
         all_ok = false;
@@ -64,7 +64,7 @@ bool Spawner::teardown(double timeout_s) {
     }
     while (!loaded_.empty()) {
       const std::string n = loaded_.back();
-      const cm_response_t r = cm_.unload({n}, left());
+      const cm_response_t r = cm.unload({n}, left());
       if (!r.ok) {
         say(fmt::format("unloading {} was refused: {}", n, r.message));
         all_ok = false;

@@ -1,6 +1,6 @@
-// Spawning a set of controllers as one unit, for the spawner program and launch:
-// load each, start them all in ONE strict switch, and later stop and unload
-// exactly those, with bounded waits.
+// Spawning a set of controllers as one unit (the spawner program): load each,
+// start them all in ONE strict switch, and later stop and unload exactly
+// those, with bounded waits. The client may be a new one at teardown.
 #pragma once
 
 #include <functional>
@@ -19,17 +19,17 @@ struct SpawnOptions {
 
 class Spawner {
  public:
-  Spawner(CmClient& cm, std::vector<std::string> names, SpawnOptions options);
+  Spawner(std::vector<std::string> names, SpawnOptions options);
 
   // Throws std::runtime_error "controller 'NAME': REASON" (or CmTimeout) on the
   // first failure, after unloading whatever it had loaded: never half-spawned.
-  void spawn();
+  void spawn(CmClient& cm);
 
   // Stops what spawn() started (one switch) and unloads what it loaded (reverse
   // order). Gives up at the first unanswered request, so it returns within about
   // timeout_s even when the manager is gone. Returns false if not all went well;
   // never throws.
-  bool teardown(double timeout_s);
+  bool teardown(CmClient& cm, double timeout_s);
 
   const std::vector<std::string>& loaded() const { return loaded_; }
   bool started() const { return started_; }
@@ -37,7 +37,6 @@ class Spawner {
  private:
   void say(const std::string& line) const;
 
-  CmClient& cm_;
   std::vector<std::string> names_;
   SpawnOptions o_;
   std::vector<std::string> loaded_;

@@ -29,16 +29,22 @@ int main(int argc, char** argv) {
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, bus_flags.ns);
-    CmClient cm(bus, "spawner");
     o.say = [](const std::string& line) { fmt::print(stderr, "spawner: {}\n", line); };
-    Spawner spawner(cm, names, o);
-    spawner.spawn();
+    Spawner spawner(names, o);
+    {
+      Bus bus(bus_flags.lcm_url, bus_flags.ns);
+      CmClient cm(bus, "spawner");
+      spawner.spawn(cm);
+    }
+    // Idle without an LCM socket: a udpm socket receives every message on the
+    // bus, which costs CPU the simulation could use.
     fmt::print(stderr, "spawner: ready: {} {} (Ctrl-C to stop and unload)\n", fmt::join(names, ", "),
                o.stopped ? "loaded" : "running");
-    while (!stop_requested()) handle_bus(bus, 100);
+    while (!stop_requested()) sleep_until_us(monotonic_us() + 1000000);
     clear_stop();
-    const bool ok = spawner.teardown(shutdown_timeout);
+    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    CmClient cm(bus, "spawner");
+    const bool ok = spawner.teardown(cm, shutdown_timeout);
     fmt::print(stderr, "spawner: {}\n", ok ? "stopped and unloaded, bye" : "exiting without a clean unload");
     return int(kExitOk);
   });
