@@ -40,6 +40,11 @@ class Controller {
   virtual void starting(const Time& now) = 0;
   virtual void update(const Time& now, double period) = 0;
   virtual void stopping(const Time& now) { (void)now; }
+  // From the current state after a hardware restart, resume or time jump.
+  virtual void restart(const Time& now) {
+    stopping(now);
+    starting(now);
+  }
 
   // The controller's own PIDs by joint, for run-time gains.
   virtual std::vector<std::string> pid_joints() const { return {}; }

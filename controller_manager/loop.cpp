@@ -46,10 +46,7 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
   if (restart) {
     ++restarts_;
     for (auto& s : slots_)
-      if (s->running) {
-        s->controller->stopping(now_);
-        s->controller->starting(now_);
-      }
+      if (s->running) s->controller->restart(now_);
   }
   for (auto& s : slots_) {
     if (!s->running) continue;

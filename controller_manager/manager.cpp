@@ -234,8 +234,16 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
   }
   if (silent_) {
     silent_ = false;
-    loop_.restart_next_cycle();
-    spdlog::info("hardware/state resumed at step {}: running controllers restart from the current state", st.step);
+    // In lockstep, time stands still while nobody answers: the next step of the
+    // same session continues where the controllers left off.
+    const bool continuous = st.lockstep && st.session == hw_.session() && loop_.has_state() &&
+                            (st.step == loop_.step() || st.step == loop_.step() + 1);
+    if (continuous) {
+      spdlog::info("hardware/state resumed at step {} (lockstep: time did not advance): controllers continue", st.step);
+    } else {
+      loop_.restart_next_cycle();
+      spdlog::info("hardware/state resumed at step {}: running controllers restart from the current state", st.step);
+    }
   }
   loop_.cycle(st, command_);
   command_pub_.publish(command_);

@@ -118,6 +118,13 @@ class JointTrajectoryController : public Controller {
     return nullptr;
   }
 
+  void restart(const Time& now) override {
+    if (goal_active_)
+      finish(now, trajectory_status_t::PREEMPTED,
+             "controller restarted from the current state (hardware restarted, resumed or jumped in time)");
+    starting(now);
+  }
+
   void starting(const Time& now) override {
     if (goal_active_) finish(now, trajectory_status_t::PREEMPTED, "controller restarted");
     for (size_t k = 0; k < joints_.size(); ++k) hold_pos_[k] = joints_[k]->position;

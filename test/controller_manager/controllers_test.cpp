@@ -58,7 +58,7 @@ joint_trajectory_t goal(int64_t id, std::vector<std::string> joints, std::vector
 }
 }  // namespace
 
-TEST(CmLoad, RefusalsSayWhy) {
+TEST(ControllerManagerLoad, RefusalsSayWhy) {
   Rig rig;
   Reply r = rig.load("nothere");
   EXPECT_FALSE(r.ok);
@@ -82,7 +82,7 @@ TEST(CmLoad, RefusalsSayWhy) {
   EXPECT_EQ(rig.cm->list().size(), 1u);
 }
 
-TEST(CmLoad, UnloadIsRefusedWhileRunning) {
+TEST(ControllerManagerLoad, UnloadIsRefusedWhileRunning) {
   Rig rig;
   start(rig, "slide_position");
   Reply r = rig.cm->unload("slide_position");
@@ -94,7 +94,7 @@ TEST(CmLoad, UnloadIsRefusedWhileRunning) {
   EXPECT_FALSE(rig.cm->unload("slide_position").ok);
 }
 
-TEST(CmForwardCommand, PositionStartsAtTheCurrentPositionThenFollows) {
+TEST(ControllerManagerForwardCommand, PositionStartsAtTheCurrentPositionThenFollows) {
   Rig rig;
   rig.actuator("slide_motor").position = 0.3;
   rig.cycle(3);
@@ -109,7 +109,7 @@ TEST(CmForwardCommand, PositionStartsAtTheCurrentPositionThenFollows) {
   EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.8);
 }
 
-TEST(CmForwardCommand, VelocityGoesThroughTheTransmission) {
+TEST(ControllerManagerForwardCommand, VelocityGoesThroughTheTransmission) {
   Rig rig;
   start(rig, "wheel_velocity");
   rig.cycle(3);
@@ -121,7 +121,7 @@ TEST(CmForwardCommand, VelocityGoesThroughTheTransmission) {
   EXPECT_NEAR(rig.joint("wheel").position, 0.5 + 2.0, 0.01);      // offset 0.5, 1 s at 2 rad/s
 }
 
-TEST(CmForwardCommand, EffortStartsAtZeroThenForwards) {
+TEST(ControllerManagerForwardCommand, EffortStartsAtZeroThenForwards) {
   Rig rig;
   start(rig, "arm_effort");
   rig.cycle(2);
@@ -133,7 +133,7 @@ TEST(CmForwardCommand, EffortStartsAtZeroThenForwards) {
   EXPECT_GT(rig.actuator("arm_motor").velocity, 0.0);
 }
 
-TEST(CmForwardCommand, GroupsTakeOneValuePerJointAndCountWrongSizes) {
+TEST(ControllerManagerForwardCommand, GroupsTakeOneValuePerJointAndCountWrongSizes) {
   Rig rig;
   start(rig, "pos_group");
   start(rig, "vel_group");
@@ -156,7 +156,7 @@ TEST(CmForwardCommand, GroupsTakeOneValuePerJointAndCountWrongSizes) {
   EXPECT_EQ(stats.dropped, 2);
 }
 
-TEST(CmJointStateController, PublishesFirstCycleAtItsRateInTransmissionOrder) {
+TEST(ControllerManagerJointStateController, PublishesFirstCycleAtItsRateInTransmissionOrder) {
   Rig rig;
   Recorder<joint_state_t> js(rig.bus.lcm(), "joint_states");
   start(rig, "joint_state_controller");
@@ -171,7 +171,7 @@ TEST(CmJointStateController, PublishesFirstCycleAtItsRateInTransmissionOrder) {
     EXPECT_NEAR(js.messages[k].utime - js.messages[k - 1].utime, 16667, 1000);
 }
 
-TEST(CmJointStateController, KeepsItsRateAfterTimeJumps) {
+TEST(ControllerManagerJointStateController, KeepsItsRateAfterTimeJumps) {
   Rig rig;
   Recorder<joint_state_t> js(rig.bus.lcm(), "joint_states");
   start(rig, "joint_state_controller");
@@ -188,7 +188,7 @@ TEST(CmJointStateController, KeepsItsRateAfterTimeJumps) {
   EXPECT_NEAR(static_cast<double>(js.messages.size() - n), 30.0, 1.0);
 }
 
-TEST(CmJointStateController, SubsetOrderAndExtraJoints) {
+TEST(ControllerManagerJointStateController, SubsetOrderAndExtraJoints) {
   Rig rig;
   Recorder<joint_state_t> js(rig.bus.lcm(), "joint_states");
   const Reply r = rig.load("jsc_subset");
@@ -206,7 +206,7 @@ TEST(CmJointStateController, SubsetOrderAndExtraJoints) {
   EXPECT_DOUBLE_EQ(m.effort[2], 2.0);
 }
 
-TEST(CmPidControllers, EffortPositionHoldsAGravityLoadedJoint) {
+TEST(ControllerManagerPidControllers, EffortPositionHoldsAGravityLoadedJoint) {
   Rig rig;
   auto& arm = rig.actuator("arm_motor");
   arm.gravity = 10.0;
@@ -224,7 +224,7 @@ TEST(CmPidControllers, EffortPositionHoldsAGravityLoadedJoint) {
   EXPECT_NEAR(rig.actuator("arm_motor").position, 1.0, 0.01);
 }
 
-TEST(CmPidControllers, PositionErrorIsShortestAngleOnlyForContinuousJoints) {
+TEST(ControllerManagerPidControllers, PositionErrorIsShortestAngleOnlyForContinuousJoints) {
   Rig rig;
   rig.actuator("wheel_motor").position = (0.2 - 0.5) * 10;  // wheel joint at 0.2
   rig.actuator("arm_motor").position = -2.9;
@@ -239,7 +239,7 @@ TEST(CmPidControllers, PositionErrorIsShortestAngleOnlyForContinuousJoints) {
   EXPECT_NEAR(rig.joint("wheel").position, -0.2, 0.01);
 }
 
-TEST(CmPidControllers, EffortVelocityReachesItsSetPointAndPublishesState) {
+TEST(ControllerManagerPidControllers, EffortVelocityReachesItsSetPointAndPublishesState) {
   Rig rig;
   Recorder<controller_state_t> st(rig.bus.lcm(), "spin_velocity/state");
   start(rig, "spin_velocity");
@@ -252,7 +252,7 @@ TEST(CmPidControllers, EffortVelocityReachesItsSetPointAndPublishesState) {
   EXPECT_NEAR(st.messages.back().process_value, 3.0, 0.05);
 }
 
-TEST(CmPidControllers, GainsAtRunTime) {
+TEST(ControllerManagerPidControllers, GainsAtRunTime) {
   Rig rig;
   ASSERT_TRUE(rig.load("arm_position").ok);
   Controller& c = *rig.cm->loop().slots()[0]->controller;
@@ -283,7 +283,7 @@ TEST(CmPidControllers, GainsAtRunTime) {
   EXPECT_TRUE(has(ans.message, "no PID for joint 'slide'")) << ans.message;
 }
 
-TEST(CmPidControllers, GainsOverLcm) {
+TEST(ControllerManagerPidControllers, GainsOverLcm) {
   Rig rig;
   Recorder<pid_gains_t> answers(rig.bus.lcm(), "spin_velocity/gains");
   ASSERT_TRUE(rig.load("spin_velocity").ok);
@@ -297,7 +297,7 @@ TEST(CmPidControllers, GainsOverLcm) {
   EXPECT_EQ(answers.messages[0].p, 11);
 }
 
-TEST(CmTrajectoryController, FollowsThreeWaypointsAndSucceeds) {
+TEST(ControllerManagerTrajectoryController, FollowsThreeWaypointsAndSucceeds) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory/result");
   Recorder<trajectory_status_t> feedback(rig.bus.lcm(), "trajectory/feedback");
@@ -314,7 +314,7 @@ TEST(CmTrajectoryController, FollowsThreeWaypointsAndSucceeds) {
   EXPECT_GE(feedback.messages.size(), 25u);  // 20 Hz over ~1.5 s
 }
 
-TEST(CmTrajectoryController, ImpossiblePathToleranceFailsNamingJointAndError) {
+TEST(ControllerManagerTrajectoryController, ImpossiblePathToleranceFailsNamingJointAndError) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory_tight/result");
   start(rig, "trajectory_tight");
@@ -327,7 +327,7 @@ TEST(CmTrajectoryController, ImpossiblePathToleranceFailsNamingJointAndError) {
   EXPECT_TRUE(has(r.message, "exceeds 0.000001")) << r.message;
 }
 
-TEST(CmTrajectoryController, BadGoalsAreRejectedAndNewGoalsPreempt) {
+TEST(ControllerManagerTrajectoryController, BadGoalsAreRejectedAndNewGoalsPreempt) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory/result");
   start(rig, "trajectory");
@@ -350,7 +350,7 @@ TEST(CmTrajectoryController, BadGoalsAreRejectedAndNewGoalsPreempt) {
   EXPECT_EQ(result.messages[4].status, trajectory_status_t::SUCCEEDED) << result.messages[4].message;
 }
 
-TEST(CmTrajectoryController, EffortVariantTracksWithItsGains) {
+TEST(ControllerManagerTrajectoryController, EffortVariantTracksWithItsGains) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "effort_trajectory/result");
   auto& arm = rig.actuator("arm_motor");

@@ -41,7 +41,7 @@ void fill_state(hardware_state_t& state, const std::vector<FakeActuator>& actuat
 struct FakeHardwareOptions {
   bool lockstep = true;
   int period_us = 1000;
-  double republish_s = 0.2;  // lockstep: republish the state while nobody answers
+  double republish_s = 0.05;  // lockstep: republish the state while nobody answers
   std::string ns;            // channel prefix
 };
 

@@ -53,7 +53,7 @@ const Registry& test_registry() {
 }
 }  // namespace
 
-TEST(CmLoop, StopAStartBOnOneJointHappensInOneCycle) {
+TEST(ControllerManagerLoop, StopAStartBOnOneJointHappensInOneCycle) {
   g_updates.clear();
   Rig rig(test_registry(), data("test_bot.urdf"), data("switch_test.yaml"));
   ASSERT_TRUE(rig.load("rec_a").ok);
@@ -78,7 +78,7 @@ TEST(CmLoop, StopAStartBOnOneJointHappensInOneCycle) {
   }
 }
 
-TEST(CmLoop, SwitchWithoutHardwareAppliesAtOnce) {
+TEST(ControllerManagerLoop, SwitchWithoutHardwareAppliesAtOnce) {
   Rig rig;
   ASSERT_TRUE(rig.load("slide_position").ok);
   std::optional<Reply> got;
@@ -88,8 +88,9 @@ TEST(CmLoop, SwitchWithoutHardwareAppliesAtOnce) {
   EXPECT_TRUE(has(got->message, "switched at once (no hardware state received yet)")) << got->message;
 }
 
-TEST(CmLoop, SilenceStopsUpdatesAndResumeRestartsFromTheCurrentState) {
+TEST(ControllerManagerLoop, SilenceStopsUpdatesAndResumeRestartsFromTheCurrentState) {
   Rig rig;
+  rig.lockstep = false;
   ASSERT_TRUE(rig.load("slide_position").ok);
   ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
   rig.cycle(5);
@@ -111,7 +112,7 @@ TEST(CmLoop, SilenceStopsUpdatesAndResumeRestartsFromTheCurrentState) {
   EXPECT_DOUBLE_EQ(rig.commands.back().command[1], 0.7);
 }
 
-TEST(CmLoop, NewSessionOrTimeGoingBackwardsRestartsControllers) {
+TEST(ControllerManagerLoop, NewSessionOrTimeGoingBackwardsRestartsControllers) {
   Rig rig;
   ASSERT_TRUE(rig.load("slide_position").ok);
   ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
@@ -134,7 +135,7 @@ TEST(CmLoop, NewSessionOrTimeGoingBackwardsRestartsControllers) {
   EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.2);
 }
 
-TEST(CmLoop, RepeatedStepIsAnsweredWithoutUpdating) {
+TEST(ControllerManagerLoop, RepeatedStepIsAnsweredWithoutUpdating) {
   Rig rig;
   ASSERT_TRUE(rig.load("arm_position").ok);
   ASSERT_TRUE(rig.switch_({"arm_position"}, {}).ok);
@@ -146,7 +147,7 @@ TEST(CmLoop, RepeatedStepIsAnsweredWithoutUpdating) {
   EXPECT_EQ(rig.cm->last_command().step, rig.step - 1);
 }
 
-TEST(CmLoop, UnclaimedActuatorsGetModeNone) {
+TEST(ControllerManagerLoop, UnclaimedActuatorsGetModeNone) {
   Rig rig;
   ASSERT_TRUE(rig.load("wheel_velocity").ok);
   ASSERT_TRUE(rig.switch_({"wheel_velocity"}, {}).ok);
@@ -157,14 +158,14 @@ TEST(CmLoop, UnclaimedActuatorsGetModeNone) {
         << c.name[a];
 }
 
-TEST(CmLoop, HardwareThatDoesNotMatchTheUrdfIsNotAnswered) {
+TEST(ControllerManagerLoop, HardwareThatDoesNotMatchTheUrdfIsNotAnswered) {
   Rig rig;
   rig.actuator("arm_motor").mode = hardware_command_t::MODE_POSITION;
   rig.cycle(1);
   EXPECT_FALSE(rig.cm->loop().has_state());
 }
 
-TEST(CmLoop, StatisticsCoverCyclesAndControllers) {
+TEST(ControllerManagerLoop, StatisticsCoverCyclesAndControllers) {
   Rig rig;
   ASSERT_TRUE(rig.load("joint_state_controller").ok);
   ASSERT_TRUE(rig.load("arm_position").ok);
@@ -180,7 +181,7 @@ TEST(CmLoop, StatisticsCoverCyclesAndControllers) {
   EXPECT_EQ(rig.cm->statistics().cycles, 0);
 }
 
-TEST(CmLoop, ReloadRefusesWhileLoadedUnlessForced) {
+TEST(ControllerManagerLoop, ReloadRefusesWhileLoadedUnlessForced) {
   Rig rig;
   ASSERT_TRUE(rig.load("slide_position").ok);
   ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
@@ -198,7 +199,7 @@ TEST(CmLoop, ReloadRefusesWhileLoadedUnlessForced) {
   EXPECT_TRUE(rig.cm->list().empty());
 }
 
-TEST(CmLoop, NoAllocationOnTheLoopPath) {
+TEST(ControllerManagerLoop, NoAllocationOnTheLoopPath) {
   Rig rig;
   for (const char* n : {"joint_state_controller", "trajectory", "vel_group", "arm_position", "spin_velocity"})
     ASSERT_TRUE(rig.load(n).ok) << n;
@@ -236,7 +237,7 @@ TEST(CmLoop, NoAllocationOnTheLoopPath) {
   EXPECT_EQ(lcm_control::testing::allocations(), 0);
 }
 
-TEST(CmLoop, EStopReleaseRestartsControllers) {
+TEST(ControllerManagerLoop, EStopReleaseRestartsControllers) {
   Rig rig;
   ASSERT_TRUE(rig.load("slide_position").ok);
   ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
@@ -249,4 +250,17 @@ TEST(CmLoop, EStopReleaseRestartsControllers) {
   rig.cycle(1);                                 // released
   EXPECT_EQ(rig.cm->loop().restarts(), restarts + 1);
   EXPECT_DOUBLE_EQ(rig.commands.back().command[1], 0.4);
+}
+
+TEST(ControllerManagerLoop, LockstepResumeWithTheNextStepContinuesWithoutRestart) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("trajectory").ok);
+  ASSERT_TRUE(rig.switch_({"trajectory"}, {}).ok);
+  rig.cycle(5);
+  rig.cm->poll(monotonic_us() + 1000000, true);  // a lost message: the hardware republishes later
+  EXPECT_FALSE(rig.cm->ticking());
+  const int64_t restarts = rig.cm->loop().restarts();
+  rig.cycle(2);
+  EXPECT_EQ(rig.cm->loop().restarts(), restarts);
+  EXPECT_TRUE(rig.cm->ticking());
 }

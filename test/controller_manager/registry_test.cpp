@@ -4,14 +4,14 @@
 
 using namespace lcm_control::cm;
 
-TEST(CmRegistry, EveryBuiltinTypeCanBeCreated) {
+TEST(ControllerManagerRegistry, EveryBuiltinTypeCanBeCreated) {
   const auto& r = builtin_registry();
   EXPECT_EQ(r.types().size(), 12u);
   for (const auto& t : r.types()) EXPECT_NE(r.create(t), nullptr) << t;
   EXPECT_EQ(r.create("nope/Nope"), nullptr);
 }
 
-TEST(CmRegistry, ClosestMatchByEditDistance) {
+TEST(ControllerManagerRegistry, ClosestMatchByEditDistance) {
   const auto& r = builtin_registry();
   EXPECT_EQ(r.closest("position_controllers/JointPositionControler"), "position_controllers/JointPositionController");
   EXPECT_EQ(r.closest("effort_controller/JointEffortController"), "effort_controllers/JointEffortController");
@@ -21,7 +21,7 @@ TEST(CmRegistry, ClosestMatchByEditDistance) {
   for (const auto& t : r.types()) EXPECT_NE(m.find(t), std::string::npos) << t;
 }
 
-TEST(CmRegistry, EditDistance) {
+TEST(ControllerManagerRegistry, EditDistance) {
   EXPECT_EQ(edit_distance("", "abc"), 3u);
   EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
   EXPECT_EQ(edit_distance("same", "same"), 0u);

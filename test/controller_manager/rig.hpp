@@ -28,7 +28,7 @@ struct Rig {
   // n control steps of `period_us` each.
   void cycle(int n = 1) {
     for (int k = 0; k < n; ++k) {
-      fill_state(state, act, step, session, period_us, true);
+      fill_state(state, act, step, session, period_us, lockstep);
       state.utime += time_offset_us;
       cm->on_hardware_state(state);
       const hardware_command_t& c = cm->last_command();
@@ -67,6 +67,7 @@ struct Rig {
   hardware_state_t state;
   int64_t step = 0, session = 42, time_offset_us = 0;
   int period_us = 1000;
+  bool lockstep = true;
 };
 
 }  // namespace lcm_control::testing

@@ -29,7 +29,7 @@ cm_request_t request(int64_t id, int8_t op, std::vector<std::string> names = {},
 }
 }  // namespace
 
-TEST(CmServices, RequestsDuringASwitchWaitForItInOrder) {
+TEST(ControllerManagerServices, RequestsDuringASwitchWaitForItInOrder) {
   Rig rig;
   Services services(*rig.cm, rig.bus);
   Recorder<cm_response_t> responses(rig.bus.lcm(), "controller_manager/response");
@@ -51,7 +51,7 @@ TEST(CmServices, RequestsDuringASwitchWaitForItInOrder) {
   EXPECT_EQ(list.controllers[1].state, "initialized");
 }
 
-TEST(CmServices, ListTypesAndEmptyNames) {
+TEST(ControllerManagerServices, ListTypesAndEmptyNames) {
   Rig rig;
   Services services(*rig.cm, rig.bus);
   Recorder<cm_response_t> responses(rig.bus.lcm(), "controller_manager/response");

@@ -17,7 +17,7 @@ struct Fixture {
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 }  // namespace
 
-TEST(CmSwitchPlan, StopAStartBOnOneJointIsFine) {
+TEST(ControllerManagerSwitchPlan, StopAStartBOnOneJointIsFine) {
   Fixture f;
   const auto p = plan_switch(f.loaded, {"b"}, {"a"}, 2);
   ASSERT_TRUE(p.ok) << p.message;
@@ -25,7 +25,7 @@ TEST(CmSwitchPlan, StopAStartBOnOneJointIsFine) {
   EXPECT_EQ(p.start, std::vector<int>{1});
 }
 
-TEST(CmSwitchPlan, ConflictIsRefusedWhateverTheStrictness) {
+TEST(ControllerManagerSwitchPlan, ConflictIsRefusedWhateverTheStrictness) {
   Fixture f;
   for (int strictness : {1, 2}) {
     const auto p = plan_switch(f.loaded, {"b"}, {}, strictness);
@@ -36,7 +36,7 @@ TEST(CmSwitchPlan, ConflictIsRefusedWhateverTheStrictness) {
   EXPECT_TRUE(has(p.message, "controllers 'c' and 'd' would both claim joint 'j2'")) << p.message;
 }
 
-TEST(CmSwitchPlan, StrictRefusesUnknownNotRunningAndAlreadyRunning) {
+TEST(ControllerManagerSwitchPlan, StrictRefusesUnknownNotRunningAndAlreadyRunning) {
   Fixture f;
   auto p = plan_switch(f.loaded, {"zz"}, {}, 2);
   EXPECT_FALSE(p.ok);
@@ -49,7 +49,7 @@ TEST(CmSwitchPlan, StrictRefusesUnknownNotRunningAndAlreadyRunning) {
   EXPECT_TRUE(has(p.message, "cannot start 'a': it is already running")) << p.message;
 }
 
-TEST(CmSwitchPlan, BestEffortDropsThoseEntriesAndSaysSo) {
+TEST(ControllerManagerSwitchPlan, BestEffortDropsThoseEntriesAndSaysSo) {
   Fixture f;
   const auto p = plan_switch(f.loaded, {"zz", "a", "c"}, {"d"}, 1);
   ASSERT_TRUE(p.ok) << p.message;
@@ -58,7 +58,7 @@ TEST(CmSwitchPlan, BestEffortDropsThoseEntriesAndSaysSo) {
   ASSERT_EQ(p.notes.size(), 3u);
 }
 
-TEST(CmSwitchPlan, SameNameInBothListsAndBadStrictnessAreRefused) {
+TEST(ControllerManagerSwitchPlan, SameNameInBothListsAndBadStrictnessAreRefused) {
   Fixture f;
   EXPECT_FALSE(plan_switch(f.loaded, {"b"}, {"b"}, 1).ok);
   const auto p = plan_switch(f.loaded, {"c"}, {}, 7);

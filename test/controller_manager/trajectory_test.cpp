@@ -12,7 +12,7 @@ SplineState at(const Trajectory& t, double time, size_t j = 0) {
 }
 }  // namespace
 
-TEST(CmTrajectory, CubicPassesWaypointsWithTheirVelocities) {
+TEST(ControllerManagerTrajectory, CubicPassesWaypointsWithTheirVelocities) {
   Waypoint a{1.0, {1.0}, {0.5}, {}}, b{2.0, {0.0}, {0.0}, {}};
   const auto t = Trajectory::build(0.0, {SplineState{0, 0, 0}}, {a, b});
   EXPECT_NEAR(at(t, 0.0).pos, 0.0, 1e-12);
@@ -24,7 +24,7 @@ TEST(CmTrajectory, CubicPassesWaypointsWithTheirVelocities) {
   EXPECT_DOUBLE_EQ(t.end_time(), 2.0);
 }
 
-TEST(CmTrajectory, PositionsOnlyIsMonotoneBetweenMonotoneWaypoints) {
+TEST(ControllerManagerTrajectory, PositionsOnlyIsMonotoneBetweenMonotoneWaypoints) {
   std::vector<Waypoint> w{{1.0, {0.2}, {}, {}}, {1.5, {0.9}, {}, {}}, {3.0, {1.0}, {}, {}}};
   const auto t = Trajectory::build(0.0, {SplineState{0, 0, 0}}, w);
   double prev = -1;
@@ -38,7 +38,7 @@ TEST(CmTrajectory, PositionsOnlyIsMonotoneBetweenMonotoneWaypoints) {
   EXPECT_NEAR(at(t, 3.0).vel, 0.0, 1e-9);
 }
 
-TEST(CmTrajectory, QuinticMatchesPositionVelocityAndAcceleration) {
+TEST(ControllerManagerTrajectory, QuinticMatchesPositionVelocityAndAcceleration) {
   Waypoint a{2.0, {1.0}, {0.3}, {-0.2}};
   const auto t = Trajectory::build(1.0, {SplineState{0.5, 0.1, 0.4}}, {a});
   const auto s0 = at(t, 1.0), s1 = at(t, 2.0 - 1e-9);
@@ -50,7 +50,7 @@ TEST(CmTrajectory, QuinticMatchesPositionVelocityAndAcceleration) {
   EXPECT_NEAR(s1.acc, -0.2, 1e-6);
 }
 
-TEST(CmTrajectory, HoldStaysPut) {
+TEST(ControllerManagerTrajectory, HoldStaysPut) {
   auto t = Trajectory::hold(5.0, {1.0, -2.0});
   EXPECT_EQ(at(t, 7.0, 1).pos, -2.0);
   const double p[] = {3.0, 4.0};
