@@ -1,0 +1,62 @@
+// bench_pingpong: the round-trip floors on their own (two processes), and the
+// echo servers bench/run starts for bench_loop.
+//   bench_pingpong udp-echo PORT  | bench_pingpong udp-ping PORT N WARMUP PING_BYTES PONG_BYTES
+//   bench_pingpong lcm-echo URL   | bench_pingpong lcm-ping URL N WARMUP PING_BYTES PONG_BYTES
+// The ping side prints "min_us p50_us p99_us max_us lost".
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "bench/pingpong.hpp"
+
+namespace {
+
+using namespace lcm_control::bench;
+
+template <class Pinger>
+int ping(Pinger& p, int n, int warmup) {
+  std::vector<double> rtt;
+  rtt.reserve(size_t(n));
+  int lost = 0;
+  for (int k = 0; k < n + warmup; ++k) {
+    const double us = p.round_trip_us();
+    if (us < 0)
+      ++lost;
+    else if (k >= warmup)
+      rtt.push_back(us);
+  }
+  const RttSummary s = summarize(rtt, lost);
+  std::printf("%.2f %.2f %.2f %.2f %d\n", s.min, s.p50, s.p99, s.max, s.lost);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string mode = argc > 1 ? argv[1] : "";
+  auto arg = [&](int k) { return k < argc ? std::atoi(argv[k]) : 0; };
+  try {
+    if (mode == "udp-echo" && argc == 3) return udp_echo(arg(2));
+    if (mode == "lcm-echo" && argc == 3) return lcm_echo(argv[2]);
+    if (mode == "udp-ping" && argc == 7) {
+      UdpPinger p(arg(2), arg(5), arg(6));
+      return ping(p, arg(3), arg(4));
+    }
+    if (mode == "lcm-ping" && argc == 7) {
+      LcmPinger p(argv[2], arg(5), arg(6));
+      if (!p.good() || !p.wait_for_echo(5)) {
+        std::fprintf(stderr, "bench_pingpong: no lcm-echo answers on %s\n", argv[2]);
+        return 1;
+      }
+      return ping(p, arg(3), arg(4));
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_pingpong: %s\n", e.what());
+    return 1;
+  }
+  std::fprintf(stderr,
+               "usage: bench_pingpong udp-echo PORT | udp-ping PORT N WARMUP PING_BYTES PONG_BYTES |\n"
+               "       lcm-echo URL | lcm-ping URL N WARMUP PING_BYTES PONG_BYTES\n");
+  return 2;
+}

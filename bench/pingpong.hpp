@@ -1,0 +1,64 @@
+// Round-trip floors for the loop benchmark, shared by bench_pingpong and
+// bench_loop: a raw UDP ping-pong on loopback and a bare LCM ping-pong (raw
+// bytes on PING, answered on PONG), with echo servers that answer with as many
+// bytes as the first 4 bytes of the ping ask for.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace lcm_control::bench {
+
+int64_t now_ns();
+
+// Sorted-copy quantile (nearest rank), NaN for an empty set.
+double quantile(std::vector<double> v, double f);
+
+struct RttSummary {
+  double min = 0, p50 = 0, p99 = 0, max = 0;
+  int n = 0, lost = 0;
+};
+RttSummary summarize(const std::vector<double>& rtt_us, int lost);
+
+// Blocking UDP on 127.0.0.1 against `udp_echo(port)`.
+class UdpPinger {
+ public:
+  UdpPinger(int port, int ping_bytes, int pong_bytes);
+  ~UdpPinger();
+  UdpPinger(const UdpPinger&) = delete;
+  UdpPinger& operator=(const UdpPinger&) = delete;
+  // One round trip in microseconds; negative if no answer within timeout_ms.
+  double round_trip_us(int timeout_ms = 1000);
+
+ private:
+  int fd_ = -1;
+  int ping_bytes_;
+  std::vector<char> buf_;
+  std::vector<char> out_;
+  std::vector<unsigned char> to_;  // sockaddr_in
+};
+
+// Bare LCM against `lcm_echo(url)`: nothing but publish and handle.
+class LcmPinger {
+ public:
+  LcmPinger(const std::string& url, int ping_bytes, int pong_bytes);
+  bool good() const { return lc_.good(); }
+  // Pings until the echo answers (it may still be subscribing); false on timeout.
+  bool wait_for_echo(double timeout_s);
+  double round_trip_us(int timeout_ms = 1000);
+
+ private:
+  void on_pong(const lcm::ReceiveBuffer*, const std::string&) { got_ = true; }
+  lcm::LCM lc_;
+  std::vector<uint8_t> ping_;
+  bool got_ = false;
+};
+
+// Echo servers; they run until killed.
+int udp_echo(int port);
+int lcm_echo(const std::string& url);
+
+}  // namespace lcm_control::bench

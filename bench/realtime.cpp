@@ -1,0 +1,146 @@
+// bench_realtime: listens to a real-time sim_server run and reports its pacing:
+// the period between hardware/state messages as the controller side receives
+// them (error |period - nominal|: p50, p99, max), and what sim_server's and
+// controller_manager's 1 Hz statistics say (missed cycles, overruns, the sim's
+// own worst period, its real-time factor). The first `--skip` seconds are
+// start-up and not counted. Exits after `--seconds` or 2 s without a state.
+//   bench_realtime --lcm-url URL [--seconds S] [--skip S]
+//   bench_realtime --timer-floor S [--period-us P] [--timer-slack-ns N]
+// The second form is the floor: a bare loop sleeping to absolute 1 kHz deadlines
+// (clock_nanosleep on CLOCK_MONOTONIC, what sim_server's pacing comes down to),
+// printing "timer N P50_ERR P99_ERR MAX_ERR MISSED" (MISSED: periods > 2x nominal).
+// --timer-slack-ns sets the thread's timer slack first (Linux default 50000 ns
+// for normal threads, which every sleep and ppoll timeout may be late by).
+// Prints one line:
+//   realtime N LOST P50_ERR P99_ERR MAX_ERR SIM_MAX_ERR MISSED OVERRUNS CM_MISSED RTF
+// (errors in microseconds; LOST: states that never arrived here)
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sys/prctl.h>
+
+#include <ctime>
+#include <string>
+#include <vector>
+
+#include "bench/pingpong.hpp"
+#include "common/bus.hpp"
+#include "lcm_control/hardware_state_t.hpp"
+#include "lcm_control/loop_stats_t.hpp"
+
+namespace {
+
+using namespace lcm_control;
+using lcm_control::bench::now_ns;
+using lcm_control::bench::quantile;
+
+struct Listener {
+  int64_t skip_until_ns = 0;
+  std::vector<double> period_err_us;
+  int64_t last_ns = -1, last_step = -1;
+  double nominal_us = 1000, rtf = std::nan("");
+  int64_t states = 0, lost = 0, missed = 0, overruns = 0, cm_missed = 0;
+  double sim_max_err = 0;
+
+  void on_state(const lcm::ReceiveBuffer*, const std::string&, const hardware_state_t* s) {
+    const int64_t now = now_ns();  // when the controller side gets it (recv_utime is the wall clock, not monotonic)
+    ++states;
+    nominal_us = s->period_us;
+    rtf = s->real_time_factor;
+    if (now >= skip_until_ns && last_ns >= 0) {
+      if (s->step == last_step + 1)
+        period_err_us.push_back(std::abs(double(now - last_ns) / 1e3 - nominal_us));
+      else if (s->step > last_step + 1)
+        lost += s->step - last_step - 1;
+    }
+    last_ns = now;
+    last_step = s->step;
+  }
+  void on_sim_stats(const lcm::ReceiveBuffer*, const std::string&, const loop_stats_t* s) {
+    if (now_ns() < skip_until_ns) return;
+    missed += s->missed;
+    overruns += s->overruns;
+    if (s->cycles > 1)
+      sim_max_err = std::max({sim_max_err, s->period_max_us - nominal_us, nominal_us - s->period_min_us});
+  }
+  void on_cm_stats(const lcm::ReceiveBuffer*, const std::string&, const loop_stats_t* s) {
+    if (now_ns() >= skip_until_ns) cm_missed += s->missed;
+  }
+};
+
+int timer_floor(double seconds, double period_us) {
+  const int64_t period_ns = int64_t(period_us * 1e3);
+  timespec next{};
+  clock_gettime(CLOCK_MONOTONIC, &next);
+  std::vector<double> err;
+  err.reserve(size_t(seconds * 1e6 / period_us) + 1);
+  int64_t last = -1, missed = 0;
+  const int64_t end = now_ns() + int64_t(seconds * 1e9);
+  while (now_ns() < end) {
+    next.tv_nsec += period_ns;
+    while (next.tv_nsec >= 1000000000L) {
+      next.tv_nsec -= 1000000000L;
+      ++next.tv_sec;
+    }
+    clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
+    const int64_t t = now_ns();
+    if (last >= 0) {
+      const double period = double(t - last) / 1e3;
+      err.push_back(std::abs(period - period_us));
+      if (period > 2 * period_us) ++missed;
+    }
+    last = t;
+  }
+  std::printf("timer %zu %.2f %.2f %.2f %lld\n", err.size(), quantile(err, 0.5), quantile(err, 0.99),
+              err.empty() ? std::nan("") : *std::max_element(err.begin(), err.end()), (long long)missed);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string url;
+  double seconds = 70, skip = 1, timer = 0, period_us = 1000, slack_ns = -1;
+  for (int k = 1; k + 1 < argc; k += 2) {
+    const std::string a = argv[k];
+    if (a == "--lcm-url") url = argv[k + 1];
+    else if (a == "--timer-floor") timer = std::atof(argv[k + 1]);
+    else if (a == "--period-us") period_us = std::atof(argv[k + 1]);
+    else if (a == "--timer-slack-ns") slack_ns = std::atof(argv[k + 1]);
+    else if (a == "--seconds") seconds = std::atof(argv[k + 1]);
+    else if (a == "--skip") skip = std::atof(argv[k + 1]);
+    else {
+      std::fprintf(stderr, "usage: bench_realtime --lcm-url URL [--seconds S] [--skip S] | --timer-floor S\n");
+      return 2;
+    }
+  }
+  if (slack_ns >= 0) prctl(PR_SET_TIMERSLACK, (unsigned long)std::max(1.0, slack_ns), 0, 0, 0);
+  if (timer > 0) return timer_floor(timer, period_us);
+  lcm::LCM lc(url);
+  if (!lc.good()) {
+    std::fprintf(stderr, "bench_realtime: LCM cannot start on %s\n", url.c_str());
+    return 1;
+  }
+  Listener l;
+  lc.subscribe(channels::kHardwareState, &Listener::on_state, &l);
+  lc.subscribe(channels::kSimStatistics, &Listener::on_sim_stats, &l);
+  lc.subscribe(channels::kCmStatistics, &Listener::on_cm_stats, &l);
+  std::printf("listening\n");
+  std::fflush(stdout);
+  const int64_t start = now_ns(), end = start + int64_t(seconds * 1e9);
+  bool started = false;
+  while (now_ns() < end) {
+    lc.handleTimeout(100);
+    if (!started && l.states > 0) {
+      started = true;
+      l.skip_until_ns = now_ns() + int64_t(skip * 1e9);
+    }
+    if (started && now_ns() - l.last_ns > 2000000000LL) break;  // the run is over
+  }
+  std::printf("realtime %zu %lld %.2f %.2f %.2f %.2f %lld %lld %lld %.4f\n", l.period_err_us.size(), (long long)l.lost,
+              quantile(l.period_err_us, 0.5), quantile(l.period_err_us, 0.99),
+              l.period_err_us.empty() ? std::nan("") : *std::max_element(l.period_err_us.begin(), l.period_err_us.end()),
+              l.sim_max_err, (long long)l.missed, (long long)l.overruns, (long long)l.cm_missed, l.rtf);
+  return 0;
+}
