@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
     const size_t actuated = model.transmissions.size();
     cm::ControllerManager manager(std::move(model), bus, cm::builtin_registry(), options);
     cm::Services services(manager, bus);
+    for (const auto& p : manager.check_configured()) spdlog::warn("configured controller will not load: {}", p);
 
     struct sigaction sa {};
     sa.sa_handler = on_signal;

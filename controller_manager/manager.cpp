@@ -106,6 +106,28 @@ Reply ControllerManager::load(const std::string& name) {
   return {true, msg};
 }
 
+std::vector<std::string> ControllerManager::check_configured() {
+  std::vector<std::string> problems;
+  for (const auto& spec : model_.controllers) {
+    auto controller = registry_.create(spec.type);
+    if (!controller) {
+      problems.push_back(fmt::format("{}: {}/type: {}", model_.config_path, spec.name,
+                                     registry_.unknown_type_message(spec.type)));
+      continue;
+    }
+    Port scratch(bus_.lcm());  // unsubscribes whatever init() subscribed
+    Params params(spec.params, fmt::format("{}: {}", model_.config_path, spec.name));
+    ControllerContext ctx(spec.name, spec.type, params, model_, hw_, bus_, scratch);
+    ctx.self() = controller.get();
+    try {
+      controller->init(ctx);
+    } catch (const std::exception& e) {
+      problems.push_back(e.what());
+    }
+  }
+  return problems;
+}
+
 Reply ControllerManager::unload(const std::string& name) {
   ControllerSlot* s = find(name);
   if (!s) return {false, fmt::format("cannot unload '{}': it is not loaded (loaded: {})", name, names_loaded())};

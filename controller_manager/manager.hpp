@@ -52,6 +52,9 @@ class ControllerManager {
   // Unloads everything (with force: stops the running ones first) and re-reads the config file.
   void reload(bool force, Done done);
   std::vector<controller_info_t> list() const;
+  // Tries every configured controller without loading it: one line per
+  // controller that would be refused (unknown type, interface, parameters).
+  std::vector<std::string> check_configured();
   std::vector<std::string> types() const { return registry_.types(); }
   bool busy() const { return static_cast<bool>(pending_done_); }
 

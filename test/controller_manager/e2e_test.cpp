@@ -168,6 +168,15 @@ TEST(ControllerManagerE2E, ServicesAnswerWithoutHardwareAndSwitchAtOnce) {
   EXPECT_EQ(r.controllers[0].hardware_interface, "PositionJointInterface");
   EXPECT_EQ(r.controllers[0].joints, std::vector<std::string>{"slide"});
   EXPECT_EQ(r.controllers[1].hardware_interface, "");
+  // Configuration mistakes are reported at start, before anyone tries to load them.
+  const std::string out = s.proc.output();
+  EXPECT_TRUE(has(out, "configured controller will not load: " + data("test_bot.yaml") +
+                           ": typo_type/type: controller type 'position_controllers/JointPositionControler' does not "
+                           "exist; did you mean 'position_controllers/JointPositionController'?"))
+      << out;
+  EXPECT_TRUE(has(out, "will not load: controller 'wrong_interface' needs VelocityJointInterface")) << out;
+  EXPECT_TRUE(has(out, "will not load: controller 'missing_joint': joint 'elbow' is not in the URDF")) << out;
+  EXPECT_TRUE(has(out, "will not load: " + data("test_bot.yaml") + ": no_publish_rate/publish_rate: missing")) << out;
 }
 
 TEST(ControllerManagerE2E, NamespacePrefixesEveryChannel) {
