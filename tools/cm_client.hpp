@@ -1,4 +1,4 @@
-// Client of the controller manager's services for cmctl, spawner and launch:
+// Client of the controller manager's services for cmctl and spawner:
 // one cm_request_t on `controller_manager/request`, the cm_response_t with the
 // same request_id back on `controller_manager/response`, within a timeout.
 #pragma once

@@ -1,5 +1,6 @@
 // What the tools share beyond common/cli.hpp: Ctrl-C / SIGTERM as a flag that
-// every bounded wait loop checks, and sleeping to absolute monotonic deadlines.
+// every bounded wait checks, sleeping to absolute monotonic deadlines, pumping
+// the bus with a deadline, request ids, and running a helper program (gnuplot).
 #pragma once
 
 #include <cstdint>
