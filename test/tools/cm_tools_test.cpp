@@ -148,3 +148,37 @@ TEST(Spawner, WithoutAManagerGivesUpWithinTheTimeout) {
   EXPECT_NE(p.output().find("spawner: error: no answer from the controller manager within 1 s"), std::string::npos)
       << p.output();
 }
+
+// A controller with its own PID answers tune on <controller>/gains (dynamic
+// reconfigure of effort_controllers/JointPositionController).
+TEST(Tune, AControllersOwnPid) {
+  const std::string url = unique_lcm_url();
+  const std::string dir = temp_dir("tune_controller");
+  std::string urdf = read_text(source("config/turret_bot.urdf"));
+  for (size_t p; (p = urdf.find("PositionJointInterface")) != std::string::npos;)
+    urdf.replace(p, 22, "EffortJointInterface");
+  std::ofstream(dir + "/effort.urdf") << urdf;
+  std::ofstream(dir + "/effort.yaml") << "j2_controller:\n  type: effort_controllers/JointPositionController\n"
+                                         "  joint: j2\n  pid: {p: 10.0, i: 0.5, d: 1.0, i_clamp: 2.0}\n";
+  ChildProcess cm({bin("controller_manager"), "--urdf", dir + "/effort.urdf", "--config", dir + "/effort.yaml",
+                   "--lcm-url", url});
+  ASSERT_TRUE(cm.wait_for_output("ready", 10.0)) << cm.output();
+  auto run = [&](std::vector<std::string> argv) {
+    argv.insert(argv.end(), {"--lcm-url", url});
+    ChildProcess p(argv);
+    const int rc = p.wait(10.0);
+    return std::make_pair(rc, p.output());
+  };
+  auto [rc, out] = run({bin("tune"), "j2", "--owner", "j2_controller", "--timeout", "0.5"});
+  EXPECT_EQ(rc, 4) << out;
+  EXPECT_NE(out.find("no answer from 'j2_controller' within 0.5 s"), std::string::npos) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "load", "j2_controller"});
+  ASSERT_EQ(rc, 0) << out;
+  std::tie(rc, out) = run({bin("tune"), "j2", "--owner", "j2_controller"});
+  EXPECT_EQ(out, "j2 (j2_controller): p 10  i 0.5  d 1  i_clamp [-2, 2]  antiwindup false\n");
+  std::tie(rc, out) = run({bin("tune"), "j2", "--owner", "j2_controller", "--p", "20", "--i-clamp", "3",
+                           "--antiwindup", "true"});
+  EXPECT_EQ(rc, 0) << out;
+  std::tie(rc, out) = run({bin("tune"), "j2", "--owner", "j2_controller"});
+  EXPECT_EQ(out, "j2 (j2_controller): p 20  i 0.5  d 1  i_clamp [-3, 3]  antiwindup true\n");
+}
