@@ -6,8 +6,10 @@
 // (the encoded hardware_state_t and hardware_command_t) against
 // `bench_pingpong lcm-echo` / `udp-echo`. Physics is not in it (bench_physics).
 //   bench_loop --urdf U --config C --cm-url URL --lcm-url URL --udp-port P [--rounds R] [--n N] [--warmup W]
+// A fourth kind, clock, is ours plus the `clock` message sim_server publishes
+// right after every state (what that extra message costs the loop).
 // Prints "sizes STATE_BYTES COMMAND_BYTES" and per block
-//   rtt KIND ROUND MIN P50 P99 MAX N LOST     (KIND: udp, lcm, ours)
+//   rtt KIND ROUND MIN P50 P99 MAX N LOST     (KIND: udp, lcm, ours, clock)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +22,7 @@
 #include "common/robot_model.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
+#include "lcm_control/sim_clock_t.hpp"
 
 namespace {
 
@@ -77,6 +80,9 @@ class HardwarePinger {
     return false;
   }
 
+  // Also publish sim_server's per-step clock message after each state.
+  void set_clock(bool on) { with_clock_ = on; }
+
   double round_trip_us(int timeout_ms = 1000) {
     state_.step = step_;
     state_.utime = step_ * 1000;
@@ -84,6 +90,12 @@ class HardwarePinger {
     got_ = false;
     const int64_t t0 = now_ns();
     lc_.publish(channel_state_, buf_.data(), unsigned(buf_.size()));
+    if (with_clock_) {
+      clock_.utime = state_.utime;
+      clock_.step = state_.step;
+      clock_.encode(clock_buf_, 0, sizeof(clock_buf_));
+      lc_.publish(channels::kClock, clock_buf_, unsigned(clock_.getEncodedSize()));
+    }
     while (!got_)
       if (lc_.handleTimeout(timeout_ms) <= 0) break;
     const int64_t t1 = now_ns();
@@ -104,6 +116,9 @@ class HardwarePinger {
   std::vector<uint8_t> buf_;
   int64_t step_ = 0;
   bool got_ = false;
+  bool with_clock_ = false;
+  sim_clock_t clock_{};
+  uint8_t clock_buf_[64] = {};
 };
 
 template <class Pinger>
@@ -158,10 +173,11 @@ int main(int argc, char** argv) {
     if (!lcm.good() || !lcm.wait_for_echo(10)) throw std::runtime_error("no lcm-echo answers on " + lcm_url);
     if (!ours.wait_for_manager(10)) throw std::runtime_error("no controller_manager answers on " + cm_url);
     if (udp.round_trip_us(2000) < 0) throw std::runtime_error("no udp-echo answers on port " + std::to_string(udp_port));
-    const char* kinds[] = {"udp", "lcm", "ours"};
+    const char* kinds[] = {"udp", "lcm", "ours", "clock"};
     for (int r = 0; r < rounds; ++r)
-      for (int j = 0; j < 3; ++j) {
-        const int kind = (j + r) % 3;  // rotate the order every round
+      for (int j = 0; j < 4; ++j) {
+        const int kind = (j + r) % 4;  // rotate the order every round
+        ours.set_clock(kind == 3);
         const RttSummary s = kind == 0 ? block(udp, n, warmup) : kind == 1 ? block(lcm, n, warmup)
                                                                            : block(ours, n, warmup);
         std::printf("rtt %s %d %.2f %.2f %.2f %.2f %d %d\n", kinds[kind], r, s.min, s.p50, s.p99, s.max, s.n, s.lost);
