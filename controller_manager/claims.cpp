@@ -26,17 +26,19 @@ std::string check_interface(const RobotModel& model, const std::string& controll
   }
   const TransmissionSpec* t = model.transmission_for_joint(joint);
   if (!t)
-    return fmt::format("controller '{}' needs {} on joint '{}', but the joint has no <transmission> in {} (actuated "
-                       "joints: {})",
-                       controller, to_string(needed), joint, model.urdf_path, join(model.actuated_joints()));
+    return fmt::format(
+        "controller '{}' needs {} on joint '{}', but the joint has no <transmission> in {} (actuated "
+        "joints: {})",
+        controller, to_string(needed), joint, model.urdf_path, join(model.actuated_joints()));
   std::vector<std::string> offered;
   for (Interface i : t->interfaces) offered.push_back(to_string(i));
   if (t->interfaces.front() == needed) return "";
   for (Interface i : t->interfaces)
     if (i == needed)
-      return fmt::format("controller '{}' needs {} on joint '{}'; transmission '{}' offers {} but the hardware takes "
-                         "only the first, {}",
-                         controller, to_string(needed), joint, t->name, join(offered), offered.front());
+      return fmt::format(
+          "controller '{}' needs {} on joint '{}'; transmission '{}' offers {} but the hardware takes "
+          "only the first, {}",
+          controller, to_string(needed), joint, t->name, join(offered), offered.front());
   return fmt::format("controller '{}' needs {} on joint '{}', but transmission '{}' offers only {}", controller,
                      to_string(needed), joint, t->name, join(offered));
 }

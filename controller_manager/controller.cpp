@@ -26,8 +26,8 @@ const JointData* ControllerContext::read(const std::string& joint, const std::st
   if (!j) {
     std::string all;
     for (const auto& x : hw_.joints()) all += (all.empty() ? "" : ", ") + x.name;
-    throw params_.error(key, fmt::format("joint '{}' has no transmission in {}, so no state (actuated joints: {})", joint,
-                                         model_.urdf_path, all));
+    throw params_.error(key, fmt::format("joint '{}' has no transmission in {}, so no state (actuated joints: {})",
+                                         joint, model_.urdf_path, all));
   }
   if (self_ && !self_->claim_.interface) self_->claim_.joints.push_back(joint);
   return j;

@@ -48,7 +48,10 @@ class Controller {
 
   // The controller's own PIDs by joint, for run-time gains.
   virtual std::vector<std::string> pid_joints() const { return {}; }
-  virtual Pid* pid(const std::string& joint) { (void)joint; return nullptr; }
+  virtual Pid* pid(const std::string& joint) {
+    (void)joint;
+    return nullptr;
+  }
 
   const Claim& claim() const { return claim_; }
   int64_t dropped() const { return dropped_; }  // malformed or wrong-size commands
@@ -66,9 +69,15 @@ class Controller {
 // `<controller>/...` under the namespace.
 class ControllerContext {
  public:
-  ControllerContext(std::string name, std::string type, Params& params, const RobotModel& model, Hardware& hw,
-                    Bus& bus, Port& port)
-      : name_(std::move(name)), type_(std::move(type)), params_(params), model_(model), hw_(hw), bus_(bus), port_(port) {}
+  ControllerContext(std::string name, std::string type, Params& params, const RobotModel& model, Hardware& hw, Bus& bus,
+                    Port& port)
+      : name_(std::move(name)),
+        type_(std::move(type)),
+        params_(params),
+        model_(model),
+        hw_(hw),
+        bus_(bus),
+        port_(port) {}
 
   const std::string& name() const { return name_; }
   const std::string& type() const { return type_; }

@@ -70,7 +70,8 @@ void apply_gains_request(Controller& c, const std::string& name, const pid_gains
 void serve_gains(ControllerSlot& slot, Bus& bus) {
   Controller* c = slot.controller.get();
   const std::string name = slot.name;
-  auto pub = std::make_shared<Publisher<pid_gains_t>>(slot.port->publisher<pid_gains_t>(bus.channel(gains_channel(name))));
+  auto pub =
+      std::make_shared<Publisher<pid_gains_t>>(slot.port->publisher<pid_gains_t>(bus.channel(gains_channel(name))));
   auto answer = std::make_shared<pid_gains_t>();
   slot.port->subscribe<pid_gains_t>(
       bus.channel(gains_set_channel(name)),

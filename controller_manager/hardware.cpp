@@ -8,9 +8,12 @@ namespace lcm_control::cm {
 
 int8_t to_mode(Interface i) {
   switch (i) {
-    case Interface::Position: return hardware_command_t::MODE_POSITION;
-    case Interface::Velocity: return hardware_command_t::MODE_VELOCITY;
-    case Interface::Effort: return hardware_command_t::MODE_EFFORT;
+    case Interface::Position:
+      return hardware_command_t::MODE_POSITION;
+    case Interface::Velocity:
+      return hardware_command_t::MODE_VELOCITY;
+    case Interface::Effort:
+      return hardware_command_t::MODE_EFFORT;
   }
   return hardware_command_t::MODE_NONE;
 }
@@ -18,10 +21,14 @@ int8_t to_mode(Interface i) {
 namespace {
 const char* mode_name(int m) {
   switch (m) {
-    case hardware_command_t::MODE_POSITION: return "position";
-    case hardware_command_t::MODE_VELOCITY: return "velocity";
-    case hardware_command_t::MODE_EFFORT: return "effort";
-    default: return "none";
+    case hardware_command_t::MODE_POSITION:
+      return "position";
+    case hardware_command_t::MODE_VELOCITY:
+      return "velocity";
+    case hardware_command_t::MODE_EFFORT:
+      return "effort";
+    default:
+      return "none";
   }
 }
 }  // namespace
@@ -105,9 +112,15 @@ void Hardware::write(const hardware_state_t& s, hardware_command_t& c) const {
     const Interface i = j.offered.front();
     double v = 0;
     switch (i) {
-      case Interface::Position: v = j.map.joint_to_actuator_position(j.command); break;
-      case Interface::Velocity: v = j.map.joint_to_actuator_velocity(j.command); break;
-      case Interface::Effort: v = j.map.joint_to_actuator_effort(j.command); break;
+      case Interface::Position:
+        v = j.map.joint_to_actuator_position(j.command);
+        break;
+      case Interface::Velocity:
+        v = j.map.joint_to_actuator_velocity(j.command);
+        break;
+      case Interface::Effort:
+        v = j.map.joint_to_actuator_effort(j.command);
+        break;
     }
     if (!std::isfinite(v)) continue;  // never send a NaN: the actuator holds instead
     c.mode[a] = to_mode(i);

@@ -35,6 +35,7 @@ class Loop {
 
   // Load order. Add and remove only between cycles.
   std::vector<std::unique_ptr<ControllerSlot>>& slots() { return slots_; }
+  const std::vector<std::unique_ptr<ControllerSlot>>& slots() const { return slots_; }
 
   enum class Outcome { Answered, Repeated };
   // One control step. Repeated: the same step again (a lockstep republish):

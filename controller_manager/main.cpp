@@ -15,9 +15,10 @@ void on_signal(int) { g_stop = 1; }
 
 int main(int argc, char** argv) {
   using namespace lcm_control;
-  CLI::App app{"controller_manager: hosts ros_control-style controllers and runs read -> update -> write against "
-               "hardware/state and hardware/command on LCM",
-               "controller_manager"};
+  CLI::App app{
+      "controller_manager: hosts ros_control-style controllers and runs read -> update -> write against "
+      "hardware/state and hardware/command on LCM",
+      "controller_manager"};
   std::string urdf, config;
   BusFlags bus_flags;
   std::vector<std::string> package_path;

@@ -52,14 +52,14 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
 ControllerManager::~ControllerManager() { shutdown(); }
 
 ControllerSlot* ControllerManager::find(const std::string& name) const {
-  for (const auto& s : const_cast<Loop&>(loop_).slots())
+  for (const auto& s : loop_.slots())
     if (s->name == name) return s.get();
   return nullptr;
 }
 
 std::string ControllerManager::names_loaded() const {
   std::vector<std::string> v;
-  for (const auto& s : const_cast<Loop&>(loop_).slots()) v.push_back(s->name);
+  for (const auto& s : loop_.slots()) v.push_back(s->name);
   return v.empty() ? "none" : join(v);
 }
 
@@ -111,8 +111,8 @@ std::vector<std::string> ControllerManager::check_configured() {
   for (const auto& spec : model_.controllers) {
     auto controller = registry_.create(spec.type);
     if (!controller) {
-      problems.push_back(fmt::format("{}: {}/type: {}", model_.config_path, spec.name,
-                                     registry_.unknown_type_message(spec.type)));
+      problems.push_back(
+          fmt::format("{}: {}/type: {}", model_.config_path, spec.name, registry_.unknown_type_message(spec.type)));
       continue;
     }
     Port scratch(bus_.lcm());  // unsubscribes whatever init() subscribed
@@ -170,9 +170,9 @@ void ControllerManager::switch_controllers(const std::vector<std::string>& start
   pending_done_ = std::move(done);
   if (!ticking()) {
     loop_.apply_now();
-    pending_summary_ = fmt::format("switched at once ({}): {}",
-                                   loop_.has_state() ? "hardware is silent" : "no hardware state received yet",
-                                   pending_summary_);
+    pending_summary_ =
+        fmt::format("switched at once ({}): {}",
+                    loop_.has_state() ? "hardware is silent" : "no hardware state received yet", pending_summary_);
     complete_pending();
   }
 }
@@ -228,7 +228,7 @@ void ControllerManager::reload(bool force, Done done) {
 
 std::vector<controller_info_t> ControllerManager::list() const {
   std::vector<controller_info_t> out;
-  for (const auto& s : const_cast<Loop&>(loop_).slots()) {
+  for (const auto& s : loop_.slots()) {
     controller_info_t i;
     i.name = s->name;
     i.type = s->type;

@@ -47,8 +47,8 @@ class ControllerManager {
   Reply unload(const std::string& name);
   // Applied after the next update when hardware is ticking, at once otherwise;
   // `done` gets the reply when the switch has happened or was refused.
-  void switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop,
-                          int strictness, Done done);
+  void switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop, int strictness,
+                          Done done);
   // Unloads everything (with force: stops the running ones first) and re-reads the config file.
   void reload(bool force, Done done);
   std::vector<controller_info_t> list() const;

@@ -90,15 +90,17 @@ PidGains Params::pid(const std::string& key) const {
 }
 
 PidGains Params::pid_from(const YAML::Node& n, const std::string& where) {
-  if (!n.IsMap()) throw ControllerError(fmt::format("{}: expected a map like {{p: 100, i: 0, d: 10}}, got {}", where, kind(n)));
-  static const std::set<std::string> known = {"p", "i", "d", "i_clamp", "i_clamp_min", "i_clamp_max", "antiwindup",
-                                              "publish_state"};
+  if (!n.IsMap())
+    throw ControllerError(fmt::format("{}: expected a map like {{p: 100, i: 0, d: 10}}, got {}", where, kind(n)));
+  static const std::set<std::string> known = {"p",           "i",           "d",          "i_clamp",
+                                              "i_clamp_min", "i_clamp_max", "antiwindup", "publish_state"};
   for (const auto& kv : n) {
     const std::string k = kv.first.as<std::string>();
     if (!known.count(k))
-      throw ControllerError(fmt::format("{}/{}: unknown key; valid keys are p, i, d, i_clamp, i_clamp_min, i_clamp_max, "
-                                        "antiwindup",
-                                        where, k));
+      throw ControllerError(
+          fmt::format("{}/{}: unknown key; valid keys are p, i, d, i_clamp, i_clamp_min, i_clamp_max, "
+                      "antiwindup",
+                      where, k));
   }
   PidGains g;
   if (!n["p"]) throw ControllerError(fmt::format("{}: no 'p' gain (required); add p: <value>", where));

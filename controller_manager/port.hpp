@@ -3,10 +3,9 @@
 // removed with the Port, and publishers that encode into a reused buffer.
 #pragma once
 
-#include <lcm/lcm-cpp.hpp>
-
 #include <cstdint>
 #include <functional>
+#include <lcm/lcm-cpp.hpp>
 #include <memory>
 #include <string>
 #include <vector>

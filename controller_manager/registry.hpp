@@ -21,7 +21,7 @@ class Registry {
   void add(const std::string& type, Factory factory);
   bool has(const std::string& type) const { return factories_.count(type) > 0; }
   std::unique_ptr<Controller> create(const std::string& type) const;  // nullptr if unknown
-  std::vector<std::string> types() const;  // sorted
+  std::vector<std::string> types() const;                             // sorted
   // The registered type nearest to `type` (edit distance; a bare class name
   // such as "JointPositionControler" is compared with the class part too).
   std::string closest(const std::string& type) const;

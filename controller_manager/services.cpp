@@ -13,13 +13,20 @@ std::string join(const std::vector<std::string>& v) {
 }
 const char* op_name(int op) {
   switch (op) {
-    case cm_request_t::LIST: return "list";
-    case cm_request_t::LIST_TYPES: return "list-types";
-    case cm_request_t::LOAD: return "load";
-    case cm_request_t::UNLOAD: return "unload";
-    case cm_request_t::SWITCH: return "switch";
-    case cm_request_t::RELOAD: return "reload";
-    default: return "unknown";
+    case cm_request_t::LIST:
+      return "list";
+    case cm_request_t::LIST_TYPES:
+      return "list-types";
+    case cm_request_t::LOAD:
+      return "load";
+    case cm_request_t::UNLOAD:
+      return "unload";
+    case cm_request_t::SWITCH:
+      return "switch";
+    case cm_request_t::RELOAD:
+      return "reload";
+    default:
+      return "unknown";
   }
 }
 }  // namespace
@@ -27,12 +34,15 @@ const char* op_name(int op) {
 std::string describe(const cm_request_t& r) {
   switch (r.op) {
     case cm_request_t::LOAD:
-    case cm_request_t::UNLOAD: return fmt::format("{} [{}]", op_name(r.op), join(r.names));
+    case cm_request_t::UNLOAD:
+      return fmt::format("{} [{}]", op_name(r.op), join(r.names));
     case cm_request_t::SWITCH:
       return fmt::format("switch start [{}] stop [{}] {}", join(r.start), join(r.stop),
                          r.strictness == cm_request_t::STRICT ? "STRICT" : "BEST_EFFORT");
-    case cm_request_t::RELOAD: return r.force ? "reload (force)" : "reload";
-    default: return op_name(r.op);
+    case cm_request_t::RELOAD:
+      return r.force ? "reload (force)" : "reload";
+    default:
+      return op_name(r.op);
   }
 }
 

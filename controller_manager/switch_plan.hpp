@@ -19,8 +19,8 @@ struct LoadedController {
 
 struct SwitchPlan {
   bool ok = false;
-  std::string message;        // why it was refused, or what will happen
-  std::vector<int> stop;      // indices into the loaded list, load order
+  std::string message;    // why it was refused, or what will happen
+  std::vector<int> stop;  // indices into the loaded list, load order
   std::vector<int> start;
   std::vector<std::string> notes;  // entries BEST_EFFORT dropped, strictness fixes
   bool empty() const { return stop.empty() && start.empty(); }

@@ -81,8 +81,7 @@ class ForwardCommandController : public Controller {
 }  // namespace
 
 std::unique_ptr<Controller> make_forward_command_controller(const std::string& type) {
-  return std::make_unique<ForwardCommandController>(interface_of(type),
-                                                    type.find("/JointGroup") != std::string::npos);
+  return std::make_unique<ForwardCommandController>(interface_of(type), type.find("/JointGroup") != std::string::npos);
 }
 
 }  // namespace lcm_control::cm

@@ -5,9 +5,9 @@
 // at once after a backward one (the loop restarts it).
 #include <fmt/format.h>
 
+#include "common/messages.hpp"
 #include "controller_manager/controllers/factories.hpp"
 #include "lcm_control/joint_state_t.hpp"
-#include "common/messages.hpp"
 
 namespace lcm_control::cm {
 

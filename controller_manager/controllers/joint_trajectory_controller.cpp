@@ -58,10 +58,12 @@ class JointTrajectoryController : public Controller {
         } else {
           const auto it = std::find(names_.begin(), names_.end(), key);
           if (it == names_.end())
-            throw ControllerError(fmt::format("{}/{}: not one of this controller's joints ({}) nor goal_time / "
-                                              "stopped_velocity_tolerance",
-                                              where, key, fmt::join(names_, ", ")));
-          if (!kv.second.IsMap()) throw ControllerError(fmt::format("{}/{}: expected {{trajectory, goal}}", where, key));
+            throw ControllerError(
+                fmt::format("{}/{}: not one of this controller's joints ({}) nor goal_time / "
+                            "stopped_velocity_tolerance",
+                            where, key, fmt::join(names_, ", ")));
+          if (!kv.second.IsMap())
+            throw ControllerError(fmt::format("{}/{}: expected {{trajectory, goal}}", where, key));
           const size_t k = it - names_.begin();
           for (const auto& t : kv.second) {
             const std::string tk = t.first.as<std::string>();
@@ -146,7 +148,8 @@ class JointTrajectoryController : public Controller {
     for (size_t k = 0; k < joints_.size(); ++k) {
       JointData& j = *joints_[k];
       current_->sample(t, k, desired_[k]);
-      const double e = j.continuous ? shortest_angular_distance(j.position, desired_[k].pos) : desired_[k].pos - j.position;
+      const double e =
+          j.continuous ? shortest_angular_distance(j.position, desired_[k].pos) : desired_[k].pos - j.position;
       status_.desired[k] = desired_[k].pos;
       status_.actual[k] = j.position;
       status_.error[k] = e;
@@ -165,7 +168,8 @@ class JointTrajectoryController : public Controller {
     }
     if (!goal_active_) return;
     if (worst_excess > 0) {
-      std::snprintf(text_, sizeof text_, "path tolerance violated on joint '%s': error %.6f exceeds %.6f at %.3f s of %.3f s",
+      std::snprintf(text_, sizeof text_,
+                    "path tolerance violated on joint '%s': error %.6f exceeds %.6f at %.3f s of %.3f s",
                     names_[worst].c_str(), status_.error[worst], path_tol_[worst], t - current_->start_time(),
                     current_->end_time() - current_->start_time());
       for (size_t k = 0; k < joints_.size(); ++k) hold_pos_[k] = joints_[k]->position;
@@ -197,8 +201,8 @@ class JointTrajectoryController : public Controller {
         std::snprintf(text_, sizeof text_,
                       "goal tolerance violated on joint '%s': error %.6f (tolerance %.6f), velocity %.6f (stopped "
                       "tolerance %.6f), %.3f s after the trajectory end (goal_time %.3f)",
-                      names_[bad].c_str(), status_.error[bad], goal_tol_[bad], joints_[bad]->velocity,
-                      stopped_vel_tol_, t - current_->end_time(), goal_time_);
+                      names_[bad].c_str(), status_.error[bad], goal_tol_[bad], joints_[bad]->velocity, stopped_vel_tol_,
+                      t - current_->end_time(), goal_time_);
         finish(now, trajectory_status_t::GOAL_TOLERANCE_VIOLATED, text_);
       }
     }
@@ -237,31 +241,38 @@ class JointTrajectoryController : public Controller {
   void on_goal(const joint_trajectory_t& g) {
     if (!running_) return reject(g, "the controller is not running");
     const size_t n = names_.size();
-    if (g.num_joints != static_cast<int32_t>(g.joint_names.size()) || g.num_points != static_cast<int32_t>(g.points.size()))
+    if (g.num_joints != static_cast<int32_t>(g.joint_names.size()) ||
+        g.num_points != static_cast<int32_t>(g.points.size()))
       return reject(g, "array sizes do not match num_joints / num_points");
     std::vector<int> index(n, -1);  // controller joint -> goal column
     for (size_t c = 0; c < g.joint_names.size(); ++c) {
       const auto it = std::find(names_.begin(), names_.end(), g.joint_names[c]);
       if (it == names_.end())
-        return reject(g, fmt::format("joint '{}' is not controlled here (joints: {})", g.joint_names[c], fmt::join(names_, ", ")));
-      if (index[it - names_.begin()] >= 0) return reject(g, fmt::format("joint '{}' is listed twice", g.joint_names[c]));
+        return reject(g, fmt::format("joint '{}' is not controlled here (joints: {})", g.joint_names[c],
+                                     fmt::join(names_, ", ")));
+      if (index[it - names_.begin()] >= 0)
+        return reject(g, fmt::format("joint '{}' is listed twice", g.joint_names[c]));
       index[it - names_.begin()] = static_cast<int>(c);
     }
     for (size_t k = 0; k < n; ++k)
-      if (index[k] < 0) return reject(g, fmt::format("joint '{}' is missing (a goal must name all of: {})", names_[k], fmt::join(names_, ", ")));
+      if (index[k] < 0)
+        return reject(
+            g, fmt::format("joint '{}' is missing (a goal must name all of: {})", names_[k], fmt::join(names_, ", ")));
     if (g.points.empty()) return reject(g, "no points");
     std::vector<Waypoint> points;
     double prev = 0;
     for (size_t i = 0; i < g.points.size(); ++i) {
       const trajectory_point_t& p = g.points[i];
       if (!std::isfinite(p.time_from_start) || p.time_from_start <= prev)
-        return reject(g, fmt::format("point {}: time_from_start {} must be greater than {}", i, p.time_from_start, prev));
+        return reject(g,
+                      fmt::format("point {}: time_from_start {} must be greater than {}", i, p.time_from_start, prev));
       prev = p.time_from_start;
       const size_t m = g.joint_names.size();
       if (p.num_positions != static_cast<int32_t>(m) || p.positions.size() != m)
         return reject(g, fmt::format("point {}: {} positions for {} joints", i, p.positions.size(), m));
       if (!p.velocities.empty() && p.velocities.size() != m)
-        return reject(g, fmt::format("point {}: {} velocities for {} joints (give none or one per joint)", i, p.velocities.size(), m));
+        return reject(g, fmt::format("point {}: {} velocities for {} joints (give none or one per joint)", i,
+                                     p.velocities.size(), m));
       if (!p.accelerations.empty() && (p.accelerations.size() != m || p.velocities.empty()))
         return reject(g, fmt::format("point {}: accelerations need velocities and one value per joint", i));
       Waypoint w;
@@ -269,10 +280,12 @@ class JointTrajectoryController : public Controller {
       for (size_t k = 0; k < n; ++k) {
         const int c = index[k];
         const double pos = p.positions[c];
-        if (!std::isfinite(pos)) return reject(g, fmt::format("point {}: joint '{}' position is NaN/Inf", i, names_[k]));
+        if (!std::isfinite(pos))
+          return reject(g, fmt::format("point {}: joint '{}' position is NaN/Inf", i, names_[k]));
         const Joint* u = joints_[k]->urdf;
         if (u && u->has_position_limits && (pos < u->lower || pos > u->upper))
-          return reject(g, fmt::format("point {}: joint '{}' position {} is outside its limits [{}, {}]", i, names_[k], pos, u->lower, u->upper));
+          return reject(g, fmt::format("point {}: joint '{}' position {} is outside its limits [{}, {}]", i, names_[k],
+                                       pos, u->lower, u->upper));
         w.pos.push_back(pos);
         if (!p.velocities.empty()) w.vel.push_back(p.velocities[c]);
         if (!p.accelerations.empty()) w.acc.push_back(p.accelerations[c]);
@@ -286,7 +299,8 @@ class JointTrajectoryController : public Controller {
     for (size_t k = 0; k < n; ++k) {
       current_->sample(last_t_, k, start[k]);
       if (joints_[k]->continuous) {  // go the short way round to the first point
-        const double shift = points.front().pos[k] - (start[k].pos + shortest_angular_distance(start[k].pos, points.front().pos[k]));
+        const double shift =
+            points.front().pos[k] - (start[k].pos + shortest_angular_distance(start[k].pos, points.front().pos[k]));
         for (auto& w : points) w.pos[k] -= shift;
       }
     }
@@ -325,7 +339,7 @@ class JointTrajectoryController : public Controller {
 
 std::unique_ptr<Controller> make_joint_trajectory_controller(const std::string& type) {
   return std::make_unique<JointTrajectoryController>(type.rfind("effort_controllers/", 0) == 0 ? Interface::Effort
-                                                                                                : Interface::Position);
+                                                                                               : Interface::Position);
 }
 
 }  // namespace lcm_control::cm

@@ -33,9 +33,10 @@ class PidController : public Controller {
     pid_.set_gains(p.pid("pid"));
     const PidGains& g = pid_.gains();
     if (g.i != 0 && g.i_clamp_min == 0 && g.i_clamp_max == 0)
-      ctx.notes.push_back(fmt::format("{}/pid: i = {} but i_clamp is 0, so the integral term stays 0 (as in "
-                                      "control_toolbox); set i_clamp",
-                                      ctx.name(), g.i));
+      ctx.notes.push_back(
+          fmt::format("{}/pid: i = {} but i_clamp is 0, so the integral term stays 0 (as in "
+                      "control_toolbox); set i_clamp",
+                      ctx.name(), g.i));
     state_.controller = ctx.name();
     state_.joint = joint;
     state_pub_ = ctx.port().publisher<controller_state_t>(ctx.channel("state"));

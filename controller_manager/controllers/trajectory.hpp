@@ -15,7 +15,7 @@ struct SplineState {
 };
 
 struct Waypoint {
-  double time = 0;                  // absolute, seconds on the controller clock
+  double time = 0;                    // absolute, seconds on the controller clock
   std::vector<double> pos, vel, acc;  // vel and acc empty when not given
 };
 

@@ -41,7 +41,8 @@ void start(Rig& rig, const std::string& name) {
   const Reply s = rig.switch_({name}, {});
   ASSERT_TRUE(s.ok) << s.message;
 }
-joint_trajectory_t goal(int64_t id, std::vector<std::string> joints, std::vector<std::pair<double, std::vector<double>>> pts) {
+joint_trajectory_t goal(int64_t id, std::vector<std::string> joints,
+                        std::vector<std::pair<double, std::vector<double>>> pts) {
   joint_trajectory_t g{};
   g.goal_id = id;
   g.joint_names = joints;
@@ -65,12 +66,14 @@ TEST(ControllerManagerLoad, RefusalsSayWhy) {
   EXPECT_TRUE(has(r.message, "no 'nothere' entry with a type in the config")) << r.message;
   EXPECT_TRUE(has(r.message, "joint_state_controller, jsc_subset")) << r.message;
   r = rig.load("typo_type");
-  EXPECT_TRUE(has(r.message, "controller type 'position_controllers/JointPositionControler' does not exist; did you "
-                             "mean 'position_controllers/JointPositionController'?"))
+  EXPECT_TRUE(has(r.message,
+                  "controller type 'position_controllers/JointPositionControler' does not exist; did you "
+                  "mean 'position_controllers/JointPositionController'?"))
       << r.message;
   r = rig.load("wrong_interface");
-  EXPECT_TRUE(has(r.message, "controller 'wrong_interface' needs VelocityJointInterface on joint 'slide', but "
-                             "transmission 't_slide' offers only PositionJointInterface"))
+  EXPECT_TRUE(has(r.message,
+                  "controller 'wrong_interface' needs VelocityJointInterface on joint 'slide', but "
+                  "transmission 't_slide' offers only PositionJointInterface"))
       << r.message;
   r = rig.load("missing_joint");
   EXPECT_TRUE(has(r.message, "joint 'elbow' is not in the URDF")) << r.message;
@@ -118,7 +121,7 @@ TEST(ControllerManagerForwardCommand, VelocityGoesThroughTheTransmission) {
   rig.cycle(1001);
   EXPECT_DOUBLE_EQ(rig.actuator("wheel_motor").velocity, 20.0);  // reduction 10
   EXPECT_NEAR(rig.joint("wheel").velocity, 2.0, 1e-12);
-  EXPECT_NEAR(rig.joint("wheel").position, 0.5 + 2.0, 0.01);      // offset 0.5, 1 s at 2 rad/s
+  EXPECT_NEAR(rig.joint("wheel").position, 0.5 + 2.0, 0.01);  // offset 0.5, 1 s at 2 rad/s
 }
 
 TEST(ControllerManagerForwardCommand, EffortStartsAtZeroThenForwards) {
@@ -303,7 +306,8 @@ TEST(ControllerManagerTrajectoryController, FollowsThreeWaypointsAndSucceeds) {
   Recorder<trajectory_status_t> feedback(rig.bus.lcm(), "trajectory/feedback");
   start(rig, "trajectory");
   rig.cycle(2);
-  rig.publish("trajectory/command", goal(1, {"tilt", "slide"}, {{0.5, {0.3, 0.2}}, {1.0, {-0.4, 0.6}}, {1.5, {0.1, 0.5}}}));
+  rig.publish("trajectory/command",
+              goal(1, {"tilt", "slide"}, {{0.5, {0.3, 0.2}}, {1.0, {-0.4, 0.6}}, {1.5, {0.1, 0.5}}}));
   rig.cycle(2500);
   ASSERT_EQ(result.messages.size(), 1u);
   const auto& r = result.messages[0];
@@ -318,7 +322,8 @@ TEST(ControllerManagerTrajectoryController, ImpossiblePathToleranceFailsNamingJo
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory_tight/result");
   start(rig, "trajectory_tight");
-  rig.publish("trajectory_tight/command", goal(2, {"slide", "tilt"}, {{0.5, {0.3, 0.0}}, {1.0, {0.6, 0.0}}, {1.5, {0.5, 0.0}}}));
+  rig.publish("trajectory_tight/command",
+              goal(2, {"slide", "tilt"}, {{0.5, {0.3, 0.0}}, {1.0, {0.6, 0.0}}, {1.5, {0.5, 0.0}}}));
   rig.cycle(2000);
   ASSERT_EQ(result.messages.size(), 1u);
   const auto& r = result.messages[0];
@@ -337,7 +342,8 @@ TEST(ControllerManagerTrajectoryController, BadGoalsAreRejectedAndNewGoalsPreemp
   ASSERT_EQ(result.messages.size(), 3u);
   EXPECT_TRUE(has(result.messages[0].message, "joint 'slide' is missing")) << result.messages[0].message;
   EXPECT_TRUE(has(result.messages[1].message, "outside its limits [0, 1]")) << result.messages[1].message;
-  EXPECT_TRUE(has(result.messages[2].message, "time_from_start 0.5 must be greater than 1")) << result.messages[2].message;
+  EXPECT_TRUE(has(result.messages[2].message, "time_from_start 0.5 must be greater than 1"))
+      << result.messages[2].message;
   for (const auto& m : result.messages) EXPECT_EQ(m.status, trajectory_status_t::REJECTED);
   rig.publish("trajectory/command", goal(6, {"tilt", "slide"}, {{1.0, {0.3, 0.5}}}));
   rig.cycle(100);

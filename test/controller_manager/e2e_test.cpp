@@ -38,8 +38,8 @@ struct Session {
                    const std::string& urdf = data("test_bot.urdf"))
       : url(unique_lcm_url()),
         proc([&] {
-          std::vector<std::string> a{bin("controller_manager"), "--urdf", urdf, "--config", yaml,
-                                     "--lcm-url", url, "--silence-timeout", "0.25"};
+          std::vector<std::string> a{bin("controller_manager"), "--urdf", urdf, "--config", yaml, "--lcm-url", url,
+                                     "--silence-timeout",       "0.25"};
           a.insert(a.end(), extra.begin(), extra.end());
           return a;
         }()),
@@ -72,11 +72,14 @@ struct Session {
   }
   cm_response_t wait_response(int64_t id) {
     const cm_response_t* found = nullptr;
-    pump_until(lc, [&] {
-      for (const auto& m : responses.messages)
-        if (m.request_id == id) found = &m;
-      return found != nullptr;
-    }, 10.0);
+    pump_until(
+        lc,
+        [&] {
+          for (const auto& m : responses.messages)
+            if (m.request_id == id) found = &m;
+          return found != nullptr;
+        },
+        10.0);
     if (!found) {
       ADD_FAILURE() << "no response to request " << id << "\n" << proc.output();
       return cm_response_t{};
@@ -111,8 +114,6 @@ struct Session {
   int64_t next_id = 1;
   bool ready = false;
 };
-
-
 
 joint_trajectory_t three_waypoints(int64_t id) {
   joint_trajectory_t g{};
@@ -236,11 +237,14 @@ TEST(ControllerManagerE2E, GroupControllersMoveTheirJointsAndWrongSizesAreCounte
   EXPECT_DOUBLE_EQ(hw.actuator("arm_motor").effort, 4.0);
   int64_t dropped = 0;
   const loop_stats_t* last = nullptr;
-  pump_until(s.lc, [&] {
-    dropped = 0;
-    for (const auto& m : stats.messages) dropped += m.dropped, last = &m;
-    return dropped >= 1 && last->cycles > 0;
-  }, 3.0);
+  pump_until(
+      s.lc,
+      [&] {
+        dropped = 0;
+        for (const auto& m : stats.messages) dropped += m.dropped, last = &m;
+        return dropped >= 1 && last->cycles > 0;
+      },
+      3.0);
   EXPECT_EQ(dropped, 1);
   ASSERT_NE(last, nullptr);
   EXPECT_EQ(last->process, "controller_manager");
@@ -297,7 +301,8 @@ TEST(ControllerManagerE2E, PidControllersFollowTheirSetPointsWithStateAndGains) 
   EXPECT_NEAR(hw.actuator("spin_motor").velocity, 3.0, 0.05);
   const double wheel = hw.actuator("wheel_motor").position / 10 + 0.5;
   EXPECT_NEAR(wheel, -0.2, 0.01);
-  pump_until(s.lc, [&] { return state.messages.size() > 5; }, 2.0);
+  pump_until(
+      s.lc, [&] { return state.messages.size() > 5; }, 2.0);
   ASSERT_FALSE(state.messages.empty());
   EXPECT_EQ(state.messages.back().controller, "spin_velocity");
   EXPECT_DOUBLE_EQ(state.messages.back().set_point, 3.0);
@@ -311,7 +316,8 @@ TEST(ControllerManagerE2E, PidControllersFollowTheirSetPointsWithStateAndGains) 
   set.joint = "wheel";
   set.p = 20;
   s.lc.publish("wheel_position/gains/set", &set);
-  ASSERT_TRUE(pump_until(s.lc, [&] { return gains.messages.size() >= 2; }, 5.0));
+  ASSERT_TRUE(pump_until(
+      s.lc, [&] { return gains.messages.size() >= 2; }, 5.0));
   EXPECT_EQ(gains.messages[0].request_id, 5);
   EXPECT_EQ(gains.messages[0].p, 10);
   EXPECT_TRUE(gains.messages[1].ok) << gains.messages[1].message;
@@ -330,7 +336,9 @@ TEST(ControllerManagerE2E, TrajectoryFollowsWithinToleranceThenFailsWhenItIsImpo
   s.load_and_start({"trajectory"});
   auto g = three_waypoints(1);
   s.lc.publish("trajectory/command", &g);
-  ASSERT_TRUE(pump_until(s.lc, [&] { return !result.messages.empty(); }, 20.0)) << s.proc.output();
+  ASSERT_TRUE(pump_until(
+      s.lc, [&] { return !result.messages.empty(); }, 20.0))
+      << s.proc.output();
   const auto& r = result.messages[0];
   EXPECT_EQ(r.status, trajectory_status_t::SUCCEEDED) << r.message << "\n" << s.proc.output();
   std::printf("trajectory: %s\n", r.message.c_str());
@@ -350,7 +358,9 @@ TEST(ControllerManagerE2E, TrajectoryFollowsWithinToleranceThenFailsWhenItIsImpo
   ASSERT_TRUE(sw.ok) << sw.message;
   g = three_waypoints(2);
   s.lc.publish("trajectory_tight/command", &g);
-  ASSERT_TRUE(pump_until(s.lc, [&] { return !tight.messages.empty(); }, 20.0)) << s.proc.output();
+  ASSERT_TRUE(pump_until(
+      s.lc, [&] { return !tight.messages.empty(); }, 20.0))
+      << s.proc.output();
   const auto& t = tight.messages[0];
   EXPECT_EQ(t.status, trajectory_status_t::PATH_TOLERANCE_VIOLATED) << t.message;
   EXPECT_TRUE(has(t.message, "path tolerance violated on joint '")) << t.message;
@@ -385,7 +395,9 @@ TEST(ControllerManagerE2E, EffortTrajectoryControllerTracksAGravityLoadedJoint) 
   }
   g.num_points = 3;
   s.lc.publish("effort_trajectory/command", &g);
-  ASSERT_TRUE(pump_until(s.lc, [&] { return !result.messages.empty(); }, 30.0)) << s.proc.output();
+  ASSERT_TRUE(pump_until(
+      s.lc, [&] { return !result.messages.empty(); }, 30.0))
+      << s.proc.output();
   EXPECT_EQ(result.messages[0].status, trajectory_status_t::SUCCEEDED) << result.messages[0].message;
   std::printf("effort trajectory: %s\n", result.messages[0].message.c_str());
   EXPECT_NEAR(hw.actuator("arm_motor").position, 0.8, 0.02);
@@ -400,7 +412,8 @@ TEST(ControllerManagerE2E, JointStatesAtPublishRateInTransmissionOrder) {
   hw.start();
   s.load_and_start({"joint_state_controller"});
   Recorder<joint_state_t> js(s.lc, "joint_states");
-  pump_until(s.lc, [] { return false; }, 2.0);
+  pump_until(
+      s.lc, [] { return false; }, 2.0);
   ASSERT_GT(js.messages.size(), 10u);
   const double wall = (js.receive_us.back() - js.receive_us.front()) * 1e-6;
   const double hw_time = (js.messages.back().utime - js.messages.front().utime) * 1e-6;
@@ -425,15 +438,17 @@ TEST(ControllerManagerE2E, RefusalsAreSpecificAndTheLoopKeepsRunning) {
   // Unknown type: valid types and the closest one.
   auto r = s.call(cm_request_t::LOAD, {"typo_type"});
   EXPECT_FALSE(r.ok);
-  EXPECT_TRUE(has(r.message, "typo_type/type: controller type 'position_controllers/JointPositionControler' does "
-                             "not exist; did you mean 'position_controllers/JointPositionController'? Valid types: "))
+  EXPECT_TRUE(has(r.message,
+                  "typo_type/type: controller type 'position_controllers/JointPositionControler' does "
+                  "not exist; did you mean 'position_controllers/JointPositionController'? Valid types: "))
       << r.message;
   keeps_running();
   // Interface mismatch.
   r = s.call(cm_request_t::LOAD, {"wrong_interface"});
   EXPECT_FALSE(r.ok);
-  EXPECT_TRUE(has(r.message, "controller 'wrong_interface' needs VelocityJointInterface on joint 'slide', but "
-                             "transmission 't_slide' offers only PositionJointInterface"))
+  EXPECT_TRUE(has(r.message,
+                  "controller 'wrong_interface' needs VelocityJointInterface on joint 'slide', but "
+                  "transmission 't_slide' offers only PositionJointInterface"))
       << r.message;
   keeps_running();
   // Claim conflict, whatever the strictness.
@@ -455,8 +470,9 @@ TEST(ControllerManagerE2E, RefusalsAreSpecificAndTheLoopKeepsRunning) {
   s.lc.publish("controller_manager/request", junk, sizeof junk);
   r = s.wait_response(-1);
   EXPECT_FALSE(r.ok);
-  EXPECT_TRUE(has(r.message, "malformed request: could not decode 27 bytes on 'controller_manager/request' as "
-                             "cm_request_t"))
+  EXPECT_TRUE(has(r.message,
+                  "malformed request: could not decode 27 bytes on 'controller_manager/request' as "
+                  "cm_request_t"))
       << r.message;
   r = s.call(42);
   EXPECT_FALSE(r.ok);
@@ -499,7 +515,7 @@ TEST(ControllerManagerE2E, SwitchStopAStartBOnOneJointInOneCycle) {
     if (first_a >= 0 && rec.mode[a] != hardware_command_t::MODE_EFFORT) ++none_after_start;
   }
   EXPECT_EQ(none_after_start, 0) << "a cycle where nobody commanded the arm";
-  EXPECT_EQ(last_a, k) << r.message;      // A's command is the last one written in the switching cycle
+  EXPECT_EQ(last_a, k) << r.message;       // A's command is the last one written in the switching cycle
   EXPECT_EQ(first_b, k + 1) << r.message;  // B's from the next
   for (const auto& rec : records) {
     if (rec.step > first_a && rec.step <= k) {
@@ -544,16 +560,15 @@ TEST(ControllerManagerE2E, CleanShutdownStopsAndUnloadsEverything) {
   ASSERT_TRUE(s.call(cm_request_t::LOAD, {"tilt_position"}).ok);
   ASSERT_TRUE(hw.run_steps(20, 10));
   EXPECT_EQ(s.proc.stop(5.0, SIGTERM), 0) << s.proc.output();
-  EXPECT_TRUE(has(s.proc.output(), "shutting down: stopped [joint_state_controller, slide_position], unloaded "
-                                   "[joint_state_controller, slide_position, tilt_position]"))
+  EXPECT_TRUE(has(s.proc.output(),
+                  "shutting down: stopped [joint_state_controller, slide_position], unloaded "
+                  "[joint_state_controller, slide_position, tilt_position]"))
       << s.proc.output();
 }
 
 TEST(ControllerManagerE2E, BadInputExitsNonZeroWithOneClearLine) {
   const std::string dir = temp_dir("cm_bad");
-  {
-    std::ofstream(dir + "/broken.yaml") << "j1_controller: {type: [unclosed\n";
-  }
+  { std::ofstream(dir + "/broken.yaml") << "j1_controller: {type: [unclosed\n"; }
   ChildProcess missing({bin("controller_manager"), "--urdf", data("test_bot.urdf"), "--config", dir + "/nope.yaml",
                         "--lcm-url", unique_lcm_url()});
   EXPECT_EQ(missing.wait(10), 3);
@@ -588,7 +603,8 @@ TEST(ControllerManagerWithSimServer, TurretTutorialMovesAndPublishesJointStatesA
   Recorder<joint_state_t> js(s.lc, "joint_states");
   s.command("j1_controller", 0.5);
   s.command("j2_controller", 1.0);
-  pump_until(s.lc, [] { return false; }, 3.0);
+  pump_until(
+      s.lc, [] { return false; }, 3.0);
   ASSERT_GT(js.messages.size(), 100u) << s.proc.output() << sim.output();
   const double wall = (js.receive_us.back() - js.receive_us.front()) * 1e-6;
   const double rate = (js.messages.size() - 1) / wall;

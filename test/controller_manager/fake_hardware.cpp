@@ -15,9 +15,15 @@ std::vector<FakeActuator> actuators_for(const RobotModel& model) {
     FakeActuator a;
     a.name = t.actuator;
     switch (t.interfaces.front()) {
-      case Interface::Position: a.mode = hardware_command_t::MODE_POSITION; break;
-      case Interface::Velocity: a.mode = hardware_command_t::MODE_VELOCITY; break;
-      case Interface::Effort: a.mode = hardware_command_t::MODE_EFFORT; break;
+      case Interface::Position:
+        a.mode = hardware_command_t::MODE_POSITION;
+        break;
+      case Interface::Velocity:
+        a.mode = hardware_command_t::MODE_VELOCITY;
+        break;
+      case Interface::Effort:
+        a.mode = hardware_command_t::MODE_EFFORT;
+        break;
     }
     out.push_back(a);
   }

@@ -6,10 +6,9 @@
 // (I*a = u - gravity*sin(q) - damping*v).
 #pragma once
 
-#include <lcm/lcm-cpp.hpp>
-
 #include <atomic>
 #include <cstdint>
+#include <lcm/lcm-cpp.hpp>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -42,7 +41,7 @@ struct FakeHardwareOptions {
   bool lockstep = true;
   int period_us = 1000;
   double republish_s = 0.05;  // lockstep: republish the state while nobody answers
-  std::string ns;            // channel prefix
+  std::string ns;             // channel prefix
 };
 
 class FakeHardware {

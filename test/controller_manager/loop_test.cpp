@@ -1,11 +1,12 @@
 // The loop itself: one-cycle switching, restarts, silence, statistics, and no
 // allocation on the loop path.
+#include "controller_manager/loop.hpp"
+
 #include <gtest/gtest.h>
 
 #include <map>
 #include <optional>
 
-#include "controller_manager/loop.hpp"
 #include "controller_manager/registry.hpp"
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
@@ -203,7 +204,8 @@ TEST(ControllerManagerLoop, NoAllocationOnTheLoopPath) {
   Rig rig;
   for (const char* n : {"joint_state_controller", "trajectory", "vel_group", "arm_position", "spin_velocity"})
     ASSERT_TRUE(rig.load(n).ok) << n;
-  ASSERT_TRUE(rig.switch_({"joint_state_controller", "trajectory", "vel_group", "arm_position", "spin_velocity"}, {}).ok);
+  ASSERT_TRUE(
+      rig.switch_({"joint_state_controller", "trajectory", "vel_group", "arm_position", "spin_velocity"}, {}).ok);
   rig.commands.reserve(10000);
   rig.cycle(50);
   joint_trajectory_t g{};
@@ -247,7 +249,7 @@ TEST(ControllerManagerLoop, EStopReleaseRestartsControllers) {
   rig.state.e_stop = true;
   rig.cm->on_hardware_state(rig.state);
   rig.actuator("slide_motor").position = 0.4;  // moved by hand while stopped
-  rig.cycle(1);                                 // released
+  rig.cycle(1);                                // released
   EXPECT_EQ(rig.cm->loop().restarts(), restarts + 1);
   EXPECT_DOUBLE_EQ(rig.commands.back().command[1], 0.4);
 }
