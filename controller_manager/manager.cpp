@@ -244,7 +244,7 @@ std::vector<controller_info_t> ControllerManager::list() const {
 
 void ControllerManager::on_hardware_state(const hardware_state_t& st) {
   last_state_us_ = monotonic_us();
-  if (!hw_.bound() || st.session != hw_.session()) {
+  if (!hw_.bound() || st.session != hw_.session() || st.num_actuators != command_.num_actuators) {
     const std::string why = hw_.bind(st, command_);
     if (!why.empty()) {
       if (st.session != bad_session_) spdlog::error("hardware session {:x}: {}; not answering it", st.session, why);

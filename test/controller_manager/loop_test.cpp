@@ -266,3 +266,19 @@ TEST(ControllerManagerLoop, LockstepResumeWithTheNextStepContinuesWithoutRestart
   EXPECT_EQ(rig.cm->loop().restarts(), restarts);
   EXPECT_TRUE(rig.cm->ticking());
 }
+
+TEST(ControllerManagerLoop, ActuatorCountChangingWithinASessionIsReboundNotTrusted) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
+  rig.cycle(3);
+  auto act = rig.act;
+  act.pop_back();  // roll_motor disappears: the hardware no longer fits the URDF
+  fill_state(rig.state, act, rig.step, rig.session, 1000, true);
+  const int64_t cycles = rig.cm->loop().stats().cycles();
+  rig.cm->on_hardware_state(rig.state);
+  EXPECT_EQ(rig.cm->loop().stats().cycles(), cycles);  // not answered
+  ++rig.step;
+  rig.cycle(2);  // all six again: bound again, answered
+  EXPECT_EQ(rig.cm->loop().stats().cycles(), cycles + 2);
+}
