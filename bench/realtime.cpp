@@ -12,8 +12,9 @@
 // --timer-slack-ns sets the thread's timer slack first (Linux default 50000 ns
 // for normal threads, which every sleep and ppoll timeout may be late by).
 // Prints one line:
-//   realtime N LOST P50_ERR P99_ERR MAX_ERR SIM_MAX_ERR MISSED OVERRUNS CM_MISSED RTF
-// (errors in microseconds; LOST: states that never arrived here)
+//   realtime N LOST P50_ERR P99_ERR MAX_ERR SIM_MAX_ERR MISSED OVERRUNS CM_MISSED RTF SIM_JITTER
+// (errors in microseconds; LOST: states that never arrived here; SIM_JITTER: median over the 1 s windows of
+// the standard deviation of sim_server's own period)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -42,6 +43,7 @@ struct Listener {
   double nominal_us = 1000, rtf = std::nan("");
   int64_t states = 0, lost = 0, missed = 0, overruns = 0, cm_missed = 0;
   double sim_max_err = 0;
+  std::vector<double> sim_jitter;  // per 1 s window: the standard deviation of sim_server's own period
 
   void on_state(const lcm::ReceiveBuffer*, const std::string&, const hardware_state_t* s) {
     const int64_t now = now_ns();  // when the controller side gets it (recv_utime is the wall clock, not monotonic)
@@ -61,6 +63,7 @@ struct Listener {
     if (now_ns() < skip_until_ns) return;
     missed += s->missed;
     overruns += s->overruns;
+    if (s->cycles > 1) sim_jitter.push_back(s->period_jitter_us);
     if (s->cycles > 1)
       sim_max_err = std::max({sim_max_err, s->period_max_us - nominal_us, nominal_us - s->period_min_us});
   }
@@ -138,9 +141,10 @@ int main(int argc, char** argv) {
     }
     if (started && now_ns() - l.last_ns > 2000000000LL) break;  // the run is over
   }
-  std::printf("realtime %zu %lld %.2f %.2f %.2f %.2f %lld %lld %lld %.4f\n", l.period_err_us.size(), (long long)l.lost,
+  std::printf("realtime %zu %lld %.2f %.2f %.2f %.2f %lld %lld %lld %.4f %.2f\n", l.period_err_us.size(), (long long)l.lost,
               quantile(l.period_err_us, 0.5), quantile(l.period_err_us, 0.99),
               l.period_err_us.empty() ? std::nan("") : *std::max_element(l.period_err_us.begin(), l.period_err_us.end()),
-              l.sim_max_err, (long long)l.missed, (long long)l.overruns, (long long)l.cm_missed, l.rtf);
+              l.sim_max_err, (long long)l.missed, (long long)l.overruns, (long long)l.cm_missed, l.rtf,
+              quantile(l.sim_jitter, 0.5));
   return 0;
 }
