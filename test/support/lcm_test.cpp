@@ -27,7 +27,8 @@ std::string unique_lcm_url() {
   }
   const int port = ntohs(a.sin_port);
   close(fd);
-  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
+  // A large receive buffer: a lockstep loop on the same port floods every socket.
+  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
 }
 
 bool pump_until(lcm::LCM& lc, const std::function<bool()>& pred, double timeout_s) {

@@ -12,7 +12,7 @@
 
 namespace lcm_control::testing {
 
-// "udpm://239.255.76.67:PORT?ttl=0" with a port no other running test uses.
+// "udpm://239.255.76.67:PORT?ttl=0&recv_buf_size=..." with a port no other running test uses.
 std::string unique_lcm_url();
 
 // Pumps lc until pred() is true or timeout_s passes; returns pred().
