@@ -8,13 +8,15 @@
 //   bench_realtime --timer-floor S [--period-us P] [--timer-slack-ns N]
 // The second form is the floor: a bare loop sleeping to absolute 1 kHz deadlines
 // (clock_nanosleep on CLOCK_MONOTONIC, what sim_server's pacing comes down to),
-// printing "timer N P50_ERR P99_ERR MAX_ERR MISSED" (MISSED: periods > 2x nominal).
+// printing "timer N P50_ERR P99_ERR MAX_ERR MISSED SHORT" (MISSED: periods > 2x nominal; SHORT: periods
+// under half of it, the loop catching up after a stall, as sim_server does).
 // --timer-slack-ns sets the thread's timer slack first (Linux default 50000 ns
 // for normal threads, which every sleep and ppoll timeout may be late by).
 // Prints one line:
-//   realtime N LOST P50_ERR P99_ERR MAX_ERR SIM_MAX_ERR MISSED OVERRUNS CM_MISSED RTF SIM_JITTER
+//   realtime N LOST P50_ERR P99_ERR MAX_ERR SIM_MAX_ERR MISSED OVERRUNS CM_MISSED RTF SIM_JITTER SHORT
 // (errors in microseconds; LOST: states that never arrived here; SIM_JITTER: median over the 1 s windows of
-// the standard deviation of sim_server's own period)
+// the standard deviation of sim_server's own period; SHORT: periods under half the nominal one, i.e. states
+// that came back to back, as sim_server catches up after a stall)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -41,7 +43,7 @@ struct Listener {
   std::vector<double> period_err_us;
   int64_t last_ns = -1, last_step = -1;
   double nominal_us = 1000, rtf = std::nan("");
-  int64_t states = 0, lost = 0, missed = 0, overruns = 0, cm_missed = 0;
+  int64_t states = 0, lost = 0, short_periods = 0, missed = 0, overruns = 0, cm_missed = 0;
   double sim_max_err = 0;
   std::vector<double> sim_jitter;  // per 1 s window: the standard deviation of sim_server's own period
 
@@ -51,8 +53,11 @@ struct Listener {
     nominal_us = s->period_us;
     rtf = s->real_time_factor;
     if (now >= skip_until_ns && last_ns >= 0) {
-      if (s->step == last_step + 1)
-        period_err_us.push_back(std::abs(double(now - last_ns) / 1e3 - nominal_us));
+      if (s->step == last_step + 1) {
+        const double period = double(now - last_ns) / 1e3;
+        period_err_us.push_back(std::abs(period - nominal_us));
+        if (period < 0.5 * nominal_us) ++short_periods;
+      }
       else if (s->step > last_step + 1)
         lost += s->step - last_step - 1;
     }
@@ -78,7 +83,7 @@ int timer_floor(double seconds, double period_us) {
   clock_gettime(CLOCK_MONOTONIC, &next);
   std::vector<double> err;
   err.reserve(size_t(seconds * 1e6 / period_us) + 1);
-  int64_t last = -1, missed = 0;
+  int64_t last = -1, missed = 0, short_periods = 0;
   const int64_t end = now_ns() + int64_t(seconds * 1e9);
   while (now_ns() < end) {
     next.tv_nsec += period_ns;
@@ -92,11 +97,13 @@ int timer_floor(double seconds, double period_us) {
       const double period = double(t - last) / 1e3;
       err.push_back(std::abs(period - period_us));
       if (period > 2 * period_us) ++missed;
+      if (period < 0.5 * period_us) ++short_periods;
     }
     last = t;
   }
-  std::printf("timer %zu %.2f %.2f %.2f %lld\n", err.size(), quantile(err, 0.5), quantile(err, 0.99),
-              err.empty() ? std::nan("") : *std::max_element(err.begin(), err.end()), (long long)missed);
+  std::printf("timer %zu %.2f %.2f %.2f %lld %lld\n", err.size(), quantile(err, 0.5), quantile(err, 0.99),
+              err.empty() ? std::nan("") : *std::max_element(err.begin(), err.end()), (long long)missed,
+              (long long)short_periods);
   return 0;
 }
 
@@ -141,10 +148,10 @@ int main(int argc, char** argv) {
     }
     if (started && now_ns() - l.last_ns > 2000000000LL) break;  // the run is over
   }
-  std::printf("realtime %zu %lld %.2f %.2f %.2f %.2f %lld %lld %lld %.4f %.2f\n", l.period_err_us.size(), (long long)l.lost,
+  std::printf("realtime %zu %lld %.2f %.2f %.2f %.2f %lld %lld %lld %.4f %.2f %lld\n", l.period_err_us.size(), (long long)l.lost,
               quantile(l.period_err_us, 0.5), quantile(l.period_err_us, 0.99),
               l.period_err_us.empty() ? std::nan("") : *std::max_element(l.period_err_us.begin(), l.period_err_us.end()),
               l.sim_max_err, (long long)l.missed, (long long)l.overruns, (long long)l.cm_missed, l.rtf,
-              quantile(l.sim_jitter, 0.5));
+              quantile(l.sim_jitter, 0.5), (long long)l.short_periods);
   return 0;
 }
