@@ -19,6 +19,7 @@ inline constexpr const char* kHardwareCommand = "hardware/command";
 inline constexpr const char* kCmRequest = "controller_manager/request";
 inline constexpr const char* kCmResponse = "controller_manager/response";
 inline constexpr const char* kCmStatistics = "controller_manager/statistics";
+inline constexpr const char* kCmCommandSource = "controller_manager/command_source";
 inline constexpr const char* kSimStatistics = "sim_server/statistics";
 inline constexpr const char* kSimGainsOwner = "sim_server";
 inline constexpr const char* kEStop = "e_stop";

@@ -1,6 +1,7 @@
 #include "controller_manager/loop.hpp"
 
 #include "common/bus.hpp"
+#include "controller_manager/command_sources.hpp"
 
 namespace lcm_control::cm {
 
@@ -48,6 +49,7 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
     for (auto& s : slots_)
       if (s->running) s->controller->restart(now_);
   }
+  if (sources_) sources_->before_update(now_);
   for (auto& s : slots_) {
     if (!s->running) continue;
     const int64_t c0 = monotonic_us();

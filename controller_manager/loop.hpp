@@ -4,6 +4,7 @@
 // in this cycle), write (joint -> actuator) tagged with the step it answers.
 // A new session, time or step going backwards, an e-stop release or a resume
 // after silence restarts the running controllers from the current state.
+// Command sources deliver their due ticks after restarts, before the updates.
 // cycle() does not allocate, log or lock.
 #pragma once
 
@@ -17,6 +18,8 @@
 #include "controller_manager/stats.hpp"
 
 namespace lcm_control::cm {
+
+class CommandSources;
 
 struct ControllerSlot {
   std::string name, type;
@@ -53,6 +56,7 @@ class Loop {
   // After silence: the next cycle restarts the running controllers.
   void restart_next_cycle() { restart_ = true; }
   void stop_all();  // stopping() on every running controller, claims released
+  void set_command_sources(CommandSources* sources) { sources_ = sources; }
 
   const Time& now() const { return now_; }
   int64_t step() const { return step_; }
@@ -66,6 +70,7 @@ class Loop {
   void stop(ControllerSlot& s);
 
   Hardware& hw_;
+  CommandSources* sources_ = nullptr;
   std::vector<std::unique_ptr<ControllerSlot>> slots_;
   std::vector<ControllerSlot*> pending_stop_, pending_start_;
   bool pending_ = false;

@@ -29,8 +29,10 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       hw_(model_),
       loop_(hw_),
       port_(bus.lcm()),
+      sources_(loop_, bus),
       command_pub_(port_.publisher<hardware_command_t>(bus.channel(channels::kHardwareCommand))),
       stats_pub_(port_.publisher<loop_stats_t>(bus.channel(channels::kCmStatistics))) {
+  loop_.set_command_sources(&sources_);
   port_.subscribe<hardware_state_t>(
       bus.channel(channels::kHardwareState),
       [this](const hardware_state_t& m) {
@@ -134,6 +136,7 @@ Reply ControllerManager::unload(const std::string& name) {
   if (s->running)
     return {false, fmt::format("cannot unload '{}': it is running; stop it first (switch with stop=[{}])", name, name)};
   if (busy()) return {false, fmt::format("cannot unload '{}' now: a switch is being applied; retry", name)};
+  sources_.end_for(name, "controller unloaded");
   auto& slots = loop_.slots();
   for (auto it = slots.begin(); it != slots.end(); ++it)
     if (it->get() == s) {
@@ -212,6 +215,7 @@ void ControllerManager::reload(bool force, Done done) {
       done({false, fmt::format("cannot reload: {}; nothing was changed", join(e.problems(), "; "))});
       return;
     }
+    sources_.end_all("controllers reloaded");
     loop_.slots().clear();
     model_.controllers = fresh.controllers;
     std::vector<std::string> configured;
@@ -268,11 +272,13 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
     }
   }
   loop_.cycle(st, command_);
+  sources_.after_cycle();  // before the command: the echo is on the bus before the next state
   command_pub_.publish(command_);
   if (pending_done_ && !loop_.switch_pending()) complete_pending();
 }
 
 void ControllerManager::poll(int64_t now, bool idle) {
+  sources_.poll();
   if (idle && loop_.has_state() && !silent_ && now - last_state_us_ > options_.silence_us) {
     silent_ = true;
     spdlog::warn("no hardware/state for {} ms (last step {}): controllers are not updated until it resumes",
@@ -320,6 +326,8 @@ std::string ControllerManager::shutdown() {
     unloaded.push_back(s->name);
   }
   loop_.cancel_pending();
+  sources_.end_all("the controller manager is shutting down");
+  sources_.poll();
   loop_.stop_all();
   auto& slots = loop_.slots();
   while (!slots.empty()) slots.pop_back();

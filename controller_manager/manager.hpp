@@ -12,6 +12,7 @@
 
 #include "common/bus.hpp"
 #include "common/robot_model.hpp"
+#include "controller_manager/command_sources.hpp"
 #include "controller_manager/hardware.hpp"
 #include "controller_manager/loop.hpp"
 #include "controller_manager/registry.hpp"
@@ -42,6 +43,7 @@ class ControllerManager {
   const RobotModel& model() const { return model_; }
   Hardware& hardware() { return hw_; }
   Loop& loop() { return loop_; }
+  CommandSources& command_sources() { return sources_; }
 
   Reply load(const std::string& name);
   Reply unload(const std::string& name);
@@ -83,6 +85,7 @@ class ControllerManager {
   Hardware hw_;
   Loop loop_;
   Port port_;
+  CommandSources sources_;
   hardware_command_t command_{};
   Publisher<hardware_command_t> command_pub_;
   Publisher<loop_stats_t> stats_pub_;

@@ -7,10 +7,17 @@ Port::~Port() {
 }
 
 void Port::subscribe_raw(const std::string& channel, std::function<void(const lcm::ReceiveBuffer&)> handler) {
-  handlers_.push_back(std::make_unique<Handler>(Handler{std::move(handler)}));
+  handlers_.push_back(std::make_unique<Handler>(Handler{std::move(handler), channel}));
   lcm::Subscription* s = lc_.subscribe(channel, &Handler::on, handlers_.back().get());
   s->setQueueCapacity(100);
   subs_.push_back(s);
+}
+
+std::vector<const Port::RawHandler*> Port::handlers_for(const std::string& channel) const {
+  std::vector<const RawHandler*> out;
+  for (const auto& h : handlers_)
+    if (h->channel == channel) out.push_back(&h->fn);
+  return out;
 }
 
 }  // namespace lcm_control::cm

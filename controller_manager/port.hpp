@@ -63,6 +63,11 @@ class Port {
     });
   }
 
+  // The handlers subscribed on `channel` (exact name), to deliver bytes to them
+  // in-process exactly as a received message (command sources).
+  using RawHandler = std::function<void(const lcm::ReceiveBuffer&)>;
+  std::vector<const RawHandler*> handlers_for(const std::string& channel) const;
+
   template <class Msg>
   Publisher<Msg> publisher(const std::string& channel) {
     return Publisher<Msg>(&lc_, channel);
@@ -70,7 +75,8 @@ class Port {
 
  private:
   struct Handler {
-    std::function<void(const lcm::ReceiveBuffer&)> fn;
+    RawHandler fn;
+    std::string channel;
     void on(const lcm::ReceiveBuffer* rb, const std::string&) { fn(*rb); }
   };
   lcm::LCM& lc_;

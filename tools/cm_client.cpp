@@ -59,6 +59,31 @@ int64_t CmClient::send(cm_request_t& req, std::set<int64_t>& ids) {
   return req.request_id;
 }
 
+cm_response_t CmClient::command_source(command_source_t req, double timeout_s) {
+  req.utime = wall_us();
+  req.request_id = new_request_id();
+  req.client = client_;
+  req.num_expressions = int32_t(req.expressions.size());
+  answers_[req.request_id].request_id = 0;
+  bus_.publish(channels::kCmCommandSource, req);
+  const auto got = wait_answer({req.request_id}, timeout_s);
+  if (!got) {
+    throw CmTimeout(fmt::format(
+        "no answer from the controller manager within {} to the command source for '{}' (sent on '{}', nothing came "
+        "back on '{}'): is controller_manager running on {}{}? (same --lcm-url/LCM_DEFAULT_URL and --namespace)",
+        seconds_text(timeout_s), req.controller, bus_.channel(channels::kCmCommandSource), response_channel(),
+        bus_.url(), bus_.ns().empty() ? " without a namespace" : " with namespace '" + bus_.ns() + "'"));
+  }
+  answers_[req.request_id].request_id = 0;  // the next answer with this id says it ended
+  return *got;
+}
+
+std::optional<cm_response_t> CmClient::source_ended(int64_t request_id, double timeout_s) {
+  auto got = wait_answer({request_id}, timeout_s);
+  if (got) answers_.erase(request_id);
+  return got;
+}
+
 std::optional<cm_response_t> CmClient::wait_answer(const std::set<int64_t>& ids, double timeout_s) {
   std::optional<cm_response_t> got;
   pump_until(

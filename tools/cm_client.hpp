@@ -13,6 +13,7 @@
 #include "common/bus.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
+#include "lcm_control/command_source_t.hpp"
 
 namespace lcm_control::tools {
 
@@ -44,6 +45,14 @@ class CmClient {
   cm_response_t switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop,
                                    bool strict, double timeout_s);
   cm_response_t reload(bool force, double timeout_s);
+
+  // Registers (or with remove ends) a controller's command source on
+  // `controller_manager/command_source`; returns the manager's answer (not
+  // resent: a second registration would restart the ticks). Throws CmTimeout.
+  // The manager answers again with the same request_id when the source ends:
+  // source_ended() polls for that answer.
+  cm_response_t command_source(command_source_t req, double timeout_s);
+  std::optional<cm_response_t> source_ended(int64_t request_id, double timeout_s);
 
   // Asks LIST every 0.5 s until the manager answers (it may still be starting).
   // Throws CmTimeout after timeout_s; on_wait runs once if the first try is not answered.

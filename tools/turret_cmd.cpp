@@ -1,60 +1,24 @@
 // turret-cmd: rqt's Message Publisher on the command line. Publishes muparser
 // expressions in i (message count) and t (seconds since start) to a controller's
-// command channel, once or at a fixed rate of wall time or of sim time.
+// command channel, once or at a fixed rate of wall time; on sim time it has the
+// controller manager generate them (a command source), or for a raw channel
+// paces by the `clock` channel.
 #include <fmt/ranges.h>
-#include <muParser.h>
 
 #include <cmath>
 #include <memory>
 #include <optional>
 
 #include "common/cli.hpp"
+#include "common/expression.hpp"
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/sim_clock_t.hpp"
+#include "tools/cm_client.hpp"
 #include "tools/support.hpp"
 
 namespace lcm_control::tools {
 namespace {
-
-// The expressions, evaluated for one (i, t).
-class Expressions {
- public:
-  explicit Expressions(const std::vector<std::string>& texts) : texts_(texts) {
-    for (const auto& text : texts) {
-      auto p = std::make_unique<mu::Parser>();
-      try {
-        p->DefineVar("i", &i_);
-        p->DefineVar("t", &t_);
-        p->DefineConst("pi", M_PI);
-        p->SetExpr(text);
-        p->Eval();
-      } catch (const mu::Parser::exception_type& e) {
-        throw std::runtime_error(fmt::format("expression '{}': {} (variables: i, t; constants: pi, _pi, _e)", text,
-                                             e.GetMsg()));
-      }
-      parsers_.push_back(std::move(p));
-    }
-  }
-  std::vector<double> eval(int64_t i, double t) {
-    i_ = double(i);
-    t_ = t;
-    std::vector<double> v;
-    for (size_t k = 0; k < parsers_.size(); ++k) {
-      const double x = parsers_[k]->Eval();
-      if (!std::isfinite(x))
-        throw std::runtime_error(fmt::format("expression '{}' is {} at i={} t={:g}; nothing sent for it", texts_[k], x,
-                                             i, t));
-      v.push_back(x);
-    }
-    return v;
-  }
-
- private:
-  std::vector<std::string> texts_;
-  std::vector<std::unique_ptr<mu::Parser>> parsers_;
-  double i_ = 0, t_ = 0;
-};
 
 struct Options {
   std::string target;
@@ -63,24 +27,31 @@ struct Options {
   int64_t count = 0;
   double duration = 0;
   bool raw_channel = false, array = false, sim_time = false, print = false;
-  double clock_timeout = 5;
+  double clock_timeout = 5, answer_timeout = 5;
 };
+
+// TARGET as given, without ROS's leading '/'.
+std::string clean_target(std::string t) {
+  while (!t.empty() && t[0] == '/') t.erase(0, 1);
+  if (t.empty()) throw std::runtime_error("TARGET is empty: give a controller name or a channel");
+  return t;
+}
+bool is_channel(const Options& o) { return o.raw_channel || clean_target(o.target).find('/') != std::string::npos; }
 
 class Publisher {
  public:
   Publisher(Bus& bus, const Options& o)
-      : bus_(bus), o_(o), exprs_(o.exprs), array_(o.array || o.exprs.size() > 1) {
-    std::string t = o.target;
-    while (!t.empty() && t[0] == '/') t.erase(0, 1);  // ROS-style "/j2_controller/command"
-    if (t.empty()) throw std::runtime_error("TARGET is empty: give a controller name or a channel");
-    channel_ = (o.raw_channel || t.find('/') != std::string::npos) ? t : t + "/command";
+      : bus_(bus), o_(o), exprs_(o.exprs), array_(o.array || o.exprs.size() > 1), values_(o.exprs.size()) {
+    const std::string t = clean_target(o.target);
+    channel_ = is_channel(o) ? t : t + "/command";
   }
   const std::string& channel() const { return channel_; }
   const char* type() const { return array_ ? "float64_array_t" : "float64_t"; }
   int64_t sent() const { return sent_; }
 
   void send(int64_t i, double t, int64_t utime) {
-    const std::vector<double> v = exprs_.eval(i, t);
+    exprs_.eval_checked(i, t, values_.data());
+    const std::vector<double>& v = values_;
     if (array_) {
       float64_array_t m;
       m.utime = utime;
@@ -102,6 +73,7 @@ class Publisher {
   const Options& o_;
   Expressions exprs_;
   bool array_;
+  std::vector<double> values_;
   std::string channel_;
   int64_t sent_ = 0;
 };
@@ -226,6 +198,70 @@ int run_sim_time(Bus& bus, Publisher& pub, const Options& o) {
   return kExitOk;
 }
 
+// Sim time with a controller TARGET: the controller manager generates the
+// commands on hardware time (exact under lockstep: tick i is used at the step it
+// is due). Waits for its answer, then until the source ends (or Ctrl-C, then
+// removes it); --print shows the commands it publishes.
+class SourceWatcher {
+ public:
+  SourceWatcher(Bus& bus, const Options& o, const std::string& channel) : o_(o) {
+    if (o.print) bus.lcm().subscribe(channel, &SourceWatcher::on_command, this);
+  }
+  int64_t seen() const { return seen_; }
+
+ private:
+  void on_command(const lcm::ReceiveBuffer* rb, const std::string&) {
+    float64_array_t& many = many_;
+    float64_t& one = one_;
+    if (o_.exprs.size() > 1 && many.decode(rb->data, 0, int(rb->data_size)) >= 0)
+      fmt::print("{} {:.6f} {}\n", seen_, double(many.utime) * 1e-6, fmt::join(many.data, " "));
+    else if (o_.exprs.size() == 1 && one.decode(rb->data, 0, int(rb->data_size)) >= 0)
+      fmt::print("{} {:.6f} {}\n", seen_, double(one.utime) * 1e-6, one.data);
+    std::fflush(stdout);
+    ++seen_;
+  }
+  const Options& o_;
+  int64_t seen_ = 0;
+  // Members, not locals: LCM's double decoding breaks strict aliasing, and at
+  // -O2 a decode into a fresh local can read back its zero initializer.
+  float64_array_t many_{};
+  float64_t one_{};
+};
+
+int run_command_source(Bus& bus, const Options& o) {
+  const std::string controller = clean_target(o.target);
+  Expressions check(o.exprs);  // a bad expression fails here, naming it
+  CmClient cm(bus, "turret-cmd");
+  SourceWatcher watch(bus, o, bus.channel(controller + "/command"));
+  command_source_t req{};
+  req.controller = controller;
+  req.expressions = o.exprs;
+  req.rate_hz = o.rate;
+  req.count = o.count;
+  req.duration_s = o.duration;
+  const cm_response_t answer = cm.command_source(req, o.answer_timeout);
+  if (!answer.ok) throw std::runtime_error(answer.message);
+  fmt::print(stderr, "turret-cmd: {}\n", answer.message);
+  const int64_t id = answer.request_id;
+  while (!stop_requested()) {
+    if (auto end = cm.source_ended(id, 0.05)) {
+      fmt::print(stderr, "turret-cmd: {}\n", end->message);
+      if (!end->ok) throw std::runtime_error(end->message);
+      return kExitOk;
+    }
+  }
+  command_source_t rm{};
+  rm.controller = controller;
+  rm.remove = true;
+  try {
+    const cm_response_t r = cm.command_source(rm, 2.0);
+    fmt::print(stderr, "turret-cmd: {}\n", r.message);
+  } catch (const CmTimeout& e) {
+    fmt::print(stderr, "turret-cmd: could not remove the command source: {}\n", e.what());
+  }
+  return kExitOk;
+}
+
 }  // namespace
 }  // namespace lcm_control::tools
 
@@ -242,7 +278,14 @@ int main(int argc, char** argv) {
       "  turret-cmd j2_controller '3.14*sin(i/100)' --rate 60           # until Ctrl-C\n"
       "  turret-cmd /j2_controller/command '3.14*sin(2*pi*0.5*t)' --rate 100 --duration 10\n"
       "  turret-cmd arm_controller 0.1 '-0.2*t' --rate 50 --count 100   # float64_array_t\n"
-      "  turret-cmd j2_controller 'i<500 ? 0 : 1' --sim-time            # one message per sim control step",
+      "  turret-cmd j2_controller 'i<500 ? 0 : 1' --sim-time            # every control step, exact\n"
+      "  turret-cmd j2_controller '3.14*sin(i/100)' --sim-time --rate 60 --duration 20\n"
+      "With --sim-time and a controller TARGET, the controller manager generates the commands itself (a command "
+      "source): message i is due at sim time i/rate after the first control step it sees, is delivered before that "
+      "step's update and published on TARGET/command, so every step gets its own command and lockstep runs repeat "
+      "exactly. turret-cmd waits for the source to end (--count, --duration) or for Ctrl-C, which removes it. With "
+      "--sim-time and a channel TARGET, turret-cmd paces itself by the `clock` channel: best effort, a message can "
+      "reach the controller a step late.",
       "turret-cmd"};
   Options o;
   BusFlags bus_flags;
@@ -256,8 +299,12 @@ int main(int argc, char** argv) {
   app.add_flag("--channel", o.raw_channel, "TARGET is a channel name, used as given");
   app.add_flag("--array", o.array, "send float64_array_t even for one EXPR");
   app.add_flag("--sim-time", o.sim_time,
-               "pace by sim time from the `clock` channel instead of the wall clock (deterministic under lockstep)");
-  app.add_option("--clock-timeout", o.clock_timeout, "with --sim-time: give up after S seconds without a clock message")
+               "sim time instead of the wall clock: a controller TARGET gets a command source in the controller manager "
+               "(exact, deterministic under lockstep); a channel TARGET is paced by the `clock` channel (best effort)");
+  app.add_option("--clock-timeout", o.clock_timeout, "with --sim-time and a channel TARGET: give up after S seconds without a clock message")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--answer-timeout", o.answer_timeout,
+                 "with --sim-time and a controller TARGET: seconds to wait for the controller manager's answer")
       ->check(CLI::PositiveNumber);
   app.add_flag("--print", o.print, "print `i t value...` for every message sent");
   add_bus_flags(app, bus_flags);
@@ -267,6 +314,11 @@ int main(int argc, char** argv) {
       throw std::runtime_error("--duration needs --rate (or --sim-time)");
     install_stop_signals();
     Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    if (o.sim_time && !is_channel(o)) {
+      if (o.array) throw std::runtime_error("--array does not apply with --sim-time and a controller TARGET (the "
+                                            "controller manager sends what the controller takes)");
+      return run_command_source(bus, o);
+    }
     Publisher pub(bus, o);
     if (o.rate > 0 || o.sim_time)
       fmt::print(stderr, "turret-cmd: {} on '{}' {}{} (Ctrl-C to stop)\n", pub.type(), bus.channel(pub.channel()),

@@ -109,9 +109,20 @@ TEST(TurretCmd, NanIsNeverSent) {
   EXPECT_NE(p.output().find("at i=3"), std::string::npos) << p.output();
 }
 
-TEST(TurretCmd, SimTimeWithoutClockTimesOut) {
-  ChildProcess p({bin("turret-cmd"), "j2_controller", "1", "--sim-time", "--clock-timeout", "0.5", "--lcm-url",
+// A controller TARGET on sim time asks the controller manager for a command source.
+TEST(TurretCmd, SimTimeWithoutControllerManagerTimesOut) {
+  ChildProcess p({bin("turret-cmd"), "j2_controller", "1", "--sim-time", "--answer-timeout", "0.5", "--lcm-url",
                   unique_lcm_url()});
+  EXPECT_EQ(p.wait(5.0), 4);  // kExitBus
+  EXPECT_NE(p.output().find("no answer from the controller manager within 0.5 s to the command source for "
+                            "'j2_controller'"),
+            std::string::npos)
+      << p.output();
+}
+
+TEST(TurretCmd, SimTimeWithoutClockTimesOut) {
+  ChildProcess p({bin("turret-cmd"), "j2_controller/command", "1", "--sim-time", "--clock-timeout", "0.5",
+                  "--lcm-url", unique_lcm_url()});
   EXPECT_EQ(p.wait(5.0), 1);
   EXPECT_NE(p.output().find("no sim_clock_t on 'clock'"), std::string::npos) << p.output();
 }
@@ -122,7 +133,8 @@ TEST(TurretCmd, SimTimeSendsEachTickCommandBeforeTheTick) {
   const std::string url = unique_lcm_url();
   lcm::LCM lc(url);
   Recorder<float64_t> rec(lc, "j2_controller/command");
-  ChildProcess p({bin("turret-cmd"), "j2_controller", "10*i + t", "--sim-time", "--count", "40", "--lcm-url", url});
+  ChildProcess p({bin("turret-cmd"), "j2_controller/command", "10*i + t", "--sim-time", "--count", "40", "--lcm-url",
+                  url});
   const int64_t period_us = 1000, first_step = 500;
   sim_clock_t clock{};
   // Until turret-cmd listens, the first clocks go unheard; start counting at its first answer.
@@ -162,7 +174,8 @@ TEST(TurretCmd, SimTimeRateIsInSimSeconds) {
   lcm::LCM lc(url);
   Recorder<float64_t> rec(lc, "c/command");
   // 100 Hz of sim time on a 1 kHz clock: one message every 10 steps.
-  ChildProcess p({bin("turret-cmd"), "c", "t", "--sim-time", "--rate", "100", "--duration", "0.05", "--lcm-url", url});
+  ChildProcess p({bin("turret-cmd"), "c/command", "t", "--sim-time", "--rate", "100", "--duration", "0.05", "--lcm-url",
+                  url});
   sim_clock_t clock{};
   int64_t k = 1;
   while (rec.messages.empty() && k < 2000) {

@@ -1,0 +1,65 @@
+// Command sources: the controller manager generates a controller's commands
+// itself, on hardware time, from muparser expressions (command_source_t on
+// `controller_manager/command_source`). Tick j is due j/rate after the first
+// cycle in which the controller runs; its values are delivered through the
+// controller's own `<controller>/command` handler before that cycle's update
+// (so lockstep runs repeat exactly) and published on that channel after the
+// cycle. before_update() and after_cycle() neither allocate nor log.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/bus.hpp"
+#include "common/expression.hpp"
+#include "controller_manager/controller.hpp"
+#include "controller_manager/port.hpp"
+#include "lcm_control/cm_response_t.hpp"
+#include "lcm_control/command_source_t.hpp"
+#include "lcm_control/float64_array_t.hpp"
+#include "lcm_control/float64_t.hpp"
+
+namespace lcm_control::cm {
+
+struct ControllerSlot;
+class Loop;
+struct Reply;
+
+class CommandSources {
+ public:
+  CommandSources(Loop& loop, Bus& bus);
+  ~CommandSources();
+
+  // Registers (or replaces) the source of req.controller, or with req.remove
+  // ends it. The reply says what was set up or why not.
+  Reply handle(const command_source_t& req);
+
+  // Loop path: deliver the ticks due at `now` (after restarts, before updates).
+  void before_update(const Time& now);
+  // After the cycle: publish the values delivered in it on `<controller>/command`.
+  void after_cycle();
+  // Between cycles: answer the requests of ended sources and log them.
+  void poll();
+
+  // The controller is about to be unloaded: its source ends now.
+  void end_for(const std::string& controller, const char* why);
+  void end_all(const char* why);
+
+  size_t active() const;
+  // Ticks delivered by the source of `controller` (-1 if it has none).
+  int64_t ticks(const std::string& controller) const;
+
+ private:
+  struct Source;
+  void answer(int64_t request_id, const Reply& reply);
+
+  Loop& loop_;
+  Bus& bus_;
+  Port port_;
+  Publisher<cm_response_t> response_pub_;
+  std::vector<std::unique_ptr<Source>> sources_;
+};
+
+}  // namespace lcm_control::cm

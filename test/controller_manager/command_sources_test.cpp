@@ -1,0 +1,211 @@
+// Command sources: ticks on hardware time delivered before the update of the
+// cycle they are due in (so every step gets its own command), echoes on
+// <controller>/command, ends (count, duration, remove, unload), refusals, and
+// no allocation on the loop path.
+#include "controller_manager/command_sources.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lcm_control/cm_response_t.hpp"
+#include "lcm_control/float64_array_t.hpp"
+#include "lcm_control/float64_t.hpp"
+#include "test/controller_manager/alloc_counter.hpp"
+#include "test/controller_manager/rig.hpp"
+
+using namespace lcm_control;
+using namespace lcm_control::cm;
+using lcm_control::testing::Rig;
+
+namespace {
+
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+command_source_t source(const std::string& controller, std::vector<std::string> exprs, double rate = 0,
+                        int64_t count = 0, double duration = 0) {
+  command_source_t r{};
+  r.request_id = 7;
+  r.client = "test";
+  r.controller = controller;
+  r.expressions = std::move(exprs);
+  r.num_expressions = int32_t(r.expressions.size());
+  r.rate_hz = rate;
+  r.count = count;
+  r.duration_s = duration;
+  return r;
+}
+
+template <class Msg>
+struct Recorder {
+  Recorder(lcm::LCM& lc, const std::string& channel) { lc.subscribe(channel, &Recorder::on, this); }
+  void on(const lcm::ReceiveBuffer*, const std::string&, const Msg* m) { messages.push_back(*m); }
+  std::vector<Msg> messages;
+};
+
+// The command the hardware got for `actuator` at each answered step.
+std::vector<double> commanded(const Rig& rig, const std::string& actuator) {
+  size_t a = 0;
+  while (a < rig.act.size() && rig.act[a].name != actuator) ++a;
+  std::vector<double> v;
+  for (const auto& c : rig.commands) v.push_back(c.command[a]);
+  return v;
+}
+
+}  // namespace
+
+TEST(CommandSources, EveryStepGetsItsOwnCommandBeforeTheUpdate) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);  // at once: no hardware yet
+  Recorder<float64_t> echo(rig.bus.lcm(), "slide_position/command");
+  const Reply r = rig.cm->command_sources().handle(source("slide_position", {"0.001*(i+1) + t"}, 0, 50));
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_TRUE(has(r.message, "every control step")) << r.message;
+  rig.cycle(60);
+  const auto v = commanded(rig, "slide_motor");
+  ASSERT_GE(v.size(), 60u);
+  for (int k = 0; k < 50; ++k) EXPECT_NEAR(v[k], 0.001 * (k + 1) + k * 1e-3, 1e-12) << "step " << k;
+  for (int k = 50; k < 60; ++k) EXPECT_NEAR(v[k], 0.05 + 0.049, 1e-12) << "holds the last one";
+  ASSERT_EQ(echo.messages.size(), 50u);
+  for (int k = 0; k < 50; ++k) {
+    EXPECT_EQ(echo.messages[k].utime, rig.commands[k].utime);
+    EXPECT_DOUBLE_EQ(echo.messages[k].data, v[k]);
+  }
+  EXPECT_EQ(rig.cm->command_sources().active(), 0u);
+}
+
+TEST(CommandSources, RateTicksOnHardwareTimeAndEndsAfterDuration) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
+  rig.cycle(3);  // ticking: the source starts at the next cycle
+  const int64_t start_us = rig.step * 1000;
+  Recorder<float64_t> echo(rig.bus.lcm(), "slide_position/command");
+  Recorder<cm_response_t> answers(rig.bus.lcm(), "controller_manager/response");
+  ASSERT_TRUE(rig.cm->command_sources().handle(source("slide_position", {"i"}, 60, 0, 0.1)).ok);
+  rig.cycle(200);
+  rig.cm->poll(monotonic_us(), false);
+  rig.pump();
+  // ticks 0..5 (t = j/60 < 0.1), due at start + j/60 s, used from the first step at or after that
+  ASSERT_EQ(echo.messages.size(), 6u);
+  for (int j = 0; j < 6; ++j) {
+    EXPECT_EQ(echo.messages[j].utime, start_us + std::llround(j * 1e6 / 60)) << j;
+    EXPECT_EQ(echo.messages[j].data, j);
+  }
+  const auto v = commanded(rig, "slide_motor");
+  const size_t first = 3;
+  for (size_t k = first; k < first + 100; ++k) {
+    const int64_t us = int64_t(k - first) * 1000;
+    EXPECT_EQ(v[k], std::min<int64_t>(5, us * 60 / 1000000)) << "step " << k;
+  }
+  ASSERT_EQ(answers.messages.size(), 1u);
+  EXPECT_EQ(answers.messages[0].request_id, 7);
+  EXPECT_EQ(answers.messages[0].op, cm_response_t::OP_COMMAND_SOURCE);
+  EXPECT_TRUE(has(answers.messages[0].message, "ended (duration reached) after 6 tick(s)"))
+      << answers.messages[0].message;
+}
+
+TEST(CommandSources, StartsWithTheFirstHardwareStateAfterARestart) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("pos_group").ok);
+  ASSERT_TRUE(rig.switch_({"pos_group"}, {}).ok);
+  ASSERT_TRUE(rig.cm->command_sources().handle(source("pos_group", {"i", "-i"}, 0, 3)).ok);
+  rig.step = 1000;  // the first state: controllers restart from it, tick 0 is its step
+  rig.cycle(4);
+  const auto a = commanded(rig, "slide_motor"), b = commanded(rig, "tilt_motor");
+  ASSERT_EQ(a.size(), 4u);
+  EXPECT_EQ(a, (std::vector<double>{0, 1, 2, 2}));
+  EXPECT_EQ(b, (std::vector<double>{0, -1, -2, -2}));
+}
+
+TEST(CommandSources, RemoveUnloadAndReplaceEndTheSource) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
+  auto& cs = rig.cm->command_sources();
+  ASSERT_TRUE(cs.handle(source("slide_position", {"1"})).ok);
+  const Reply replaced = cs.handle(source("slide_position", {"2"}));
+  EXPECT_TRUE(has(replaced.message, "replaced the previous one")) << replaced.message;
+  rig.cycle(2);
+  EXPECT_EQ(commanded(rig, "slide_motor").back(), 2);
+  EXPECT_EQ(cs.active(), 1u);
+  command_source_t rm{};
+  rm.controller = "slide_position";
+  rm.remove = true;
+  const Reply removed = cs.handle(rm);
+  EXPECT_TRUE(removed.ok) << removed.message;
+  EXPECT_EQ(cs.active(), 0u);
+  EXPECT_FALSE(cs.handle(rm).ok);
+  ASSERT_TRUE(cs.handle(source("slide_position", {"3"})).ok);
+  ASSERT_TRUE(rig.switch_({}, {"slide_position"}).ok);
+  ASSERT_TRUE(rig.cm->unload("slide_position").ok);
+  EXPECT_EQ(cs.active(), 0u);
+  rig.cycle(2);
+  rig.cm->poll(monotonic_us(), false);
+}
+
+TEST(CommandSources, RefusalsNameTheProblem) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.load("pos_group").ok);
+  ASSERT_TRUE(rig.load("joint_state_controller").ok);
+  auto& cs = rig.cm->command_sources();
+  auto why = [&](const command_source_t& r) {
+    const Reply reply = cs.handle(r);
+    EXPECT_FALSE(reply.ok);
+    return reply.message;
+  };
+  EXPECT_TRUE(has(why(source("nope", {"1"})), "it is not loaded (loaded: slide_position, pos_group")) << why(source("nope", {"1"}));
+  EXPECT_TRUE(has(why(source("slide_position", {"1", "2"})), "takes one value"));
+  EXPECT_TRUE(has(why(source("pos_group", {"1"})), "1 expression(s) for 2 joints"));
+  EXPECT_TRUE(has(why(source("joint_state_controller", {"1"})), "takes no float64_t"));
+  EXPECT_TRUE(has(why(source("slide_position", {"sin("})), "expression 'sin('"));
+  EXPECT_TRUE(has(why(source("slide_position", {"1"}, -1)), "rate_hz"));
+  EXPECT_EQ(cs.active(), 0u);
+}
+
+TEST(CommandSources, NotFiniteEndsTheSourceAndNothingIsDelivered) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
+  Recorder<cm_response_t> answers(rig.bus.lcm(), "controller_manager/response");
+  ASSERT_TRUE(rig.cm->command_sources().handle(source("slide_position", {"sqrt(2-i)"})).ok);
+  rig.cycle(6);
+  rig.cm->poll(monotonic_us(), false);
+  rig.pump();
+  const auto v = commanded(rig, "slide_motor");
+  EXPECT_DOUBLE_EQ(v[5], 0.0);
+  EXPECT_DOUBLE_EQ(v[2], 0.0);
+  EXPECT_DOUBLE_EQ(v[1], 1.0);
+  ASSERT_EQ(answers.messages.size(), 1u);
+  EXPECT_FALSE(answers.messages[0].ok);
+  EXPECT_TRUE(has(answers.messages[0].message, "nan at i=3 t=0.003")) << answers.messages[0].message;
+}
+
+TEST(CommandSources, OverLcmAndWithoutAllocationOnTheLoopPath) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("wheel_velocity").ok);
+  ASSERT_TRUE(rig.load("pos_group").ok);
+  ASSERT_TRUE(rig.switch_({"wheel_velocity", "pos_group"}, {}).ok);
+  Recorder<cm_response_t> answers(rig.bus.lcm(), "controller_manager/response");
+  rig.publish("controller_manager/command_source", source("wheel_velocity", {"3.14*sin(i/100)"}, 60));
+  command_source_t g = source("pos_group", {"sin(t)", "cos(t)"});
+  g.request_id = 8;
+  rig.publish("controller_manager/command_source", g);
+  ASSERT_EQ(answers.messages.size(), 2u);
+  EXPECT_TRUE(answers.messages[0].ok) << answers.messages[0].message;
+  EXPECT_EQ(answers.messages[1].request_id, 8);
+  rig.cycle(50);  // warm-up
+  lcm_control::testing::reset_allocations();
+  for (int k = 0; k < 500; ++k) {
+    fill_state(rig.state, rig.act, rig.step, rig.session, 1000, true);
+    lcm_control::testing::count_allocations(true);
+    rig.cm->on_hardware_state(rig.state);
+    lcm_control::testing::count_allocations(false);
+    ++rig.step;
+    rig.pump();
+  }
+  EXPECT_EQ(lcm_control::testing::allocations(), 0);
+  EXPECT_EQ(rig.cm->command_sources().ticks("pos_group"), 550);
+}
