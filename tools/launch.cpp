@@ -1,7 +1,10 @@
 // launch: roslaunch for lcm_control. Starts sim_server and controller_manager
 // from a YAML or ROS XML launch file, waits until both answer, spawns the
-// controllers, prefixes every child's output with its name, and stops
-// everything in order (controllers, then processes) on Ctrl-C or a death.
+// controllers, registers the file's command sources, prefixes every child's
+// output with its name, and stops everything in order (controllers, then
+// processes) on Ctrl-C, a death, or when sim_server ends its --duration. In
+// lockstep, sim_server starts last, so controllers and command sources start at
+// step 0 in every run.
 #include <fmt/ranges.h>
 
 #include <cstring>
@@ -10,6 +13,7 @@
 #include "common/cli.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
+#include "tools/cm_client.hpp"
 #include "tools/launch_file.hpp"
 #include "tools/supervisor.hpp"
 #include "tools/support.hpp"
@@ -89,11 +93,14 @@ int main(int argc, char** argv) {
       "Examples:\n"
       "  launch config/turret_bot.launch.yaml\n"
       "  launch ~/catkin_ws/src/turret_bot/launch/gazebo_ros_control.launch --package-path ~/catkin_ws/src\n"
-      "  launch config/turret_bot.launch.yaml --mode lockstep --dry-run",
+      "  launch config/turret_bot.launch.yaml --mode lockstep --dry-run\n"
+      "  launch config/turret_bot_demo.launch.yaml --duration 20       # lockstep demo, exits when done\n"
+      "In lockstep mode the controller manager starts first, the controllers are spawned and the file's commands "
+      "registered as command sources, and only then sim_server starts: every run is the same from step 0.",
       "launch"};
   std::string file, mode;
   std::vector<std::string> package_path;
-  double ready_timeout = 20, stop_timeout = 5;
+  double ready_timeout = 20, stop_timeout = 5, duration = 0;
   bool dry_run = false;
   BusFlags bus_flags;
   app.add_option("FILE", file, "launch file: YAML (see config/turret_bot.launch.yaml) or ROS launch XML")->required();
@@ -102,6 +109,9 @@ int main(int argc, char** argv) {
   app.add_option("--ready-timeout", ready_timeout, "seconds for the servers and the spawner to come up")
       ->check(CLI::PositiveNumber);
   app.add_option("--stop-timeout", stop_timeout, "seconds for everything to stop before the rest is killed")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--duration", duration,
+                 "sim seconds: passed to sim_server, which stops then; launch then stops the rest and exits 0")
       ->check(CLI::PositiveNumber);
   app.add_flag("--dry-run", dry_run, "print what would be started and exit");
   add_package_path_flag(app, package_path);
@@ -117,6 +127,7 @@ int main(int argc, char** argv) {
     if (plan.physics_rate > 0) sim.insert(sim.end(), {"--physics-rate", fmt::format("{:g}", plan.physics_rate)});
     if (plan.control_rate > 0) sim.insert(sim.end(), {"--control-rate", fmt::format("{:g}", plan.control_rate)});
     sim.insert(sim.end(), plan.sim_args.begin(), plan.sim_args.end());
+    if (duration > 0) sim.insert(sim.end(), {"--duration", fmt::format("{:g}", duration)});
     std::vector<std::string> cm{"controller_manager", "--urdf", plan.urdf, "--config", plan.config};
     cm.insert(cm.end(), plan.cm_args.begin(), plan.cm_args.end());
     std::vector<std::string> spawner{"spawner"};
@@ -132,6 +143,9 @@ int main(int argc, char** argv) {
       for (const auto& p : plan.processes)
         fmt::print("{}: {}{}\n", p.name, fmt::join(p.argv, " "), p.required ? " (required)" : "");
       if (!plan.controllers.empty()) fmt::print("{}: {}\n", plan.spawner_name, fmt::join(with_ns(spawner, ns), " "));
+      for (const auto& c : plan.commands)
+        fmt::print("command source: {} [{}] rate {:g} count {} duration {:g}\n", c.target, fmt::join(c.expr, ", "),
+                   c.rate, c.count, c.duration);
       return int(kExitOk);
     }
 
@@ -149,7 +163,8 @@ int main(int argc, char** argv) {
     const int64_t up_deadline = monotonic_us() + int64_t(ready_timeout * 1e6);
     auto left = [&] { return std::max(0.0, double(up_deadline - monotonic_us()) / 1e6); };
     auto broken = [&] { return stop_requested() || !sup.reason_to_stop().empty(); };
-    if (plan.sim) sim_c = &sup.start(plan.sim_name, with_ns(sim, ns), true);
+    const bool sim_last = plan.sim && plan.mode == "lockstep";
+    if (plan.sim && !sim_last) sim_c = &sup.start(plan.sim_name, with_ns(sim, ns), true);
     if (plan.controller_manager) cm_c = &sup.start(plan.cm_name, with_ns(cm, ns), true);
     const bool servers_up = sup.wait_until(
         [&] {
@@ -168,12 +183,15 @@ int main(int argc, char** argv) {
         waiting.push_back(fmt::format("{} (no answer on '{}')", plan.cm_name, bus->channel(channels::kCmResponse)));
       failure = fmt::format("not up within {}: {}", seconds_text(ready_timeout), fmt::join(waiting, ", "));
     }
-    if (failure.empty() && !broken()) {
-      // From here launch needs no bus; a udpm socket receives every message on
-      // it, which costs CPU the simulation could use.
+    // From here launch needs no bus; a udpm socket receives every message on
+    // it, which costs CPU the simulation could use.
+    auto drop_bus = [&] {
       sup.watch(-1, {});
       probe.reset();
       bus.reset();
+    };
+    if (failure.empty() && !broken()) {
+      if (!sim_last && plan.commands.empty()) drop_bus();
       if (plan.state_publisher) others.push_back(&sup.start(plan.state_publisher_name, with_ns(rsp, ns), true));
       for (const auto& p : plan.processes) others.push_back(&sup.start(p.name, p.argv, p.required));
       if (!plan.controllers.empty()) {
@@ -183,6 +201,36 @@ int main(int argc, char** argv) {
                                 seconds_text(std::max(left(), 12.0)));
       }
     }
+    if (failure.empty() && !broken() && !plan.commands.empty()) {
+      CmClient client(*bus, "launch");
+      for (const auto& c : plan.commands) {
+        command_source_t req{};
+        req.controller = c.target;
+        req.expressions = c.expr;
+        req.rate_hz = c.rate;
+        req.count = c.count;
+        req.duration_s = c.duration;
+        try {
+          const cm_response_t r = client.command_source(req, std::max(left(), 5.0));
+          if (!r.ok) {
+            failure = r.message;
+            break;
+          }
+          say(r.message);
+        } catch (const CmTimeout& e) {
+          failure = e.what();
+          break;
+        }
+      }
+    }
+    if (failure.empty() && !broken() && sim_last) {
+      sim_c = &sup.start(plan.sim_name, with_ns(sim, ns), true);
+      if (!sup.wait_until([&] { return broken() || (sim_c->ready && probe->hardware_seen()); }, std::max(left(), 5.0)))
+        failure = fmt::format("{} not up within {}: {}", plan.sim_name, seconds_text(std::max(left(), 5.0)),
+                              sim_c->ready ? fmt::format("nothing on '{}'", bus->channel(channels::kHardwareState))
+                                           : std::string("no 'ready' line"));
+    }
+    if (bus) drop_bus();
     if (failure.empty() && !broken()) {
       say(fmt::format("up: {}{} (Ctrl-C to stop)", plan.controllers.empty() ? "no controllers" : "controllers ",
                       fmt::join(plan.controllers, ", ")));

@@ -5,6 +5,7 @@
 #include <tinyxml2.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -162,7 +163,7 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
   const std::set<std::string> known = {"urdf",         "config",          "mode",
                                        "physics_rate", "control_rate",    "sim_server_args",
                                        "controller_manager_args", "controllers", "spawner_args",
-                                       "state_publisher", "processes"};
+                                       "state_publisher", "processes",  "commands"};
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
     const YAML::Node& v = kv.second;
@@ -191,6 +192,44 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
         plan.spawner_args = list(v, key);
       } else if (key == "state_publisher") {
         plan.state_publisher = boolean(v, key);
+      } else if (key == "commands") {
+        if (!v.IsSequence()) {
+          problems.push_back(where(v, key) + " must be a list of {target, expr, rate, count, duration}");
+          continue;
+        }
+        for (const auto& c : v) {
+          if (!c.IsMap() || !c["target"] || !c["expr"]) {
+            problems.push_back(where(c, key) + " entries need target and expr");
+            continue;
+          }
+          CommandSpec spec;
+          for (const auto& ck : c) {
+            const std::string k = ck.first.as<std::string>();
+            const YAML::Node& cv = ck.second;
+            if (k == "target") {
+              spec.target = str(cv, "commands.target");
+            } else if (k == "expr") {
+              if (cv.IsScalar()) {
+                spec.expr = {str(cv, "commands.expr")};
+              } else {
+                spec.expr = list(cv, "commands.expr");
+              }
+            } else if (k == "rate") {
+              spec.rate = number(cv, "commands.rate");
+            } else if (k == "duration") {
+              spec.duration = number(cv, "commands.duration");
+            } else if (k == "count") {
+              spec.count = int64_t(number(cv, "commands.count"));
+              if (double(spec.count) != cv.as<double>(0.0))
+                problems.push_back(where(cv, "commands.count") + " must be a whole number");
+            } else {
+              problems.push_back(where(ck.first, "commands." + k) +
+                                 ": unknown key; valid: target, expr, rate, count, duration");
+            }
+          }
+          if (spec.expr.empty()) problems.push_back(where(c, key) + " '" + spec.target + "' has no expression");
+          plan.commands.push_back(spec);
+        }
       } else if (key == "processes") {
         if (!v.IsSequence()) {
           problems.push_back(where(v, key) + " must be a list of {name, command, required}");
@@ -219,6 +258,10 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
       problems.insert(problems.end(), e.problems().begin(), e.problems().end());
     }
   }
+  for (const auto& c : plan.commands)
+    if (std::find(plan.controllers.begin(), plan.controllers.end(), c.target) == plan.controllers.end())
+      problems.push_back(fmt::format("{}: commands: target '{}' is not one of the spawned controllers ({})", path,
+                                     c.target, plan.controllers.empty() ? "none" : fmt::format("{}", fmt::join(plan.controllers, ", "))));
   if (plan.urdf.empty()) problems.push_back(fmt::format("{}: 'urdf' is missing: the robot's URDF file", path));
   if (plan.config.empty()) problems.push_back(fmt::format("{}: 'config' is missing: the ros_control YAML", path));
   if (!problems.empty()) throw ModelError(problems);

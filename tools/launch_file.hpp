@@ -14,6 +14,16 @@ struct ProcessSpec {
   bool required = true;           // its exit stops everything
 };
 
+// A command source registered in the controller manager once the controllers
+// run (`commands:`): expressions in i and t ticking on sim time.
+struct CommandSpec {
+  std::string target;             // controller
+  std::vector<std::string> expr;  // one per joint
+  double rate = 0;                // Hz of sim time; 0: every control step
+  int64_t count = 0;              // 0: unlimited
+  double duration = 0;            // sim seconds; 0: unlimited
+};
+
 struct LaunchPlan {
   std::string file;
   std::string urdf, config;          // absolute paths
@@ -23,6 +33,7 @@ struct LaunchPlan {
   std::vector<std::string> sim_args, cm_args;  // extra flags
   std::vector<std::string> controllers;        // spawned in one strict switch
   std::vector<std::string> spawner_args;       // e.g. --stopped, --timeout 5
+  std::vector<CommandSpec> commands;           // registered after the spawner, in order
   bool state_publisher = false;
   std::string sim_name = "sim_server", cm_name = "controller_manager", spawner_name = "spawner",
               state_publisher_name = "state_publisher";

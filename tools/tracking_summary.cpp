@@ -1,0 +1,106 @@
+// tracking-summary: how well joints followed their commands in an lcm-logger
+// log: per joint, RMS and max of (command - position) over every joint_states
+// message (command = the newest command with utime <= that message's utime),
+// then wall time and real-time factor (which depend on the machine).
+#include <fmt/format.h>
+
+#include <cmath>
+#include <map>
+
+#include "common/cli.hpp"
+#include "lcm_control/float64_t.hpp"
+#include "lcm_control/joint_state_t.hpp"
+#include "tools/support.hpp"
+
+namespace {
+
+struct Pair {
+  std::string joint, channel;
+  std::vector<std::pair<int64_t, double>> commands;  // (utime, value) in log order
+  double sum_sq = 0, max_abs = 0;
+  int64_t samples = 0, before_first = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace lcm_control;
+  CLI::App app{
+      "Tracking error per joint from an lcm-logger log: for every joint_states message, error = command - position, "
+      "where command is the newest message on the joint's command channel with utime <= the joint_states utime "
+      "(both on the sim clock). Prints RMS and max |error| and the sample counts with fixed precision (identical for "
+      "identical runs), then a line with the wall time and real-time factor (from the logger's receive times; these "
+      "vary by machine).\n"
+      "Example:\n"
+      "  tracking-summary demo.lcmlog --joint j1=j1_controller/command --joint j2=j2_controller/command",
+      "tracking-summary"};
+  std::string log_path, js_channel = channels::kJointStates;
+  std::vector<std::string> joints;
+  bool no_timing = false;
+  app.add_option("LOGFILE", log_path, "log written by lcm-logger")->required()->check(CLI::ExistingFile);
+  app.add_option("--joint", joints, "JOINT=CHANNEL: a joint of joint_states and its command channel (float64_t)")
+      ->required();
+  app.add_option("--joint-states", js_channel, "channel of joint_state_t");
+  app.add_flag("--no-timing", no_timing, "leave out the wall time / real-time factor line");
+  return lcm_control::run_program(app, argc, argv, [&]() -> int {
+    std::vector<Pair> pairs;
+    for (const auto& j : joints) {
+      const auto eq = j.find('=');
+      if (eq == std::string::npos || eq == 0 || eq + 1 == j.size())
+        throw std::runtime_error(fmt::format("--joint '{}': expected JOINT=CHANNEL, e.g. j2=j2_controller/command", j));
+      pairs.push_back({j.substr(0, eq), j.substr(eq + 1), {}});
+    }
+    lcm::LogFile log(log_path, "r");
+    if (!log.good()) throw std::runtime_error(fmt::format("cannot read {}", log_path));
+    std::vector<joint_state_t> states;
+    std::vector<int64_t> state_wall;
+    joint_state_t js{};
+    float64_t cmd{};
+    for (const lcm::LogEvent* ev = log.readNextEvent(); ev; ev = log.readNextEvent()) {
+      if (ev->channel == js_channel) {
+        if (js.decode(ev->data, 0, int(ev->datalen)) < 0) continue;
+        states.push_back(js);
+        state_wall.push_back(ev->timestamp);
+        continue;
+      }
+      for (auto& p : pairs)
+        if (ev->channel == p.channel && cmd.decode(ev->data, 0, int(ev->datalen)) >= 0)
+          p.commands.emplace_back(cmd.utime, cmd.data);
+    }
+    if (states.empty()) throw std::runtime_error(fmt::format("{}: no {} messages", log_path, js_channel));
+    for (auto& p : pairs) {
+      std::stable_sort(p.commands.begin(), p.commands.end(),
+                       [](const auto& a, const auto& b) { return a.first < b.first; });
+      int index = -1;
+      for (const auto& s : states) {
+        for (int k = 0; k < s.num_joints; ++k)
+          if (s.name[size_t(k)] == p.joint) index = k;
+        if (index < 0 || index >= s.num_joints) continue;
+        auto it = std::upper_bound(p.commands.begin(), p.commands.end(), s.utime,
+                                   [](int64_t t, const auto& c) { return t < c.first; });
+        if (it == p.commands.begin()) {
+          ++p.before_first;
+          continue;
+        }
+        const double e = std::prev(it)->second - s.position[size_t(index)];
+        p.sum_sq += e * e;
+        p.max_abs = std::max(p.max_abs, std::fabs(e));
+        ++p.samples;
+      }
+      if (index < 0) throw std::runtime_error(fmt::format("joint '{}' is not in {}", p.joint, js_channel));
+    }
+    const double sim_s = double(states.back().utime - states.front().utime) * 1e-6;
+    fmt::print("tracking over {:.6f} s of sim time, {} joint_states messages:\n", sim_s, states.size());
+    for (const auto& p : pairs)
+      fmt::print("  {}: rms error {:.6f}, max error {:.6f} ({} samples, {} commands on {}, {} samples before the "
+                 "first command)\n",
+                 p.joint, p.samples ? std::sqrt(p.sum_sq / double(p.samples)) : 0.0, p.max_abs, p.samples,
+                 p.commands.size(), p.channel, p.before_first);
+    if (!no_timing) {
+      const double wall_s = double(state_wall.back() - state_wall.front()) * 1e-6;
+      fmt::print("timing (varies by machine): {:.3f} s of wall time, real-time factor {:.2f}\n", wall_s,
+                 wall_s > 0 ? sim_s / wall_s : 0.0);
+    }
+    return int(kExitOk);
+  });
+}
