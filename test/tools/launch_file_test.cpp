@@ -137,3 +137,33 @@ TEST(LaunchFile, ErrorsNameTheFileLineAndKey) {
   p = problems_of([&] { read_launch_file(write(dir, "d.yaml", "urdf: x\nmode: fast\n"), {}); });
   EXPECT_NE(p.find("'mode' must be realtime or lockstep, not 'fast'"), std::string::npos) << p;
 }
+
+TEST(LaunchFile, DemoCommandsBecomeCommandSources) {
+  const LaunchPlan plan = read_launch_file(lt::source("config/turret_bot_demo.launch.yaml"), {});
+  EXPECT_EQ(plan.mode, "lockstep");
+  EXPECT_EQ(plan.controllers, kControllers);
+  ASSERT_EQ(plan.commands.size(), 2u);
+  EXPECT_EQ(plan.commands[0].target, "j1_controller");
+  EXPECT_EQ(plan.commands[0].expr, std::vector<std::string>{"0.5"});
+  EXPECT_EQ(plan.commands[0].count, 1);
+  EXPECT_EQ(plan.commands[0].rate, 0);
+  EXPECT_EQ(plan.commands[1].target, "j2_controller");
+  EXPECT_EQ(plan.commands[1].expr, std::vector<std::string>{"3.14*sin(i/100)"});
+  EXPECT_EQ(plan.commands[1].rate, 60);
+  EXPECT_EQ(plan.commands[1].count, 0);
+
+  const std::string dir = lt::temp_dir("launch_commands");
+  const std::string head = "urdf: " + lt::source("config/turret_bot.urdf") + "\nconfig: " +
+                           lt::source("config/turret_bot.yaml") + "\ncontrollers: [j2_controller]\n";
+  std::string p = problems_of([&] {
+    read_launch_file(write(dir, "a.yaml", head + "commands: [{target: j1_controller, expr: 1, rat: 5}]\n"), {});
+  });
+  EXPECT_NE(p.find("'commands.rat': unknown key; valid: target, expr, rate, count, duration"), std::string::npos) << p;
+  EXPECT_NE(p.find("commands: target 'j1_controller' is not one of the spawned controllers (j2_controller)"),
+            std::string::npos)
+      << p;
+  p = problems_of([&] {
+    read_launch_file(write(dir, "b.yaml", head + "commands: [{target: j2_controller, count: 1.5, expr: x}]\n"), {});
+  });
+  EXPECT_NE(p.find("'commands.count' must be a whole number"), std::string::npos) << p;
+}
