@@ -250,6 +250,7 @@ int run_command_source(Bus& bus, const Options& o) {
       return kExitOk;
     }
   }
+  clear_stop();  // the bus waits below stop early while a stop is pending
   command_source_t rm{};
   rm.controller = controller;
   rm.remove = true;

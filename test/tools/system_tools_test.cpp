@@ -272,5 +272,18 @@ TEST(TurretCmd, SimTimeUnderLockstepGivesEveryStepItsOwnCommand) {
   }
   std::printf("turret-cmd --sim-time under lockstep: %d of 500 steps seen, each with its own command\n", exact);
   EXPECT_GT(exact, 400);
+
+  // Without --count or --duration it runs until Ctrl-C, which removes the source.
+  ChildProcess forever({bin("turret-cmd"), "j2_controller", "0.25", "--sim-time", "--rate", "60", "--lcm-url", url});
+  ASSERT_TRUE(forever.wait_for_output("tick 0 at the next cycle", 5.0)) << forever.output();
+  const size_t before = sent.messages.size();
+  ASSERT_TRUE(pump_until(lc, [&] { return sent.messages.size() > before + 3; }, 5.0));
+  EXPECT_EQ(forever.stop(5.0, SIGINT), 0) << forever.output();
+  EXPECT_NE(forever.output().find("command source for 'j2_controller' removed after"), std::string::npos)
+      << forever.output();
+  pump_until(lc, [] { return false; }, 0.3);
+  const size_t after = sent.messages.size();
+  pump_until(lc, [] { return false; }, 0.3);
+  EXPECT_EQ(sent.messages.size(), after) << "commands after the source was removed";
   launch.stop(8.0);
 }
