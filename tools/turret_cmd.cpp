@@ -222,8 +222,6 @@ class SourceWatcher {
   }
   const Options& o_;
   int64_t seen_ = 0;
-  // Members, not locals: LCM's double decoding breaks strict aliasing, and at
-  // -O2 a decode into a fresh local can read back its zero initializer.
   float64_array_t many_{};
   float64_t one_{};
 };
