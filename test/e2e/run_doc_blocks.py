@@ -2,7 +2,7 @@
 """Runs every ```sh block of a Markdown guide, as a user would paste it.
 
 The blocks run with bash from a scratch folder that looks like the repository
-root (config/, docs/, test/ and build/bin, build/share linked to this build),
+root (config/, docs/, scripts/, test/ and build/bin, build/share linked to this build),
 with LCM_DEFAULT_URL set to a bus of this run's own, next to a running
 turret_bot (launch config/turret_bot.launch.yaml, with j2 driven by turret-cmd).
 
@@ -78,7 +78,7 @@ def main():
         found = blocks(f.read())
     root = tempfile.mkdtemp(prefix="lcm_control_docs_")
     os.makedirs(os.path.join(root, "build"))
-    for name in ("config", "docs", "test"):
+    for name in ("config", "docs", "scripts", "test"):
         os.symlink(os.path.join(args.source_dir, name), os.path.join(root, name))
     os.symlink(args.bin_dir, os.path.join(root, "build", "bin"))
     os.symlink(os.path.join(os.path.dirname(args.bin_dir), "share"), os.path.join(root, "build", "share"))
