@@ -16,17 +16,7 @@ using namespace lcm_control::bench;
 
 template <class Pinger>
 int ping(Pinger& p, int n, int warmup) {
-  std::vector<double> rtt;
-  rtt.reserve(size_t(n));
-  int lost = 0;
-  for (int k = 0; k < n + warmup; ++k) {
-    const double us = p.round_trip_us();
-    if (us < 0)
-      ++lost;
-    else if (k >= warmup)
-      rtt.push_back(us);
-  }
-  const RttSummary s = summarize(rtt, lost);
+  const RttSummary s = measure(p, n, warmup);
   std::printf("%.2f %.2f %.2f %.2f %d\n", s.min, s.p50, s.p99, s.max, s.lost);
   return 0;
 }

@@ -121,21 +121,6 @@ class HardwarePinger {
   uint8_t clock_buf_[64] = {};
 };
 
-template <class Pinger>
-RttSummary block(Pinger& p, int n, int warmup) {
-  std::vector<double> rtt;
-  rtt.reserve(size_t(n));
-  int lost = 0;
-  for (int k = 0; k < n + warmup; ++k) {
-    const double us = p.round_trip_us();
-    if (us < 0)
-      ++lost;
-    else if (k >= warmup)
-      rtt.push_back(us);
-  }
-  return summarize(rtt, lost);
-}
-
 int usage() {
   std::fprintf(stderr,
                "usage: bench_loop --urdf U --config C --cm-url URL --lcm-url URL --udp-port P [--rounds R] [--n N] "
@@ -178,8 +163,8 @@ int main(int argc, char** argv) {
       for (int j = 0; j < 4; ++j) {
         const int kind = (j + r) % 4;  // rotate the order every round
         ours.set_clock(kind == 3);
-        const RttSummary s = kind == 0 ? block(udp, n, warmup) : kind == 1 ? block(lcm, n, warmup)
-                                                                           : block(ours, n, warmup);
+        const RttSummary s = kind == 0 ? measure(udp, n, warmup) : kind == 1 ? measure(lcm, n, warmup)
+                                                                           : measure(ours, n, warmup);
         std::printf("rtt %s %d %.2f %.2f %.2f %.2f %d %d\n", kinds[kind], r, s.min, s.p50, s.p99, s.max, s.n, s.lost);
         std::fflush(stdout);
       }

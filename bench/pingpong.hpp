@@ -23,6 +23,22 @@ struct RttSummary {
 };
 RttSummary summarize(const std::vector<double>& rtt_us, int lost);
 
+// n timed round trips after `warmup` untimed ones; Pinger::round_trip_us() < 0 means lost.
+template <class Pinger>
+RttSummary measure(Pinger& p, int n, int warmup) {
+  std::vector<double> rtt;
+  rtt.reserve(size_t(n));
+  int lost = 0;
+  for (int k = 0; k < n + warmup; ++k) {
+    const double us = p.round_trip_us();
+    if (us < 0)
+      ++lost;
+    else if (k >= warmup)
+      rtt.push_back(us);
+  }
+  return summarize(rtt, lost);
+}
+
 // Blocking UDP on 127.0.0.1 against `udp_echo(port)`.
 class UdpPinger {
  public:
