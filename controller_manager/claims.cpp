@@ -1,18 +1,11 @@
 #include "controller_manager/claims.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <map>
 
 namespace lcm_control::cm {
-
-namespace {
-std::string join(const std::vector<std::string>& v) {
-  std::string s;
-  for (size_t k = 0; k < v.size(); ++k) s += (k ? ", " : "") + v[k];
-  return s;
-}
-}  // namespace
 
 std::string check_interface(const RobotModel& model, const std::string& controller, const std::string& joint,
                             Interface needed) {
@@ -22,14 +15,14 @@ std::string check_interface(const RobotModel& model, const std::string& controll
     for (const auto& x : model.joints)
       if (x.type != JointType::Fixed) moving.push_back(x.name);
     return fmt::format("controller '{}': joint '{}' is not in the URDF {} (moving joints: {})", controller, joint,
-                       model.urdf_path, join(moving));
+                       model.urdf_path, fmt::join(moving, ", "));
   }
   const TransmissionSpec* t = model.transmission_for_joint(joint);
   if (!t)
     return fmt::format(
         "controller '{}' needs {} on joint '{}', but the joint has no <transmission> in {} (actuated "
         "joints: {})",
-        controller, to_string(needed), joint, model.urdf_path, join(model.actuated_joints()));
+        controller, to_string(needed), joint, model.urdf_path, fmt::join(model.actuated_joints(), ", "));
   std::vector<std::string> offered;
   for (Interface i : t->interfaces) offered.push_back(to_string(i));
   if (t->interfaces.front() == needed) return "";
@@ -38,9 +31,9 @@ std::string check_interface(const RobotModel& model, const std::string& controll
       return fmt::format(
           "controller '{}' needs {} on joint '{}'; transmission '{}' offers {} but the hardware takes "
           "only the first, {}",
-          controller, to_string(needed), joint, t->name, join(offered), offered.front());
+          controller, to_string(needed), joint, t->name, fmt::join(offered, ", "), offered.front());
   return fmt::format("controller '{}' needs {} on joint '{}', but transmission '{}' offers only {}", controller,
-                     to_string(needed), joint, t->name, join(offered));
+                     to_string(needed), joint, t->name, fmt::join(offered, ", "));
 }
 
 std::string Conflict::message() const {
@@ -61,7 +54,7 @@ std::optional<Conflict> find_conflict(const std::vector<std::pair<std::string, c
 
 std::string describe(const Claim& claim) {
   if (!claim.interface) return "nothing (reads joint state only)";
-  return fmt::format("{} on {}", to_string(*claim.interface), join(claim.joints));
+  return fmt::format("{} on {}", to_string(*claim.interface), fmt::join(claim.joints, ", "));
 }
 
 }  // namespace lcm_control::cm

@@ -1,16 +1,12 @@
 #include "controller_manager/services.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 namespace lcm_control::cm {
 
 namespace {
-std::string join(const std::vector<std::string>& v) {
-  std::string s;
-  for (size_t k = 0; k < v.size(); ++k) s += (k ? ", " : "") + v[k];
-  return s;
-}
 const char* op_name(int op) {
   switch (op) {
     case cm_request_t::LIST:
@@ -35,9 +31,9 @@ std::string describe(const cm_request_t& r) {
   switch (r.op) {
     case cm_request_t::LOAD:
     case cm_request_t::UNLOAD:
-      return fmt::format("{} [{}]", op_name(r.op), join(r.names));
+      return fmt::format("{} [{}]", op_name(r.op), fmt::join(r.names, ", "));
     case cm_request_t::SWITCH:
-      return fmt::format("switch start [{}] stop [{}] {}", join(r.start), join(r.stop),
+      return fmt::format("switch start [{}] stop [{}] {}", fmt::join(r.start, ", "), fmt::join(r.stop, ", "),
                          r.strictness == cm_request_t::STRICT ? "STRICT" : "BEST_EFFORT");
     case cm_request_t::RELOAD:
       return r.force ? "reload (force)" : "reload";
