@@ -70,4 +70,17 @@ void resize(hardware_command_t& m, int n) {
   m.command.resize(n);
 }
 
+PidGains gains_of(const pid_gains_t& m) {
+  return PidGains{m.p, m.i, m.d, m.i_clamp_min, m.i_clamp_max, m.antiwindup != 0};
+}
+
+void set_gains(pid_gains_t& m, const PidGains& g) {
+  m.p = g.p;
+  m.i = g.i;
+  m.d = g.d;
+  m.i_clamp_min = g.i_clamp_min;
+  m.i_clamp_max = g.i_clamp_max;
+  m.antiwindup = g.antiwindup;
+}
+
 }  // namespace lcm_control

@@ -11,6 +11,8 @@
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
+#include "lcm_control/pid_gains_t.hpp"
+#include "common/pid.hpp"
 
 namespace lcm_control {
 
@@ -30,5 +32,9 @@ std::string check(const float64_array_t& m);
 void resize(joint_state_t& m, int n);
 void resize(hardware_state_t& m, int n);
 void resize(hardware_command_t& m, int n);
+
+// PID gains between the wire (pid_gains_t) and the PID.
+PidGains gains_of(const pid_gains_t& m);
+void set_gains(pid_gains_t& m, const PidGains& g);
 
 }  // namespace lcm_control

@@ -239,6 +239,8 @@ void parse_transmissions(RobotModel& model, const tinyxml2::XMLElement* robot, c
   }
 }
 
+}  // namespace
+
 PidGains parse_pid_gains(const YAML::Node& n, const std::string& where, std::vector<std::string>& problems,
                          std::vector<std::string>& warnings) {
   PidGains g;
@@ -290,8 +292,6 @@ PidGains parse_pid_gains(const YAML::Node& n, const std::string& where, std::vec
                                    where, g.i));
   return g;
 }
-
-}  // namespace
 
 ModelError::ModelError(const std::vector<std::string>& problems)
     : std::runtime_error(join_lines(problems)), problems_(problems) {}

@@ -125,6 +125,10 @@ void load_urdf_into(RobotModel& model, const std::string& urdf_path, const LoadO
 void load_control_config_into(RobotModel& model, const std::string& config_path);
 // Reads a ros_control YAML's controller entries and pid gains (file used in messages).
 void parse_control_config(RobotModel& model, const YAML::Node& root, const std::string& file);
+// Reads one ros_control PID map ({p, i, d, i_clamp, i_clamp_min, i_clamp_max, antiwindup}) with
+// control_toolbox's rules; `where` prefixes every problem (file and key path).
+PidGains parse_pid_gains(const YAML::Node& n, const std::string& where, std::vector<std::string>& problems,
+                         std::vector<std::string>& warnings);
 // Cross-checks URDF, transmissions and YAML; throws ModelError listing every problem.
 void validate(RobotModel& model);
 

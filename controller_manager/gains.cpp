@@ -5,20 +5,10 @@
 
 #include <memory>
 
+#include "common/messages.hpp"
 #include "common/pid.hpp"
 
 namespace lcm_control::cm {
-
-namespace {
-void fill(pid_gains_t& a, const PidGains& g) {
-  a.p = g.p;
-  a.i = g.i;
-  a.d = g.d;
-  a.i_clamp_min = g.i_clamp_min;
-  a.i_clamp_max = g.i_clamp_max;
-  a.antiwindup = g.antiwindup;
-}
-}  // namespace
 
 void apply_gains_request(Controller& c, const std::string& name, const pid_gains_t& req, pid_gains_t& a) {
   a = pid_gains_t{};
@@ -43,28 +33,28 @@ void apply_gains_request(Controller& c, const std::string& name, const pid_gains
   if (!req.owner.empty() && req.owner != name) {
     a.ok = false;
     a.message = fmt::format("request owner '{}' does not match controller '{}'", req.owner, name);
-    fill(a, pid->gains());
+    set_gains(a, pid->gains());
     return;
   }
   if (req.query) {
     a.ok = true;
     a.message = fmt::format("gains of '{}' joint '{}'", name, joint);
-    fill(a, pid->gains());
+    set_gains(a, pid->gains());
     return;
   }
-  PidGains g{req.p, req.i, req.d, req.i_clamp_min, req.i_clamp_max, req.antiwindup != 0};
+  PidGains g = gains_of(req);
   const std::string why = check_gains(g);
   if (!why.empty()) {
     a.ok = false;
     a.message = fmt::format("refused gains for '{}' joint '{}': {}; gains unchanged", name, joint, why);
-    fill(a, pid->gains());
+    set_gains(a, pid->gains());
     return;
   }
   pid->set_gains(g);
   a.ok = true;
   a.message = fmt::format("set gains of '{}' joint '{}': p {} i {} d {} i_clamp [{}, {}] antiwindup {}", name, joint,
                           g.p, g.i, g.d, g.i_clamp_min, g.i_clamp_max, g.antiwindup);
-  fill(a, pid->gains());
+  set_gains(a, pid->gains());
 }
 
 void serve_gains(ControllerSlot& slot, Bus& bus) {

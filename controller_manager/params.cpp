@@ -1,6 +1,9 @@
 #include "controller_manager/params.hpp"
 
+#include "common/robot_model.hpp"
+
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 
@@ -90,37 +93,9 @@ PidGains Params::pid(const std::string& key) const {
 }
 
 PidGains Params::pid_from(const YAML::Node& n, const std::string& where) {
-  if (!n.IsMap())
-    throw ControllerError(fmt::format("{}: expected a map like {{p: 100, i: 0, d: 10}}, got {}", where, kind(n)));
-  static const std::set<std::string> known = {"p",           "i",           "d",          "i_clamp",
-                                              "i_clamp_min", "i_clamp_max", "antiwindup", "publish_state"};
-  for (const auto& kv : n) {
-    const std::string k = kv.first.as<std::string>();
-    if (!known.count(k))
-      throw ControllerError(
-          fmt::format("{}/{}: unknown key; valid keys are p, i, d, i_clamp, i_clamp_min, i_clamp_max, "
-                      "antiwindup",
-                      where, k));
-  }
-  PidGains g;
-  if (!n["p"]) throw ControllerError(fmt::format("{}: no 'p' gain (required); add p: <value>", where));
-  g.p = to_number(n["p"], where + "/p");
-  if (n["i"]) g.i = to_number(n["i"], where + "/i");
-  if (n["d"]) g.d = to_number(n["d"], where + "/d");
-  if (n["i_clamp"]) {
-    const double c = std::abs(to_number(n["i_clamp"], where + "/i_clamp"));
-    g.i_clamp_min = -c;
-    g.i_clamp_max = c;
-  }
-  if (n["i_clamp_min"]) g.i_clamp_min = -std::abs(to_number(n["i_clamp_min"], where + "/i_clamp_min"));
-  if (n["i_clamp_max"]) g.i_clamp_max = std::abs(to_number(n["i_clamp_max"], where + "/i_clamp_max"));
-  if (n["antiwindup"]) {
-    try {
-      g.antiwindup = n["antiwindup"].as<bool>();
-    } catch (const YAML::Exception&) {
-      throw ControllerError(fmt::format("{}/antiwindup: expected true or false", where));
-    }
-  }
+  std::vector<std::string> problems, warnings;  // the i-without-i_clamp warning is the controller's note
+  const PidGains g = lcm_control::parse_pid_gains(n, where, problems, warnings);
+  if (!problems.empty()) throw ControllerError(fmt::format("{}", fmt::join(problems, "; ")));
   return g;
 }
 

@@ -212,7 +212,7 @@ void SimIo::on_gains(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     return answer_gains(ans);
   }
   if (!req.query) {
-    const PidGains g{req.p, req.i, req.d, req.i_clamp_min, req.i_clamp_max, req.antiwindup != 0};
+    const PidGains g = gains_of(req);
     const std::string problem = check_gains(g);
     if (problem.empty()) {
       act.set_gains(i, g);
@@ -227,13 +227,7 @@ void SimIo::on_gains(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     ans.ok = true;
     ans.message = "gains in force";
   }
-  const PidGains& now = act.gains(i);
-  ans.p = now.p;
-  ans.i = now.i;
-  ans.d = now.d;
-  ans.i_clamp_min = now.i_clamp_min;
-  ans.i_clamp_max = now.i_clamp_max;
-  ans.antiwindup = now.antiwindup;
+  set_gains(ans, act.gains(i));
   answer_gains(ans);
 }
 
