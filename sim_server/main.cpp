@@ -27,12 +27,17 @@ int main(int argc, char** argv) {
   BusFlags bus_flags;
   sim::SimulationRates rates;
   sim::StepperOptions opt;
+  double clock_hz = 100;
   app.add_option("--urdf", urdf, "URDF with <transmission> tags")->required();
   app.add_option("--config", config, "ros_control YAML (gazebo_ros_control/pid_gains); none: every joint direct");
   app.add_flag("--lockstep", opt.lockstep, "step only when the controller manager answers (deterministic)");
   app.add_option("--physics-rate", rates.physics_hz, "physics steps per second")->capture_default_str();
   app.add_option("--control-rate", rates.control_hz, "hardware state/command exchanges per second (divides "
                                                       "--physics-rate)")
+      ->capture_default_str();
+  app.add_option("--clock-rate", clock_hz,
+                 "sim_clock_t on `clock` this often, in Hz of sim time (nearest whole number of control steps); 0: "
+                 "every control step")
       ->capture_default_str();
   app.add_option("--duration", opt.duration_s, "stop after this many seconds of sim time (0: run until stopped)");
   app.add_option("--lockstep-timeout", opt.lockstep_timeout_s,
@@ -46,6 +51,7 @@ int main(int argc, char** argv) {
 
   return run_program(app, argc, argv, [&] {
     sim::substeps_for(rates);  // bad rates fail before anything else is said
+    const int clock_every = sim::clock_every_for(rates.control_hz, clock_hz);
     setup_logging("sim_server", log_level);
     const RobotModel model = load_robot_model(urdf, config, LoadOptions{package_path});
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
@@ -54,12 +60,13 @@ int main(int argc, char** argv) {
     for (const auto& w : sim.actuators().warnings()) spdlog::warn("{}", w);
     for (int i = 0; i < sim.actuators().size(); ++i) spdlog::info("{}", sim.actuators().describe(i));
     Bus bus(bus_flags.lcm_url, bus_flags.ns);
-    sim::SimIo io(bus, sim, opt.lockstep);
+    sim::SimIo io(bus, sim, opt.lockstep, clock_every);
     sim::Stepper stepper(sim, io, opt);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
-    spdlog::info("ready ({}, {} actuators, physics {:g} Hz, control {:g} Hz, lcm {}{}, session {})",
+    spdlog::info("ready ({}, {} actuators, physics {:g} Hz, control {:g} Hz, clock {:g} Hz, lcm {}{}, session {})",
                  opt.lockstep ? "lockstep" : "real time", sim.actuators().size(), rates.physics_hz, rates.control_hz,
+                 rates.control_hz / clock_every,
                  bus.url(), bus.ns().empty() ? "" : ", namespace " + bus.ns(), io.session());
     if (!stepper.run(g_stop)) throw BusError("LCM stopped working (handle failed); is the multicast route still there?");
     spdlog::info("stopped at step {} (sim time {:.3f} s); {} commands dropped", sim.step_count(), sim.time(),

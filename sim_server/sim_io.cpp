@@ -4,6 +4,7 @@
 #include <poll.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <random>
@@ -39,10 +40,11 @@ const char* mode_name(int8_t m) {
 }
 }  // namespace
 
-SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep)
+SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
     : bus_(bus),
       sim_(sim),
       lockstep_(lockstep),
+      clock_every_(std::max(1, clock_every)),
       session_(random_session()),
       state_channel_(bus.channel(channels::kHardwareState)),
       clock_channel_(bus.channel(channels::kClock)),
@@ -87,6 +89,8 @@ void SimIo::publish_state(double real_time_factor) {
   }
   const int n = state_.encode(state_buf_.data(), 0, int(state_buf_.size()));
   if (n > 0) bus_.lcm().publish(state_channel_, state_buf_.data(), unsigned(n));
+  if (state_.step == clock_step_ || (clock_step_ >= 0 && state_.step % clock_every_ != 0)) return;
+  clock_step_ = state_.step;
   clock_.utime = state_.utime;
   clock_.step = state_.step;
   clock_.real_time_factor = real_time_factor;

@@ -1,5 +1,6 @@
 // sim_server's side of the LCM hardware loop (docs/hardware-protocol.md):
-// publishes hardware/state and clock from preallocated buffers; takes
+// publishes hardware/state (every control step) and clock (at its own
+// rate) from preallocated buffers; takes
 // hardware/command (checked, and dropped and counted when malformed, NaN,
 // wrong-size, from another session or in the wrong mode), e_stop and
 // sim_server/gains/set; publishes the gains in force and the statistics.
@@ -23,14 +24,16 @@ namespace lcm_control::sim {
 
 class SimIo {
  public:
-  SimIo(Bus& bus, Simulation& sim, bool lockstep);
+  // clock_every: control steps per `clock` message (clock_every_for()).
+  SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every = 1);
   ~SimIo();
   SimIo(const SimIo&) = delete;
   SimIo& operator=(const SimIo&) = delete;
 
   int64_t session() const { return session_; }
 
-  // hardware/state and clock for the simulation's current step.
+  // hardware/state for the simulation's current step, and `clock` once on every
+  // clock_every-th step (and the first).
   void publish_state(double real_time_factor);
   void publish_statistics(const loop_stats_t& stats);
 
@@ -60,6 +63,8 @@ class SimIo {
   Bus& bus_;
   Simulation& sim_;
   const bool lockstep_;
+  const int clock_every_;
+  int64_t clock_step_ = -1;  // step of the last `clock` sent
   const int64_t session_;
   const std::string state_channel_, clock_channel_, gains_channel_, stats_channel_;
   std::vector<lcm::Subscription*> subs_;

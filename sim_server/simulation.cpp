@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -17,6 +18,14 @@ int substeps_for(const SimulationRates& r) {
     throw std::invalid_argument(fmt::format("--physics-rate {:g} Hz must be a whole multiple of --control-rate {:g} Hz",
                                             r.physics_hz, r.control_hz));
   return int(n);
+}
+
+int clock_every_for(double control_hz, double clock_hz) {
+  if (!(clock_hz >= 0) || !std::isfinite(clock_hz))
+    throw std::invalid_argument(
+        fmt::format("--clock-rate {:g} must be 0 (every control step) or a positive rate in Hz", clock_hz));
+  if (clock_hz == 0) return 1;
+  return int(std::max(1L, std::lround(control_hz / clock_hz)));
 }
 
 Simulation::Simulation(const RobotModel& model, const SimulationRates& rates)

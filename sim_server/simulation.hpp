@@ -20,6 +20,10 @@ struct SimulationRates {
 // Physics steps per control step; throws std::invalid_argument unless physics_hz is a whole multiple of control_hz.
 int substeps_for(const SimulationRates& rates);
 
+// Control steps per `clock` message for a wanted clock rate in sim-time Hz: the nearest whole number, at least 1;
+// 0 means every control step. Throws std::invalid_argument for a negative or non-finite rate.
+int clock_every_for(double control_hz, double clock_hz);
+
 class Simulation {
  public:
   // Throws ModelError for a robot Bullet cannot take, std::invalid_argument for bad rates.

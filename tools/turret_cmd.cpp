@@ -2,7 +2,7 @@
 // expressions in i (message count) and t (seconds since start) to a controller's
 // command channel, once or at a fixed rate of wall time; on sim time it has the
 // controller manager generate them (a command source), or for a raw channel
-// paces by the `clock` channel.
+// paces itself by hardware/state (one per control step).
 #include <fmt/ranges.h>
 
 #include <cmath>
@@ -13,7 +13,7 @@
 #include "common/expression.hpp"
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
-#include "lcm_control/sim_clock_t.hpp"
+#include "lcm_control/hardware_state_t.hpp"
 #include "tools/cm_client.hpp"
 #include "tools/support.hpp"
 
@@ -112,27 +112,28 @@ int run_wall(Publisher& pub, const Options& o) {
   return kExitOk;
 }
 
-// Sim time: paced by sim_clock_t on `clock`. Message j is due at sim time
-// j/rate (or at every control step without --rate). On the clock of step k it
+// Sim time: paced by hardware/state, which sim_server publishes every control
+// step (`clock` may come only every few steps). Message j is due at sim time
+// j/rate (or at every control step without --rate). On the state of step k it
 // sends every message due up to step k+1, so in lockstep the command for a step
 // is normally on the bus before the controller manager reads that step. The
-// control period comes from the clock (utime / step), so on a first clock of
+// control period comes from the state (utime / step), so on a first state of
 // step 0 only message 0 goes out.
 class SimTimePacer {
  public:
   SimTimePacer(Bus& bus, Publisher& pub, const Options& o) : pub_(pub), o_(o) {
-    bus.lcm().subscribe(bus.channel(channels::kClock), &SimTimePacer::on_clock, this);
+    bus.lcm().subscribe(bus.channel(channels::kHardwareState), &SimTimePacer::on_state, this);
   }
   bool done() const { return done_; }
   bool started() const { return started_; }
-  int64_t last_clock_us() const { return last_clock_mono_; }
+  int64_t last_state_us() const { return last_state_mono_; }
   int64_t sim_us() const { return last_utime_; }
   const std::string& error() const { return error_; }
 
  private:
-  void on_clock(const lcm::ReceiveBuffer*, const std::string&, const sim_clock_t* m) {
+  void on_state(const lcm::ReceiveBuffer*, const std::string&, const hardware_state_t* m) {
     if (done_) return;
-    last_clock_mono_ = monotonic_us();
+    last_state_mono_ = monotonic_us();
     if (m->step > 0 && m->utime > 0) tick_us_ = double(m->utime) / double(m->step);
     if (!started_ || m->utime < last_utime_) {
       if (started_) fmt::print(stderr, "turret-cmd: sim time went back ({} -> {} us): restarting at i=0\n",
@@ -172,7 +173,7 @@ class SimTimePacer {
   Publisher& pub_;
   const Options& o_;
   bool started_ = false, done_ = false;
-  int64_t start_us_ = 0, last_utime_ = 0, next_ = 0, last_clock_mono_ = 0;
+  int64_t start_us_ = 0, last_utime_ = 0, next_ = 0, last_state_mono_ = 0;
   double tick_us_ = 0;
   std::string error_;
 };
@@ -183,15 +184,15 @@ int run_sim_time(Bus& bus, Publisher& pub, const Options& o) {
   const int64_t timeout_us = int64_t(o.clock_timeout * 1e6);
   while (!pacer.done() && !stop_requested()) {
     handle_bus(bus, 50);
-    const int64_t since = monotonic_us() - (pacer.started() ? pacer.last_clock_us() : begin);
+    const int64_t since = monotonic_us() - (pacer.started() ? pacer.last_state_us() : begin);
     if (since > timeout_us) {
       if (!pacer.started())
         throw std::runtime_error(fmt::format(
-            "no sim_clock_t on '{}' for {}: is sim_server running on this --lcm-url/--namespace?",
-            bus.channel(channels::kClock), seconds_text(o.clock_timeout)));
+            "no hardware_state_t on '{}' for {}: is sim_server running on this --lcm-url/--namespace?",
+            bus.channel(channels::kHardwareState), seconds_text(o.clock_timeout)));
       throw std::runtime_error(fmt::format(
-          "the clock on '{}' stopped at sim time {:.6f} s for {} after {} messages (sim_server paused or gone?)",
-          bus.channel(channels::kClock), double(pacer.sim_us()) * 1e-6, seconds_text(o.clock_timeout), pub.sent()));
+          "sim time on '{}' stopped at {:.6f} s for {} after {} messages (sim_server paused or gone?)",
+          bus.channel(channels::kHardwareState), double(pacer.sim_us()) * 1e-6, seconds_text(o.clock_timeout), pub.sent()));
     }
   }
   if (!pacer.error().empty()) throw std::runtime_error(pacer.error());
@@ -283,7 +284,7 @@ int main(int argc, char** argv) {
       "source): message i is due at sim time i/rate after the first control step it sees, is delivered before that "
       "step's update and published on TARGET/command, so every step gets its own command and lockstep runs repeat "
       "exactly. turret-cmd waits for the source to end (--count, --duration) or for Ctrl-C, which removes it. With "
-      "--sim-time and a channel TARGET, turret-cmd paces itself by the `clock` channel: best effort, a message can "
+      "--sim-time and a channel TARGET, turret-cmd paces itself by hardware/state (every control step): best effort, a message can "
       "reach the controller a step late.",
       "turret-cmd"};
   Options o;
@@ -299,8 +300,8 @@ int main(int argc, char** argv) {
   app.add_flag("--array", o.array, "send float64_array_t even for one EXPR");
   app.add_flag("--sim-time", o.sim_time,
                "sim time instead of the wall clock: a controller TARGET gets a command source in the controller manager "
-               "(exact, deterministic under lockstep); a channel TARGET is paced by the `clock` channel (best effort)");
-  app.add_option("--clock-timeout", o.clock_timeout, "with --sim-time and a channel TARGET: give up after S seconds without a clock message")
+               "(exact, deterministic under lockstep); a channel TARGET is paced by hardware/state (best effort)");
+  app.add_option("--clock-timeout", o.clock_timeout, "with --sim-time and a channel TARGET: give up after S seconds without sim time (hardware/state)")
       ->check(CLI::PositiveNumber);
   app.add_option("--answer-timeout", o.answer_timeout,
                  "with --sim-time and a controller TARGET: seconds to wait for the controller manager's answer")

@@ -2,6 +2,7 @@
 // per-test LCM URL: determinism across processes, run-time gains, e-stop,
 // transmissions on the wire, dropped commands, waiting; plus start-up errors
 // and signals.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -14,6 +15,7 @@
 #include "lcm_control/e_stop_t.hpp"
 #include "lcm_control/loop_stats_t.hpp"
 #include "lcm_control/pid_gains_t.hpp"
+#include "lcm_control/sim_clock_t.hpp"
 #include "test/sim_server/fake_controller.hpp"
 
 namespace lcm_control::sim::testing {
@@ -178,6 +180,31 @@ TEST(sim_e2e, ControlRateBelowThePhysicsRateSetsThePeriodAndSimTime) {
   EXPECT_EQ(cm.states.back().period_us, 2000);
   EXPECT_EQ(cm.states.back().utime, 200000);
   EXPECT_EQ(server.process->wait(5.0), 0) << server.output();  // --duration 0.2 s of sim time: done
+}
+
+// `clock` at --clock-rate in sim time: by default 100 Hz (every 10th step at 1 kHz), every step with 0.
+TEST(sim_e2e, ClockComesAtItsRateInSimTimeAndEveryStepWithRateZero) {
+  for (const std::string rate : {"", "0", "250"}) {
+    SimServerProcess server;
+    Recorder<sim_clock_t> clock(server.lc, "clock");
+    std::vector<std::string> flags{"--lockstep", "--lockstep-timeout", "0.1", "--duration", "0.1"};
+    if (!rate.empty()) flags.insert(flags.end(), {"--clock-rate", rate});
+    std::string why;
+    ASSERT_TRUE(server.start(flags, kTurretUrdf, kTurretYaml, &why)) << why;
+    FakeController cm(server.lc);
+    ASSERT_TRUE(cm.run_until_step(100, 10.0)) << server.output();
+    EXPECT_EQ(server.process->wait(5.0), 0) << server.output();
+    const int64_t every = rate == "0" ? 1 : rate == "250" ? 4 : 10;
+    lcm_control::testing::pump_until(server.lc, [&] { return clock.messages.size() > size_t(100 / every); }, 2.0);
+    ASSERT_EQ(clock.messages.size(), size_t(100 / every + 1)) << "--clock-rate '" << rate << "'";
+    for (size_t k = 0; k < clock.messages.size(); ++k) {
+      EXPECT_EQ(clock.messages[k].step, int64_t(k) * every) << rate;
+      EXPECT_EQ(clock.messages[k].utime, int64_t(k) * every * 1000) << rate;
+    }
+    EXPECT_NE(server.output().find(fmt::format("clock {} Hz", rate == "0" ? 1000 : rate == "250" ? 250 : 100)),
+              std::string::npos)
+        << server.output();
+  }
 }
 
 TEST(sim_e2e, MalformedNanWrongSizeAndForeignCommandsAreDroppedAndCounted) {

@@ -7,7 +7,7 @@
 
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
-#include "lcm_control/sim_clock_t.hpp"
+#include "lcm_control/hardware_state_t.hpp"
 #include "test/support/lcm_test.hpp"
 #include "test/support/process.hpp"
 #include "test/tools/tool_test_util.hpp"
@@ -120,15 +120,15 @@ TEST(TurretCmd, SimTimeWithoutControllerManagerTimesOut) {
       << p.output();
 }
 
-TEST(TurretCmd, SimTimeWithoutClockTimesOut) {
+TEST(TurretCmd, SimTimeWithoutHardwareStateTimesOut) {
   ChildProcess p({bin("turret-cmd"), "j2_controller/command", "1", "--sim-time", "--clock-timeout", "0.5",
                   "--lcm-url", unique_lcm_url()});
   EXPECT_EQ(p.wait(5.0), 1);
-  EXPECT_NE(p.output().find("no sim_clock_t on 'clock'"), std::string::npos) << p.output();
+  EXPECT_NE(p.output().find("no hardware_state_t on 'hardware/state'"), std::string::npos) << p.output();
 }
 
-// A fake lockstep sim: publishes clock k and waits for the command due at step
-// k+1 before it publishes clock k+1, as the controller manager would read it.
+// A fake lockstep sim: publishes the state of step k and waits for the command due
+// at step k+1 before it publishes state k+1, as the controller manager would read it.
 TEST(TurretCmd, SimTimeSendsEachTickCommandBeforeTheTick) {
   const std::string url = unique_lcm_url();
   lcm::LCM lc(url);
@@ -136,16 +136,16 @@ TEST(TurretCmd, SimTimeSendsEachTickCommandBeforeTheTick) {
   ChildProcess p({bin("turret-cmd"), "j2_controller/command", "10*i + t", "--sim-time", "--count", "40", "--lcm-url",
                   url});
   const int64_t period_us = 1000, first_step = 500;
-  sim_clock_t clock{};
-  // Until turret-cmd listens, the first clocks go unheard; start counting at its first answer.
+  hardware_state_t clock{};
+  // Until turret-cmd listens, the first states go unheard; start counting at its first answer.
   int64_t step = first_step;
   auto publish_clock = [&](int64_t k) {
     clock.step = k;
     clock.utime = k * period_us;
-    lc.publish("clock", &clock);
+    lc.publish("hardware/state", &clock);
   };
   while (rec.messages.empty()) {
-    ASSERT_LT(step, first_step + 200) << "turret-cmd never answered the clock\n" << p.output();
+    ASSERT_LT(step, first_step + 200) << "turret-cmd never answered hardware/state\n" << p.output();
     publish_clock(step);
     pump_until(lc, [&] { return !rec.messages.empty(); }, 0.05);
     if (rec.messages.empty()) ++step;
@@ -173,22 +173,22 @@ TEST(TurretCmd, SimTimeRateIsInSimSeconds) {
   const std::string url = unique_lcm_url();
   lcm::LCM lc(url);
   Recorder<float64_t> rec(lc, "c/command");
-  // 100 Hz of sim time on a 1 kHz clock: one message every 10 steps.
+  // 100 Hz of sim time on 1 kHz control steps: one message every 10 steps.
   ChildProcess p({bin("turret-cmd"), "c/command", "t", "--sim-time", "--rate", "100", "--duration", "0.05", "--lcm-url",
                   url});
-  sim_clock_t clock{};
+  hardware_state_t clock{};
   int64_t k = 1;
   while (rec.messages.empty() && k < 2000) {
     clock.step = k;
     clock.utime = k * 1000;
-    lc.publish("clock", &clock);
+    lc.publish("hardware/state", &clock);
     pump_until(lc, [&] { return !rec.messages.empty(); }, 0.01);
     ++k;
   }
   for (int n = 0; n < 60 && p.running(); ++n, ++k) {
     clock.step = k;
     clock.utime = k * 1000;
-    lc.publish("clock", &clock);
+    lc.publish("hardware/state", &clock);
     pump_until(lc, [] { return false; }, 0.005);
   }
   EXPECT_EQ(p.wait(3.0), 0) << p.output();
