@@ -5,6 +5,7 @@
 
 #include "common/cli.hpp"
 #include "common/log.hpp"
+#include "common/scheduling.hpp"
 #include "controller_manager/manager.hpp"
 #include "controller_manager/services.hpp"
 
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
       "controller_manager"};
   std::string urdf, config;
   BusFlags bus_flags;
+  SchedulingFlags sched;
   std::vector<std::string> package_path;
   double silence_s = 0.25;
   std::string log_level;
@@ -28,12 +30,14 @@ int main(int argc, char** argv) {
   app.add_option("--config", config, "ros_control YAML (controllers as top-level keys)")->required();
   add_bus_flags(app, bus_flags);
   add_package_path_flag(app, package_path);
+  add_scheduling_flags(app, sched);
   app.add_option("--silence-timeout", silence_s,
                  "seconds without hardware/state after which controllers are not updated and switches apply at once")
       ->check(CLI::PositiveNumber);
   app.add_option("--log-level", log_level, "debug, info, warn, error");
 
   return run_program(app, argc, argv, [&]() -> int {
+    const std::string scheduling = apply_scheduling(sched);
     setup_logging("controller_manager", log_level);
     LoadOptions lo;
     lo.package_path = package_path;
@@ -54,8 +58,8 @@ int main(int argc, char** argv) {
     sigaction(SIGINT, &sa, nullptr);
     sigaction(SIGTERM, &sa, nullptr);
 
-    spdlog::info("ready ({} controllers configured, {} actuated joints, lcm {}{}{})", configured, actuated, bus.url(),
-                 bus.ns().empty() ? "" : ", namespace ", bus.ns());
+    spdlog::info("ready ({} controllers configured, {} actuated joints, lcm {}{}{}{})", configured, actuated,
+                 bus.url(), bus.ns().empty() ? "" : ", namespace ", bus.ns(), scheduling.empty() ? "" : ", " + scheduling);
     int errors = 0;
     while (!g_stop) {
       const int r = bus.lcm().handleTimeout(20);

@@ -6,6 +6,7 @@
 
 #include "common/cli.hpp"
 #include "common/log.hpp"
+#include "common/scheduling.hpp"
 #include "sim_server/sim_io.hpp"
 #include "sim_server/simulation.hpp"
 #include "sim_server/stepper.hpp"
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   std::string urdf, config, log_level;
   std::vector<std::string> package_path;
   BusFlags bus_flags;
+  SchedulingFlags sched;
   sim::SimulationRates rates;
   sim::StepperOptions opt;
   double clock_hz = 100;
@@ -48,10 +50,12 @@ int main(int argc, char** argv) {
   app.add_option("--log-level", log_level, "debug, info, warn or error");
   add_bus_flags(app, bus_flags);
   add_package_path_flag(app, package_path);
+  add_scheduling_flags(app, sched);
 
   return run_program(app, argc, argv, [&] {
     sim::substeps_for(rates);  // bad rates fail before anything else is said
     const int clock_every = sim::clock_every_for(rates.control_hz, clock_hz);
+    const std::string scheduling = apply_scheduling(sched);
     setup_logging("sim_server", log_level);
     const RobotModel model = load_robot_model(urdf, config, LoadOptions{package_path});
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
@@ -64,10 +68,11 @@ int main(int argc, char** argv) {
     sim::Stepper stepper(sim, io, opt);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
-    spdlog::info("ready ({}, {} actuators, physics {:g} Hz, control {:g} Hz, clock {:g} Hz, lcm {}{}, session {})",
+    spdlog::info("ready ({}, {} actuators, physics {:g} Hz, control {:g} Hz, clock {:g} Hz, lcm {}{}, session {}{})",
                  opt.lockstep ? "lockstep" : "real time", sim.actuators().size(), rates.physics_hz, rates.control_hz,
                  rates.control_hz / clock_every,
-                 bus.url(), bus.ns().empty() ? "" : ", namespace " + bus.ns(), io.session());
+                 bus.url(), bus.ns().empty() ? "" : ", namespace " + bus.ns(), io.session(),
+                 scheduling.empty() ? "" : ", " + scheduling);
     if (!stepper.run(g_stop)) throw BusError("LCM stopped working (handle failed); is the multicast route still there?");
     spdlog::info("stopped at step {} (sim time {:.3f} s); {} commands dropped", sim.step_count(), sim.time(),
                  io.dropped());

@@ -58,6 +58,13 @@ std::vector<std::string> packages_of(const std::vector<std::string>& package_pat
 
 }  // namespace
 
+std::string check_cpu(const std::string& cpu) {
+  if (cpu == "auto" || cpu == "none") return "";
+  if (!cpu.empty() && cpu.size() < 5 && cpu.find_first_not_of("0123456789") == std::string::npos) return "";
+  return "must be auto (lockstep: sim_server and controller_manager on the least busy CPU), none, or a CPU number, "
+         "not '" + cpu + "'";
+}
+
 std::string substitute(const std::string& text, const std::vector<std::string>& package_path, const Args& args,
                        const std::string& where) {
   std::string out;
@@ -160,7 +167,7 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
       return false;
     }
   };
-  const std::set<std::string> known = {"urdf",         "config",          "mode",
+  const std::set<std::string> known = {"urdf",         "config",          "mode",            "cpu",
                                        "physics_rate", "control_rate",    "sim_server_args",
                                        "controller_manager_args", "controllers", "spawner_args",
                                        "state_publisher", "processes",  "commands"};
@@ -178,6 +185,10 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
         plan.mode = str(v, key);
         if (plan.mode != "realtime" && plan.mode != "lockstep")
           problems.push_back(where(v, key) + " must be realtime or lockstep, not '" + plan.mode + "'");
+      } else if (key == "cpu") {
+        plan.cpu = str(v, key);
+        if (const std::string problem = check_cpu(plan.cpu); !problem.empty())
+          problems.push_back(where(v, key) + " " + problem);
       } else if (key == "physics_rate") {
         plan.physics_rate = number(v, key);
       } else if (key == "control_rate") {

@@ -29,6 +29,9 @@ struct LaunchPlan {
   std::string urdf, config;          // absolute paths
   std::string mode = "realtime";     // realtime | lockstep
   double physics_rate = 0, control_rate = 0;  // 0: sim_server's defaults
+  // CPU for sim_server and controller_manager: "auto" (lockstep: the least busy CPU for both; real time: any),
+  // "none", or a CPU number.
+  std::string cpu = "auto";
   bool sim = true, controller_manager = true;
   std::vector<std::string> sim_args, cm_args;  // extra flags
   std::vector<std::string> controllers;        // spawned in one strict switch
@@ -46,6 +49,9 @@ struct LaunchPlan {
 LaunchPlan read_launch_file(const std::string& path, const std::vector<std::string>& package_path);
 LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::string>& package_path);
 LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::string>& package_path);
+
+// "" if `cpu` is auto, none or a CPU number; else what is wrong with it.
+std::string check_cpu(const std::string& cpu);
 
 // $(find PKG), $(arg NAME), $(env VAR), $(optenv VAR [default]) in text.
 // Throws ModelError (with `where`) for an unknown package, arg or substitution.

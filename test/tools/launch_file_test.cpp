@@ -44,6 +44,7 @@ TEST(LaunchFile, TurretBotYaml) {
   EXPECT_TRUE(plan.state_publisher);
   EXPECT_TRUE(plan.sim);
   EXPECT_TRUE(plan.controller_manager);
+  EXPECT_EQ(plan.cpu, "auto");
 }
 
 TEST(LaunchFile, TutorialRosLaunchWithThePackagePath) {
@@ -136,6 +137,12 @@ TEST(LaunchFile, ErrorsNameTheFileLineAndKey) {
 
   p = problems_of([&] { read_launch_file(write(dir, "d.yaml", "urdf: x\nmode: fast\n"), {}); });
   EXPECT_NE(p.find("'mode' must be realtime or lockstep, not 'fast'"), std::string::npos) << p;
+
+  p = problems_of([&] { read_launch_file(write(dir, "e.yaml", "urdf: x\ncpu: fastest\n"), {}); });
+  EXPECT_NE(p.find("e.yaml:2: 'cpu' must be auto (lockstep: sim_server and controller_manager on the least busy CPU), "
+                   "none, or a CPU number, not 'fastest'"),
+            std::string::npos)
+      << p;
 }
 
 TEST(LaunchFile, DemoCommandsBecomeCommandSources) {

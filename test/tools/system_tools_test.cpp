@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <regex>
 
 #include "lcm_control/float64_t.hpp"
@@ -82,6 +83,7 @@ TEST(Launch, TurretBotUpAndDownCleanly) {
   ASSERT_NE(cm_down, std::string::npos) << out;
   EXPECT_LT(unloaded, cm_down);
   EXPECT_NE(out.find("[launch] all 4 processes stopped"), std::string::npos) << out;
+  EXPECT_EQ(out.find(", cpu "), std::string::npos) << "real time: not pinned by default\n" << out;
 }
 
 TEST(Launch, AChildsDeathStopsEverythingWithANonZeroExit) {
@@ -246,6 +248,13 @@ TEST(TurretCmd, SimTimeUnderLockstepGivesEveryStepItsOwnCommand) {
   const std::string url = unique_lcm_url();
   ChildProcess launch({bin("launch"), source("config/turret_bot.launch.yaml"), "--mode", "lockstep", "--lcm-url", url});
   ASSERT_TRUE(launch.wait_for_output("[launch] up:", 25.0)) << launch.output();
+  // Lockstep: launch puts sim_server and controller_manager on one CPU (its `cpu: auto`).
+  const std::regex on_cpu(R"(\[(sim_server|controller_manager)\] info: ready \(.*, cpu (\d+)\))");
+  std::map<std::string, std::string> cpu_of;
+  const std::string up = launch.output();
+  for (std::sregex_iterator m(up.begin(), up.end(), on_cpu), end; m != end; ++m) cpu_of[(*m)[1]] = (*m)[2];
+  ASSERT_EQ(cpu_of.size(), 2u) << up;
+  EXPECT_EQ(cpu_of["sim_server"], cpu_of["controller_manager"]) << up;
   lcm::LCM lc(url);
   Recorder<hardware_command_t> cmds(lc, "hardware/command");
   Recorder<float64_t> sent(lc, "j2_controller/command");

@@ -1,0 +1,28 @@
+// How a loop process asks Linux for predictable CPU time: pinned to one CPU
+// (--cpu; in lockstep both loop processes share one, see bench/README.md) and
+// SCHED_FIFO with locked memory (--rt-priority), applied before any thread
+// starts so LCM's receive thread gets the same.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <string>
+
+namespace lcm_control {
+
+struct SchedulingFlags {
+  int cpu = -1;         // -1: any CPU
+  int rt_priority = 0;  // 0: the normal scheduler; 1..99: SCHED_FIFO
+};
+
+void add_scheduling_flags(CLI::App& app, SchedulingFlags& f);
+
+// Applies the flags to the calling process; call it before creating threads. Returns what was applied for the
+// ready line ("" if nothing). Throws std::runtime_error naming the flag and what to do (a CPU this process may not
+// use, SCHED_FIFO or mlockall not permitted).
+std::string apply_scheduling(const SchedulingFlags& f);
+
+// The CPU, among those this process may use, with the most idle time over `sample_ms`; -1 if it cannot tell.
+int least_busy_cpu(int sample_ms = 100);
+
+}  // namespace lcm_control
