@@ -52,6 +52,17 @@ std::map<int, long long> idle_jiffies() {
   return idle;
 }
 
+// CAP_IPC_LOCK (bit 14 of CapEff) lets mlockall ignore RLIMIT_MEMLOCK.
+bool may_lock_any_amount() {
+  rlimit lim{};
+  if (getrlimit(RLIMIT_MEMLOCK, &lim) == 0 && lim.rlim_cur == RLIM_INFINITY) return true;
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("CapEff:", 0) == 0) return (std::stoull(line.substr(7), nullptr, 16) >> 14) & 1;
+  return false;
+}
+
 }  // namespace
 
 void add_scheduling_flags(CLI::App& app, SchedulingFlags& f) {
@@ -90,13 +101,11 @@ std::string apply_scheduling(const SchedulingFlags& f) {
           "cap_sys_nice+ep`), or allow it with `ulimit -r {}` (rtprio in /etc/security/limits.conf)",
           f.rt_priority, std::strerror(errno), f.rt_priority));
     applied.push_back(fmt::format("SCHED_FIFO {}", f.rt_priority));
-    // Locking future pages is only safe without a memlock limit: under one, a later allocation would fail.
-    rlimit lim{};
-    if (getrlimit(RLIMIT_MEMLOCK, &lim) == 0 && lim.rlim_cur == RLIM_INFINITY &&
-        mlockall(MCL_CURRENT | MCL_FUTURE) == 0)
+    // Locking future pages is only safe when no memlock limit applies: under one, a later allocation would fail.
+    if (may_lock_any_amount() && mlockall(MCL_CURRENT | MCL_FUTURE) == 0)
       applied.push_back("memory locked");
     else
-      applied.push_back("memory not locked (`ulimit -l unlimited` to lock it)");
+      applied.push_back("memory not locked (needs CAP_IPC_LOCK or `ulimit -l unlimited`)");
   }
   std::string s;
   for (const auto& a : applied) s += (s.empty() ? "" : ", ") + a;

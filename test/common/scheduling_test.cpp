@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <fstream>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -32,6 +33,14 @@ int last_allowed_cpu() {
   for (int c = 0; c < CPU_SETSIZE; ++c)
     if (CPU_ISSET(c, &set)) last = c;
   return last;
+}
+
+// VmLck of this process, kB.
+long locked_kb() {
+  std::ifstream in("/proc/self/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmLck:", 0) == 0) return std::stol(line.substr(6));
+  return -1;
 }
 
 TEST(Scheduling, CpuPinsTheProcessAndThreadsItStartsLater) {
@@ -63,26 +72,31 @@ TEST(Scheduling, ACpuThisProcessMayNotUseIsRefusedWithTheAllowedOnes) {
   }
 }
 
+// Whether SCHED_FIFO and mlockall are allowed depends on the machine (root, capabilities, limits); whichever
+// way it goes, what apply_scheduling says must be what the kernel did.
 TEST(Scheduling, RtPriorityGivesSchedFifoOrSaysWhatToDo) {
   EXPECT_EQ(0, in_child([] {
               SchedulingFlags f;
               f.rt_priority = 10;
+              std::string said;
               try {
-                const std::string s = apply_scheduling(f);
-                sched_param p{};
-                sched_getparam(0, &p);
-                return sched_getscheduler(0) == SCHED_FIFO && p.sched_priority == 10 &&
-                               s.rfind("SCHED_FIFO 10, memory ", 0) == 0
-                           ? 0
-                           : 3;
+                said = apply_scheduling(f);
               } catch (const std::runtime_error& e) {
-                // Not permitted here (not root, no CAP_SYS_NICE): the message says how to permit it.
                 const std::string w = e.what();
-                return geteuid() != 0 && w.find("--rt-priority 10: SCHED_FIFO not permitted") == 0 &&
+                return sched_getscheduler(0) != SCHED_FIFO &&
+                               w.find("--rt-priority 10: SCHED_FIFO not permitted") == 0 &&
                                w.find("CAP_SYS_NICE") != std::string::npos
                            ? 0
                            : 4;
               }
+              sched_param p{};
+              sched_getparam(0, &p);
+              if (sched_getscheduler(0) != SCHED_FIFO || p.sched_priority != 10) return 3;
+              if (said == "SCHED_FIFO 10, memory locked") return locked_kb() > 0 ? 0 : 5;
+              return said == "SCHED_FIFO 10, memory not locked (needs CAP_IPC_LOCK or `ulimit -l unlimited`)" &&
+                             locked_kb() == 0
+                         ? 0
+                         : 6;
             }));
 }
 
