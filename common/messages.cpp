@@ -83,4 +83,18 @@ void set_gains(pid_gains_t& m, const PidGains& g) {
   m.antiwindup = g.antiwindup;
 }
 
+cm_request_t cm_request(int8_t op, std::vector<std::string> names, std::vector<std::string> start,
+                        std::vector<std::string> stop, int8_t strictness) {
+  cm_request_t r{};
+  r.op = op;
+  r.num_names = int32_t(names.size());
+  r.names = std::move(names);
+  r.num_start = int32_t(start.size());
+  r.start = std::move(start);
+  r.num_stop = int32_t(stop.size());
+  r.stop = std::move(stop);
+  r.strictness = strictness;
+  return r;
+}
+
 }  // namespace lcm_control

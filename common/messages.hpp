@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
@@ -32,6 +33,10 @@ std::string check(const float64_array_t& m);
 void resize(joint_state_t& m, int n);
 void resize(hardware_state_t& m, int n);
 void resize(hardware_command_t& m, int n);
+
+// A controller-manager request with its array counts set (request_id, client and utime are the sender's).
+cm_request_t cm_request(int8_t op, std::vector<std::string> names = {}, std::vector<std::string> start = {},
+                        std::vector<std::string> stop = {}, int8_t strictness = cm_request_t::STRICT);
 
 // PID gains between the wire (pid_gains_t) and the PID.
 PidGains gains_of(const pid_gains_t& m);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "common/messages.hpp"
 #include "tools/support.hpp"
 
 namespace lcm_control::tools {
@@ -128,8 +129,7 @@ cm_response_t CmClient::call(cm_request_t req, double timeout_s) {
   const bool checkable =
       req.op == cm_request_t::LOAD || req.op == cm_request_t::UNLOAD || req.op == cm_request_t::SWITCH;
   std::set<int64_t> ids, list_ids;
-  cm_request_t list_req{};
-  list_req.op = cm_request_t::LIST;
+  cm_request_t list_req = cm_request(cm_request_t::LIST);
   std::optional<cm_response_t> answer;
   while (!stop_requested() && left() > 0) {
     send(req, ids);
@@ -154,40 +154,21 @@ cm_response_t CmClient::call(cm_request_t req, double timeout_s) {
   throw CmTimeout(no_answer(what_of(req), timeout_s));
 }
 
-cm_response_t CmClient::list(double t) {
-  cm_request_t r{};
-  r.op = cm_request_t::LIST;
-  return call(r, t);
-}
-cm_response_t CmClient::list_types(double t) {
-  cm_request_t r{};
-  r.op = cm_request_t::LIST_TYPES;
-  return call(r, t);
-}
+cm_response_t CmClient::list(double t) { return call(cm_request(cm_request_t::LIST), t); }
+cm_response_t CmClient::list_types(double t) { return call(cm_request(cm_request_t::LIST_TYPES), t); }
 cm_response_t CmClient::load(const std::vector<std::string>& names, double t) {
-  cm_request_t r{};
-  r.op = cm_request_t::LOAD;
-  r.names = names;
-  return call(r, t);
+  return call(cm_request(cm_request_t::LOAD, names), t);
 }
 cm_response_t CmClient::unload(const std::vector<std::string>& names, double t) {
-  cm_request_t r{};
-  r.op = cm_request_t::UNLOAD;
-  r.names = names;
-  return call(r, t);
+  return call(cm_request(cm_request_t::UNLOAD, names), t);
 }
 cm_response_t CmClient::switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop,
                                            bool strict, double t) {
-  cm_request_t r{};
-  r.op = cm_request_t::SWITCH;
-  r.start = start;
-  r.stop = stop;
-  r.strictness = strict ? cm_request_t::STRICT : cm_request_t::BEST_EFFORT;
-  return call(r, t);
+  return call(cm_request(cm_request_t::SWITCH, {}, start, stop, strict ? cm_request_t::STRICT : cm_request_t::BEST_EFFORT),
+              t);
 }
 cm_response_t CmClient::reload(bool force, double t) {
-  cm_request_t r{};
-  r.op = cm_request_t::RELOAD;
+  cm_request_t r = cm_request(cm_request_t::RELOAD);
   r.force = force;
   return call(r, t);
 }

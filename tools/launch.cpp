@@ -11,6 +11,7 @@
 #include <memory>
 
 #include "common/cli.hpp"
+#include "common/messages.hpp"
 #include "common/scheduling.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
@@ -48,12 +49,10 @@ class ReadinessProbe {
     const int64_t now = monotonic_us();
     if (cm_answered_ || now - last_list_us_ < 500000) return;
     last_list_us_ = now;
-    cm_request_t r{};
+    cm_request_t r = cm_request(cm_request_t::LIST);
     r.utime = wall_us();
     r.request_id = list_id_ = new_request_id();
     r.client = "launch";
-    r.op = cm_request_t::LIST;
-    r.strictness = cm_request_t::STRICT;
     bus_.publish(channels::kCmRequest, r);
   }
   bool hardware_seen() const { return state_seen_; }

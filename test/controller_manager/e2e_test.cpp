@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "common/messages.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
 #include "lcm_control/controller_state_t.hpp"
@@ -56,17 +57,9 @@ struct Session {
   cm_response_t call(int8_t op, std::vector<std::string> names = {}, std::vector<std::string> start = {},
                      std::vector<std::string> stop = {}, int8_t strictness = cm_request_t::STRICT,
                      const std::string& ns = "") {
-    cm_request_t r{};
+    cm_request_t r = cm_request(op, names, start, stop, strictness);
     r.request_id = next_id++;
     r.client = "e2e_test";
-    r.op = op;
-    r.names = names;
-    r.num_names = static_cast<int32_t>(names.size());
-    r.start = start;
-    r.num_start = static_cast<int32_t>(start.size());
-    r.stop = stop;
-    r.num_stop = static_cast<int32_t>(stop.size());
-    r.strictness = strictness;
     lc.publish(ns + "controller_manager/request", &r);
     return wait_response(r.request_id);
   }

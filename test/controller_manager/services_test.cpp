@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "common/messages.hpp"
 #include "test/controller_manager/rig.hpp"
 #include "test/support/lcm_test.hpp"
 
@@ -15,16 +16,8 @@ using lcm_control::testing::Rig;
 namespace {
 cm_request_t request(int64_t id, int8_t op, std::vector<std::string> names = {}, std::vector<std::string> start = {},
                      std::vector<std::string> stop = {}) {
-  cm_request_t r{};
+  cm_request_t r = cm_request(op, std::move(names), std::move(start), std::move(stop));
   r.request_id = id;
-  r.op = op;
-  r.names = names;
-  r.num_names = static_cast<int32_t>(names.size());
-  r.start = start;
-  r.num_start = static_cast<int32_t>(start.size());
-  r.stop = stop;
-  r.num_stop = static_cast<int32_t>(stop.size());
-  r.strictness = cm_request_t::STRICT;
   return r;
 }
 }  // namespace

@@ -1,5 +1,5 @@
 // turret-cmd against a subscriber on a private LCM URL: values, rate, message
-// types, channel naming, errors, and sim-time pacing by a fake clock.
+// types, channel naming, errors, and sim-time pacing by a fake sim's hardware/state.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -136,17 +136,17 @@ TEST(TurretCmd, SimTimeSendsEachTickCommandBeforeTheTick) {
   ChildProcess p({bin("turret-cmd"), "j2_controller/command", "10*i + t", "--sim-time", "--count", "40", "--lcm-url",
                   url});
   const int64_t period_us = 1000, first_step = 500;
-  hardware_state_t clock{};
+  hardware_state_t state{};
   // Until turret-cmd listens, the first states go unheard; start counting at its first answer.
   int64_t step = first_step;
-  auto publish_clock = [&](int64_t k) {
-    clock.step = k;
-    clock.utime = k * period_us;
-    lc.publish("hardware/state", &clock);
+  auto publish_state = [&](int64_t k) {
+    state.step = k;
+    state.utime = k * period_us;
+    lc.publish("hardware/state", &state);
   };
   while (rec.messages.empty()) {
     ASSERT_LT(step, first_step + 200) << "turret-cmd never answered hardware/state\n" << p.output();
-    publish_clock(step);
+    publish_state(step);
     pump_until(lc, [&] { return !rec.messages.empty(); }, 0.05);
     if (rec.messages.empty()) ++step;
   }
@@ -156,7 +156,7 @@ TEST(TurretCmd, SimTimeSendsEachTickCommandBeforeTheTick) {
   ASSERT_EQ(int64_t(rec.messages.size()), step - start + 2) << p.output();
   for (int64_t k = step + 1; rec.messages.size() < 40; ++k) {
     ASSERT_LT(k, start + 40) << p.output();
-    publish_clock(k);
+    publish_state(k);
     const size_t want = size_t(k - start + 2);
     ASSERT_TRUE(pump_until(lc, [&] { return rec.messages.size() >= want; }, 2.0)) << "step " << k;
     EXPECT_EQ(rec.messages.size(), want);
@@ -176,19 +176,19 @@ TEST(TurretCmd, SimTimeRateIsInSimSeconds) {
   // 100 Hz of sim time on 1 kHz control steps: one message every 10 steps.
   ChildProcess p({bin("turret-cmd"), "c/command", "t", "--sim-time", "--rate", "100", "--duration", "0.05", "--lcm-url",
                   url});
-  hardware_state_t clock{};
+  hardware_state_t state{};
   int64_t k = 1;
   while (rec.messages.empty() && k < 2000) {
-    clock.step = k;
-    clock.utime = k * 1000;
-    lc.publish("hardware/state", &clock);
+    state.step = k;
+    state.utime = k * 1000;
+    lc.publish("hardware/state", &state);
     pump_until(lc, [&] { return !rec.messages.empty(); }, 0.01);
     ++k;
   }
   for (int n = 0; n < 60 && p.running(); ++n, ++k) {
-    clock.step = k;
-    clock.utime = k * 1000;
-    lc.publish("hardware/state", &clock);
+    state.step = k;
+    state.utime = k * 1000;
+    lc.publish("hardware/state", &state);
     pump_until(lc, [] { return false; }, 0.005);
   }
   EXPECT_EQ(p.wait(3.0), 0) << p.output();
