@@ -12,6 +12,7 @@
 
 #include "common/bus.hpp"
 #include "common/robot_model.hpp"
+#include "common/substitution.hpp"
 
 namespace lcm_control {
 
@@ -30,6 +31,31 @@ inline void add_package_path_flag(CLI::App& app, std::vector<std::string>& dirs)
                  "folders searched for package://NAME/ and $(find NAME) (default: $LCM_CONTROL_PACKAGE_PATH, "
                  "$ROS_PACKAGE_PATH)")
       ->delimiter(':');
+}
+
+// --arg NAME=VALUE (repeatable): values for $(arg NAME) in the ros_control YAML.
+inline void add_arg_flag(CLI::App& app, std::vector<std::string>& assignments) {
+  app.add_option("--arg", assignments,
+                 "NAME=VALUE for $(arg NAME) in the YAML, as roslaunch's <rosparam subst_value=\"true\"> fills it "
+                 "(repeatable; NAME:=VALUE works too)")
+      ->check([](const std::string& v) {
+        try {
+          parse_arg(v);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      });
+}
+
+// How the robot's files are read, from the flags every program that loads them shares.
+inline LoadOptions load_options(const std::vector<std::string>& package_path, const BusFlags& bus,
+                                const std::vector<std::string>& arg_assignments) {
+  LoadOptions o;
+  o.package_path = package_path;
+  o.ns = bus.ns;
+  for (const auto& a : arg_assignments) o.args.push_back(parse_arg(a));
+  return o;
 }
 
 enum ExitCode { kExitOk = 0, kExitFailure = 1, kExitUsage = 2, kExitBadInput = 3, kExitBus = 4 };

@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 #include <yaml-cpp/yaml.h>
 
@@ -80,6 +81,7 @@ struct TransmissionSpec {
   std::vector<Interface> interfaces;  // first one is the one the hardware takes
   std::string actuator;
   SimpleTransmission map;
+  std::vector<Interface> skipped_interfaces;  // of the joint's other transmissions, skipped (the first drives it)
 };
 
 struct ControllerSpec {
@@ -93,20 +95,30 @@ struct LoadOptions {
   // name is NAME, DIR/... . Defaults to $LCM_CONTROL_PACKAGE_PATH and
   // $ROS_PACKAGE_PATH (colon-separated) when empty.
   std::vector<std::string> package_path;
+  // The robot's namespace from --namespace; "" takes the gazebo_ros_control plugin's <robotNamespace>.
+  std::string ns;
+  // Values for $(arg NAME) in the YAML (roslaunch's subst_value), from --arg NAME=VALUE.
+  std::vector<std::pair<std::string, std::string>> args;
 };
 
 struct RobotModel {
   std::string name;
   std::string urdf_path, config_path;
+  LoadOptions options;                          // as loaded (a reload reads the config again with them)
   std::string root_link;
   std::vector<Link> links;                     // URDF order
   std::vector<Joint> joints;                   // URDF order
   std::vector<TransmissionSpec> transmissions;  // URDF order = actuator order on the wire
   bool has_gazebo_ros_control_plugin = false;
   std::string gazebo_plugin_namespace;         // <robotNamespace>, if given
+  // The robot's namespace ("" none, "rrbot", "lab/rrbot"): the channel prefix and where the YAML is read.
+  std::string ns;
+  std::string config_section;                  // the YAML key the controllers were read under, "" for the top level
   std::vector<ControllerSpec> controllers;     // YAML order
   std::map<std::string, PidGains> pid_gains;   // gazebo_ros_control/pid_gains/<joint>
+  std::vector<std::string> notes;              // what was resolved and how, one INFO line each
   std::vector<std::string> warnings;           // non-fatal findings, one line each
+  std::vector<std::string> hints;              // valid, but often not what was meant (doctor prints them)
 
   const Joint* joint(const std::string& name) const;
   const Link* link(const std::string& name) const;
@@ -116,31 +128,13 @@ struct RobotModel {
   std::vector<std::string> actuated_joints() const;
 };
 
-// Loads and validates. Throws ModelError naming the file and culprit.
+// Loads and validates: the URDF (common/urdf_reader), the namespace, the YAML
+// (common/control_config), then the cross-checks (common/model_check).
+// Throws ModelError naming the file and culprit of every problem.
 RobotModel load_robot_model(const std::string& urdf_path, const std::string& config_path,
                             const LoadOptions& options = {});
 
-// The parts, for tools and tests that need only one of them.
-void load_urdf_into(RobotModel& model, const std::string& urdf_path, const LoadOptions& options);
-void load_control_config_into(RobotModel& model, const std::string& config_path);
-// Reads a ros_control YAML's controller entries and pid gains (file used in messages).
-void parse_control_config(RobotModel& model, const YAML::Node& root, const std::string& file);
-// Reads one ros_control PID map ({p, i, d, i_clamp, i_clamp_min, i_clamp_max, antiwindup}) with
-// control_toolbox's rules; `where` prefixes every problem (file and key path).
-PidGains parse_pid_gains(const YAML::Node& n, const std::string& where, std::vector<std::string>& problems,
-                         std::vector<std::string>& warnings);
-// Cross-checks URDF, transmissions and YAML; throws ModelError listing every problem.
-void validate(RobotModel& model);
-
-// Resolves `package://NAME/rest`, `file://...`, absolute and relative (to base_dir) paths.
-// Returns "" when the file does not exist.
-std::string resolve_resource(const std::string& uri, const std::string& base_dir,
-                             const std::vector<std::string>& package_path);
-std::vector<std::string> default_package_path();
-// The folder of ROS package NAME on the path (`$(find NAME)`), "" if absent.
-std::string find_package_dir(const std::string& name, const std::vector<std::string>& package_path);
-
-// Human-readable multi-line description (the doctor command prints it).
-std::string describe(const RobotModel& model);
+// A namespace as written in ROS ("/rrbot/", "rrbot") as our channel prefix ("rrbot"); "" for "/" or "".
+std::string normalize_namespace(const std::string& ns);
 
 }  // namespace lcm_control

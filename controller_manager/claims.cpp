@@ -32,8 +32,14 @@ std::string check_interface(const RobotModel& model, const std::string& controll
           "controller '{}' needs {} on joint '{}'; transmission '{}' offers {} but the hardware takes "
           "only the first, {}",
           controller, to_string(needed), joint, t->name, fmt::join(offered, ", "), offered.front());
-  return fmt::format("controller '{}' needs {} on joint '{}', but transmission '{}' offers only {}", controller,
-                     to_string(needed), joint, t->name, fmt::join(offered, ", "));
+  std::string skipped;
+  for (Interface i : t->skipped_interfaces)
+    if (i == needed)
+      skipped = fmt::format(" (the joint's transmission with {} is skipped: the first transmission of a joint drives "
+                            "it, as in gazebo_ros_control; put the one you want first)",
+                            to_string(needed));
+  return fmt::format("controller '{}' needs {} on joint '{}', but transmission '{}' offers only {}{}", controller,
+                     to_string(needed), joint, t->name, fmt::join(offered, ", "), skipped);
 }
 
 std::string Conflict::message() const {

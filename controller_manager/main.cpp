@@ -30,6 +30,8 @@ int main(int argc, char** argv) {
   app.add_option("--config", config, "ros_control YAML (controllers as top-level keys)")->required();
   add_bus_flags(app, bus_flags);
   add_package_path_flag(app, package_path);
+  std::vector<std::string> args;
+  add_arg_flag(app, args);
   add_scheduling_flags(app, sched);
   app.add_option("--silence-timeout", silence_s,
                  "seconds without hardware/state after which controllers are not updated and switches apply at once")
@@ -39,18 +41,20 @@ int main(int argc, char** argv) {
   return run_program(app, argc, argv, [&]() -> int {
     const std::string scheduling = apply_scheduling(sched);
     setup_logging("controller_manager", log_level);
-    LoadOptions lo;
-    lo.package_path = package_path;
-    RobotModel model = load_robot_model(urdf, config, lo);
+    RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
+    for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
-    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    Bus bus(bus_flags.lcm_url, model.ns);
     cm::ManagerOptions options;
     options.silence_us = static_cast<int64_t>(silence_s * 1e6);
     const size_t configured = model.controllers.size();
     const size_t actuated = model.transmissions.size();
     cm::ControllerManager manager(std::move(model), bus, cm::builtin_registry(), options);
     cm::Services services(manager, bus);
-    for (const auto& p : manager.check_configured()) spdlog::warn("configured controller will not load: {}", p);
+    for (const auto& c : manager.check_configured()) {
+      if (c.outcome != cm::ControllerCheck::Loads) spdlog::warn("configured controller will not load: {}", c.message);
+      for (const auto& n : c.notes) spdlog::warn("{}", n);
+    }
 
     struct sigaction sa {};
     sa.sa_handler = on_signal;

@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
   app.add_option("--log-level", log_level, "debug, info, warn or error");
   add_bus_flags(app, bus_flags);
   add_package_path_flag(app, package_path);
+  std::vector<std::string> args;
+  add_arg_flag(app, args);
   add_scheduling_flags(app, sched);
 
   return run_program(app, argc, argv, [&] {
@@ -57,13 +59,14 @@ int main(int argc, char** argv) {
     const int clock_every = sim::clock_every_for(rates.control_hz, clock_hz);
     const std::string scheduling = apply_scheduling(sched);
     setup_logging("sim_server", log_level);
-    const RobotModel model = load_robot_model(urdf, config, LoadOptions{package_path});
+    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
+    for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
     sim::Simulation sim(model, rates);
     for (const auto& w : sim.multibody().warnings()) spdlog::warn("{}", w);
     for (const auto& w : sim.actuators().warnings()) spdlog::warn("{}", w);
     for (int i = 0; i < sim.actuators().size(); ++i) spdlog::info("{}", sim.actuators().describe(i));
-    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    Bus bus(bus_flags.lcm_url, model.ns);
     sim::SimIo io(bus, sim, opt.lockstep, clock_every);
     sim::Stepper stepper(sim, io, opt);
     std::signal(SIGINT, on_signal);

@@ -12,7 +12,10 @@
 #include <set>
 #include <sstream>
 
+#include "common/packages.hpp"
 #include "common/robot_model.hpp"
+#include "common/substitution.hpp"
+#include "common/text.hpp"
 
 namespace fs = std::filesystem;
 
@@ -38,23 +41,7 @@ std::string absolute_from(const std::string& p, const std::string& base_dir) {
   return fs::weakly_canonical(f).string();
 }
 
-std::vector<std::string> split_words(const std::string& s) {
-  std::vector<std::string> out;
-  std::istringstream in(s);
-  std::string w;
-  while (in >> w) out.push_back(w);
-  return out;
-}
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return "";
-  return s.substr(b, s.find_last_not_of(" \t\r\n") - b + 1);
-}
-
-std::vector<std::string> packages_of(const std::vector<std::string>& package_path) {
-  return package_path.empty() ? default_package_path() : package_path;
-}
+constexpr const char* kLaunchArgFix = "add <arg name=\"{0}\" default=\"...\"/> or pass {0}:=VALUE";
 
 }  // namespace
 
@@ -63,55 +50,6 @@ std::string check_cpu(const std::string& cpu) {
   if (!cpu.empty() && cpu.size() < 5 && cpu.find_first_not_of("0123456789") == std::string::npos) return "";
   return "must be auto (lockstep: sim_server and controller_manager on the least busy CPU), none, or a CPU number, "
          "not '" + cpu + "'";
-}
-
-std::string substitute(const std::string& text, const std::vector<std::string>& package_path, const Args& args,
-                       const std::string& where) {
-  std::string out;
-  size_t pos = 0;
-  while (true) {
-    const size_t start = text.find("$(", pos);
-    if (start == std::string::npos) break;
-    const size_t end = text.find(')', start);
-    if (end == std::string::npos) throw ModelError(fmt::format("{}: unclosed '$(' in '{}'", where, text));
-    out += text.substr(pos, start - pos);
-    const auto words = split_words(text.substr(start + 2, end - start - 2));
-    const std::string kind = words.empty() ? "" : words[0];
-    if (kind == "find" && words.size() == 2) {
-      const auto path = packages_of(package_path);
-      const std::string dir = find_package_dir(words[1], path);
-      if (dir.empty())
-        throw ModelError(fmt::format(
-            "{}: $(find {}): package '{}' is not on the package path ({}); give the folder that holds it with "
-            "--package-path DIR or LCM_CONTROL_PACKAGE_PATH",
-            where, words[1], words[1], path.empty() ? "empty" : fmt::format("{}", fmt::join(path, ":"))));
-      out += fs::absolute(dir).string();
-    } else if (kind == "arg" && words.size() == 2) {
-      bool found = false;
-      for (const auto& [k, v] : args)
-        if (k == words[1]) {
-          out += v;
-          found = true;
-        }
-      if (!found)
-        throw ModelError(fmt::format("{}: $(arg {}): no <arg name=\"{}\"> with a value or default", where, words[1],
-                                     words[1]));
-    } else if ((kind == "env" && words.size() == 2) || (kind == "optenv" && words.size() >= 2)) {
-      const char* v = std::getenv(words[1].c_str());
-      if (v)
-        out += v;
-      else if (kind == "optenv")
-        for (size_t k = 2; k < words.size(); ++k) out += (k > 2 ? " " : "") + words[k];
-      else
-        throw ModelError(fmt::format("{}: $(env {}): the environment variable is not set", where, words[1]));
-    } else {
-      throw ModelError(fmt::format("{}: '{}' is not supported (supported: $(find PKG), $(arg NAME), $(env VAR), "
-                                   "$(optenv VAR [default]))",
-                                   where, text.substr(start, end - start + 1)));
-    }
-    pos = end + 1;
-  }
-  return out + text.substr(pos);
 }
 
 // ---------------------------------------------------------------------------
@@ -138,7 +76,7 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
       problems.push_back(where(n, key) + " must be a single value");
       return std::string();
     }
-    return substitute(n.as<std::string>(), package_path, {}, where(n, key));
+    return substitute(n.as<std::string>(), Substitutions{package_path, {}, kLaunchArgFix}, where(n, key));
   };
   auto list = [&](const YAML::Node& n, const std::string& key) {
     std::vector<std::string> out;
@@ -301,7 +239,7 @@ struct RosReader {
   }
   std::string attr(const tinyxml2::XMLElement* e, const char* name) {
     const char* v = e->Attribute(name);
-    return v ? trim(substitute(v, package_path, args, where(e))) : "";
+    return v ? trim(substitute(v, Substitutions{package_path, args, kLaunchArgFix}, where(e))) : "";
   }
   bool enabled(const tinyxml2::XMLElement* e) {
     for (const char* cond : {"if", "unless"}) {

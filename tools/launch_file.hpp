@@ -53,9 +53,4 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
 // "" if `cpu` is auto, none or a CPU number; else what is wrong with it.
 std::string check_cpu(const std::string& cpu);
 
-// $(find PKG), $(arg NAME), $(env VAR), $(optenv VAR [default]) in text.
-// Throws ModelError (with `where`) for an unknown package, arg or substitution.
-std::string substitute(const std::string& text, const std::vector<std::string>& package_path,
-                       const std::vector<std::pair<std::string, std::string>>& args, const std::string& where);
-
 }  // namespace lcm_control::tools

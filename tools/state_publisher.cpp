@@ -76,11 +76,13 @@ int main(int argc, char** argv) {
   app.add_option("--max-rate", max_rate, "publish at most this many times per second (default: every joint_states)")
       ->check(CLI::NonNegativeNumber);
   add_package_path_flag(app, package_path);
+  std::vector<std::string> args;
+  add_arg_flag(app, args);
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
-    const RobotModel model = load_robot_model(urdf, config, LoadOptions{package_path});
+    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    Bus bus(bus_flags.lcm_url, model.ns);
     StatePublisher pub(bus, model, max_rate);
     fmt::print(stderr, "state-publisher: ready: {} links of '{}', {} -> {}\n", model.links.size(), model.name,
                bus.channel(channels::kJointStates), bus.channel(channels::kLinkPoses));

@@ -6,6 +6,8 @@
 #include <fstream>
 
 #include "common/robot_model.hpp"
+#include "common/packages.hpp"
+#include "common/urdf_reader.hpp"
 #include "test/support/process.hpp"
 
 using namespace lcm_control;
@@ -60,7 +62,9 @@ TEST_F(Resources, UrdfMeshesResolvedAtLoadAndMissingCollisionMeshNamed) {
 </robot>)";
   try {
     RobotModel m;
-    load_urdf_into(m, urdf, LoadOptions{{root_ + "/ws/src"}});
+    LoadOptions o;
+    o.package_path = {root_ + "/ws/src"};
+    load_urdf_into(m, urdf, o);
     FAIL() << "missing collision mesh accepted";
   } catch (const ModelError& e) {
     const std::string msg = e.what();
@@ -75,7 +79,9 @@ TEST_F(Resources, UrdfMeshesResolvedAtLoadAndMissingCollisionMeshNamed) {
   text.replace(text.find("meshes/missing.stl"), 18, "meshes/local.stl");
   std::ofstream(urdf) << text;
   RobotModel m;
-  load_urdf_into(m, urdf, LoadOptions{{root_ + "/ws/src"}});
+  LoadOptions o;
+  o.package_path = {root_ + "/ws/src"};
+  load_urdf_into(m, urdf, o);
   EXPECT_EQ(m.links[0].collisions[0].mesh_path, fs::canonical(root_ + "/ws/src/my_robot/meshes/arm.stl").string());
   EXPECT_TRUE(m.links[0].collisions[0].scale.isApprox(Eigen::Vector3d(2, 2, 2)));
   EXPECT_EQ(m.links[0].visuals[0].mesh_path, fs::canonical(root_ + "/urdf/meshes/local.stl").string());

@@ -1,5 +1,6 @@
 // turret_bot as loaded from config/: every figure the tutorial gives.
 #include "common/robot_model.hpp"
+#include "common/control_config.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,19 @@
+// Small string helpers every reader of user files needs (trimming, joining,
+// close-name suggestions), so messages are built the same way everywhere.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace lcm_control {
+
+std::string trim(const std::string& s);
+// Whitespace-separated words.
+std::vector<std::string> split_words(const std::string& s);
+std::string join(const std::vector<std::string>& items, const std::string& sep = ", ");
+// Levenshtein distance, for "did you mean" suggestions.
+size_t edit_distance(const std::string& a, const std::string& b);
+// The candidate closest to `name`, "" if none is within `max_distance` edits.
+std::string closest_name(const std::string& name, const std::vector<std::string>& candidates, size_t max_distance);
+
+}  // namespace lcm_control
