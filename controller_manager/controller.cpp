@@ -8,7 +8,10 @@ namespace lcm_control::cm {
 
 JointData* ControllerContext::claim(const std::string& joint, Interface iface) {
   const std::string why = check_interface(model_, name_, joint, iface);
-  if (!why.empty()) throw ControllerError(why);
+  if (!why.empty()) {
+    if (model_.joint(joint)) throw InterfaceError(why);
+    throw ControllerError(why);
+  }
   JointData* j = hw_.find(joint);
   if (!j) throw ControllerError(fmt::format("controller '{}': joint '{}' has no hardware handle", name_, joint));
   if (self_) {

@@ -6,20 +6,16 @@
 #include <algorithm>
 
 #include "common/messages.hpp"
+#include "common/text.hpp"
+#include "common/control_config.hpp"
+#include "common/model_check.hpp"
 #include "controller_manager/claims.hpp"
 #include "controller_manager/gains.hpp"
+#include "controller_manager/ros_catalog.hpp"
 #include "controller_manager/switch_plan.hpp"
 #include "lcm_control/cm_request_t.hpp"
 
 namespace lcm_control::cm {
-
-namespace {
-std::string join(const std::vector<std::string>& v, const char* sep = ", ") {
-  std::string s;
-  for (size_t k = 0; k < v.size(); ++k) s += (k ? sep : "") + v[k];
-  return s;
-}
-}  // namespace
 
 ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry& registry, ManagerOptions options)
     : model_(std::move(model)),
@@ -65,6 +61,50 @@ std::string ControllerManager::names_loaded() const {
   return v.empty() ? "none" : join(v);
 }
 
+std::string ControllerManager::yaml_key(const std::string& controller) const {
+  return model_.config_section.empty() ? controller : model_.config_section + "/" + controller;
+}
+
+ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Port& port,
+                                               std::unique_ptr<Controller>* out) {
+  ControllerCheck c{spec.name, spec.type, ControllerCheck::Loads, "", {}};
+  auto controller = registry_.create(spec.type);
+  if (!controller) {
+    c.outcome = ros_origin_of_type(spec.type).empty() ? ControllerCheck::Refused : ControllerCheck::NotImplemented;
+    c.message = fmt::format("{}: {}/type: {}", model_.config_path, yaml_key(spec.name),
+                            registry_.unknown_type_message(spec.type));
+    return c;
+  }
+  Params params(spec.params, fmt::format("{}: {}", model_.config_path, yaml_key(spec.name)));
+  ControllerContext ctx(spec.name, spec.type, params, model_, hw_, bus_, port);
+  ctx.self() = controller.get();
+  try {
+    controller->init(ctx);
+  } catch (const InterfaceError& e) {
+    c.outcome = ControllerCheck::InterfaceMismatch;
+    c.message = e.what();
+    return c;
+  } catch (const std::exception& e) {
+    c.outcome = ControllerCheck::Refused;
+    c.message = e.what();
+    return c;
+  }
+  c.notes = std::move(ctx.notes);
+  const auto& known = ros_parameters_of(spec.type);
+  for (const auto& k : params.unused()) {
+    const std::string where = fmt::format("{}: {}/{}", model_.config_path, yaml_key(spec.name), k);
+    if (std::find(known.begin(), known.end(), k) != known.end()) {
+      c.notes.push_back(fmt::format("{}: known ROS parameter of {}, not supported yet; ignored", where, spec.type));
+      continue;
+    }
+    const std::string near = closest_name(k, known, 3);
+    c.notes.push_back(fmt::format("{}: not a parameter of {}; ignored{}", where, spec.type,
+                                  near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near)));
+  }
+  if (out) *out = std::move(controller);
+  return c;
+}
+
 Reply ControllerManager::load(const std::string& name) {
   if (ControllerSlot* s = find(name))
     return {false, fmt::format("cannot load '{}': it is already loaded (state: {})", name, s->state())};
@@ -74,60 +114,36 @@ Reply ControllerManager::load(const std::string& name) {
     for (const auto& c : model_.controllers) configured.push_back(c.name);
     return {false, fmt::format("cannot load '{}': there is no '{}' entry with a type in the config {} (configured "
                                "controllers: {})",
-                               name, name, model_.config_path, configured.empty() ? "none" : join(configured))};
+                               name, yaml_key(name), model_.config_path,
+                               configured.empty() ? "none" : join(configured))};
   }
-  auto controller = registry_.create(spec->type);
-  if (!controller)
-    return {false, fmt::format("cannot load '{}': {}: {}/type: {}", name, model_.config_path, name,
-                               registry_.unknown_type_message(spec->type))};
   auto slot = std::make_unique<ControllerSlot>();
   slot->name = name;
   slot->type = spec->type;
   slot->port = std::make_unique<Port>(bus_.lcm());
-  Params params(spec->params, fmt::format("{}: {}", model_.config_path, name));
-  ControllerContext ctx(name, spec->type, params, model_, hw_, bus_, *slot->port);
-  ctx.self() = controller.get();
-  try {
-    controller->init(ctx);
-  } catch (const ControllerError& e) {
-    return {false, fmt::format("cannot load '{}' ({}): {}", name, spec->type, e.what())};
-  } catch (const std::exception& e) {
-    return {false, fmt::format("cannot load '{}' ({}): {}", name, spec->type, e.what())};
-  }
-  if (controller->claim().interface)
-    for (const auto& j : controller->claim().joints) slot->claimed.push_back(hw_.find(j));
-  for (const auto& k : params.unused())
-    ctx.notes.push_back(fmt::format("{}/{}: not a parameter of {}; ignored", name, k, spec->type));
-  slot->controller = std::move(controller);
+  const ControllerCheck c = instantiate(*spec, *slot->port, &slot->controller);
+  if (c.outcome != ControllerCheck::Loads)
+    return {false, c.outcome == ControllerCheck::NotImplemented || c.message.rfind(model_.config_path, 0) == 0
+                       ? fmt::format("cannot load '{}': {}", name, c.message)
+                       : fmt::format("cannot load '{}' ({}): {}", name, spec->type, c.message)};
+  if (slot->controller->claim().interface)
+    for (const auto& j : slot->controller->claim().joints) slot->claimed.push_back(hw_.find(j));
   if (!slot->controller->pid_joints().empty()) serve_gains(*slot, bus_);
   const std::string claims = describe(slot->controller->claim());
   loop_.slots().push_back(std::move(slot));
-  for (const auto& n : ctx.notes) spdlog::warn("{}", n);
+  for (const auto& n : c.notes) spdlog::warn("{}", n);
   std::string msg = fmt::format("loaded '{}' ({}), claims {}; state initialized", name, spec->type, claims);
-  if (!ctx.notes.empty()) msg += "; note: " + join(ctx.notes, "; ");
+  if (!c.notes.empty()) msg += "; note: " + join(c.notes, "; ");
   return {true, msg};
 }
 
-std::vector<std::string> ControllerManager::check_configured() {
-  std::vector<std::string> problems;
+std::vector<ControllerCheck> ControllerManager::check_configured() {
+  std::vector<ControllerCheck> out;
   for (const auto& spec : model_.controllers) {
-    auto controller = registry_.create(spec.type);
-    if (!controller) {
-      problems.push_back(
-          fmt::format("{}: {}/type: {}", model_.config_path, spec.name, registry_.unknown_type_message(spec.type)));
-      continue;
-    }
     Port scratch(bus_.lcm());  // unsubscribes whatever init() subscribed
-    Params params(spec.params, fmt::format("{}: {}", model_.config_path, spec.name));
-    ControllerContext ctx(spec.name, spec.type, params, model_, hw_, bus_, scratch);
-    ctx.self() = controller.get();
-    try {
-      controller->init(ctx);
-    } catch (const std::exception& e) {
-      problems.push_back(e.what());
-    }
+    out.push_back(instantiate(spec, scratch, nullptr));
   }
-  return problems;
+  return out;
 }
 
 Reply ControllerManager::unload(const std::string& name) {
@@ -208,6 +224,10 @@ void ControllerManager::reload(bool force, Done done) {
     }
     RobotModel fresh = model_;
     fresh.controllers.clear();
+    fresh.pid_gains.clear();
+    fresh.config_section.clear();
+    fresh.notes.clear();
+    fresh.warnings.clear();
     try {
       load_control_config_into(fresh, model_.config_path);
       validate(fresh);

@@ -28,6 +28,20 @@ struct Reply {
 };
 using Done = std::function<void(const Reply&)>;
 
+// What loading one configured controller gives, found without loading it.
+struct ControllerCheck {
+  enum Outcome {
+    Loads,
+    NotImplemented,     // a known ROS type that is not built in here
+    InterfaceMismatch,  // the URDF's transmissions do not offer what it claims (a YAML for another variant)
+    Refused             // anything else: unknown type, missing or bad parameter, unknown joint
+  };
+  std::string name, type;
+  Outcome outcome = Loads;
+  std::string message;             // why it does not load
+  std::vector<std::string> notes;  // parameters ignored and other findings, one line each
+};
+
 struct ManagerOptions {
   int64_t silence_us = 250000;  // no hardware state for this long: the loop is not ticking
 };
@@ -54,9 +68,8 @@ class ControllerManager {
   // Unloads everything (with force: stops the running ones first) and re-reads the config file.
   void reload(bool force, Done done);
   std::vector<controller_info_t> list() const;
-  // Tries every configured controller without loading it: one line per
-  // controller that would be refused (unknown type, interface, parameters).
-  std::vector<std::string> check_configured();
+  // Tries every configured controller without loading it (doctor, start-up).
+  std::vector<ControllerCheck> check_configured();
   std::vector<std::string> types() const { return registry_.types(); }
   bool busy() const { return static_cast<bool>(pending_done_); }
 
@@ -75,6 +88,9 @@ class ControllerManager {
 
  private:
   ControllerSlot* find(const std::string& name) const;
+  // Creates and initialises a controller of `spec` on `port`; on success moves it to *out (if given).
+  ControllerCheck instantiate(const ControllerSpec& spec, Port& port, std::unique_ptr<Controller>* out);
+  std::string yaml_key(const std::string& controller) const;  // its key path in the YAML
   void complete_pending();
   std::string names_loaded() const;
 

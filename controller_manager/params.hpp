@@ -20,6 +20,13 @@ class ControllerError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The URDF's transmissions do not offer the joint or interface the controller claims: the YAML fits another
+// variant of the robot (iiwa_stack's YAML has controllers for all three interfaces).
+class InterfaceError : public ControllerError {
+ public:
+  using ControllerError::ControllerError;
+};
+
 class Params {
  public:
   // where: "<file>: <controller>" used as the prefix of every message.

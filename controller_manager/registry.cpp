@@ -4,7 +4,9 @@
 
 #include <algorithm>
 
+#include "common/text.hpp"
 #include "controller_manager/controllers/factories.hpp"
+#include "controller_manager/ros_catalog.hpp"
 
 namespace lcm_control::cm {
 
@@ -21,6 +23,8 @@ void register_builtin(Registry& r) {
   r.add("velocity_controllers/JointPositionController", make_pid_controller);
   r.add("position_controllers/JointTrajectoryController", make_joint_trajectory_controller);
   r.add("effort_controllers/JointTrajectoryController", make_joint_trajectory_controller);
+  r.add("velocity_controllers/JointTrajectoryController", make_joint_trajectory_controller);
+  r.add("effort_controllers/JointGroupPositionController", make_pid_controller);
 }
 
 const Registry& builtin_registry() {
@@ -45,18 +49,6 @@ std::vector<std::string> Registry::types() const {
   return v;
 }
 
-size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-  for (size_t i = 1; i <= a.size(); ++i) {
-    cur[0] = i;
-    for (size_t j = 1; j <= b.size(); ++j)
-      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
-    std::swap(prev, cur);
-  }
-  return prev[b.size()];
-}
-
 std::string Registry::closest(const std::string& type) const {
   std::string best;
   size_t best_d = SIZE_MAX;
@@ -70,10 +62,15 @@ std::string Registry::closest(const std::string& type) const {
 }
 
 std::string Registry::unknown_type_message(const std::string& type) const {
-  std::string valid;
-  for (const auto& t : types()) valid += (valid.empty() ? "" : ", ") + t;
+  const std::string origin = ros_origin_of_type(type);
+  if (!origin.empty()) {
+    const std::string instead = ros_alternative_to(type);
+    return fmt::format("controller type '{}' ({}) is not implemented here{} (`cmctl list-types` lists the {} "
+                       "implemented types)",
+                       type, origin, instead.empty() ? "" : "; use " + instead, types().size());
+  }
   return fmt::format("controller type '{}' does not exist; did you mean '{}'? Valid types: {}", type, closest(type),
-                     valid);
+                     join(types()));
 }
 
 }  // namespace lcm_control::cm

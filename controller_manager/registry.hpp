@@ -25,7 +25,8 @@ class Registry {
   // The registered type nearest to `type` (edit distance; a bare class name
   // such as "JointPositionControler" is compared with the class part too).
   std::string closest(const std::string& type) const;
-  // "controller type 'x' does not exist; did you mean 'y'? Valid types: ..."
+  // "controller type 'x' does not exist; did you mean 'y'? Valid types: ...", or for a known ROS
+  // type: "controller type 'x' (ros_controllers) is not implemented here; implemented types: ..."
   std::string unknown_type_message(const std::string& type) const;
 
  private:
@@ -35,7 +36,5 @@ class Registry {
 // Every built-in type (see registry.cpp for the list).
 const Registry& builtin_registry();
 void register_builtin(Registry& registry);
-
-size_t edit_distance(const std::string& a, const std::string& b);
 
 }  // namespace lcm_control::cm

@@ -1,32 +1,95 @@
 // doctor: loads a URDF and a ros_control YAML the way sim_server and
-// controller_manager will, and prints what it resolved (or every problem).
-#include "common/cli.hpp"
-#include "common/robot_model.hpp"
+// controller_manager will, tries every configured controller exactly as
+// controller_manager's load would (in-process, no bus), and prints what it
+// resolved, or every problem. Exit 3 when the servers would refuse the files,
+// a controller would be refused, or no controller is configured.
+#include <fmt/format.h>
 
 #include <cstdio>
+
+#include "common/cli.hpp"
+#include "common/model_report.hpp"
+#include "common/robot_model.hpp"
+#include "controller_manager/manager.hpp"
+
+namespace {
+
+using lcm_control::cm::ControllerCheck;
+
+const char* verdict(ControllerCheck::Outcome o) {
+  switch (o) {
+    case ControllerCheck::Loads: return "loads";
+    case ControllerCheck::NotImplemented: return "not implemented here";
+    case ControllerCheck::InterfaceMismatch: return "will not load with this URDF's transmissions";
+    case ControllerCheck::Refused: return "REFUSED";
+  }
+  return "?";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace lcm_control;
   CLI::App app{
-      "Check a URDF + ros_control YAML and print the robot model as the servers will use it.\n"
+      "Check a URDF + ros_control YAML and print the robot model as the servers will use it; every configured "
+      "controller is loaded in-process as controller_manager would load it.\n"
       "Example: doctor --urdf config/turret_bot.urdf --config config/turret_bot.yaml",
       "doctor"};
   std::string urdf, config;
-  std::vector<std::string> package_path;
+  std::vector<std::string> package_path, args;
+  BusFlags bus_flags;
   bool strict = false;
   app.add_option("--urdf", urdf, "URDF file with <transmission> tags")->required();
   app.add_option("--config", config, "ros_control YAML (controllers, gazebo_ros_control/pid_gains)");
+  app.add_option("--namespace", bus_flags.ns,
+                 "the robot's namespace (default: the gazebo_ros_control plugin's <robotNamespace>); the YAML is read "
+                 "under it when it nests there");
   app.add_flag("--strict", strict, "treat warnings as errors (exit 3)");
   add_package_path_flag(app, package_path);
+  add_arg_flag(app, args);
   return run_program(app, argc, argv, [&] {
-    const RobotModel model = load_robot_model(urdf, config, LoadOptions{package_path});
+    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
     std::fputs(describe(model).c_str(), stdout);
-    if (strict && !model.warnings.empty()) {
-      for (const auto& w : model.warnings) std::fprintf(stderr, "doctor: error: %s\n", w.c_str());
+    for (const auto& n : model.notes) std::printf("note: %s\n", n.c_str());
+
+    std::vector<std::string> errors, warnings = model.warnings;
+    size_t loadable = 0;
+    if (!config.empty()) {
+      if (model.controllers.empty())
+        errors.push_back(fmt::format(
+            "{}: no controllers found (a controller is a map with a `type:` key, at the top level or under the "
+            "robot's namespace{}); see the warnings above for what was read instead",
+            config, model.ns.empty() ? "" : " '" + model.ns + ":'"));
+      Bus bus("memq://", model.ns);
+      cm::ControllerManager manager(model, bus);
+      const auto checks = manager.check_configured();
+      if (!checks.empty()) std::printf("\ncontroller check (as controller_manager would load them):\n");
+      for (const auto& c : checks) {
+        std::printf("  %-32s %s\n", c.name.c_str(), verdict(c.outcome));
+        if (c.outcome == ControllerCheck::Loads) ++loadable;
+        if (c.outcome == ControllerCheck::Refused) errors.push_back(c.message);
+        if (c.outcome == ControllerCheck::NotImplemented || c.outcome == ControllerCheck::InterfaceMismatch)
+          warnings.push_back(c.message);
+        warnings.insert(warnings.end(), c.notes.begin(), c.notes.end());
+      }
+    }
+    if (warnings.size() > model.warnings.size()) {
+      std::printf("\ncontroller warnings (%zu):\n", warnings.size() - model.warnings.size());
+      for (size_t k = model.warnings.size(); k < warnings.size(); ++k) std::printf("  %s\n", warnings[k].c_str());
+    }
+    if (strict)
+      for (const auto& w : warnings) errors.push_back("(--strict) " + w);
+    if (!errors.empty()) {
+      std::fflush(stdout);
+      for (const auto& e : errors) std::fprintf(stderr, "doctor: error: %s\n", e.c_str());
       return int(kExitBadInput);
     }
-    std::printf("\nOK: %zu joints, %zu transmissions, %zu controllers\n", model.joints.size(),
+    std::printf("\nOK: %zu joints, %zu transmissions, %zu controllers", model.joints.size(),
                 model.transmissions.size(), model.controllers.size());
+    if (!config.empty() && loadable != model.controllers.size())
+      std::printf(" (%zu load with this URDF, %zu do not: see the warnings)", loadable,
+                  model.controllers.size() - loadable);
+    std::printf("\n");
     return int(kExitOk);
   });
 }

@@ -1,12 +1,18 @@
-// position_controllers/JointTrajectoryController and
-// effort_controllers/JointTrajectoryController (`gains/<joint>` PIDs on the
-// position error, velocity error as the D input). Parameters as
-// ros_controllers: `joints`, `constraints: {goal_time, stopped_velocity_tolerance,
-// <joint>: {trajectory, goal}}` (0 = not checked), `action_monitor_rate`.
+// {position,velocity,effort}_controllers/JointTrajectoryController with
+// ros_controllers' parameters: `joints`, `gains/<joint>` (velocity and effort:
+// PID on the position error with the velocity error as the D input),
+// `velocity_ff/<joint>` (velocity and effort: times the desired velocity, added),
+// `constraints: {goal_time, stopped_velocity_tolerance, <joint>: {trajectory,
+// goal}}` (0 = not checked), `state_publish_rate` (`<name>/state`,
+// joint_trajectory_controller_state_t; 0: never), `action_monitor_rate`,
+// `stop_trajectory_duration` (the ramp to rest on start, on a path tolerance
+// violation and on an empty trajectory), `allow_partial_joints_goal` (joints a
+// goal leaves out hold their desired position).
 // Goals arrive on `<name>/command` (joint_trajectory_t, times relative to the
-// cycle that receives them; a new goal preempts the running one). Feedback on
-// `<name>/feedback`, one result per goal on `<name>/result` (trajectory_status_t),
-// naming the joint and the error when a tolerance is violated.
+// cycle that receives them; a new goal preempts the running one; one without
+// points stops). Feedback on `<name>/feedback`, one result per goal on
+// `<name>/result` (trajectory_status_t), naming the joint and the error when
+// a tolerance is violated.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -17,12 +23,23 @@
 #include "common/angles.hpp"
 #include "controller_manager/controllers/factories.hpp"
 #include "controller_manager/controllers/trajectory.hpp"
+#include "lcm_control/joint_trajectory_controller_state_t.hpp"
 #include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 
 namespace lcm_control::cm {
 
 namespace {
+
+double non_negative(const YAML::Node& x, const std::string& where) {
+  try {
+    const double v = x.as<double>();
+    if (!std::isfinite(v) || v < 0) throw YAML::Exception(YAML::Mark::null_mark(), "");
+    return v;
+  } catch (const YAML::Exception&) {
+    throw ControllerError(fmt::format("{}: expected a number >= 0", where));
+  }
+}
 
 class JointTrajectoryController : public Controller {
  public:
@@ -34,63 +51,45 @@ class JointTrajectoryController : public Controller {
     names_ = p.strings("joints");
     for (const auto& n : names_) joints_.push_back(ctx.claim(n, iface_));
     const size_t n = names_.size();
-    path_tol_.assign(n, 0.0);
-    goal_tol_.assign(n, 0.0);
-    const YAML::Node c = p.node("constraints");
-    if (c) {
-      if (!c.IsMap()) throw p.error("constraints", "expected a map");
-      const std::string where = p.where() + "/constraints";
-      auto num = [&](const YAML::Node& x, const std::string& key) {
-        try {
-          const double v = x.as<double>();
-          if (!std::isfinite(v) || v < 0) throw YAML::Exception(YAML::Mark::null_mark(), "");
-          return v;
-        } catch (const YAML::Exception&) {
-          throw ControllerError(fmt::format("{}/{}: expected a number >= 0", where, key));
-        }
-      };
-      for (const auto& kv : c) {
-        const std::string key = kv.first.as<std::string>();
-        if (key == "goal_time") {
-          goal_time_ = num(kv.second, key);
-        } else if (key == "stopped_velocity_tolerance") {
-          stopped_vel_tol_ = num(kv.second, key);
-        } else {
-          const auto it = std::find(names_.begin(), names_.end(), key);
-          if (it == names_.end())
-            throw ControllerError(
-                fmt::format("{}/{}: not one of this controller's joints ({}) nor goal_time / "
-                            "stopped_velocity_tolerance",
-                            where, key, fmt::join(names_, ", ")));
-          if (!kv.second.IsMap())
-            throw ControllerError(fmt::format("{}/{}: expected {{trajectory, goal}}", where, key));
-          const size_t k = it - names_.begin();
-          for (const auto& t : kv.second) {
-            const std::string tk = t.first.as<std::string>();
-            if (tk == "trajectory")
-              path_tol_[k] = num(t.second, key + "/trajectory");
-            else if (tk == "goal")
-              goal_tol_[k] = num(t.second, key + "/goal");
-            else
-              throw ControllerError(fmt::format("{}/{}/{}: unknown key; use trajectory and goal", where, key, tk));
-          }
-        }
-      }
-    }
-    if (iface_ == Interface::Effort) {
+    read_constraints(p);
+    if (iface_ != Interface::Position) {
       const YAML::Node gains = p.node("gains");
-      if (!gains || !gains.IsMap()) throw p.error("gains", "missing (required): gains: {<joint>: {p, i, d}} per joint");
+      if (!gains || !gains.IsMap())
+        throw p.error("gains", fmt::format("missing (required for {}): gains: {{<joint>: {{p, i, d}}}} per joint",
+                                           to_string(iface_)));
       pids_.resize(n);
       for (size_t k = 0; k < n; ++k) {
         const std::string where = p.where() + "/gains/" + names_[k];
         if (!gains[names_[k]]) throw ControllerError(where + ": missing (required): {p, i, d, i_clamp}");
         pids_[k].set_gains(Params::pid_from(gains[names_[k]], where));
       }
+      velocity_ff_.assign(n, 0.0);
+      if (const YAML::Node ff = p.node("velocity_ff")) {
+        if (!ff.IsMap()) throw p.error("velocity_ff", "expected a map {<joint>: factor}");
+        for (const auto& kv : ff) {
+          const std::string joint = kv.first.as<std::string>();
+          const auto it = std::find(names_.begin(), names_.end(), joint);
+          if (it == names_.end())
+            throw p.error("velocity_ff/" + joint, fmt::format("not one of this controller's joints ({})",
+                                                              fmt::join(names_, ", ")));
+          velocity_ff_[it - names_.begin()] = non_negative(kv.second, p.where() + "/velocity_ff/" + joint);
+        }
+      }
+    } else if (p.has("gains") || p.has("velocity_ff")) {
+      ctx.notes.push_back(fmt::format("{}: gains and velocity_ff are not used with PositionJointInterface", name_));
+      p.node("gains");
+      p.node("velocity_ff");
     }
     monitor_rate_ = p.number("action_monitor_rate", 20.0);
     if (monitor_rate_ <= 0) throw p.error("action_monitor_rate", "must be > 0");
+    state_rate_ = p.number("state_publish_rate", 50.0);
+    if (state_rate_ < 0) throw p.error("state_publish_rate", "must be >= 0 (0: never)");
+    stop_duration_ = p.number("stop_trajectory_duration", 0.0);
+    if (stop_duration_ < 0) throw p.error("stop_trajectory_duration", "must be >= 0 seconds");
+    allow_partial_ = p.boolean("allow_partial_joints_goal", false);
 
     desired_.resize(n);
+    rest_from_.resize(n);
     hold_pos_.assign(n, 0.0);
     max_path_err_.assign(n, 0.0);
     hold_ = Trajectory::hold(0, hold_pos_);
@@ -101,8 +100,14 @@ class JointTrajectoryController : public Controller {
     status_.actual.assign(n, 0.0);
     status_.error.assign(n, 0.0);
     status_.message.reserve(512);
+    state_.num_joints = static_cast<int32_t>(n);
+    state_.joint_names = names_;
+    for (auto* v : {&state_.desired_position, &state_.desired_velocity, &state_.desired_acceleration,
+                    &state_.actual_position, &state_.actual_velocity, &state_.error_position, &state_.error_velocity})
+      v->assign(n, 0.0);
     feedback_pub_ = ctx.port().publisher<trajectory_status_t>(ctx.channel("feedback"));
     result_pub_ = ctx.port().publisher<trajectory_status_t>(ctx.channel("result"));
+    state_pub_ = ctx.port().publisher<joint_trajectory_controller_state_t>(ctx.channel("state"));
     ctx.port().subscribe<joint_trajectory_t>(
         ctx.channel("command"), [this](const joint_trajectory_t& g) { on_goal(g); },
         [this](const std::string& why) {
@@ -112,7 +117,7 @@ class JointTrajectoryController : public Controller {
   }
 
   std::vector<std::string> pid_joints() const override {
-    return iface_ == Interface::Effort ? names_ : std::vector<std::string>{};
+    return iface_ != Interface::Position ? names_ : std::vector<std::string>{};
   }
   Pid* pid(const std::string& joint) override {
     for (size_t k = 0; k < pids_.size(); ++k)
@@ -129,11 +134,12 @@ class JointTrajectoryController : public Controller {
 
   void starting(const Time& now) override {
     if (goal_active_) finish(now, trajectory_status_t::PREEMPTED, "controller restarted");
-    for (size_t k = 0; k < joints_.size(); ++k) hold_pos_[k] = joints_[k]->position;
-    hold_.set_hold(now.seconds(), hold_pos_.data());
+    for (size_t k = 0; k < joints_.size(); ++k) rest_from_[k] = {joints_[k]->position, joints_[k]->velocity, 0.0};
+    hold_.set_stop(now.seconds(), stop_duration_, rest_from_.data());
     current_ = &hold_;
     for (auto& pid : pids_) pid.reset();
     last_t_ = now.seconds();
+    last_state_ = -1e9;
   }
 
   void stopping(const Time& now) override {
@@ -150,14 +156,19 @@ class JointTrajectoryController : public Controller {
       current_->sample(t, k, desired_[k]);
       const double e =
           j.continuous ? shortest_angular_distance(j.position, desired_[k].pos) : desired_[k].pos - j.position;
+      const double e_dot = desired_[k].vel - j.velocity;
       status_.desired[k] = desired_[k].pos;
       status_.actual[k] = j.position;
       status_.error[k] = e;
+      state_.error_velocity[k] = e_dot;
       if (iface_ == Interface::Position) {
         j.command = desired_[k].pos;
       } else {
-        double u = pids_[k].compute(e, desired_[k].vel - j.velocity, period);
-        if (j.urdf && j.urdf->effort_limit > 0) u = std::clamp(u, -j.urdf->effort_limit, j.urdf->effort_limit);
+        double u = velocity_ff_[k] * desired_[k].vel + pids_[k].compute(e, e_dot, period);
+        const double limit = !j.urdf                          ? 0
+                             : iface_ == Interface::Effort   ? j.urdf->effort_limit
+                                                             : j.urdf->velocity_limit;
+        if (limit > 0) u = std::clamp(u, -limit, limit);
         j.command = u;
       }
       if (goal_active_ && std::abs(e) > max_path_err_[k]) max_path_err_[k] = std::abs(e);
@@ -166,46 +177,20 @@ class JointTrajectoryController : public Controller {
         worst = k;
       }
     }
+    publish_state(now);
     if (!goal_active_) return;
     if (worst_excess > 0) {
       std::snprintf(text_, sizeof text_,
                     "path tolerance violated on joint '%s': error %.6f exceeds %.6f at %.3f s of %.3f s",
                     names_[worst].c_str(), status_.error[worst], path_tol_[worst], t - current_->start_time(),
                     current_->end_time() - current_->start_time());
-      for (size_t k = 0; k < joints_.size(); ++k) hold_pos_[k] = joints_[k]->position;
       finish(now, trajectory_status_t::PATH_TOLERANCE_VIOLATED, text_);
-      hold_.set_hold(t, hold_pos_.data());
+      for (size_t k = 0; k < joints_.size(); ++k) rest_from_[k] = {joints_[k]->position, joints_[k]->velocity, 0.0};
+      hold_.set_stop(t, stop_duration_, rest_from_.data());
       current_ = &hold_;
       return;
     }
-    if (t >= current_->end_time()) {
-      bool within = true;
-      size_t bad = 0;
-      for (size_t k = 0; k < joints_.size() && within; ++k) {
-        const bool pos_ok = goal_tol_[k] <= 0 || std::abs(status_.error[k]) <= goal_tol_[k];
-        const bool vel_ok = stopped_vel_tol_ <= 0 || std::abs(joints_[k]->velocity) <= stopped_vel_tol_;
-        if (!pos_ok || !vel_ok) within = false, bad = k;
-      }
-      if (within) {
-        size_t wf = 0, wp = 0;
-        for (size_t k = 0; k < joints_.size(); ++k) {
-          if (std::abs(status_.error[k]) > std::abs(status_.error[wf])) wf = k;
-          if (max_path_err_[k] > max_path_err_[wp]) wp = k;
-        }
-        std::snprintf(text_, sizeof text_,
-                      "goal %lld reached: largest final error %.6f (joint '%s'), largest path error %.6f (joint '%s')",
-                      static_cast<long long>(goal_id_), std::abs(status_.error[wf]), names_[wf].c_str(),
-                      max_path_err_[wp], names_[wp].c_str());
-        finish(now, trajectory_status_t::SUCCEEDED, text_);
-      } else if (t > current_->end_time() + goal_time_) {
-        std::snprintf(text_, sizeof text_,
-                      "goal tolerance violated on joint '%s': error %.6f (tolerance %.6f), velocity %.6f (stopped "
-                      "tolerance %.6f), %.3f s after the trajectory end (goal_time %.3f)",
-                      names_[bad].c_str(), status_.error[bad], goal_tol_[bad], joints_[bad]->velocity, stopped_vel_tol_,
-                      t - current_->end_time(), goal_time_);
-        finish(now, trajectory_status_t::GOAL_TOLERANCE_VIOLATED, text_);
-      }
-    }
+    if (t >= current_->end_time()) check_goal(now);
     if (goal_active_ && t - last_feedback_ >= 1.0 / monitor_rate_) {
       last_feedback_ = t;
       status_.utime = now.utime;
@@ -217,6 +202,87 @@ class JointTrajectoryController : public Controller {
   }
 
  private:
+  void read_constraints(Params& p) {
+    const size_t n = names_.size();
+    path_tol_.assign(n, 0.0);
+    goal_tol_.assign(n, 0.0);
+    const YAML::Node c = p.node("constraints");
+    if (!c) return;
+    if (!c.IsMap()) throw p.error("constraints", "expected a map");
+    const std::string where = p.where() + "/constraints";
+    for (const auto& kv : c) {
+      const std::string key = kv.first.as<std::string>();
+      if (key == "goal_time") {
+        goal_time_ = non_negative(kv.second, where + "/" + key);
+      } else if (key == "stopped_velocity_tolerance") {
+        stopped_vel_tol_ = non_negative(kv.second, where + "/" + key);
+      } else {
+        const auto it = std::find(names_.begin(), names_.end(), key);
+        if (it == names_.end())
+          throw ControllerError(fmt::format("{}/{}: not one of this controller's joints ({}) nor goal_time / "
+                                            "stopped_velocity_tolerance",
+                                            where, key, fmt::join(names_, ", ")));
+        if (!kv.second.IsMap()) throw ControllerError(fmt::format("{}/{}: expected {{trajectory, goal}}", where, key));
+        const size_t k = it - names_.begin();
+        for (const auto& t : kv.second) {
+          const std::string tk = t.first.as<std::string>();
+          if (tk == "trajectory")
+            path_tol_[k] = non_negative(t.second, where + "/" + key + "/trajectory");
+          else if (tk == "goal")
+            goal_tol_[k] = non_negative(t.second, where + "/" + key + "/goal");
+          else
+            throw ControllerError(fmt::format("{}/{}/{}: unknown key; use trajectory and goal", where, key, tk));
+        }
+      }
+    }
+  }
+
+  void publish_state(const Time& now) {
+    const double t = now.seconds();
+    if (state_rate_ <= 0 || t - last_state_ < 1.0 / state_rate_ - 1e-9) return;
+    last_state_ = t;
+    state_.utime = now.utime;
+    for (size_t k = 0; k < joints_.size(); ++k) {
+      state_.desired_position[k] = desired_[k].pos;
+      state_.desired_velocity[k] = desired_[k].vel;
+      state_.desired_acceleration[k] = desired_[k].acc;
+      state_.actual_position[k] = joints_[k]->position;
+      state_.actual_velocity[k] = joints_[k]->velocity;
+      state_.error_position[k] = status_.error[k];
+    }
+    state_pub_.publish(state_);
+  }
+
+  void check_goal(const Time& now) {
+    const double t = now.seconds();
+    bool within = true;
+    size_t bad = 0;
+    for (size_t k = 0; k < joints_.size() && within; ++k) {
+      const bool pos_ok = goal_tol_[k] <= 0 || std::abs(status_.error[k]) <= goal_tol_[k];
+      const bool vel_ok = stopped_vel_tol_ <= 0 || std::abs(joints_[k]->velocity) <= stopped_vel_tol_;
+      if (!pos_ok || !vel_ok) within = false, bad = k;
+    }
+    if (within) {
+      size_t wf = 0, wp = 0;
+      for (size_t k = 0; k < joints_.size(); ++k) {
+        if (std::abs(status_.error[k]) > std::abs(status_.error[wf])) wf = k;
+        if (max_path_err_[k] > max_path_err_[wp]) wp = k;
+      }
+      std::snprintf(text_, sizeof text_,
+                    "goal %lld reached: largest final error %.6f (joint '%s'), largest path error %.6f (joint '%s')",
+                    static_cast<long long>(goal_id_), std::abs(status_.error[wf]), names_[wf].c_str(),
+                    max_path_err_[wp], names_[wp].c_str());
+      finish(now, trajectory_status_t::SUCCEEDED, text_);
+    } else if (t > current_->end_time() + goal_time_) {
+      std::snprintf(text_, sizeof text_,
+                    "goal tolerance violated on joint '%s': error %.6f (tolerance %.6f), velocity %.6f (stopped "
+                    "tolerance %.6f), %.3f s after the trajectory end (goal_time %.3f)",
+                    names_[bad].c_str(), status_.error[bad], goal_tol_[bad], joints_[bad]->velocity, stopped_vel_tol_,
+                    t - current_->end_time(), goal_time_);
+      finish(now, trajectory_status_t::GOAL_TOLERANCE_VIOLATED, text_);
+    }
+  }
+
   void finish(const Time& now, int8_t status, const char* message) {
     status_.utime = now.utime;
     status_.goal_id = goal_id_;
@@ -226,15 +292,34 @@ class JointTrajectoryController : public Controller {
     goal_active_ = false;
   }
 
-  void reject(const joint_trajectory_t& g, const std::string& why) {
+  void answer(const joint_trajectory_t& g, int8_t status, const std::string& message) {
     trajectory_status_t r;
     r.utime = g.utime;
     r.goal_id = g.goal_id;
-    r.status = trajectory_status_t::REJECTED;
-    r.message = fmt::format("{}: goal {} rejected: {}", name_, g.goal_id, why);
+    r.status = status;
+    r.message = message;
     r.num_joints = 0;
     result_pub_.publish(r);
-    spdlog::warn("{}", r.message);
+  }
+
+  void reject(const joint_trajectory_t& g, const std::string& why) {
+    const std::string message = fmt::format("{}: goal {} rejected: {}", name_, g.goal_id, why);
+    answer(g, trajectory_status_t::REJECTED, message);
+    spdlog::warn("{}", message);
+  }
+
+  // An empty trajectory: stop where the trajectory is now, ramping down over stop_trajectory_duration.
+  void stop(const joint_trajectory_t& g) {
+    if (goal_active_) {
+      std::snprintf(text_, sizeof text_, "stopped by an empty trajectory (goal %lld)", static_cast<long long>(g.goal_id));
+      finish(Time{static_cast<int64_t>(last_t_ * 1e6)}, trajectory_status_t::PREEMPTED, text_);
+    }
+    for (size_t k = 0; k < names_.size(); ++k) current_->sample(last_t_, k, rest_from_[k]);
+    hold_.set_stop(last_t_, stop_duration_, rest_from_.data());
+    current_ = &hold_;
+    answer(g, trajectory_status_t::SUCCEEDED,
+           fmt::format("{}: goal {}: empty trajectory, stopping (over {:g} s)", name_, g.goal_id, stop_duration_));
+    spdlog::info("{}: goal {}: empty trajectory, stopping", name_, g.goal_id);
   }
 
   // Runs between cycles, in the loop's thread: may allocate.
@@ -244,6 +329,7 @@ class JointTrajectoryController : public Controller {
     if (g.num_joints != static_cast<int32_t>(g.joint_names.size()) ||
         g.num_points != static_cast<int32_t>(g.points.size()))
       return reject(g, "array sizes do not match num_joints / num_points");
+    if (g.points.empty()) return stop(g);
     std::vector<int> index(n, -1);  // controller joint -> goal column
     for (size_t c = 0; c < g.joint_names.size(); ++c) {
       const auto it = std::find(names_.begin(), names_.end(), g.joint_names[c]);
@@ -254,11 +340,14 @@ class JointTrajectoryController : public Controller {
         return reject(g, fmt::format("joint '{}' is listed twice", g.joint_names[c]));
       index[it - names_.begin()] = static_cast<int>(c);
     }
-    for (size_t k = 0; k < n; ++k)
-      if (index[k] < 0)
-        return reject(
-            g, fmt::format("joint '{}' is missing (a goal must name all of: {})", names_[k], fmt::join(names_, ", ")));
-    if (g.points.empty()) return reject(g, "no points");
+    if (!allow_partial_)
+      for (size_t k = 0; k < n; ++k)
+        if (index[k] < 0)
+          return reject(g, fmt::format("joint '{}' is missing (a goal must name all of: {}; or set "
+                                       "allow_partial_joints_goal: true)",
+                                       names_[k], fmt::join(names_, ", ")));
+    std::vector<SplineState> start(n);
+    for (size_t k = 0; k < n; ++k) current_->sample(last_t_, k, start[k]);
     std::vector<Waypoint> points;
     double prev = 0;
     for (size_t i = 0; i < g.points.size(); ++i) {
@@ -270,6 +359,9 @@ class JointTrajectoryController : public Controller {
       const size_t m = g.joint_names.size();
       if (p.num_positions != static_cast<int32_t>(m) || p.positions.size() != m)
         return reject(g, fmt::format("point {}: {} positions for {} joints", i, p.positions.size(), m));
+      if (p.num_velocities != static_cast<int32_t>(p.velocities.size()) ||
+          p.num_accelerations != static_cast<int32_t>(p.accelerations.size()))
+        return reject(g, fmt::format("point {}: array sizes do not match num_velocities / num_accelerations", i));
       if (!p.velocities.empty() && p.velocities.size() != m)
         return reject(g, fmt::format("point {}: {} velocities for {} joints (give none or one per joint)", i,
                                      p.velocities.size(), m));
@@ -279,6 +371,12 @@ class JointTrajectoryController : public Controller {
       w.time = last_t_ + p.time_from_start;
       for (size_t k = 0; k < n; ++k) {
         const int c = index[k];
+        if (c < 0) {  // left out (allow_partial_joints_goal): holds where the trajectory is now
+          w.pos.push_back(start[k].pos);
+          if (!p.velocities.empty()) w.vel.push_back(0.0);
+          if (!p.accelerations.empty()) w.acc.push_back(0.0);
+          continue;
+        }
         const double pos = p.positions[c];
         if (!std::isfinite(pos))
           return reject(g, fmt::format("point {}: joint '{}' position is NaN/Inf", i, names_[k]));
@@ -295,10 +393,8 @@ class JointTrajectoryController : public Controller {
         return reject(g, fmt::format("point {}: NaN/Inf velocity or acceleration", i));
       points.push_back(std::move(w));
     }
-    std::vector<SplineState> start(n);
     for (size_t k = 0; k < n; ++k) {
-      current_->sample(last_t_, k, start[k]);
-      if (joints_[k]->continuous) {  // go the short way round to the first point
+      if (joints_[k]->continuous && index[k] >= 0) {  // go the short way round to the first point
         const double shift =
             points.front().pos[k] - (start[k].pos + shortest_angular_distance(start[k].pos, points.front().pos[k]));
         for (auto& w : points) w.pos[k] -= shift;
@@ -322,24 +418,30 @@ class JointTrajectoryController : public Controller {
   std::string name_;
   std::vector<std::string> names_;
   std::vector<JointData*> joints_;
-  std::vector<double> path_tol_, goal_tol_, hold_pos_, max_path_err_;
-  double goal_time_ = 0, stopped_vel_tol_ = 0.01, monitor_rate_ = 20, last_t_ = 0, last_feedback_ = 0;
+  std::vector<double> path_tol_, goal_tol_, hold_pos_, max_path_err_, velocity_ff_;
+  double goal_time_ = 0, stopped_vel_tol_ = 0.01, monitor_rate_ = 20, state_rate_ = 50, stop_duration_ = 0;
+  double last_t_ = 0, last_feedback_ = 0, last_state_ = -1e9;
+  bool allow_partial_ = false;
   std::vector<Pid> pids_;
-  std::vector<SplineState> desired_;
+  std::vector<SplineState> desired_, rest_from_;
   Trajectory hold_, active_;
   const Trajectory* current_ = nullptr;
   bool goal_active_ = false;
   int64_t goal_id_ = 0;
   trajectory_status_t status_;
+  joint_trajectory_controller_state_t state_;
   char text_[512] = {};
   Publisher<trajectory_status_t> feedback_pub_, result_pub_;
+  Publisher<joint_trajectory_controller_state_t> state_pub_;
 };
 
 }  // namespace
 
 std::unique_ptr<Controller> make_joint_trajectory_controller(const std::string& type) {
-  return std::make_unique<JointTrajectoryController>(type.rfind("effort_controllers/", 0) == 0 ? Interface::Effort
-                                                                                               : Interface::Position);
+  if (type.rfind("effort_controllers/", 0) == 0) return std::make_unique<JointTrajectoryController>(Interface::Effort);
+  if (type.rfind("velocity_controllers/", 0) == 0)
+    return std::make_unique<JointTrajectoryController>(Interface::Velocity);
+  return std::make_unique<JointTrajectoryController>(Interface::Position);
 }
 
 }  // namespace lcm_control::cm

@@ -4,6 +4,9 @@
 //  effort_controllers/JointPositionController   position set point -> effort
 //  effort_controllers/JointVelocityController   velocity set point -> effort
 //  velocity_controllers/JointPositionController position set point -> velocity
+// and on several joints (`joints`, each with `<joint>/pid`), commanded on
+// `<name>/command` (float64_array_t, one position per joint):
+//  effort_controllers/JointGroupPositionController position set points -> efforts
 // The position error is the plain difference, except on continuous joints
 // where it is the shortest angle. Position set points are clamped to the
 // URDF limits; start holds the current position (velocity: 0), PID reset.
@@ -15,7 +18,9 @@
 
 #include "common/angles.hpp"
 #include "controller_manager/controllers/factories.hpp"
+#include "common/messages.hpp"
 #include "lcm_control/controller_state_t.hpp"
+#include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
 
 namespace lcm_control::cm {
@@ -121,9 +126,80 @@ class PidController : public Controller {
   Publisher<controller_state_t> state_pub_;
 };
 
+double clamp_to_limits(const JointData& j, double target) {
+  if (!j.urdf || !j.urdf->has_position_limits) return target;
+  return std::clamp(target, j.urdf->lower, j.urdf->upper);
+}
+
+// effort_controllers/JointGroupPositionController: as ros_controllers, the PID gets the position error
+// and differentiates it itself.
+class GroupPositionPid : public Controller {
+ public:
+  void init(ControllerContext& ctx) override {
+    Params& p = ctx.params();
+    names_ = p.strings("joints");
+    for (const auto& n : names_) {
+      joints_.push_back(ctx.claim(n, Interface::Effort));
+      const YAML::Node entry = p.node(n);
+      if (!entry || !entry.IsMap() || !entry["pid"])
+        throw p.error(n, "missing (required): " + n + ": {pid: {p: ..., i: ..., d: ...}} for every joint in `joints`");
+      pids_.emplace_back();
+      pids_.back().set_gains(Params::pid_from(entry["pid"], p.where() + "/" + n + "/pid"));
+    }
+    set_points_.assign(names_.size(), 0.0);
+    const std::string name = ctx.name();
+    auto bad = [this, name](const std::string& why) {
+      if (dropped_++ % 100 == 0) spdlog::warn("{}: dropped a command: {} ({} dropped so far)", name, why, dropped_);
+    };
+    ctx.port().subscribe<float64_array_t>(
+        ctx.channel("command"),
+        [this, bad](const float64_array_t& m) {
+          if (static_cast<size_t>(m.size) != joints_.size())
+            return bad(fmt::format("{} values for {} joints", m.size, joints_.size()));
+          const std::string why = check(m);
+          if (!why.empty()) return bad(why);
+          if (running_)
+            for (size_t k = 0; k < joints_.size(); ++k) set_points_[k] = clamp_to_limits(*joints_[k], m.data[k]);
+        },
+        bad);
+  }
+
+  std::vector<std::string> pid_joints() const override { return names_; }
+  Pid* pid(const std::string& joint) override {
+    for (size_t k = 0; k < names_.size(); ++k)
+      if (names_[k] == joint) return &pids_[k];
+    return nullptr;
+  }
+
+  void starting(const Time&) override {
+    for (size_t k = 0; k < joints_.size(); ++k) {
+      set_points_[k] = clamp_to_limits(*joints_[k], joints_[k]->position);
+      pids_[k].reset();
+    }
+  }
+
+  void update(const Time&, double period) override {
+    for (size_t k = 0; k < joints_.size(); ++k) {
+      JointData& j = *joints_[k];
+      const double error =
+          j.continuous ? shortest_angular_distance(j.position, set_points_[k]) : set_points_[k] - j.position;
+      double u = pids_[k].compute(error, period);
+      if (j.urdf && j.urdf->effort_limit > 0) u = std::clamp(u, -j.urdf->effort_limit, j.urdf->effort_limit);
+      j.command = u;
+    }
+  }
+
+ private:
+  std::vector<std::string> names_;
+  std::vector<JointData*> joints_;
+  std::vector<Pid> pids_;
+  std::vector<double> set_points_;
+};
+
 }  // namespace
 
 std::unique_ptr<Controller> make_pid_controller(const std::string& type) {
+  if (type == "effort_controllers/JointGroupPositionController") return std::make_unique<GroupPositionPid>();
   if (type == "effort_controllers/JointVelocityController")
     return std::make_unique<PidController>(Interface::Effort, false);
   if (type == "velocity_controllers/JointPositionController")

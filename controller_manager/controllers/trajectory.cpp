@@ -81,6 +81,27 @@ void Trajectory::set_hold(double t0, const double* pos) {
   }
 }
 
+void Trajectory::set_stop(double t0, double duration, const SplineState* from) {
+  t0_ = t0;
+  t1_ = t0 + std::max(0.0, duration);
+  for (size_t j = 0; j < segments_.size(); ++j) {
+    Segment& s = segments_[j][0];
+    const SplineState a{from[j].pos, duration > 0 ? from[j].vel : 0.0, 0.0};
+    if (duration <= 0 || a.vel == 0) {
+      s = Segment{};
+      s.t0 = t0;
+      s.t1 = t1_;
+      s.c[0] = a.pos;
+      continue;
+    }
+    const Segment there_and_back = quintic(t0, t0 + 2 * duration, a, {a.pos, -a.vel, 0.0});
+    const double tau = duration;
+    const double* c = there_and_back.c;
+    const SplineState rest{c[0] + tau * (c[1] + tau * (c[2] + tau * (c[3] + tau * (c[4] + tau * c[5])))), 0.0, 0.0};
+    s = quintic(t0, t1_, a, rest);
+  }
+}
+
 void Trajectory::sample(double t, size_t joint, SplineState& out) const {
   const auto& segs = segments_[joint];
   if (segs.empty()) return;

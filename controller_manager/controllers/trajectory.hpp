@@ -27,6 +27,10 @@ class Trajectory {
   // Holding still at `pos` from t0; set_hold() reuses the storage of a hold trajectory.
   static Trajectory hold(double t0, const std::vector<double>& pos);
   void set_hold(double t0, const double* pos);
+  // Comes to rest from `from` (one state per joint) in `duration` seconds, as ros_controllers'
+  // stop_trajectory_duration does (the rest point of a segment to the opposite velocity in twice the
+  // time); duration <= 0 holds from.pos. Reuses the storage of a hold trajectory: no allocation.
+  void set_stop(double t0, double duration, const SplineState* from);
 
   void sample(double t, size_t joint, SplineState& out) const;
   size_t joints() const { return segments_.size(); }

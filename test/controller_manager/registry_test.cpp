@@ -6,7 +6,7 @@ using namespace lcm_control::cm;
 
 TEST(ControllerManagerRegistry, EveryBuiltinTypeCanBeCreated) {
   const auto& r = builtin_registry();
-  EXPECT_EQ(r.types().size(), 12u);
+  EXPECT_EQ(r.types().size(), 14u);
   for (const auto& t : r.types()) EXPECT_NE(r.create(t), nullptr) << t;
   EXPECT_EQ(r.create("nope/Nope"), nullptr);
 }
@@ -21,8 +21,26 @@ TEST(ControllerManagerRegistry, ClosestMatchByEditDistance) {
   for (const auto& t : r.types()) EXPECT_NE(m.find(t), std::string::npos) << t;
 }
 
-TEST(ControllerManagerRegistry, EditDistance) {
-  EXPECT_EQ(edit_distance("", "abc"), 3u);
-  EXPECT_EQ(edit_distance("kitten", "sitting"), 3u);
-  EXPECT_EQ(edit_distance("same", "same"), 0u);
+TEST(ControllerManagerRegistry, KnownRosTypesAreNotImplementedNeverMissing) {
+  const auto& r = builtin_registry();
+  for (const char* t : {"franka_control/FrankaStateController", "diff_drive_controller/DiffDriveController",
+                        "position_controllers/GripperActionController", "joint_state_broadcaster/JointStateBroadcaster",
+                        "franka_example_controllers/CartesianImpedanceExampleController"}) {
+    const std::string m = r.unknown_type_message(t);
+    EXPECT_NE(m.find("is not implemented here"), std::string::npos) << m;
+    EXPECT_NE(m.find("`cmctl list-types` lists the 14 implemented types"), std::string::npos) << m;
+    EXPECT_EQ(m.find("does not exist"), std::string::npos) << m;
+  }
+  const std::string typo = r.unknown_type_message("position_controllers/JointPositonController");
+  EXPECT_NE(typo.find("does not exist; did you mean 'position_controllers/JointPositionController'?"),
+            std::string::npos)
+      << typo;
+}
+
+TEST(ControllerManagerRegistry, TheTypesIiwaStackAndUrShipAreBuiltIn) {
+  const auto& r = builtin_registry();
+  for (const char* t : {"velocity_controllers/JointTrajectoryController", "effort_controllers/JointTrajectoryController",
+                        "position_controllers/JointTrajectoryController", "effort_controllers/JointGroupPositionController",
+                        "effort_controllers/JointGroupEffortController", "velocity_controllers/JointGroupVelocityController"})
+    EXPECT_TRUE(r.has(t)) << t;
 }
