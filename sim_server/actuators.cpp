@@ -80,6 +80,9 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
       a.motor = mb.add_motor(a.link, kUnlimitedEffort * dt);
     else if (a.mode == ActuatorMode::VelocityMotor)
       a.motor = mb.add_motor(a.link, finite_or(a.effort_limit, kUnlimitedEffort) * dt);
+    else if (a.mode == ActuatorMode::Effort || a.mode == ActuatorMode::VelocityPid)
+      a.brake = mb.add_motor(a.link, finite_or(a.effort_limit, kUnlimitedEffort) * dt);
+    a.braking = a.brake != nullptr;
     a.q = a.hold_position = mb.position(a.link);
     a.saturation.reset(a.q);
     actuators_.push_back(std::move(a));
@@ -174,12 +177,27 @@ double Actuators::position_goal(Actuator& a, bool hold, double dt) {
   return a.saturation.enforce(a.command, dt);
 }
 
+void Actuators::set_braking(Actuator& a, bool on) {
+  if (!a.brake || on == a.braking) return;
+  // The brake was in the world when the solver buffers were sized, so adding it back does not allocate.
+  if (on)
+    mb_.world().addMultiBodyConstraint(a.brake);
+  else
+    mb_.world().removeMultiBodyConstraint(a.brake);
+  a.braking = on;
+}
+
 void Actuators::apply(double dt) {
   for (Actuator& a : actuators_) {
     const bool hold = e_stop_ || hold_all_ || !a.commanded;
     if (hold && !a.holding) a.hold_position = a.q;
     a.holding = hold;
     const double q = a.q = mb_.position(a.link), qd = a.qd = mb_.velocity(a.link);
+    set_braking(a, brakes_ && !e_stop_ && (hold_all_ || !a.commanded));
+    if (a.braking) {
+      a.brake->setPositionTarget(a.hold_position, 1.0);
+      a.brake->setVelocityTarget(0, 1.0);
+    }
     const double e_max = a.effort_limit;
     a.effort = 0;
     switch (a.mode) {
@@ -223,6 +241,7 @@ void Actuators::read(double dt) {
     a.q = mb_.position(a.link);
     a.qd = mb_.velocity(a.link);
     a.applied = a.motor ? a.motor->getAppliedImpulse(0) / dt : a.effort;
+    if (a.braking) a.applied += a.brake->getAppliedImpulse(0) / dt;
   }
 }
 

@@ -3,7 +3,8 @@
 // physics step, into joint torques or motor targets with gazebo_ros_control's
 // semantics (PID to effort with pid_gains, direct without), plus what that
 // plugin leaves out: transmissions, position/velocity/effort limits, URDF
-// damping and friction, e-stop latch and hold.
+// damping and friction, e-stop latch and hold, and a brake that keeps an
+// uncommanded effort or velocity-PID joint where it is.
 #pragma once
 
 #include <cstdint>
@@ -40,6 +41,10 @@ class Actuators {
   void set_command(int i, int8_t wire_mode, double value);
   // Watchdog or lost controller: every actuator holds while set.
   void set_hold_all(bool hold) { hold_all_ = hold; }
+  // Brakes (default on): an effort or velocity-PID actuator nobody commands, or held by the watchdog, is held at
+  // its position by a motor capped at the effort limit, so an arm does not sag before its controllers start. Off:
+  // such a joint is limp, as in Gazebo. The e-stop never brakes (velocity and effort get 0).
+  void set_brakes(bool on) { brakes_ = on; }
   // Position actuators latch their position when it engages; velocity and effort get 0.
   void set_e_stop(bool engaged);
   bool e_stop() const { return e_stop_; }
@@ -82,6 +87,8 @@ class Actuators {
     bool has_pid = false;
     Pid pid;
     btMultiBodyJointMotor* motor = nullptr;
+    btMultiBodyJointMotor* brake = nullptr;  // in the world only while braking
+    bool braking = false;
     bool commanded = false;  // false: nobody commands it (MODE_NONE or none yet)
     double command = 0;      // joint units
     bool holding = true;
@@ -96,7 +103,9 @@ class Actuators {
   Multibody& mb_;
   std::vector<Actuator> actuators_;
   std::vector<Passive> passive_;  // joints without a transmission
-  bool hold_all_ = false, e_stop_ = false;
+  void set_braking(Actuator& a, bool on);
+
+  bool hold_all_ = false, e_stop_ = false, brakes_ = true;
   std::vector<std::string> warnings_;
 };
 

@@ -47,6 +47,22 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--watchdog", opt.watchdog_s, "real time: hold every actuator after this long (s) without a command")
       ->capture_default_str();
+  std::vector<std::string> initial;
+  app.add_option("-J,--initial-position", initial,
+                 "JOINT=VALUE: start that joint there (rad or m; repeatable), as spawn_model's -J; joints not given "
+                 "start at 0, and a start outside the URDF limits is clamped into them")
+      ->check([](const std::string& v) {
+        try {
+          sim::parse_initial_position(v);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      });
+  bool no_brakes = false;
+  app.add_flag("--no-brakes", no_brakes,
+               "effort and velocity-PID joints nobody commands are limp, as in Gazebo (default: braked where they "
+               "are until a controller commands them)");
   app.add_option("--log-level", log_level, "debug, info, warn or error");
   add_bus_flags(app, bus_flags);
   add_package_path_flag(app, package_path);
@@ -62,7 +78,13 @@ int main(int argc, char** argv) {
     const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
     for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
-    sim::Simulation sim(model, rates);
+    sim::InitialPositions start;
+    for (const auto& a : initial) {
+      const auto [joint, q] = sim::parse_initial_position(a);
+      start[joint] = q;
+    }
+    sim::Simulation sim(model, rates, start);
+    sim.actuators().set_brakes(!no_brakes);
     for (const auto& w : sim.multibody().warnings()) spdlog::warn("{}", w);
     for (const auto& w : sim.actuators().warnings()) spdlog::warn("{}", w);
     for (int i = 0; i < sim.actuators().size(); ++i) spdlog::info("{}", sim.actuators().describe(i));

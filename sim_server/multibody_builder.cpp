@@ -7,6 +7,8 @@
 #include <cmath>
 #include <functional>
 
+#include "common/text.hpp"
+
 namespace lcm_control::sim {
 
 namespace {
@@ -74,7 +76,7 @@ btQuaternion bt_rotation(const Eigen::Matrix3d& r) {
 
 }  // namespace
 
-Multibody::Multibody(const RobotModel& model, double dt) : dt_(dt) {
+Multibody::Multibody(const RobotModel& model, double dt, const InitialPositions& initial) : dt_(dt) {
   collision_config_ = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_config_.get());
   broadphase_ = std::make_unique<btDbvtBroadphase>();
@@ -84,7 +86,52 @@ Multibody::Multibody(const RobotModel& model, double dt) : dt_(dt) {
   world_->setGravity(btVector3(0, 0, -kGravity));
   world_->getSolverInfo().m_numIterations = 50;
   build(model);
+  set_initial_positions(model, initial);
   compute_effective_inertias();
+}
+
+void Multibody::step() {
+  world_->stepSimulation(dt_, 0, dt_);
+  for (const MultibodyJoint& j : joints_) {
+    if (j.max_velocity <= 0) continue;
+    const double v = body_->getJointVel(j.link);
+    if (std::abs(v) > j.max_velocity) body_->setJointVel(j.link, std::copysign(j.max_velocity, v));
+  }
+}
+
+void Multibody::set_initial_positions(const RobotModel& model, const InitialPositions& initial) {
+  std::vector<std::string> moving;
+  for (const MultibodyJoint& j : joints_) moving.push_back(j.urdf->name);
+  for (const auto& [name, q] : initial) {
+    if (joint_index(name) >= 0) {
+      if (!std::isfinite(q))
+        throw ModelError(fmt::format("initial position of joint '{}' is {}; give a finite number", name, q));
+      continue;
+    }
+    const Joint* fixed = model.joint(name);
+    if (fixed)
+      throw ModelError(fmt::format("initial position of joint '{}': it is a {} joint in {}; only moving joints "
+                                   "take one",
+                                   name, to_string(fixed->type), model.urdf_path));
+    const std::string near = closest_name(name, moving, 3);
+    throw ModelError(fmt::format("initial position of joint '{}': {} has no joint of that name{}", name,
+                                 model.urdf_path, near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near)));
+  }
+  for (const MultibodyJoint& j : joints_) {
+    const auto it = initial.find(j.urdf->name);
+    const double wanted = it == initial.end() ? 0.0 : it->second;
+    double q = wanted;
+    if (j.urdf->has_position_limits) q = std::clamp(wanted, j.urdf->lower, j.urdf->upper);
+    if (q != wanted)
+      warnings_.push_back(fmt::format("joint '{}' would start at {:g}{}, outside its limits [{:g}, {:g}] in {}; it "
+                                      "starts at {:g} (choose a start with --initial-position {}=VALUE or the launch "
+                                      "file's initial_positions)",
+                                      j.urdf->name, wanted, it == initial.end() ? " (no initial position given)" : "",
+                                      j.urdf->lower, j.urdf->upper, model.urdf_path, q, j.urdf->name));
+    body_->setJointPos(j.link, q);
+    body_->setJointVel(j.link, 0);
+  }
+  set_state_refresh();
 }
 
 Multibody::~Multibody() {
@@ -160,6 +207,7 @@ void Multibody::build(const RobotModel& model) {
       MultibodyJoint mj;
       mj.urdf = &j;
       mj.link = i;
+      if (std::isfinite(j.velocity_limit) && j.velocity_limit > 0) mj.max_velocity = j.velocity_limit;
       joints_.push_back(mj);
       if (std::isfinite(j.velocity_limit)) max_velocity = std::max(max_velocity, j.velocity_limit);
     }

@@ -1,8 +1,9 @@
 // The robot model as a fixed-base btMultiBody in its own btMultiBodyDynamicsWorld:
 // links in depth-first order with COM frames on the inertia's principal axes,
 // fixed joints as fixed links, a collider on every link, limits that do not
-// overshoot, and none of Bullet's hidden defaults (damping, sleeping, motors,
-// the 100 rad/s velocity clamp).
+// overshoot, each joint's own velocity limit, an initial pose inside the
+// limits, and none of Bullet's hidden defaults (damping, sleeping, motors, the
+// 100 rad/s velocity clamp).
 #pragma once
 
 #ifndef BT_USE_DOUBLE_PRECISION
@@ -34,18 +35,25 @@ struct MultibodyJoint {
   int link = -1;                       // Bullet link index
   double effective_inertia = 0;        // 1 / (M^-1)_jj at the initial pose: kg m^2 or kg
   SpeculativeJointLimit* limit = nullptr;  // null for continuous joints
+  double max_velocity = 0;             // URDF velocity limit, 0: none
 };
+
+// Joint positions (joint units) to start from, by joint name; joints not named start at 0.
+using InitialPositions = std::map<std::string, double>;
 
 class Multibody {
  public:
-  Multibody(const RobotModel& model, double dt);
+  // Throws ModelError for a robot Bullet cannot take or an initial position naming no moving joint. A joint that
+  // would start outside its limits starts clamped into them (a warning says so).
+  Multibody(const RobotModel& model, double dt, const InitialPositions& initial = {});
   ~Multibody();
   Multibody(const Multibody&) = delete;
   Multibody& operator=(const Multibody&) = delete;
 
   double dt() const { return dt_; }
-  // One physics step of exactly dt; joint torques added before it are consumed.
-  void step() { world_->stepSimulation(dt_, 0, dt_); }
+  // One physics step of exactly dt; joint torques added before it are consumed. Afterwards every joint's
+  // speed is within its URDF velocity limit (Bullet's own clamp is one value for the whole body).
+  void step();
 
   const std::vector<MultibodyJoint>& joints() const { return joints_; }
   // Index into joints() of a moving joint, -1 if there is none of that name.
@@ -74,6 +82,7 @@ class Multibody {
 
  private:
   void build(const RobotModel& model);
+  void set_initial_positions(const RobotModel& model, const InitialPositions& initial);
   void compute_effective_inertias();
   void set_state_refresh();  // forward kinematics and collider transforms after a state change
 

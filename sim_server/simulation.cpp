@@ -6,7 +6,25 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/substitution.hpp"
+
 namespace lcm_control::sim {
+
+std::pair<std::string, double> parse_initial_position(const std::string& assignment) {
+  const auto [name, text] = parse_arg(assignment);
+  size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(value))
+    throw std::invalid_argument(fmt::format("initial position '{}': '{}' is not a number; write JOINT=VALUE in rad "
+                                            "(or m), e.g. {}=-1.57",
+                                            assignment, text, name));
+  return {name, value};
+}
 
 int substeps_for(const SimulationRates& r) {
   if (!(r.physics_hz > 0) || !(r.control_hz > 0) || !std::isfinite(r.physics_hz) || !std::isfinite(r.control_hz))
@@ -28,9 +46,9 @@ int clock_every_for(double control_hz, double clock_hz) {
   return int(std::max(1L, std::lround(control_hz / clock_hz)));
 }
 
-Simulation::Simulation(const RobotModel& model, const SimulationRates& rates)
+Simulation::Simulation(const RobotModel& model, const SimulationRates& rates, const InitialPositions& initial)
     : control_period_(1.0 / rates.control_hz), control_hz_(rates.control_hz), substeps_(substeps_for(rates)) {
-  multibody_ = std::make_unique<Multibody>(model, 1.0 / rates.physics_hz);
+  multibody_ = std::make_unique<Multibody>(model, 1.0 / rates.physics_hz, initial);
   actuators_ = std::make_unique<Actuators>(model, *multibody_);
   multibody_->size_solver_buffers();
   actuators_->read(multibody_->dt());

@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <utility>
 
 #include "common/robot_model.hpp"
 #include "sim_server/actuators.hpp"
@@ -17,6 +19,9 @@ struct SimulationRates {
   double control_hz = 1000;  // physics_hz must be a whole multiple of it
 };
 
+// "JOINT=VALUE" (or JOINT:=VALUE) of --initial-position; throws std::invalid_argument naming what is wrong.
+std::pair<std::string, double> parse_initial_position(const std::string& assignment);
+
 // Physics steps per control step; throws std::invalid_argument unless physics_hz is a whole multiple of control_hz.
 int substeps_for(const SimulationRates& rates);
 
@@ -26,8 +31,9 @@ int clock_every_for(double control_hz, double clock_hz);
 
 class Simulation {
  public:
-  // Throws ModelError for a robot Bullet cannot take, std::invalid_argument for bad rates.
-  Simulation(const RobotModel& model, const SimulationRates& rates);
+  // Throws ModelError for a robot Bullet cannot take or a bad initial position, std::invalid_argument for bad
+  // rates.
+  Simulation(const RobotModel& model, const SimulationRates& rates, const InitialPositions& initial = {});
 
   // One control period: substeps() times (actuators -> physics step -> read back).
   void step();

@@ -70,6 +70,20 @@ class ReadinessProbe {
   int64_t list_id_ = 0, last_list_us_ = 0;
 };
 
+// --namespace, else the file's, else the URDF's robotNamespace: what sim_server and controller_manager will use, so
+// that launch waits for them where they are. A model that does not load is left for them to report.
+std::string robot_namespace(const LaunchPlan& plan, const std::string& flag, const std::vector<std::string>& path) {
+  LoadOptions o;
+  o.package_path = path;
+  o.ns = flag.empty() ? plan.ns : flag;
+  o.args = plan.args;
+  try {
+    return load_robot_model(plan.urdf, plan.config, o).ns;
+  } catch (const std::exception&) {
+    return normalize_namespace(o.ns);
+  }
+}
+
 std::vector<std::string> with_ns(std::vector<std::string> argv, const std::string& ns) {
   if (!ns.empty()) {
     argv.push_back("--namespace");
@@ -126,14 +140,20 @@ int main(int argc, char** argv) {
     if (!cpu.empty()) plan.cpu = cpu;
     for (const auto& n : plan.notes) say("note: " + n);
 
-    const std::string ns = bus_flags.ns;
+    const std::string ns = robot_namespace(plan, bus_flags.ns, package_path);
+    std::vector<std::string> yaml_args;
+    for (const auto& [name, value] : plan.args) yaml_args.insert(yaml_args.end(), {"--arg", name + "=" + value});
     std::vector<std::string> sim{"sim_server", "--urdf", plan.urdf, "--config", plan.config};
+    sim.insert(sim.end(), yaml_args.begin(), yaml_args.end());
+    for (const auto& [joint, q] : plan.initial_positions)
+      sim.insert(sim.end(), {"--initial-position", fmt::format("{}={}", joint, q)});
     if (plan.mode == "lockstep") sim.push_back("--lockstep");
     if (plan.physics_rate > 0) sim.insert(sim.end(), {"--physics-rate", fmt::format("{:g}", plan.physics_rate)});
     if (plan.control_rate > 0) sim.insert(sim.end(), {"--control-rate", fmt::format("{:g}", plan.control_rate)});
     sim.insert(sim.end(), plan.sim_args.begin(), plan.sim_args.end());
     if (duration > 0) sim.insert(sim.end(), {"--duration", fmt::format("{:g}", duration)});
     std::vector<std::string> cm{"controller_manager", "--urdf", plan.urdf, "--config", plan.config};
+    cm.insert(cm.end(), yaml_args.begin(), yaml_args.end());
     cm.insert(cm.end(), plan.cm_args.begin(), plan.cm_args.end());
     // In lockstep the two loop processes take turns; on one CPU each hand-over is a cheaper wake-up (bench/README.md).
     int pin = -1;
@@ -146,6 +166,7 @@ int main(int argc, char** argv) {
     spawner.insert(spawner.end(), {"--shutdown-timeout", fmt::format("{:g}", stop_timeout * 0.3)});
     spawner.insert(spawner.end(), plan.spawner_args.begin(), plan.spawner_args.end());
     std::vector<std::string> rsp{"state-publisher", "--urdf", plan.urdf, "--config", plan.config};
+    rsp.insert(rsp.end(), yaml_args.begin(), yaml_args.end());
 
     if (dry_run) {
       if (plan.sim) fmt::print("{}: {}\n", plan.sim_name, fmt::join(with_ns(sim, ns), " "));

@@ -6,6 +6,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -97,6 +98,15 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
     problems.push_back(where(n, key) + " must be a positive number");
     return 0.0;
   };
+  auto number_any = [&](const YAML::Node& n, const std::string& key) {
+    try {
+      const double v = n.as<double>();
+      if (std::isfinite(v)) return v;
+    } catch (const YAML::Exception&) {
+    }
+    problems.push_back(where(n, key) + " must be a number");
+    return 0.0;
+  };
   auto boolean = [&](const YAML::Node& n, const std::string& key) {
     try {
       return n.as<bool>();
@@ -108,7 +118,8 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
   const std::set<std::string> known = {"urdf",         "config",          "mode",            "cpu",
                                        "physics_rate", "control_rate",    "sim_server_args",
                                        "controller_manager_args", "controllers", "spawner_args",
-                                       "state_publisher", "processes",  "commands"};
+                                       "state_publisher", "processes",  "commands", "namespace", "args",
+                                       "initial_positions"};
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
     const YAML::Node& v = kv.second;
@@ -141,6 +152,26 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
         plan.spawner_args = list(v, key);
       } else if (key == "state_publisher") {
         plan.state_publisher = boolean(v, key);
+      } else if (key == "namespace") {
+        plan.ns = normalize_namespace(str(v, key));
+      } else if (key == "args") {
+        if (!v.IsMap()) {
+          problems.push_back(where(v, key) + " must be a map NAME: VALUE (the $(arg NAME) values of the YAML)");
+          continue;
+        }
+        for (const auto& a : v) {
+          const std::string name = a.first.as<std::string>();
+          plan.args.emplace_back(name, str(a.second, "args." + name));
+        }
+      } else if (key == "initial_positions") {
+        if (!v.IsMap()) {
+          problems.push_back(where(v, key) + " must be a map JOINT: POSITION (rad or m), e.g. {joint4: -2.0}");
+          continue;
+        }
+        for (const auto& j : v) {
+          const std::string joint = j.first.as<std::string>();
+          plan.initial_positions.emplace_back(joint, number_any(j.second, "initial_positions." + joint));
+        }
       } else if (key == "commands") {
         if (!v.IsSequence()) {
           problems.push_back(where(v, key) + " must be a list of {target, expr, rate, count, duration}");
@@ -252,6 +283,20 @@ struct RosReader {
     }
     return true;
   }
+  std::string group_ns;  // ns of the enclosing <group>, if any
+
+  // The controllers' namespace: the spawner's ns (inside its group's), as ROS resolves it.
+  void set_ns(const tinyxml2::XMLElement* e, const std::string& ns) {
+    const std::string full = normalize_namespace(ns.rfind('/', 0) == 0 || group_ns.empty() ? ns : group_ns + "/" + ns);
+    if (!plan.ns.empty() && plan.ns != full) {
+      problems.push_back(fmt::format("{}: ns \"{}\" differs from the namespace '{}' set before; lcm_control runs one "
+                                     "robot namespace per launch",
+                                     where(e), ns, plan.ns));
+      return;
+    }
+    if (plan.ns.empty()) plan.notes.push_back(fmt::format("{}: namespace '{}' (as --namespace {})", where(e), full, full));
+    plan.ns = full;
+  }
   static std::string strip_slash(std::string s) {
     while (!s.empty() && s[0] == '/') s.erase(0, 1);
     return s;
@@ -270,10 +315,21 @@ struct RosReader {
       for (size_t k = 0; k < words.size(); ++k) {
         if (words[k] == "-param" && k + 1 < words.size()) spawn_param = strip_slash(words[k + 1]);
         if (words[k] == "-file" && k + 1 < words.size()) plan.urdf = words[k + 1];
+        if (words[k] == "-J" && k + 2 < words.size()) {
+          char* end = nullptr;
+          const double q = std::strtod(words[k + 2].c_str(), &end);
+          if (end == words[k + 2].c_str() || *end || !std::isfinite(q))
+            problems.push_back(fmt::format("{}: -J {} {}: the position must be a number (rad or m)", where(e),
+                                           words[k + 1], words[k + 2]));
+          else
+            plan.initial_positions.emplace_back(words[k + 1], q);
+          k += 2;
+        }
       }
       plan.notes.push_back(where(e) + ": gazebo_ros spawn_model -> sim_server loads the URDF");
     } else if (pkg == "controller_manager" && type == "spawner") {
       if (!name.empty()) plan.spawner_name = name;
+      if (e->Attribute("ns")) set_ns(e, attr(e, "ns"));
       for (size_t k = 0; k < words.size(); ++k) {
         const std::string& w = words[k];
         if (w == "--stopped") {
@@ -348,8 +404,10 @@ struct RosReader {
         plan.notes.push_back(where(e) + ": include of " + file + " not followed; ignored");
       }
     } else if (tag == "group") {
-      if (e->Attribute("ns")) plan.notes.push_back(where(e) + ": group ns ignored (use launch --namespace)");
+      const std::string outer = group_ns;
+      if (e->Attribute("ns")) group_ns = attr(e, "ns");
       for (auto* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) element(c);
+      group_ns = outer;
     } else if (tag == "remap" || tag == "machine" || tag == "env" || tag == "test") {
       plan.notes.push_back(where(e) + ": ignored");
     } else {
@@ -374,7 +432,7 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
                                  doc.ErrorStr() ? trim(doc.ErrorStr()) : "parse error"));
   const tinyxml2::XMLElement* root = doc.FirstChildElement("launch");
   if (!root) throw ModelError(fmt::format("{}: no <launch> element; is this a ROS launch file?", path));
-  RosReader r{path, package_path, plan, {}, {}, false, false, "", 0, {}};
+  RosReader r{path, package_path, plan, {}, {}, false, false, "", 0, {}, ""};
   for (auto* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
     try {
       r.element(e);
@@ -396,6 +454,7 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
   if (!plan.sim)
     r.problems.push_back(fmt::format(
         "{}: nothing to simulate: no <include> of gazebo_ros's world launch file and no spawn_model node", path));
+  plan.args = r.args;
   if (!r.problems.empty()) throw ModelError(r.problems);
   const std::string dir = fs::absolute(path).parent_path().string();
   plan.urdf = absolute_from(plan.urdf, dir);

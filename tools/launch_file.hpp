@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lcm_control::tools {
@@ -42,6 +43,11 @@ struct LaunchPlan {
               state_publisher_name = "state_publisher";
   std::vector<ProcessSpec> processes;  // extra processes
   std::vector<std::string> notes;      // what was mapped or ignored, one line each
+  // Robot namespace (`namespace:`, or the spawner's / its group's ns); "": launch --namespace, else the URDF's
+  // gazebo_ros_control <robotNamespace>.
+  std::string ns;
+  std::vector<std::pair<std::string, std::string>> args;         // $(arg) values for the YAML (`args:`, <arg>)
+  std::vector<std::pair<std::string, double>> initial_positions;  // `initial_positions:`, spawn_model's -J
 };
 
 // Reads either format (XML if the file starts with '<' after blanks, else YAML).

@@ -55,6 +55,11 @@ TEST(sim_realtime_path, ControlStepsAllocateNothingOnceWarm) {
     EXPECT_EQ(allocations_during(sim, 3000, 2.0), 0) << model.name;
     sim.actuators().set_e_stop(true);
     EXPECT_EQ(allocations_during(sim, 500, 2.0), 0) << model.name;
+    sim.actuators().set_e_stop(false);
+    sim.actuators().set_hold_all(true);  // the brakes go back into the world
+    EXPECT_EQ(allocations_during(sim, 500, 2.0), 0) << model.name;
+    sim.actuators().set_hold_all(false);
+    EXPECT_EQ(allocations_during(sim, 500, 2.0), 0) << model.name;
   }
 }
 

@@ -174,3 +174,50 @@ TEST(LaunchFile, DemoCommandsBecomeCommandSources) {
   });
   EXPECT_NE(p.find("'commands.count' must be a whole number"), std::string::npos) << p;
 }
+
+TEST(LaunchFile, YamlNamespaceArgsAndInitialPositions) {
+  const std::string dir = lt::temp_dir("launch_robot_keys");
+  const std::string file = write(dir, "arm.launch.yaml", "urdf: " + lt::source("config/turret_bot.urdf") +
+                                                             "\nconfig: " + lt::source("config/turret_bot.yaml") +
+                                                             "\nnamespace: /arm/\n"
+                                                             "args: {arm_id: panda, hand: 'false'}\n"
+                                                             "initial_positions: {j1: 0.25, j2: -1.5}\n");
+  const LaunchPlan plan = read_launch_file(file, {});
+  EXPECT_EQ(plan.ns, "arm");
+  EXPECT_EQ(plan.args, (std::vector<std::pair<std::string, std::string>>{{"arm_id", "panda"}, {"hand", "false"}}));
+  EXPECT_EQ(plan.initial_positions, (std::vector<std::pair<std::string, double>>{{"j1", 0.25}, {"j2", -1.5}}));
+
+  const std::string p = problems_of([&] {
+    read_launch_file(write(dir, "bad.yaml", "urdf: x\nconfig: y\ninitial_positions: {j1: up}\nargs: [a]\n"), {});
+  });
+  EXPECT_NE(p.find("bad.yaml:3: 'initial_positions.j1' must be a number"), std::string::npos) << p;
+  EXPECT_NE(p.find("bad.yaml:4: 'args' must be a map NAME: VALUE"), std::string::npos) << p;
+}
+
+TEST(LaunchFile, RosSpawnerNamespaceArgsAndSpawnModelJ) {
+  const std::string dir = lt::temp_dir("launch_ros_ns");
+  const std::string file = write(dir, "x.launch", R"L(<launch>
+  <arg name="arm_id" default="panda"/>
+  <param name="robot_description" textfile="$(find turret_bot)/urdf/turret_bot.urdf"/>
+  <rosparam command="load" file="$(find turret_bot)/config/config.yaml" subst_value="true"/>
+  <node name="urdf_spawner" pkg="gazebo_ros" type="spawn_model"
+        args="-urdf -param robot_description -model x -J j1 0.5 -J j2 -0.25"/>
+  <group ns="/lab">
+    <node name="sp" pkg="controller_manager" type="spawner" ns="rrbot" args="j1_controller"/>
+  </group>
+</launch>)L");
+  const LaunchPlan plan = read_launch_file(file, {lt::source("test/tools/data")});
+  EXPECT_EQ(plan.ns, "lab/rrbot");
+  EXPECT_EQ(plan.initial_positions, (std::vector<std::pair<std::string, double>>{{"j1", 0.5}, {"j2", -0.25}}));
+  EXPECT_EQ(plan.args, (std::vector<std::pair<std::string, std::string>>{{"arm_id", "panda"}}));
+
+  const std::string p = problems_of([&] {
+    read_launch_file(write(dir, "y.launch", R"L(<launch>
+  <param name="robot_description" textfile="$(find turret_bot)/urdf/turret_bot.urdf"/>
+  <rosparam command="load" file="$(find turret_bot)/config/config.yaml"/>
+  <node name="s" pkg="gazebo_ros" type="spawn_model" args="-param robot_description -J j1 high"/>
+</launch>)L"),
+                     {lt::source("test/tools/data")});
+  });
+  EXPECT_NE(p.find("y.launch:4: <node name=\"s\">: -J j1 high: the position must be a number"), std::string::npos) << p;
+}
