@@ -21,6 +21,42 @@ namespace lcm_control {
 
 namespace {
 
+// Meshes the URDF names but that are not there, reported once per missing package (a whole package off the
+// path is one mistake with one fix) and once per other file.
+struct MissingMeshes {
+  std::string kind, urdf, base_dir;
+  const std::vector<std::string>& package_path;
+  std::map<std::string, std::vector<std::string>> by_package;  // package -> "link 'L' (uri)"
+  std::vector<std::string> files;
+
+  void add(const std::string& link, const std::string& uri) {
+    const std::string where = fmt::format("link '{}' ({})", link, uri);
+    const std::string prefix = "package://";
+    if (uri.rfind(prefix, 0) == 0) {
+      const std::string pkg = uri.substr(prefix.size(), uri.find('/', prefix.size()) - prefix.size());
+      if (find_package_dir(pkg, package_path).empty()) {
+        by_package[pkg].push_back(where);
+        return;
+      }
+    }
+    files.push_back(where);
+  }
+
+  void report(std::vector<std::string>& out) const {
+    const std::string searched = package_path.empty() ? "empty" : fmt::format("{}", fmt::join(package_path, ":"));
+    for (const auto& [pkg, uses] : by_package)
+      out.push_back(fmt::format("{}: package '{}' of {} {} mesh{} not found (first: {}); give --package-path DIR "
+                                "with DIR the folder holding {}/ (or set LCM_CONTROL_PACKAGE_PATH or "
+                                "ROS_PACKAGE_PATH); searched: {}",
+                                urdf, pkg, uses.size(), kind, uses.size() == 1 ? "" : "es", uses.front(), pkg,
+                                searched));
+    for (const auto& f : files)
+      out.push_back(fmt::format("{}: {}: {} mesh not found (relative paths are read from {}; package:// in "
+                                "--package-path / LCM_CONTROL_PACKAGE_PATH / ROS_PACKAGE_PATH: {})",
+                                urdf, f, kind, base_dir, searched));
+  }
+};
+
 // urdfdom reports through console_bridge; keep the messages for our own one-line error.
 class CaptureHandler : public console_bridge::OutputHandler {
  public:
@@ -328,6 +364,8 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
       options.package_path.empty() ? default_package_path() : options.package_path;
   const std::string base_dir = fs::absolute(urdf_path).parent_path().string();
 
+  MissingMeshes missing_collision{"collision", urdf_path, base_dir, package_path, {}, {}},
+      missing_visual{"visual", urdf_path, base_dir, package_path, {}, {}};
   // URDF document order for links and joints (urdfdom stores them in maps).
   for (auto* le = robot->FirstChildElement("link"); le; le = le->NextSiblingElement("link")) {
     const char* n = le->Attribute("name");
@@ -347,24 +385,19 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
       if (c && c->geometry) {
         l.collisions.push_back(to_geometry(c->geometry, c->origin, base_dir, package_path));
         const Geometry& g = l.collisions.back();
-        if (g.type == Geometry::Type::Mesh && g.mesh_path.empty())
-          problems.push_back(fmt::format(
-              "{}: link '{}': collision mesh '{}' not found (relative paths are read from {}; package:// is searched "
-              "in --package-path / LCM_CONTROL_PACKAGE_PATH / ROS_PACKAGE_PATH: {})",
-              urdf_path, l.name, g.mesh_uri, base_dir,
-              package_path.empty() ? "empty" : fmt::format("{}", fmt::join(package_path, ":"))));
+        if (g.type == Geometry::Type::Mesh && g.mesh_path.empty()) missing_collision.add(l.name, g.mesh_uri);
       }
     for (const auto& v : ul->visual_array)
       if (v && v->geometry) {
         l.visuals.push_back(to_geometry(v->geometry, v->origin, base_dir, package_path));
         const Geometry& g = l.visuals.back();
-        if (g.type == Geometry::Type::Mesh && g.mesh_path.empty())
-          model.warnings.push_back(
-              fmt::format("{}: link '{}': visual mesh '{}' not found", urdf_path, l.name, g.mesh_uri));
+        if (g.type == Geometry::Type::Mesh && g.mesh_path.empty()) missing_visual.add(l.name, g.mesh_uri);
       }
     if (ul->parent_joint) l.parent_joint = ul->parent_joint->name;
     model.links.push_back(std::move(l));
   }
+  missing_collision.report(problems);
+  missing_visual.report(model.warnings);
   for (auto* je = robot->FirstChildElement("joint"); je; je = je->NextSiblingElement("joint")) {
     const char* n = je->Attribute("name");
     auto uj = n ? urdf->getJoint(n) : nullptr;

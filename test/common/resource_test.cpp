@@ -1,4 +1,5 @@
 // Mesh paths: package://NAME/... on the package path, relative to the URDF's folder, file://.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -52,6 +53,34 @@ TEST_F(Resources, EnvironmentPackagePath) {
   EXPECT_EQ(find_package_dir("my_robot", path), root_ + "/ws/src/my_robot");
 }
 
+TEST_F(Resources, APackageOffThePathIsOneErrorForAllItsMeshes) {
+  const std::string urdf = root_ + "/urdf/arm.urdf";
+  std::string links;
+  for (const char* l : {"base", "shoulder", "upper_arm", "forearm"})
+    links += fmt::format(R"(<link name="{0}"><collision><geometry><mesh filename="package://arm_description/meshes/{0}.stl"/></geometry></collision>
+    <visual><geometry><mesh filename="package://arm_description/meshes/{0}.dae"/></geometry></visual></link>
+)", l);
+  std::ofstream(urdf) << "<robot name=\"arm\">" << links << R"(
+  <joint name="j1" type="continuous"><parent link="base"/><child link="shoulder"/></joint>
+  <joint name="j2" type="continuous"><parent link="shoulder"/><child link="upper_arm"/></joint>
+  <joint name="j3" type="continuous"><parent link="upper_arm"/><child link="forearm"/></joint>
+</robot>)";
+  try {
+    RobotModel m;
+    LoadOptions o;
+    o.package_path = {root_ + "/ws/src"};
+    load_urdf_into(m, urdf, o);
+    FAIL() << "missing package accepted";
+  } catch (const ModelError& e) {
+    ASSERT_EQ(e.problems().size(), 1u) << e.what();
+    EXPECT_EQ(e.problems()[0],
+              urdf + ": package 'arm_description' of 4 collision meshes not found (first: link 'base' "
+                     "(package://arm_description/meshes/base.stl)); give --package-path DIR with DIR the folder "
+                     "holding arm_description/ (or set LCM_CONTROL_PACKAGE_PATH or ROS_PACKAGE_PATH); searched: " +
+                     root_ + "/ws/src");
+  }
+}
+
 TEST_F(Resources, UrdfMeshesResolvedAtLoadAndMissingCollisionMeshNamed) {
   const std::string urdf = root_ + "/urdf/r.urdf";
   std::ofstream(urdf) << R"(<robot name="r">
@@ -68,7 +97,7 @@ TEST_F(Resources, UrdfMeshesResolvedAtLoadAndMissingCollisionMeshNamed) {
     FAIL() << "missing collision mesh accepted";
   } catch (const ModelError& e) {
     const std::string msg = e.what();
-    EXPECT_NE(msg.find("link 'b': collision mesh 'meshes/missing.stl' not found"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("link 'b' (meshes/missing.stl): collision mesh not found"), std::string::npos) << msg;
     EXPECT_EQ(msg.find("link 'a'"), std::string::npos) << msg;
   }
   std::string text;
