@@ -73,8 +73,9 @@ std::string substitute_file(const std::string& text, const Substitutions& subs, 
     if (end == std::string::npos) end = text.size();
     const std::string piece = text.substr(start, end - start);
     const std::string where = fmt::format("{}:{}", file, line);
+    const size_t first = piece.find_first_not_of(" \t");
     try {
-      out += substitute(piece, subs, where);
+      out += first != std::string::npos && piece[first] == '#' ? piece : substitute(piece, subs, where);
     } catch (const ModelError& e) {
       for (const auto& p : e.problems()) {
         const std::string what = p.substr(std::min(p.size(), where.size() + 2));

@@ -18,7 +18,8 @@ struct Substitutions {
 
 // Throws ModelError (prefixed with `where`) for an unknown package, arg, variable or substitution.
 std::string substitute(const std::string& text, const Substitutions& subs, const std::string& where);
-// The same for a whole file, line by line, so that a message names `file:LINE`.
+// The same for a whole YAML file, line by line, so that a message names `file:LINE`; comment lines are left as
+// they are.
 std::string substitute_file(const std::string& text, const Substitutions& subs, const std::string& file);
 // "NAME=VALUE" or roslaunch's "NAME:=VALUE"; throws std::invalid_argument otherwise.
 std::pair<std::string, std::string> parse_arg(const std::string& assignment);
