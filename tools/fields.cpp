@@ -22,15 +22,18 @@
 
 namespace lcm_control::tools {
 
-std::string Field::text() const { return integer ? std::to_string(exact) : fmt::format("{}", value); }
+std::string Field::text() const {
+  if (is_text) return str;
+  return integer ? std::to_string(exact) : fmt::format("{}", value);
+}
 
 namespace {
 
 class Out {
  public:
   explicit Out(std::vector<Field>& f) : f_(f) {}
-  void num(const std::string& path, double v) { f_.push_back(Field{path, v, 0, false}); }
-  void integer(const std::string& path, int64_t v) { f_.push_back(Field{path, double(v), v, true}); }
+  void num(const std::string& path, double v) { f_.push_back(Field{path, v, 0, false, false, ""}); }
+  void integer(const std::string& path, int64_t v) { f_.push_back(Field{path, double(v), v, true, false, ""}); }
   template <class T>
   void nums(const std::string& path, const std::vector<T>& v) {
     for (size_t k = 0; k < v.size(); ++k) num(fmt::format("{}[{}]", path, k), double(v[k]));

@@ -10,13 +10,15 @@
 
 namespace lcm_control::tools {
 
-// One number of a message. Integers keep their exact value (utime, request ids).
+// One number or string of a message. Integers keep their exact value (utime, request ids).
 struct Field {
   std::string path;
-  double value = 0;
+  double value = 0;  // 0 for a string
   int64_t exact = 0;
   bool integer = false;
-  std::string text() const;  // the CSV cell: exact integers, shortest round-trip doubles
+  bool is_text = false;  // a string field: its value is `str`, not a number to plot
+  std::string str;
+  std::string text() const;  // exact integers, shortest round-trip doubles, strings as they are (unquoted)
 };
 
 struct Decoded {

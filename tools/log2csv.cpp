@@ -74,7 +74,8 @@ int main(int argc, char** argv) {
         ++c.other;
         continue;
       }
-      if (log_time) d.fields.insert(d.fields.begin(), Field{"log_utime", double(ev->timestamp), ev->timestamp, true});
+      if (log_time)
+        d.fields.insert(d.fields.begin(), Field{"log_utime", double(ev->timestamp), ev->timestamp, true, false, ""});
       c.csv->write(d.fields);
     }
     size_t written = 0;

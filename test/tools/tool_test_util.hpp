@@ -1,4 +1,5 @@
-// Helpers the tool tests share: CSV reading and file checks.
+// Helpers the tool tests share: CSV reading (the tools' own reader), file
+// checks, and logs written as lcm-logger writes them.
 #pragma once
 
 #include <fstream>
@@ -6,17 +7,12 @@
 #include <string>
 #include <vector>
 
+#include "tools/csv.hpp"
+
 namespace lcm_control::testing {
 
-struct Csv {
-  std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows;
-  int column(const std::string& name) const {
-    for (size_t k = 0; k < header.size(); ++k)
-      if (header[k] == name) return int(k);
-    return -1;
-  }
-};
+using Csv = tools::CsvTable;
+using tools::read_csv;
 
 inline std::vector<std::string> split(const std::string& line, char sep = ',') {
   std::vector<std::string> out;
@@ -25,16 +21,6 @@ inline std::vector<std::string> split(const std::string& line, char sep = ',') {
   while (std::getline(ss, cell, sep)) out.push_back(cell);
   if (!line.empty() && line.back() == sep) out.push_back("");
   return out;
-}
-
-inline Csv read_csv(const std::string& path) {
-  Csv csv;
-  std::ifstream in(path);
-  std::string line;
-  if (std::getline(in, line)) csv.header = split(line);
-  while (std::getline(in, line))
-    if (!line.empty()) csv.rows.push_back(split(line));
-  return csv;
 }
 
 inline std::string read_text(const std::string& path) {
