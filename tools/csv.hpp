@@ -1,5 +1,6 @@
-// One CSV file per channel for state-logger and log2csv: the header is the
-// field paths of the first message; later messages fill the same columns.
+// CSV for state-logger and log2csv, and the reader for what they write: one
+// file per channel whose header is the field paths of the first message; later
+// messages fill the same columns. Text cells are quoted as RFC 4180 says.
 #pragma once
 
 #include <cstdio>
@@ -10,6 +11,10 @@
 #include "tools/fields.hpp"
 
 namespace lcm_control::tools {
+
+// One RFC 4180 cell: `s` as it is, or in double quotes with its quotes doubled
+// when it holds a comma, a quote, CR or LF, or starts or ends with a space.
+std::string csv_quote(const std::string& s);
 
 class CsvWriter {
  public:
@@ -38,5 +43,20 @@ class CsvWriter {
   std::vector<std::string> cells_;
   size_t rows_ = 0, dropped_ = 0;
 };
+
+// A CSV file read back, quotes removed: every row has as many cells as the header.
+struct CsvTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  int column(const std::string& name) const;  // -1 if the header has no such column
+};
+
+// Parses RFC 4180 text (LF or CRLF line ends; quoted cells may hold commas,
+// quotes and line breaks). Throws std::runtime_error naming `source` and the
+// line for an unclosed quote, a stray quote, or a row whose cell count is not the header's.
+CsvTable parse_csv(const std::string& text, const std::string& source);
+
+// parse_csv of a file; throws std::runtime_error if it cannot be read.
+CsvTable read_csv(const std::string& path);
 
 }  // namespace lcm_control::tools

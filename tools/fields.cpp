@@ -22,15 +22,22 @@
 
 namespace lcm_control::tools {
 
-std::string Field::text() const { return integer ? std::to_string(exact) : fmt::format("{}", value); }
+std::string Field::text() const {
+  if (is_text) return str;
+  return integer ? std::to_string(exact) : fmt::format("{}", value);
+}
 
 namespace {
 
 class Out {
  public:
   explicit Out(std::vector<Field>& f) : f_(f) {}
-  void num(const std::string& path, double v) { f_.push_back(Field{path, v, 0, false}); }
-  void integer(const std::string& path, int64_t v) { f_.push_back(Field{path, double(v), v, true}); }
+  void num(const std::string& path, double v) { f_.push_back(Field{path, v, 0, false, false, ""}); }
+  void integer(const std::string& path, int64_t v) { f_.push_back(Field{path, double(v), v, true, false, ""}); }
+  void text(const std::string& path, const std::string& s) { f_.push_back(Field{path, 0, 0, false, true, s}); }
+  void texts(const std::string& path, const std::vector<std::string>& v) {
+    for (size_t k = 0; k < v.size(); ++k) text(fmt::format("{}[{}]", path, k), v[k]);
+  }
   template <class T>
   void nums(const std::string& path, const std::vector<T>& v) {
     for (size_t k = 0; k < v.size(); ++k) num(fmt::format("{}[{}]", path, k), double(v[k]));
@@ -60,6 +67,7 @@ void flatten(const joint_state_t& m, Out& o) {
   o.nums("position", m.position);
   o.nums("velocity", m.velocity);
   o.nums("effort", m.effort);
+  o.texts("name", m.name);
 }
 void flatten(const hardware_state_t& m, Out& o) {
   o.integer("utime", m.utime);
@@ -73,6 +81,7 @@ void flatten(const hardware_state_t& m, Out& o) {
   o.nums("position", m.position);
   o.nums("velocity", m.velocity);
   o.nums("effort", m.effort);
+  o.texts("name", m.name);
 }
 void flatten(const hardware_command_t& m, Out& o) {
   o.integer("utime", m.utime);
@@ -80,6 +89,7 @@ void flatten(const hardware_command_t& m, Out& o) {
   o.integer("session", m.session);
   o.ints("mode", m.mode);
   o.nums("command", m.command);
+  o.texts("name", m.name);
 }
 void flatten(const controller_state_t& m, Out& o) {
   o.integer("utime", m.utime);
@@ -94,15 +104,19 @@ void flatten(const controller_state_t& m, Out& o) {
   o.num("d", m.d);
   o.num("i_clamp", m.i_clamp);
   o.integer("antiwindup", m.antiwindup);
+  o.text("controller", m.controller);
+  o.text("joint", m.joint);
 }
 void flatten(const e_stop_t& m, Out& o) {
   o.integer("utime", m.utime);
   o.integer("engaged", m.engaged);
+  o.text("source", m.source);
 }
 void flatten(const link_poses_t& m, Out& o) {
   o.integer("utime", m.utime);
   o.nums2("position", m.position);
   o.nums2("orientation", m.orientation);
+  o.texts("name", m.name);
 }
 void flatten(const loop_stats_t& m, Out& o) {
   o.integer("utime", m.utime);
@@ -119,6 +133,8 @@ void flatten(const loop_stats_t& m, Out& o) {
   o.num("exec_max_us", m.exec_max_us);
   o.nums("item_exec_mean_us", m.item_exec_mean_us);
   o.nums("item_exec_max_us", m.item_exec_max_us);
+  o.text("process", m.process);
+  o.texts("item", m.item);
 }
 void flatten(const pid_gains_t& m, Out& o) {
   o.integer("utime", m.utime);
@@ -131,6 +147,9 @@ void flatten(const pid_gains_t& m, Out& o) {
   o.num("i_clamp_min", m.i_clamp_min);
   o.num("i_clamp_max", m.i_clamp_max);
   o.integer("antiwindup", m.antiwindup);
+  o.text("owner", m.owner);
+  o.text("joint", m.joint);
+  o.text("message", m.message);
 }
 void flatten(const sim_clock_t& m, Out& o) {
   o.integer("utime", m.utime);
@@ -144,6 +163,8 @@ void flatten(const trajectory_status_t& m, Out& o) {
   o.nums("desired", m.desired);
   o.nums("actual", m.actual);
   o.nums("error", m.error);
+  o.text("message", m.message);
+  o.texts("joint_names", m.joint_names);
 }
 void flatten(const joint_trajectory_t& m, Out& o) {
   o.integer("utime", m.utime);
@@ -156,6 +177,7 @@ void flatten(const joint_trajectory_t& m, Out& o) {
     o.nums(base + "velocities", p.velocities);
     o.nums(base + "accelerations", p.accelerations);
   }
+  o.texts("joint_names", m.joint_names);
 }
 
 struct TypeEntry {

@@ -1,6 +1,6 @@
 // Field paths of our LCM messages, shared by state-logger, log2csv and plotter:
-// decode a payload by its fingerprint and flatten its numbers to (path, value)
-// pairs such as `utime`, `position[0]`, `data`, `data[2]` (the CSV columns).
+// decode a payload by its fingerprint and flatten its numbers and strings to
+// (path, value) pairs such as `utime`, `position[0]`, `data[2]`, `message` (the CSV columns).
 #pragma once
 
 #include <cstddef>
@@ -10,13 +10,15 @@
 
 namespace lcm_control::tools {
 
-// One number of a message. Integers keep their exact value (utime, request ids).
+// One number or string of a message. Integers keep their exact value (utime, request ids).
 struct Field {
   std::string path;
-  double value = 0;
+  double value = 0;  // 0 for a string
   int64_t exact = 0;
   bool integer = false;
-  std::string text() const;  // the CSV cell: exact integers, shortest round-trip doubles
+  bool is_text = false;  // a string field: its value is `str`, not a number to plot
+  std::string str;
+  std::string text() const;  // exact integers, shortest round-trip doubles, strings as they are (unquoted)
 };
 
 struct Decoded {
@@ -26,8 +28,9 @@ struct Decoded {
   bool ok() const { return skip_reason.empty(); }
 };
 
-// Decodes one LCM payload by the fingerprint in its first 8 bytes. Strings and
-// array-length fields are left out (they are not signals); booleans are 0/1.
+// Decodes one LCM payload by the fingerprint in its first 8 bytes. Array-length
+// fields are left out; booleans are 0/1. Strings come after all the numbers, so
+// a numeric column has the same position as in a file without strings.
 Decoded decode_fields(const void* data, size_t size);
 
 // Every type decode_fields knows: "name" or "name (skipped: reason)", for --help texts.

@@ -15,8 +15,9 @@ int main(int argc, char** argv) {
   using namespace lcm_control::tools;
   CLI::App app{
       "Convert an lcm-logger log to CSV: one file per channel of lcm_control types (name: the channel with '/' as "
-      "'__', e.g. j2_controller__command.csv), header = field paths (utime,position[0],...). Channels of other types "
-      "are listed as skipped, with the reason.\n"
+      "'__', e.g. j2_controller__command.csv), header = field paths (utime,position[0],...), numbers first, then "
+      "strings (message, name[0],...; RFC 4180 quotes when a string holds a comma, quote, line break or edge space). "
+      "Channels of other types are listed as skipped, with the reason.\n"
       "Examples:\n"
       "  lcm-logger --lcm-url=udpm://239.255.76.67:7667?ttl=0 run.lcmlog   # record (Ctrl-C to stop)\n"
       "  log2csv run.lcmlog --output-dir run_csv\n"
@@ -74,7 +75,8 @@ int main(int argc, char** argv) {
         ++c.other;
         continue;
       }
-      if (log_time) d.fields.insert(d.fields.begin(), Field{"log_utime", double(ev->timestamp), ev->timestamp, true});
+      if (log_time)
+        d.fields.insert(d.fields.begin(), Field{"log_utime", double(ev->timestamp), ev->timestamp, true, false, ""});
       c.csv->write(d.fields);
     }
     size_t written = 0;

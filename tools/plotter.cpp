@@ -23,19 +23,27 @@ namespace {
 struct Series {
   std::string path;                 // as the user typed it
   std::string channel, field;       // resolved
+  bool text = false;                // the field is a string: an error to report, nothing to plot
   std::vector<std::pair<int64_t, double>> points;  // (time us, value)
 };
 
+bool any_text(const std::vector<Series>& series) {
+  return std::any_of(series.begin(), series.end(), [](const Series& s) { return s.text; });
+}
+
 // "joint_states.velocity[1]" matches channel "joint_states", field "velocity[1]";
 // ROS-style "/joint_states/velocity[1]" too; a bare channel whose message has
-// one value besides utime ("/j2_controller/command") means that value.
+// one number besides utime ("/j2_controller/command") means that number.
 std::optional<std::string> match(std::string path, const std::string& channel, const std::vector<Field>& fields) {
   while (!path.empty() && path[0] == '/') path.erase(0, 1);
   auto has = [&](const std::string& f) {
     return std::any_of(fields.begin(), fields.end(), [&](const Field& x) { return x.path == f; });
   };
   if (path == channel) {
-    if (fields.size() == 2 && fields[0].path == "utime") return fields[1].path;
+    std::vector<std::string> numbers;
+    for (const auto& f : fields)
+      if (!f.is_text) numbers.push_back(f.path);
+    if (numbers.size() == 2 && numbers[0] == "utime") return numbers[1];
     return std::nullopt;
   }
   if (path.size() > channel.size() + 1 && path.compare(0, channel.size(), channel) == 0 &&
@@ -66,7 +74,10 @@ class Collector {
         if (!f) continue;
         s.channel = channel;
         s.field = *f;
+        s.text = std::any_of(d->fields.begin(), d->fields.end(),
+                             [&](const Field& x) { return x.path == *f && x.is_text; });
       }
+      if (s.text) continue;
       for (const auto& f : d->fields)
         if (f.path == s.field) {
           int64_t t = receive_us;
@@ -84,8 +95,15 @@ class Collector {
     std::string s;
     for (const auto& [ch, fields] : fields_seen_) {
       s += fmt::format("\n  {}:", ch);
-      for (size_t k = 0; k < fields.size() && k < 12; ++k) s += " " + ch + "." + fields[k].path;
-      if (fields.size() > 12) s += " ...";
+      size_t shown = 0;
+      for (const auto& f : fields) {
+        if (f.is_text) continue;
+        if (shown++ == 12) {
+          s += " ...";
+          break;
+        }
+        s += " " + ch + "." + f.path;
+      }
     }
     std::string others;
     for (const auto& c : channels_)
@@ -186,7 +204,8 @@ int main(int argc, char** argv) {
   using namespace lcm_control::tools;
   CLI::App app{
       "Plot message fields against time (rqt_plot) to PNG or SVG with gnuplot, from an lcm-logger log (--log) or "
-      "live from the bus (--duration). PATH is CHANNEL.FIELD with the field paths of state-logger / log2csv columns; "
+      "live from the bus (--duration). PATH is CHANNEL.FIELD with the field paths of state-logger / log2csv numeric "
+      "columns (text columns such as message cannot be plotted); "
       "ROS-style /CHANNEL/FIELD works too, and a bare channel of a one-value message (float64_t) plots its data. "
       "Time on x is seconds from the first message (receive time, or the messages' utime with --time utime).\n"
       "Examples:\n"
@@ -227,7 +246,7 @@ int main(int argc, char** argv) {
       throw std::runtime_error(fmt::format("--output '{}': the name must end in .png or .svg", output));
 
     std::vector<Series> series;
-    for (const auto& p : paths) series.push_back(Series{p, "", "", {}});
+    for (const auto& p : paths) series.push_back(Series{p, "", "", false, {}});
     Collector collector(series, time_source == "utime");
     const std::string xlabel = time_source == "utime" ? "t [s] (message utime)" : "t [s]";
     const bool keep = !data_file.empty();
@@ -268,13 +287,22 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "plotter: listening for {} on {}\n", seconds_text(duration), bus.url());
       const int64_t end = monotonic_us() + int64_t(duration * 1e6);
       while (!stop_requested() && monotonic_us() < end) {
-        pump_until(bus, [] { return false; }, std::min(1.0, double(end - monotonic_us()) / 1e6));
+        if (pump_until(bus, [&] { return any_text(series); }, std::min(1.0, double(end - monotonic_us()) / 1e6)))
+          break;
         if (live && !stop_requested() && monotonic_us() < end)
           fmt::print("\033[H\033[2J{}plotter: {:.0f} s left (Ctrl-C ends early and still writes {})\n",
                      render(false, true), double(end - monotonic_us()) / 1e6, output);
         std::fflush(stdout);
       }
       clear_stop();
+    }
+    for (const auto& s : series) {
+      if (!s.text) continue;
+      if (!keep) std::remove(data_file.c_str());
+      throw std::runtime_error(fmt::format(
+          "{}: column {} of channel {} holds text, not numbers, and cannot be plotted; plot a numeric field, or "
+          "read the text with log2csv or state-logger",
+          s.path, s.field, s.channel));
     }
     std::string missing;
     for (const auto& s : series)

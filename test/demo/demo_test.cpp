@@ -96,16 +96,18 @@ TEST(Demo, PlotShowsTheCsvData) {
   std::stringstream csv(read(dir / "csv/joint_states.csv"));
   std::string line;
   std::getline(csv, line);
-  ASSERT_EQ(line, "utime,position[0],position[1],velocity[0],velocity[1],effort[0],effort[1]");
+  ASSERT_EQ(line, "utime,position[0],position[1],velocity[0],velocity[1],effort[0],effort[1],name[0],name[1]");
   size_t row = 0;
   while (std::getline(csv, line)) {
-    std::vector<double> v;
+    std::vector<std::string> v;
     std::stringstream l(line);
-    for (std::string cell; std::getline(l, cell, ',');) v.push_back(std::stod(cell));
+    for (std::string cell; std::getline(l, cell, ',');) v.push_back(cell);
+    ASSERT_EQ(v.size(), 9u) << line;
+    EXPECT_EQ(v[8], "j2") << row;
     ASSERT_LT(row, blocks[1].size());
-    EXPECT_NEAR(blocks[1][row].first, v[0] * 1e-6, 1e-6) << row;  // the first message is at sim time 0
-    EXPECT_NEAR(blocks[1][row].second, v[2], 1e-12) << row;
-    EXPECT_NEAR(blocks[2][row].second, v[4], 1e-12) << row;
+    EXPECT_NEAR(blocks[1][row].first, std::stod(v[0]) * 1e-6, 1e-6) << row;  // the first message is at sim time 0
+    EXPECT_NEAR(blocks[1][row].second, std::stod(v[2]), 1e-12) << row;
+    EXPECT_NEAR(blocks[2][row].second, std::stod(v[4]), 1e-12) << row;
     ++row;
   }
   EXPECT_EQ(row, blocks[1].size());

@@ -110,7 +110,7 @@ TEST(Replay, LogplayerReproducesTheLiveCsvAndPlot) {
   bot.shut_down();
 
   const Table live = read_table(live_csv);
-  ASSERT_EQ(live.header, "utime,position[0],position[1],velocity[0],velocity[1],effort[0],effort[1]");
+  ASSERT_EQ(live.header, "utime,position[0],position[1],velocity[0],velocity[1],effort[0],effort[1],name[0],name[1]");
   // joint_state_controller publishes at 60 Hz of sim time (turret_bot.yaml) while the controllers run.
   ASSERT_GE(live.rows.size(), 300u) << live_logger.output();
   ASSERT_LE(live.rows.size(), 361u);

@@ -1,14 +1,17 @@
-// Field paths: decoding by fingerprint and the flattened (path, value) pairs.
+// Field paths: decoding by fingerprint and the flattened (path, value) pairs,
+// numbers first, then strings.
 #include "tools/fields.hpp"
 
 #include <gtest/gtest.h>
 
 #include "lcm_control/cm_response_t.hpp"
+#include "lcm_control/controller_state_t.hpp"
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/link_poses_t.hpp"
+#include "lcm_control/trajectory_status_t.hpp"
 
 using namespace lcm_control;
 using namespace lcm_control::tools;
@@ -40,10 +43,52 @@ TEST(Fields, JointStateColumns) {
   ASSERT_TRUE(d.ok()) << d.skip_reason;
   EXPECT_EQ(d.type, "lcm_control.joint_state_t");
   EXPECT_EQ(paths(d), (std::vector<std::string>{"utime", "position[0]", "position[1]", "velocity[0]", "velocity[1]",
-                                                "effort[0]", "effort[1]"}));
+                                                "effort[0]", "effort[1]", "name[0]", "name[1]"}));
   EXPECT_EQ(d.fields[0].text(), "1234567890123456");
   EXPECT_EQ(d.fields[1].text(), "0.1");
   EXPECT_EQ(d.fields[4].text(), "-2");
+  EXPECT_FALSE(d.fields[6].is_text);
+  EXPECT_TRUE(d.fields[8].is_text);
+  EXPECT_EQ(d.fields[8].text(), "j2");
+}
+
+TEST(Fields, StringsFollowTheNumbers) {
+  trajectory_status_t s{};
+  s.utime = 5;
+  s.goal_id = 3;
+  s.status = trajectory_status_t::GOAL_TOLERANCE_VIOLATED;
+  s.message = "goal tolerance violated on joint 'j1': error 0.5, tolerance 0.1";
+  s.num_joints = 2;
+  s.joint_names = {"j1", "j2"};
+  s.desired = {1, 2};
+  s.actual = {0.5, 2};
+  s.error = {0.5, 0};
+  auto buf = encode(s);
+  Decoded d = decode_fields(buf.data(), buf.size());
+  ASSERT_TRUE(d.ok()) << d.skip_reason;
+  EXPECT_EQ(paths(d), (std::vector<std::string>{"utime", "goal_id", "status", "desired[0]", "desired[1]", "actual[0]",
+                                                "actual[1]", "error[0]", "error[1]", "message", "joint_names[0]",
+                                                "joint_names[1]"}));
+  EXPECT_EQ(d.fields[2].text(), "4");
+  EXPECT_TRUE(d.fields[9].is_text);
+  EXPECT_EQ(d.fields[9].text(), s.message);
+  EXPECT_EQ(d.fields[9].value, 0);
+  EXPECT_EQ(d.fields[11].text(), "j2");
+
+  controller_state_t c{};
+  c.controller = "j2_controller";
+  c.joint = "j2";
+  c.error = 0.25;
+  buf = encode(c);
+  d = decode_fields(buf.data(), buf.size());
+  const auto p = paths(d);
+  ASSERT_EQ(p.size(), 14u);
+  EXPECT_EQ(p[4], "error");
+  EXPECT_EQ(d.fields[4].text(), "0.25");
+  EXPECT_EQ(p[12], "controller");
+  EXPECT_EQ(d.fields[12].text(), "j2_controller");
+  EXPECT_EQ(p[13], "joint");
+  EXPECT_EQ(d.fields[13].text(), "j2");
 }
 
 TEST(Fields, CommandsAndNestedTypes) {
@@ -82,7 +127,7 @@ TEST(Fields, CommandsAndNestedTypes) {
   buf = encode(jt);
   d = decode_fields(buf.data(), buf.size());
   EXPECT_EQ(paths(d), (std::vector<std::string>{"utime", "goal_id", "points[0].time_from_start",
-                                                "points[0].positions[0]"}));
+                                                "points[0].positions[0]", "joint_names[0]"}));
 }
 
 TEST(Fields, SkippedTypesSayWhy) {

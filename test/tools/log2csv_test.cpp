@@ -20,11 +20,12 @@ TEST(Log2Csv, OneCsvPerChannelOfOurTypesAndSaysWhatItSkipped) {
 
   const Csv js = read_csv(dir + "/csv/joint_states.csv");
   EXPECT_EQ(js.header, (std::vector<std::string>{"utime", "position[0]", "position[1]", "velocity[0]", "velocity[1]",
-                                                 "effort[0]", "effort[1]"}));
+                                                 "effort[0]", "effort[1]", "name[0]", "name[1]"}));
   ASSERT_EQ(js.rows.size(), 50u);
   EXPECT_EQ(js.rows[7][0], "70000");
   EXPECT_DOUBLE_EQ(std::stod(js.rows[7][2]), std::sin(0.7));
   EXPECT_EQ(js.rows[49][5], "49");
+  EXPECT_EQ(js.rows[49][7], "j1");
 
   const Csv cmd = read_csv(dir + "/csv/j2_controller__command.csv");
   EXPECT_EQ(cmd.header, (std::vector<std::string>{"utime", "data"}));
@@ -36,7 +37,32 @@ TEST(Log2Csv, OneCsvPerChannelOfOurTypesAndSaysWhatItSkipped) {
             std::string::npos)
       << out;
   EXPECT_NE(out.find("skipped other_robot/blob: not an lcm_control type"), std::string::npos) << out;
-  EXPECT_NE(out.find("joint_states.csv: 50 rows, 7 columns"), std::string::npos) << out;
+  EXPECT_NE(out.find("joint_states.csv: 50 rows, 9 columns"), std::string::npos) << out;
+}
+
+TEST(Log2Csv, KeepsAFailureMessageInAQuotedColumn) {
+  const std::string dir = temp_dir("log2csv_text");
+  write_status_log(dir + "/run.lcmlog");
+  ChildProcess p({bin("log2csv"), dir + "/run.lcmlog", "--output-dir", dir});
+  ASSERT_EQ(p.wait(10.0), 0) << p.output();
+  EXPECT_NE(p.output().find("arm_controller__status.csv: 3 rows, 8 columns (lcm_control.trajectory_status_t"),
+            std::string::npos)
+      << p.output();
+
+  const std::string path = dir + "/arm_controller__status.csv";
+  const Csv csv = read_csv(path);
+  EXPECT_EQ(csv.header, (std::vector<std::string>{"utime", "goal_id", "status", "desired[0]", "actual[0]", "error[0]",
+                                                  "message", "joint_names[0]"}));
+  ASSERT_EQ(csv.rows.size(), 3u);
+  EXPECT_EQ(csv.rows[0], (std::vector<std::string>{"0", "1", "0", "1", "1", "0", "", "j1"}));
+  EXPECT_EQ(csv.rows[1], (std::vector<std::string>{"10000", "2", "4", "1", "0.5", "0.5", kGoalToleranceText, "j1"}));
+  EXPECT_EQ(csv.rows[2], (std::vector<std::string>{"20000", "3", "2", "1", "0", "1", kRejectedText, "j1"}));
+  const std::string raw = read_text(path);
+  EXPECT_NE(raw.find("\n10000,2,4,1,0.5,0.5,\"goal tolerance violated on joint 'j1': error 0.500000 (tolerance "
+                     "0.100000), velocity 0.000000 (stopped tolerance 0.010000), 0.250 s after the trajectory end "
+                     "(goal_time 0.200)\",j1\n"),
+            std::string::npos)
+      << raw;
 }
 
 TEST(Log2Csv, ChannelFilterAndLogTime) {
@@ -96,7 +122,7 @@ TEST(Log2Csv, ReadsWhatLcmLoggerRecorded) {
   ChildProcess conv({bin("log2csv"), log_path, "--output-dir", dir, "--channel", "joint_states"});
   ASSERT_EQ(conv.wait(10.0), 0) << conv.output();
   const Csv csv = read_csv(dir + "/joint_states.csv");
-  EXPECT_EQ(csv.header, (std::vector<std::string>{"utime", "position[0]", "velocity[0]", "effort[0]"}));
+  EXPECT_EQ(csv.header, (std::vector<std::string>{"utime", "position[0]", "velocity[0]", "effort[0]", "name[0]"}));
   ASSERT_EQ(csv.rows.size(), 30u);
   EXPECT_EQ(csv.rows[29][0], "29");
   EXPECT_DOUBLE_EQ(std::stod(csv.rows[29][1]), 0.1 * 29);

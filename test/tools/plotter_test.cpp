@@ -89,6 +89,28 @@ TEST(Plotter, UnknownPathListsWhatThereWas) {
   EXPECT_FALSE(std::filesystem::exists(dir + "/plot.png"));
 }
 
+TEST(Plotter, ATextColumnIsAnErrorThatSaysSo) {
+  const std::string dir = temp_dir("plotter_text");
+  write_status_log(dir + "/run.lcmlog");
+  ChildProcess text({bin("plotter"), "arm_controller/status.error[0]", "arm_controller/status.message", "--log",
+                     dir + "/run.lcmlog", "--output", dir + "/plot.png"});
+  EXPECT_EQ(text.wait(30.0), 1);
+  const std::string out = text.output();
+  EXPECT_NE(out.find("plotter: error: arm_controller/status.message: column message of channel arm_controller/status "
+                     "holds text, not numbers"),
+            std::string::npos)
+      << out;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/plot.png"));
+
+  ChildProcess numbers({bin("plotter"), "arm_controller/status.error[0]", "--log", dir + "/run.lcmlog", "--output",
+                        dir + "/plot.png", "--data", dir + "/plot.dat"});
+  ASSERT_EQ(numbers.wait(30.0), 0) << numbers.output();
+  const auto blocks = read_blocks(dir + "/plot.dat");
+  ASSERT_EQ(blocks.size(), 1u);
+  ASSERT_EQ(blocks[0].size(), 3u);
+  EXPECT_EQ(blocks[0][2].second, 1.0);
+}
+
 TEST(Plotter, LiveFromTheBus) {
   const std::string url = unique_lcm_url();
   const std::string dir = temp_dir("plotter_live");

@@ -137,7 +137,7 @@ TEST(Launch, ExtraProcessesRunWithTheRestAndAFailedOneIsReported) {
   EXPECT_NE(launch.output().find("launch: error: bad_cmd exited with code 1"), std::string::npos) << launch.output();
   for (const auto& [name, pid] : pids) EXPECT_TRUE(gone(pid)) << name;
   const Csv csv = read_csv(dir + "/js.csv");
-  EXPECT_EQ(csv.header.size(), 7u);
+  EXPECT_EQ(csv.header.size(), 9u);  // utime, 3 x 2 joints, name[0], name[1]
   EXPECT_GE(csv.rows.size(), 5u);
 }
 
