@@ -10,6 +10,10 @@ namespace lcm_control {
 std::string trim(const std::string& s);
 // Whitespace-separated words.
 std::vector<std::string> split_words(const std::string& s);
+// Fields between `sep`s, empty ones kept ("a,,b" -> a, "", b; "" -> one empty field).
+std::vector<std::string> split(const std::string& s, char sep);
+// A finite number and nothing else (blanks around it allowed); false for "", "1x", "nan", "inf".
+bool parse_double(const std::string& text, double& out);
 std::string join(const std::vector<std::string>& items, const std::string& sep = ", ");
 // Levenshtein distance, for "did you mean" suggestions.
 size_t edit_distance(const std::string& a, const std::string& b);

@@ -125,14 +125,6 @@ const char* child_text(const tinyxml2::XMLElement* e, const char* name) {
   return c && c->GetText() ? c->GetText() : nullptr;
 }
 
-bool parse_double(const std::string& text, double& out) {
-  const std::string t = trim(text);
-  if (t.empty()) return false;
-  char* end = nullptr;
-  out = std::strtod(t.c_str(), &end);
-  return end && *end == '\0' && std::isfinite(out);
-}
-
 
 const char* kInterfaceNames[] = {"PositionJointInterface", "VelocityJointInterface", "EffortJointInterface"};
 // hardware_interface's other interfaces: real, but not commands this hardware takes.

@@ -51,16 +51,17 @@ class Port {
   template <class Msg>
   void subscribe(const std::string& channel, std::function<void(const Msg&)> on_msg,
                  std::function<void(const std::string&)> on_bad = {}) {
-    auto msg = std::make_shared<Msg>();
-    subscribe_raw(channel, [msg, on_msg, on_bad, channel](const lcm::ReceiveBuffer& rb) {
-      if (msg->decode(rb.data, 0, rb.data_size) < 0) {
-        if (on_bad)
-          on_bad("could not decode " + std::to_string(rb.data_size) + " bytes on '" + channel + "' as " +
-                 Msg::getTypeName());
-        return;
-      }
-      on_msg(*msg);
-    });
+    subscribe_decoded<Msg>(channel, std::move(on_msg), std::move(on_bad), true);
+  }
+
+  // As subscribe(), into a new Msg each time (allocates): for types whose arrays
+  // may be empty, such as a trajectory point's optional velocities. LCM 1.3.1's
+  // decode leaves an array whose count is 0 as it was, so a kept message would
+  // still hold the previous message's values there.
+  template <class Msg>
+  void subscribe_fresh(const std::string& channel, std::function<void(const Msg&)> on_msg,
+                       std::function<void(const std::string&)> on_bad = {}) {
+    subscribe_decoded<Msg>(channel, std::move(on_msg), std::move(on_bad), false);
   }
 
   // The handlers subscribed on `channel` (exact name), to deliver bytes to them
@@ -74,6 +75,23 @@ class Port {
   }
 
  private:
+  template <class Msg>
+  void subscribe_decoded(const std::string& channel, std::function<void(const Msg&)> on_msg,
+                         std::function<void(const std::string&)> on_bad, bool keep) {
+    auto kept = std::make_shared<Msg>();
+    subscribe_raw(channel, [kept, keep, on_msg, on_bad, channel](const lcm::ReceiveBuffer& rb) {
+      Msg fresh;
+      Msg& msg = keep ? *kept : fresh;
+      if (msg.decode(rb.data, 0, rb.data_size) < 0) {
+        if (on_bad)
+          on_bad("could not decode " + std::to_string(rb.data_size) + " bytes on '" + channel + "' as " +
+                 Msg::getTypeName());
+        return;
+      }
+      on_msg(msg);
+    });
+  }
+
   struct Handler {
     RawHandler fn;
     std::string channel;

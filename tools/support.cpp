@@ -110,4 +110,9 @@ int run_and_wait(const std::vector<std::string>& argv, double timeout_s, std::st
 
 std::string seconds_text(double s) { return fmt::format("{:g} s", s); }
 
+std::string without_leading_slashes(std::string name) {
+  const size_t first = name.find_first_not_of('/');
+  return first == std::string::npos ? std::string() : name.substr(first);
+}
+
 }  // namespace lcm_control::tools

@@ -54,4 +54,7 @@ int run_and_wait(const std::vector<std::string>& argv, double timeout_s, std::st
 // Seconds as text for messages: "2 s", "0.5 s".
 std::string seconds_text(double s);
 
+// A name as ROS users write it ("/j2_controller", "/j2_controller/command") without its leading '/'s.
+std::string without_leading_slashes(std::string name);
+
 }  // namespace lcm_control::tools

@@ -31,8 +31,8 @@ struct Options {
 };
 
 // TARGET as given, without ROS's leading '/'.
-std::string clean_target(std::string t) {
-  while (!t.empty() && t[0] == '/') t.erase(0, 1);
+std::string clean_target(const std::string& target) {
+  const std::string t = without_leading_slashes(target);
   if (t.empty()) throw std::runtime_error("TARGET is empty: give a controller name or a channel");
   return t;
 }

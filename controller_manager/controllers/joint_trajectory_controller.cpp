@@ -108,7 +108,7 @@ class JointTrajectoryController : public Controller {
     feedback_pub_ = ctx.port().publisher<trajectory_status_t>(ctx.channel("feedback"));
     result_pub_ = ctx.port().publisher<trajectory_status_t>(ctx.channel("result"));
     state_pub_ = ctx.port().publisher<joint_trajectory_controller_state_t>(ctx.channel("state"));
-    ctx.port().subscribe<joint_trajectory_t>(
+    ctx.port().subscribe_fresh<joint_trajectory_t>(
         ctx.channel("command"), [this](const joint_trajectory_t& g) { on_goal(g); },
         [this](const std::string& why) {
           ++dropped_;

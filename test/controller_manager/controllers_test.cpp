@@ -356,6 +356,28 @@ TEST(ControllerManagerTrajectoryController, BadGoalsAreRejectedAndNewGoalsPreemp
   EXPECT_EQ(result.messages[4].status, trajectory_status_t::SUCCEEDED) << result.messages[4].message;
 }
 
+// A goal's points without velocities after one whose points had them: each goal
+// is read on its own (a reused LCM message would keep the old velocities).
+TEST(ControllerManagerTrajectoryController, AGoalWithoutVelocitiesAfterOneWithThem) {
+  Rig rig;
+  Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory/result");
+  start(rig, "trajectory");
+  joint_trajectory_t with = goal(9, {"tilt", "slide"}, {{0.5, {0.2, 0.2}}, {1.0, {0.3, 0.4}}});
+  for (auto& p : with.points) {
+    p.velocities = {0.0, 0.0};
+    p.num_velocities = 2;
+  }
+  rig.publish("trajectory/command", with);
+  rig.cycle(1700);
+  rig.publish("trajectory/command", goal(10, {"tilt", "slide"}, {{0.5, {0.1, 0.1}}, {1.0, {0.0, 0.2}}}));
+  rig.cycle(1700);
+  ASSERT_EQ(result.messages.size(), 2u);
+  EXPECT_EQ(result.messages[0].status, trajectory_status_t::SUCCEEDED) << result.messages[0].message;
+  EXPECT_EQ(result.messages[1].goal_id, 10);
+  EXPECT_EQ(result.messages[1].status, trajectory_status_t::SUCCEEDED) << result.messages[1].message;
+  EXPECT_NEAR(rig.actuator("slide_motor").position, 0.2, 1e-9);
+}
+
 TEST(ControllerManagerTrajectoryController, EffortVariantTracksWithItsGains) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "effort_trajectory/result");

@@ -6,16 +6,20 @@ root (config/, docs/, scripts/, test/ and build/bin, build/share linked to this 
 with LCM_DEFAULT_URL set to a bus of this run's own, next to a running
 turret_bot (launch config/turret_bot.launch.yaml, with j2 driven by turret-cmd).
 
-Conventions in the guide:
-  * a block whose first line is `# runs until Ctrl-C` is started in the
-    background, must still run after a few seconds, and is then stopped with
-    SIGINT (as Ctrl-C would);
-  * `# exit N` as a first line: the block must exit with N (default 0);
+Conventions in the guide (a block's leading `#` lines are its directives):
+  * `# runs until Ctrl-C`: the block is started in the background, must still
+    run after a few seconds, and is then stopped with SIGINT (as Ctrl-C would);
+  * `# exit N`: the block must exit with N (default 0);
   * a block that starts a whole robot (`build/bin/launch FILE` without
     --dry-run) runs on a bus of its own, not next to the running turret_bot
-    (one robot per bus);
+    (one robot per bus). Started with `# runs until Ctrl-C`, that robot stays
+    up for the rest of its section (up to the next heading): the runner waits
+    until `cmctl list` shows its controllers running, the section's next
+    blocks run on its bus, and it is stopped with SIGINT at the section's end;
   * a ```text block right after a ```sh block is expected output: each of its
-    lines must appear in what the block printed.
+    lines must appear in what the block printed;
+  * `# figures vary from run to run`: numbers (goal ids, measured errors)
+    are not compared, the rest of each expected line is.
 Exit code 0 when every block behaved; 1 with one line per failure otherwise.
 """
 import argparse
@@ -38,6 +42,43 @@ def blocks(markdown):
     for m in re.finditer(r"^```(\w*)\n(.*?)^```\s*$", markdown, re.M | re.S):
         out.append((m.group(1), m.group(2), markdown.count("\n", 0, m.start()) + 1))
     return out
+
+
+def heading_lines(markdown):
+    """Line numbers (from 1) of the Markdown headings outside fenced blocks."""
+    out, fenced = [], False
+    for n, line in enumerate(markdown.splitlines(), 1):
+        if line.startswith("```"):
+            fenced = not fenced
+        elif not fenced and re.match(r"#{1,6} ", line):
+            out.append(n)
+    return out
+
+
+def directives(text):
+    """The leading `#` comment lines of a block, stripped."""
+    out = []
+    for line in text.splitlines():
+        if not line.startswith("#"):
+            break
+        out.append(line.strip())
+    return out
+
+
+def without_numbers(text):
+    return re.sub(r"-?\d+(\.\d+)?([eE][-+]?\d+)?", "0", text)
+
+
+def wait_controllers_running(root, env, timeout_s=40):
+    """True once `cmctl list` on env's bus shows controllers, all running."""
+    deadline = time.time() + timeout_s
+    while time.time() < deadline:
+        r = subprocess.run(["build/bin/cmctl", "list"], cwd=root, env=env, capture_output=True, text=True)
+        states = [l.split()[2] for l in r.stdout.splitlines()[1:] if len(l.split()) >= 3]
+        if r.returncode == 0 and states and all(st == "running" for st in states):
+            return True
+        time.sleep(0.5)
+    return False
 
 
 def free_url():
@@ -75,7 +116,9 @@ def main():
     args = ap.parse_args()
 
     with open(args.guide) as f:
-        found = blocks(f.read())
+        markdown = f.read()
+    found = blocks(markdown)
+    headings = heading_lines(markdown)
     root = tempfile.mkdtemp(prefix="lcm_control_docs_")
     os.makedirs(os.path.join(root, "build"))
     for name in ("config", "docs", "scripts", "test"):
@@ -88,6 +131,7 @@ def main():
     failures = []
     robot = start("build/bin/launch config/turret_bot.launch.yaml", root, env)
     driver = None
+    section_robot = None  # (process, env, line of the section's end) of a robot kept up for its section
     try:
         deadline = time.time() + 40
         ready = False
@@ -107,27 +151,42 @@ def main():
         for k, (lang, text, line) in enumerate(found):
             if lang != "sh":
                 continue
+            if section_robot and line > section_robot[2]:
+                code, _ = stop(section_robot[0])
+                print("     section robot stopped by SIGINT (exit %s)" % code)
+                section_robot = None
             ran += 1
-            first = text.splitlines()[0].strip() if text.strip() else ""
+            flags = directives(text)
             expected = None
             if k + 1 < len(found) and found[k + 1][0] == "text":
                 expected = [l.rstrip() for l in found[k + 1][1].splitlines() if l.strip()]
             want_code = 0
-            m = re.match(r"# exit (\d+)$", first)
-            if m:
-                want_code = int(m.group(1))
+            for d in flags:
+                m = re.match(r"# exit (\d+)$", d)
+                if m:
+                    want_code = int(m.group(1))
             t0 = time.time()
-            block_env = env
-            if "build/bin/launch " in text and "--dry-run" not in text:
+            block_env = section_robot[1] if section_robot else env
+            starts_robot = "build/bin/launch " in text and "--dry-run" not in text
+            if starts_robot:
                 block_env = dict(env, LCM_DEFAULT_URL=free_url())
-            if first == "# runs until Ctrl-C":
+            if "# runs until Ctrl-C" in flags:
                 p = start(text, root, block_env)
                 time.sleep(BACKGROUND_S)
                 alive = p.poll() is None
-                code, out = stop(p)
                 ok = alive
-                what = "still running after %.0f s, stopped by SIGINT (exit %s)" % (BACKGROUND_S, code)
+                if alive and starts_robot and section_robot is None:
+                    ok = wait_controllers_running(root, block_env)
+                    end = min([h for h in headings if h > line] or [len(markdown.splitlines()) + 1])
+                    section_robot = (p, block_env, end)
+                    what = "robot up%s, kept for its section (to line %d)" % (
+                        "" if ok else " but its controllers did not all run within 40 s", end)
+                    out = ""
+                else:
+                    code, out = stop(p)
+                    what = "still running after %.0f s, stopped by SIGINT (exit %s)" % (BACKGROUND_S, code)
                 if not alive:
+                    code, out = stop(p)
                     what = "ended before Ctrl-C with exit %s" % code
             else:
                 try:
@@ -138,7 +197,10 @@ def main():
                     code, out = -1, "timeout\n%s" % (e.output or "")
                 ok = code == want_code
                 what = "exit %s (want %s)" % (code, want_code)
-            missing = [l for l in (expected or []) if l not in out]
+            if "# figures vary from run to run" in flags:
+                missing = [l for l in (expected or []) if without_numbers(l) not in without_numbers(out)]
+            else:
+                missing = [l for l in (expected or []) if l not in out]
             if missing:
                 ok = False
                 what += "; expected output not found: %r" % missing
@@ -147,6 +209,8 @@ def main():
                 failures.append("line %d: %s\n--- block:\n%s--- output:\n%s" % (line, what, text, out[-3000:]))
         print("%d sh blocks run, %d failed" % (ran, len(failures)))
     finally:
+        if section_robot:
+            stop(section_robot[0])
         if driver is not None:
             stop(driver)
         code, out = stop(robot, 20)
