@@ -7,19 +7,14 @@
 #include <stdexcept>
 
 #include "common/substitution.hpp"
+#include "common/text.hpp"
 
 namespace lcm_control::sim {
 
 std::pair<std::string, double> parse_initial_position(const std::string& assignment) {
   const auto [name, text] = parse_arg(assignment);
-  size_t used = 0;
   double value = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(value))
+  if (!parse_double(text, value))
     throw std::invalid_argument(fmt::format("initial position '{}': '{}' is not a number; write JOINT=VALUE in rad "
                                             "(or m), e.g. {}=-1.57",
                                             assignment, text, name));

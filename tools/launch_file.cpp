@@ -316,9 +316,8 @@ struct RosReader {
         if (words[k] == "-param" && k + 1 < words.size()) spawn_param = strip_slash(words[k + 1]);
         if (words[k] == "-file" && k + 1 < words.size()) plan.urdf = words[k + 1];
         if (words[k] == "-J" && k + 2 < words.size()) {
-          char* end = nullptr;
-          const double q = std::strtod(words[k + 2].c_str(), &end);
-          if (end == words[k + 2].c_str() || *end || !std::isfinite(q))
+          double q = 0;
+          if (!parse_double(words[k + 2], q))
             problems.push_back(fmt::format("{}: -J {} {}: the position must be a number (rad or m)", where(e),
                                            words[k + 1], words[k + 2]));
           else

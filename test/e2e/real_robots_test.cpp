@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <memory>
 
 #include "lcm_control/joint_state_t.hpp"
 #include "test/support/lcm_test.hpp"
@@ -30,7 +33,131 @@ double velocity_of(const joint_state_t& s, const std::string& joint) {
   return NAN;
 }
 
+// A robot in lockstep: controller_manager and the spawner first, then sim_server, all with the same flags.
+class Session {
+ public:
+  Session(std::string urdf, std::string config, std::vector<std::string> flags)
+      : urdf_(std::move(urdf)), config_(std::move(config)), flags_(std::move(flags)) {}
+
+  const std::map<std::string, std::string>& env() const { return env_; }
+
+  void start(const std::vector<std::string>& controllers, std::vector<std::string> sim_flags = {}) {
+    std::vector<std::string> cm{lt::bin("controller_manager"), "--urdf", urdf_, "--config", config_};
+    cm.insert(cm.end(), flags_.begin(), flags_.end());
+    cm_ = std::make_unique<lt::ChildProcess>(cm, env_);
+    std::vector<std::string> spawner{lt::bin("spawner")};
+    spawner.insert(spawner.end(), controllers.begin(), controllers.end());
+    spawner_ = std::make_unique<lt::ChildProcess>(spawner, env_);
+    ASSERT_TRUE(spawner_->wait_for_output("spawner: ready", 30)) << spawner_->output() << cm_->output();
+    std::vector<std::string> sim{lt::bin("sim_server"), "--urdf", urdf_, "--config", config_, "--lockstep"};
+    sim.insert(sim.end(), flags_.begin(), flags_.end());
+    sim.insert(sim.end(), sim_flags.begin(), sim_flags.end());
+    sim_ = std::make_unique<lt::ChildProcess>(sim, env_);
+    ASSERT_TRUE(sim_->wait_for_output("ready", 20)) << sim_->output();
+  }
+
+  // send-trajectory's exit code; its output in `output`.
+  int send(const std::vector<std::string>& args, std::string& output) {
+    std::vector<std::string> argv{lt::bin("send-trajectory")};
+    argv.insert(argv.end(), args.begin(), args.end());
+    lt::ChildProcess p(argv, env_);
+    const int rc = p.wait(60);
+    output = p.output();
+    return rc;
+  }
+
+  std::string sim_output() const { return sim_ ? sim_->output() : ""; }
+
+  ~Session() {
+    if (sim_) sim_->stop(10);
+    if (spawner_) spawner_->stop(10);
+    if (cm_) cm_->stop(10);
+  }
+
+ private:
+  std::string urdf_, config_;
+  std::vector<std::string> flags_;
+  std::string url_ = lt::unique_lcm_url();
+  std::map<std::string, std::string> env_{{"LCM_DEFAULT_URL", url_}};
+  std::unique_ptr<lt::ChildProcess> cm_, spawner_, sim_;
+};
+
+// Joint positions from the newest joint_states on the session's bus.
+joint_state_t latest_state(const Session& s, double timeout_s = 10) {
+  lcm::LCM lc(s.env().at("LCM_DEFAULT_URL"));
+  lt::Recorder<joint_state_t> states(lc, "joint_states");
+  lt::pump_until(lc, [&] { return !states.messages.empty(); }, timeout_s);
+  return states.messages.empty() ? joint_state_t{} : states.messages.back();
+}
+
+const std::vector<std::string> kUrJoints{"shoulder_pan_joint", "shoulder_lift_joint", "elbow_joint",
+                                         "wrist_1_joint",      "wrist_2_joint",       "wrist_3_joint"};
+
+// Every joint 0.3 rad in 2 s with the UR's effort JointTrajectoryController; SUCCEEDED within its goal
+// constraints (0.1 rad).
+void ur_trajectory(Session& s) {
+  ASSERT_NO_FATAL_FAILURE(s.start({"joint_state_controller", "eff_joint_traj_controller"}));
+  std::string out;
+  const int rc = s.send({"eff_joint_traj_controller", "--point", "2:0.3,0.3,0.3,0.3,0.3,0.3"}, out);
+  ASSERT_EQ(rc, 0) << out << s.sim_output();
+  EXPECT_NE(out.find("eff_joint_traj_controller: SUCCEEDED"), std::string::npos) << out;
+  const joint_state_t end = latest_state(s);
+  for (const auto& j : kUrJoints) EXPECT_NEAR(position_of(end, j), 0.3, 0.1) << j;
+}
+
 }  // namespace
+
+TEST(RealRobots, UrLikeArmFollowsAnEffortTrajectoryWithItsTwoPiLimits) {
+  Session s(robot("ur_like.urdf"), robot("ur_like.yaml"), {});
+  ur_trajectory(s);
+}
+
+TEST(RealRobots, FrankaLikeArmStartsInsideItsLimitsAndFollowsAPositionTrajectory) {
+  Session s(robot("multi_trans_arm.urdf"), robot("multi_trans_arm.yaml"), {"--arg", "arm_id=arm"});
+  ASSERT_NO_FATAL_FAILURE(s.start({"joint_state_controller", "position_joint_trajectory_controller"}));
+  EXPECT_NE(s.sim_output().find("joint 'arm_joint2' would start at 0 (no initial position given), outside its "
+                                "limits [-3.07, -0.07]"),
+            std::string::npos)
+      << s.sim_output();
+  const joint_state_t start = latest_state(s);
+  EXPECT_NEAR(position_of(start, "arm_joint2"), -0.07, 1e-3);
+  std::string out;
+  ASSERT_EQ(s.send({"position_joint_trajectory_controller", "--point", "2:0.3,-0.5,0.3"}, out), 0) << out;
+  const joint_state_t end = latest_state(s);
+  EXPECT_NEAR(position_of(end, "arm_joint1"), 0.3, 0.05);
+  EXPECT_NEAR(position_of(end, "arm_joint2"), -0.5, 0.05);
+  EXPECT_NEAR(position_of(end, "arm_joint3"), 0.3, 0.05);
+}
+
+TEST(RealRobots, AnEffortArmStartsWhereToldAndDoesNotSagBeforeItsControllers) {
+  Session s(robot("ur_like.urdf"), robot("ur_like.yaml"), {});
+  // Only joint_state_controller: nothing commands the effort joints, the brakes hold them against gravity.
+  ASSERT_NO_FATAL_FAILURE(
+      s.start({"joint_state_controller"}, {"-J", "shoulder_lift_joint=-0.5", "--initial-position", "elbow_joint=1"}));
+  const joint_state_t a = latest_state(s);
+  const joint_state_t b = [&] {
+    lcm::LCM lc(s.env().at("LCM_DEFAULT_URL"));
+    lt::Recorder<joint_state_t> states(lc, "joint_states");
+    lt::pump_until(lc, [&] { return !states.messages.empty() && states.messages.back().utime > a.utime + 2'000'000; },
+                   20);
+    return states.messages.empty() ? joint_state_t{} : states.messages.back();
+  }();
+  ASSERT_GT(b.utime, a.utime + 2'000'000) << "less than 2 s of sim time";
+  EXPECT_NEAR(position_of(b, "shoulder_lift_joint"), -0.5, 1e-3);
+  EXPECT_NEAR(position_of(b, "elbow_joint"), 1.0, 1e-3);
+  EXPECT_NEAR(position_of(b, "shoulder_pan_joint"), 0.0, 1e-3);
+}
+
+// The real Universal Robots UR5 from ../shared/robots (its URDF and YAML unchanged), when the checkout has them.
+TEST(RealRobots, RealUr5FollowsATrajectoryWhenItsFilesArePresent) {
+  const char* env = std::getenv("LCM_CONTROL_REAL_ROBOTS");
+  const std::filesystem::path dir = env ? env : lt::source("../shared/robots");
+  if (!std::filesystem::exists(dir / "ur5/urdf/ur5.urdf"))
+    GTEST_SKIP() << "no " << (dir / "ur5").string() << " (set LCM_CONTROL_REAL_ROBOTS to the robots folder)";
+  Session s((dir / "ur5/urdf/ur5.urdf").string(), (dir / "ur5/config/ur5_controllers.yaml").string(),
+            {"--package-path", (dir / "ur5/pkgs").string()});
+  ur_trajectory(s);
+}
 
 TEST(RealRobots, NamespacedRobotUnderLaunchRunsItsThreeControllersInItsNamespace) {
   const std::string dir = lt::temp_dir("ns_bot_launch");
