@@ -12,6 +12,7 @@ namespace lcm_control::cm {
 
 void register_builtin(Registry& r) {
   r.add("joint_state_controller/JointStateController", make_joint_state_controller);
+  r.add("franka_control/FrankaStateController", make_joint_state_controller);
   r.add("position_controllers/JointPositionController", make_forward_command_controller);
   r.add("velocity_controllers/JointVelocityController", make_forward_command_controller);
   r.add("effort_controllers/JointEffortController", make_forward_command_controller);

@@ -97,8 +97,6 @@ std::string ros_origin_of_type(const std::string& type) {
 
 std::string ros_alternative_to(const std::string& type) {
   static const std::map<std::string, std::string> alternatives = {
-      {"franka_control/FrankaStateController",
-       "joint_state_controller/JointStateController for joint_states (franka_states has no equivalent here)"},
       {"joint_state_broadcaster/JointStateBroadcaster", "joint_state_controller/JointStateController (ROS 1 name)"},
       {"joint_trajectory_controller/JointTrajectoryController",
        "position_controllers/, velocity_controllers/ or effort_controllers/JointTrajectoryController (ROS 1 names, "

@@ -3,6 +3,10 @@
 // and orders (default: URDF transmission order); `extra_joints` appends fixed
 // values. Unlike ROS it keeps its rate after a forward time jump and resumes
 // at once after a backward one (the loop restarts it).
+// franka_control/FrankaStateController is the same for what it shares with it:
+// joint_states of `joint_names` at publish_rate (franka_states and `arm_id`
+// have no equivalent here; a note says so), so franka_gazebo's YAML gives
+// joint_states unchanged.
 #include <fmt/format.h>
 
 #include "common/messages.hpp"
@@ -15,12 +19,19 @@ namespace {
 
 class JointStateController : public Controller {
  public:
+  explicit JointStateController(bool franka) : franka_(franka) {}
+
   void init(ControllerContext& ctx) override {
     Params& p = ctx.params();
     rate_ = p.number("publish_rate");
     if (rate_ <= 0) throw p.error("publish_rate", fmt::format("{} Hz: must be > 0", rate_));
-    std::vector<std::string> names = p.has("joints") ? p.strings("joints") : ctx.actuated_joints();
-    for (const auto& n : names) joints_.push_back(ctx.read(n, "joints"));
+    const char* joints_key = franka_ ? "joint_names" : "joints";
+    if (franka_) {
+      if (p.has("arm_id")) p.node("arm_id");
+      ctx.notes.push_back(p.where() + ": publishes joint_states only (franka_states has no equivalent here)");
+    }
+    std::vector<std::string> names = p.has(joints_key) ? p.strings(joints_key) : ctx.actuated_joints();
+    for (const auto& n : names) joints_.push_back(ctx.read(n, joints_key));
     const YAML::Node extra = p.node("extra_joints");
     if (extra) {
       if (!extra.IsSequence()) throw p.error("extra_joints", "expected a list of {name, position, velocity, effort}");
@@ -84,6 +95,7 @@ class JointStateController : public Controller {
     std::string name;
     double position, velocity, effort;
   };
+  bool franka_;
   double rate_ = 0, last_ = 0;
   std::vector<const JointData*> joints_;
   std::vector<Extra> extra_;
@@ -93,8 +105,8 @@ class JointStateController : public Controller {
 
 }  // namespace
 
-std::unique_ptr<Controller> make_joint_state_controller(const std::string&) {
-  return std::make_unique<JointStateController>();
+std::unique_ptr<Controller> make_joint_state_controller(const std::string& type) {
+  return std::make_unique<JointStateController>(type == "franka_control/FrankaStateController");
 }
 
 }  // namespace lcm_control::cm

@@ -209,6 +209,21 @@ TEST(ControllerManagerJointStateController, SubsetOrderAndExtraJoints) {
   EXPECT_DOUBLE_EQ(m.effort[2], 2.0);
 }
 
+TEST(ControllerManagerJointStateController, FrankasStateControllerPublishesJointStatesOfItsJointNames) {
+  Rig rig;
+  Recorder<joint_state_t> js(rig.bus.lcm(), "joint_states");
+  rig.cycle();
+  const Reply r = rig.load("franka_state");
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_TRUE(has(r.message, "publishes joint_states only (franka_states has no equivalent here)")) << r.message;
+  EXPECT_FALSE(has(r.message, "arm_id")) << r.message;  // read, not reported as unknown
+  ASSERT_TRUE(rig.switch_({"franka_state"}, {}).ok);
+  rig.cycle(1000);
+  EXPECT_NEAR(static_cast<double>(js.messages.size()), 30.0, 1.0);
+  ASSERT_FALSE(js.messages.empty());
+  EXPECT_EQ(js.messages[0].name, (std::vector<std::string>{"tilt", "arm"}));
+}
+
 TEST(ControllerManagerPidControllers, EffortPositionHoldsAGravityLoadedJoint) {
   Rig rig;
   auto& arm = rig.actuator("arm_motor");
