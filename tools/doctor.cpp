@@ -87,8 +87,8 @@ int main(int argc, char** argv) {
     std::printf("\nOK: %zu joints, %zu transmissions, %zu controllers", model.joints.size(),
                 model.transmissions.size(), model.controllers.size());
     if (!config.empty() && loadable != model.controllers.size())
-      std::printf(" (%zu load with this URDF, %zu do not: see the warnings)", loadable,
-                  model.controllers.size() - loadable);
+      std::printf(" (%zu load with this URDF, %zu %s not: see the warnings)", loadable,
+                  model.controllers.size() - loadable, model.controllers.size() - loadable == 1 ? "does" : "do");
     std::printf("\n");
     return int(kExitOk);
   });

@@ -172,7 +172,7 @@ TEST(RealRobots, NamespacedRobotUnderLaunchRunsItsThreeControllersInItsNamespace
   lt::Recorder<joint_state_t> states(lc, "ns_bot/joint_states");
 
   // No --namespace anywhere: the URDF's <robotNamespace>/ns_bot</robotNamespace> decides, for launch too.
-  lt::ChildProcess launch({lt::bin("launch"), file, "--lcm-url", url});
+  lt::ChildProcess launch({lt::bin("launch"), file, "--lcm-url", url, "--stop-timeout", "20"});
   ASSERT_TRUE(launch.wait_for_output("started joint_state_controller, joint1_position_controller, "
                                      "joint2_position_controller",
                                      40))
@@ -197,5 +197,5 @@ TEST(RealRobots, NamespacedRobotUnderLaunchRunsItsThreeControllersInItsNamespace
   const joint_state_t after = states.messages.back();
   EXPECT_NEAR(position_of(after, "joint1"), 0.55, 0.07);
   EXPECT_NEAR(velocity_of(after, "joint1"), 0.0, 0.01);
-  EXPECT_EQ(launch.stop(20), 0) << launch.output();
+  EXPECT_EQ(launch.stop(30), 0) << launch.output();
 }
