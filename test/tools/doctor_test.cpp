@@ -1,0 +1,80 @@
+// doctor on robots as people bring them: it exits 0 only when controller_manager
+// would load the configured controllers, says which do not load and why, and
+// names ignored parameters as ROS ones not supported yet or as typos.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "test/support/process.hpp"
+
+namespace lt = lcm_control::testing;
+
+namespace {
+
+struct DoctorRun {
+  int rc;
+  std::string out;
+};
+
+DoctorRun doctor(std::vector<std::string> args) {
+  args.insert(args.begin(), lt::bin("doctor"));
+  lt::ChildProcess p(args);
+  const int rc = p.wait(30);
+  return {rc, p.output()};
+}
+
+std::string robot(const std::string& file) { return lt::source("test/robots/" + file); }
+
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST(Doctor, AnArmWhoseControllersAllLoadIsOk) {
+  const DoctorRun r = doctor({"--urdf", robot("ur_like.urdf"), "--config", robot("ur_like.yaml")});
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_TRUE(has(r.out, "controller check (as controller_manager would load them):")) << r.out;
+  EXPECT_TRUE(has(r.out, "eff_joint_traj_controller        loads")) << r.out;
+  EXPECT_TRUE(has(r.out, "OK: 7 joints, 6 transmissions, 3 controllers\n")) << r.out;
+}
+
+TEST(Doctor, ControllersTheTransmissionsCannotTakeAreWarningsNamingTheSkippedTransmission) {
+  const DoctorRun r = doctor(
+      {"--urdf", robot("multi_trans_arm.urdf"), "--config", robot("multi_trans_arm.yaml"), "--arg", "arm_id=arm"});
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_TRUE(has(r.out, "effort_joint_trajectory_controller will not load with this URDF's transmissions")) << r.out;
+  EXPECT_TRUE(has(r.out, "the joint's transmission with EffortJointInterface is skipped")) << r.out;
+  EXPECT_TRUE(has(r.out, "(3 load with this URDF, 1 does not: see the warnings)")) << r.out;
+}
+
+TEST(Doctor, NoControllerInTheYamlIsAnError) {
+  const std::string dir = lt::temp_dir("doctor_empty");
+  std::ofstream(dir + "/other_robot.yaml") << "other_robot:\n  gazebo_ros_control:\n    pid_gains: {}\n";
+  const DoctorRun r = doctor({"--urdf", robot("ns_bot.urdf"), "--config", dir + "/other_robot.yaml"});
+  EXPECT_EQ(r.rc, 3) << r.out;
+  EXPECT_TRUE(has(r.out, "other_robot.yaml: no controllers found (a controller is a map with a `type:` key, at the "
+                         "top level or under the robot's namespace 'ns_bot:')"))
+      << r.out;
+}
+
+TEST(Doctor, ARefusedControllerFailsAndIgnoredParametersAreNamedForWhatTheyAre) {
+  const std::string dir = lt::temp_dir("doctor_params");
+  std::ofstream(dir + "/arm.yaml") << R"(arm_controller:
+  type: effort_controllers/JointTrajectoryController
+  joints: [shoulder_pan_joint]
+  gains: {shoulder_pan_joint: {p: 100, d: 10}}
+  hold_trajectory_duration: 0.5
+  state_publish_rat: 25
+broken_controller:
+  type: position_controllers/JointGroupPositionController
+  joints: [no_such_joint]
+)";
+  const DoctorRun r = doctor({"--urdf", robot("ur_like.urdf"), "--config", dir + "/arm.yaml"});
+  EXPECT_EQ(r.rc, 3) << r.out;
+  EXPECT_TRUE(has(r.out, "arm_controller/hold_trajectory_duration: known ROS parameter of "
+                         "effort_controllers/JointTrajectoryController, not supported yet; ignored"))
+      << r.out;
+  EXPECT_TRUE(has(r.out, "arm_controller/state_publish_rat: not a parameter of "
+                         "effort_controllers/JointTrajectoryController; ignored (did you mean 'state_publish_rate'?)"))
+      << r.out;
+  EXPECT_TRUE(has(r.out, "no_such_joint")) << r.out;
+}
