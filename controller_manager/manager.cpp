@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "common/hardware_wire.hpp"
 #include "common/messages.hpp"
 #include "common/text.hpp"
 #include "common/control_config.hpp"
@@ -44,6 +45,9 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       [this](const std::string& why) {
         if (bad_state_logged_++ % 1000 == 0) spdlog::warn("dropped hardware/state: {}", why);
         ++dropped_;
+      },
+      [n = int(model_.transmissions.size())](const void* data, size_t size) {
+        return check_hardware_state_bytes(data, size, n);
       });
 }
 

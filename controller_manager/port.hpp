@@ -46,12 +46,15 @@ class Port {
   // Raw bytes; the handler runs in the thread that calls handle().
   void subscribe_raw(const std::string& channel, std::function<void(const lcm::ReceiveBuffer&)> handler);
 
+  // "" when raw bytes may be decoded, else why not (e.g. an array count the message cannot hold).
+  using Precheck = std::function<std::string(const void* data, size_t size)>;
+
   // Decodes into a message kept by the Port; on_bad gets the reason when the
-  // bytes are not a Msg.
+  // bytes are not a Msg (precheck refused them, or the decoder failed or threw).
   template <class Msg>
   void subscribe(const std::string& channel, std::function<void(const Msg&)> on_msg,
-                 std::function<void(const std::string&)> on_bad = {}) {
-    subscribe_decoded<Msg>(channel, std::move(on_msg), std::move(on_bad), true);
+                 std::function<void(const std::string&)> on_bad = {}, Precheck precheck = {}) {
+    subscribe_decoded<Msg>(channel, std::move(on_msg), std::move(on_bad), true, std::move(precheck));
   }
 
   // As subscribe(), into a new Msg each time (allocates): for types whose arrays
@@ -61,7 +64,7 @@ class Port {
   template <class Msg>
   void subscribe_fresh(const std::string& channel, std::function<void(const Msg&)> on_msg,
                        std::function<void(const std::string&)> on_bad = {}) {
-    subscribe_decoded<Msg>(channel, std::move(on_msg), std::move(on_bad), false);
+    subscribe_decoded<Msg>(channel, std::move(on_msg), std::move(on_bad), false, {});
   }
 
   // The handlers subscribed on `channel` (exact name), to deliver bytes to them
@@ -77,16 +80,24 @@ class Port {
  private:
   template <class Msg>
   void subscribe_decoded(const std::string& channel, std::function<void(const Msg&)> on_msg,
-                         std::function<void(const std::string&)> on_bad, bool keep) {
+                         std::function<void(const std::string&)> on_bad, bool keep, Precheck precheck) {
     auto kept = std::make_shared<Msg>();
-    subscribe_raw(channel, [kept, keep, on_msg, on_bad, channel](const lcm::ReceiveBuffer& rb) {
-      Msg fresh;
-      Msg& msg = keep ? *kept : fresh;
-      if (msg.decode(rb.data, 0, rb.data_size) < 0) {
+    subscribe_raw(channel, [kept, keep, on_msg, on_bad, channel, precheck](const lcm::ReceiveBuffer& rb) {
+      auto bad = [&](const std::string& why) {
         if (on_bad)
           on_bad("could not decode " + std::to_string(rb.data_size) + " bytes on '" + channel + "' as " +
-                 Msg::getTypeName());
-        return;
+                 Msg::getTypeName() + (why.empty() ? "" : ": " + why));
+      };
+      if (precheck) {
+        if (const std::string why = precheck(rb.data, rb.data_size); !why.empty()) return bad(why);
+      }
+      Msg fresh;
+      Msg& msg = keep ? *kept : fresh;
+      try {
+        if (msg.decode(rb.data, 0, rb.data_size) < 0) return bad("");
+      } catch (const std::exception& e) {  // lcm-gen's decoders resize arrays with counts from the wire
+        msg = Msg();
+        return bad(e.what());
       }
       on_msg(msg);
     });

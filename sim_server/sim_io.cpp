@@ -9,24 +9,18 @@
 #include <cstring>
 #include <random>
 
+#include "common/hardware_wire.hpp"
 #include "common/messages.hpp"
 
 namespace lcm_control::sim {
 
 namespace {
-constexpr int kMaxActuatorsOnWire = 4096;  // anything larger is garbage; refuse before decoding
 constexpr int kMaxMessagesPastDeadline = 100;
 
 int64_t random_session() {
   std::random_device rd;
   const int64_t s = (int64_t(rd()) << 31) ^ int64_t(rd());
   return s == 0 ? 1 : s;
-}
-
-// num_actuators sits after the fingerprint and three int64 fields (big-endian on the wire).
-int32_t peek_num_actuators(const lcm::ReceiveBuffer* rbuf) {
-  const auto* p = static_cast<const uint8_t*>(rbuf->data) + 32;
-  return int32_t(uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]));
 }
 
 const char* mode_name(int8_t m) {
@@ -153,9 +147,9 @@ void SimIo::drop(const std::string& why) {
 }
 
 void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-  if (rbuf->data_size < 36) return drop("message too short for a hardware_command_t");
-  const int32_t n = peek_num_actuators(rbuf);
-  if (n < 0 || n > kMaxActuatorsOnWire) return drop(fmt::format("num_actuators {} is not plausible", n));
+  if (const std::string why = check_hardware_command_bytes(rbuf->data, rbuf->data_size, sim_.actuators().size());
+      !why.empty())
+    return drop(why);
   try {
     if (cmd_.decode(rbuf->data, 0, int(rbuf->data_size)) < 0)
       return drop("not a hardware_command_t (wrong fingerprint or truncated)");
@@ -164,11 +158,16 @@ void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   }
   const std::string why = why_rejected();
   if (!why.empty()) return drop(why);
+  // A command answers a state already published: a later step is forged or corrupt, and remembering it would make
+  // every genuine command after it look stale.
+  if (cmd_.step > sim_.step_count())
+    return drop(fmt::format("step {} is ahead of the hardware's step {}: it answers no published state", cmd_.step,
+                            sim_.step_count()));
   if (lockstep_ ? cmd_.step != expected_step_ : cmd_.step < last_step_) {
     ++stale_;
     return;
   }
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < cmd_.num_actuators; ++i) {
     pending_mode_[i] = cmd_.mode[i];
     pending_value_[i] = cmd_.command[i];
   }

@@ -238,20 +238,58 @@ TEST(sim_e2e, MalformedNanWrongSizeAndForeignCommandsAreDroppedAndCounted) {
     cm.publish_command(bad);  // wrong mode for a position actuator
     const char garbage[] = "not an lcm message at all, but long enough to be looked at";
     server.lc.publish(cm.command_channel(), garbage, sizeof garbage);
+    bad.mode = s.mode;
+    std::vector<uint8_t> bytes(size_t(bad.getEncodedSize()));
+    bad.encode(bytes.data(), 0, int(bytes.size()));
+    for (uint32_t n : {0xFFFFFFFFu, 67108866u}) {  // negative; one bit flipped from 2
+      for (int k = 0; k < 4; ++k) bytes[32 + k] = uint8_t(n >> (24 - 8 * k));
+      server.lc.publish(cm.command_channel(), bytes.data(), unsigned(bytes.size()));
+    }
   };
   ASSERT_TRUE(cm.run_until_step(150, 20.0)) << server.output();
   int64_t dropped = 0;
   lcm_control::testing::pump_until(server.lc, [&] {
     dropped = 0;
     for (const auto& m : stats.messages) dropped += m.dropped;
-    return dropped >= 6;
+    return dropped >= 8;
   }, 5.0);
-  EXPECT_EQ(dropped, 6) << server.output();
+  EXPECT_EQ(dropped, 8) << server.output();
   for (const auto& s : cm.states)
     for (int i = 0; i < 2; ++i) ASSERT_TRUE(std::isfinite(s.position[i]) && std::isfinite(s.effort[i])) << s.step;
   EXPECT_NE(server.output().find("dropped a hardware/command"), std::string::npos);
   ASSERT_FALSE(stats.messages.empty());
   EXPECT_EQ(stats.messages.back().process, "sim_server");
+}
+
+TEST(sim_e2e, ACommandFromAFutureStepIsDroppedAndGenuineCommandsStillApply) {
+  // Real time: a forged command with the live session and step INT64_MAX must not make every later command stale.
+  SimServerProcess server;
+  std::string why;
+  ASSERT_TRUE(server.start({"--watchdog", "0.5"}, kTurretUrdf, kTurretYaml, &why)) << why;
+  FakeController cm(server.lc);
+  int64_t first = -1;
+  cm.policy = [&](const hardware_state_t& s, hardware_command_t& c) {
+    if (first < 0) first = s.step;
+    c.command[0] = s.step - first < 100 ? 0.0 : 0.5;
+  };
+  bool forged = false;
+  cm.before_answer = [&](const hardware_state_t& s) {
+    if (forged || s.step - first < 50) return;
+    forged = true;
+    hardware_command_t bad;
+    resize(bad, s.num_actuators);
+    bad.step = INT64_MAX;
+    bad.session = s.session;
+    bad.name = s.name;
+    bad.mode = s.mode;
+    bad.command = {0.0, 0.0};
+    cm.publish_command(bad);
+  };
+  ASSERT_TRUE(cm.run_until_step(2500, 30.0)) << server.output();
+  ASSERT_TRUE(forged);
+  EXPECT_NEAR(cm.states.back().position[0], 0.5, 0.01) << server.output();
+  EXPECT_NE(server.output().find("is ahead of the hardware's step"), std::string::npos) << server.output();
+  EXPECT_EQ(server.output().find("watchdog"), std::string::npos) << server.output();
 }
 
 TEST(sim_e2e, LockstepWaitsRepublishesAndSaysSoOnce) {

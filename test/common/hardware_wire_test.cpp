@@ -1,0 +1,56 @@
+// The array-count checks that run on hardware messages before lcm-gen's
+// decoders see them: negative, huge and oversized counts are refused.
+#include "common/hardware_wire.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "common/messages.hpp"
+#include "lcm_control/hardware_command_t.hpp"
+#include "lcm_control/hardware_state_t.hpp"
+
+using namespace lcm_control;
+
+namespace {
+
+template <class Msg>
+std::vector<uint8_t> bytes_of(const Msg& m) {
+  std::vector<uint8_t> b(size_t(m.getEncodedSize()));
+  m.encode(b.data(), 0, int(b.size()));
+  return b;
+}
+
+void set_count(std::vector<uint8_t>& b, size_t offset, uint32_t n) {
+  for (int k = 0; k < 4; ++k) b[offset + k] = uint8_t(n >> (24 - 8 * k));
+}
+
+}  // namespace
+
+TEST(HardwareWire, AStateWithACountItHoldsPassesAndForgedCountsAreRefused) {
+  hardware_state_t s{};
+  resize(s, 2);
+  s.name = {"a", "b"};
+  std::vector<uint8_t> b = bytes_of(s);
+  EXPECT_EQ(check_hardware_state_bytes(b.data(), b.size(), 2), "");
+  const size_t at = 8 + 8 + 8 + 8 + 1 + 4 + 1 + 8;
+  set_count(b, at, 0xFFFFFFFFu);
+  EXPECT_EQ(check_hardware_state_bytes(b.data(), b.size(), 2),
+            "num_actuators -1 is not between 0 and 2 (the robot's actuators)");
+  set_count(b, at, 67108866u);  // one bit flipped from 2
+  EXPECT_NE(check_hardware_state_bytes(b.data(), b.size(), 2).find("num_actuators 67108866"), std::string::npos);
+  set_count(b, at, 2);
+  EXPECT_NE(check_hardware_state_bytes(b.data(), 20, 2).find("too short"), std::string::npos);
+  EXPECT_NE(check_hardware_state_bytes(b.data(), at + 4 + 40, 2).find("does not fit in"), std::string::npos);
+}
+
+TEST(HardwareWire, CommandCountsAreBoundedByTheRobotAndTheMessageSize) {
+  hardware_command_t c{};
+  resize(c, 3);
+  c.name = {"x", "y", "z"};
+  std::vector<uint8_t> b = bytes_of(c);
+  EXPECT_EQ(check_hardware_command_bytes(b.data(), b.size(), 3), "");
+  EXPECT_NE(check_hardware_command_bytes(b.data(), b.size(), 2).find("not between 0 and 2"), std::string::npos);
+  set_count(b, 32, 0x80000000u);
+  EXPECT_NE(check_hardware_command_bytes(b.data(), b.size(), 3).find("-2147483648"), std::string::npos);
+}
