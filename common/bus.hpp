@@ -61,6 +61,37 @@ class Bus {
   std::string url_, ns_, prefix_;
 };
 
+// Decodes bytes from the bus into msg; false when they are not a Msg, also when lcm-gen's decoder throws on an
+// array count from the wire (negative, or too large to allocate). Every decode of bus input goes through here.
+template <class Msg>
+bool decode_guarded(Msg& msg, const void* data, size_t size) noexcept {
+  try {
+    return msg.decode(data, 0, int(size)) >= 0;
+  } catch (const std::exception&) {
+    msg = Msg();
+    return false;
+  }
+}
+
+namespace detail {
+template <auto Handler>
+struct GuardedHandler;
+template <class Obj, class Msg, void (Obj::*Handler)(const lcm::ReceiveBuffer*, const std::string&, const Msg*)>
+struct GuardedHandler<Handler> {
+  static void on(const lcm::ReceiveBuffer* rb, const std::string& channel, Obj* obj) {
+    Msg m;
+    if (decode_guarded(m, rb->data, rb->data_size)) (obj->*Handler)(rb, channel, &m);
+  }
+};
+}  // namespace detail
+
+// lcm::LCM::subscribe(channel, &Obj::handler, obj) for a typed handler, with the decode guarded: bytes that are
+// not a Msg never reach it. Use: subscribe_guarded<&Obj::on_state>(lc, channel, this).
+template <auto Handler, class Obj>
+lcm::Subscription* subscribe_guarded(lcm::LCM& lc, const std::string& channel, Obj* obj) {
+  return lc.subscribeFunction(channel, &detail::GuardedHandler<Handler>::on, obj);
+}
+
 // Microseconds on the monotonic and the wall clock.
 int64_t monotonic_us();
 int64_t wall_us();

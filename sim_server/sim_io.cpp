@@ -177,7 +177,7 @@ void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
 }
 
 void SimIo::on_e_stop(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-  if (e_stop_msg_.decode(rbuf->data, 0, int(rbuf->data_size)) < 0) return drop("e_stop: not an e_stop_t");
+  if (!decode_guarded(e_stop_msg_, rbuf->data, rbuf->data_size)) return drop("e_stop: not an e_stop_t");
   Actuators& act = sim_.actuators();
   if (e_stop_msg_.engaged != act.e_stop()) {
     const std::string who = e_stop_msg_.source.empty() ? "" : fmt::format(" by '{}'", e_stop_msg_.source);
@@ -192,7 +192,7 @@ void SimIo::on_e_stop(const lcm::ReceiveBuffer* rbuf, const std::string&) {
 
 void SimIo::on_gains(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   pid_gains_t req;
-  if (req.decode(rbuf->data, 0, int(rbuf->data_size)) < 0) return drop("gains/set: not a pid_gains_t");
+  if (!decode_guarded(req, rbuf->data, rbuf->data_size)) return drop("gains/set: not a pid_gains_t");
   pid_gains_t ans = req;
   ans.utime = sim_.time_us();
   ans.owner = channels::kSimGainsOwner;

@@ -11,7 +11,7 @@
 namespace lcm_control::tools {
 
 CmClient::CmClient(Bus& bus, std::string client) : bus_(bus), client_(std::move(client)) {
-  sub_ = bus_.lcm().subscribe(response_channel(), &CmClient::on_response, this);
+  sub_ = subscribe_guarded<&CmClient::on_response>(bus_.lcm(), response_channel(), this);
   sub_->setQueueCapacity(100);
 }
 

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include "common/bus.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
 #include "lcm_control/controller_info_t.hpp"
@@ -192,7 +193,7 @@ Decoded decode_as(const void* data, size_t size) {
   Decoded d;
   d.type = std::string("lcm_control.") + Msg::getTypeName();
   Msg m{};
-  if (m.decode(data, 0, int(size)) < 0) {
+  if (!decode_guarded(m, data, size)) {
     d.skip_reason = "malformed payload (decode failed)";
     return d;
   }

@@ -62,7 +62,7 @@ class ReadinessProbe {
   void on_state(const lcm::ReceiveBuffer*, const std::string&) { state_seen_ = true; }
   void on_cm(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     cm_response_t m;
-    if (m.decode(rbuf->data, 0, int(rbuf->data_size)) >= 0 && m.request_id == list_id_) cm_answered_ = true;
+    if (decode_guarded(m, rbuf->data, rbuf->data_size) && m.request_id == list_id_) cm_answered_ = true;
   }
   Bus& bus_;
   lcm::Subscription* state_sub_ = nullptr;

@@ -39,7 +39,7 @@ class NoAnswer : public BusError {
 class CurrentPositions {
  public:
   explicit CurrentPositions(Bus& bus) : bus_(bus), channel_(bus.channel(channels::kJointStates)) {
-    states_ = bus.lcm().subscribe(channel_, &CurrentPositions::on_state, this);
+    states_ = subscribe_guarded<&CurrentPositions::on_state>(bus.lcm(), channel_, this);
     any_ = bus.lcm().subscribe(".*", &CurrentPositions::on_any, this);
   }
   ~CurrentPositions() {
@@ -106,8 +106,8 @@ class GoalWatch {
  public:
   GoalWatch(Bus& bus, const std::string& controller, int64_t goal_id, bool verbose)
       : goal_id_(goal_id), verbose_(verbose) {
-    bus.lcm().subscribe(bus.channel(controller + "/result"), &GoalWatch::on_result, this)->setQueueCapacity(100);
-    bus.lcm().subscribe(bus.channel(controller + "/feedback"), &GoalWatch::on_feedback, this);
+    subscribe_guarded<&GoalWatch::on_result>(bus.lcm(), bus.channel(controller + "/result"), this)->setQueueCapacity(100);
+    subscribe_guarded<&GoalWatch::on_feedback>(bus.lcm(), bus.channel(controller + "/feedback"), this);
   }
   const std::optional<trajectory_status_t>& result() const { return result_; }
   size_t feedback() const { return feedback_; }

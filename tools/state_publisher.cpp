@@ -16,7 +16,7 @@ class StatePublisher {
  public:
   StatePublisher(Bus& bus, const RobotModel& model, double max_rate) : bus_(bus), model_(model) {
     min_period_us_ = max_rate > 0 ? int64_t(1e6 / max_rate) : 0;
-    bus.lcm().subscribe(bus.channel(channels::kJointStates), &StatePublisher::on_joint_states, this);
+    subscribe_guarded<&StatePublisher::on_joint_states>(bus.lcm(), bus.channel(channels::kJointStates), this);
   }
   int64_t published() const { return published_; }
   int64_t dropped() const { return dropped_; }

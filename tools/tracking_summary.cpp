@@ -58,13 +58,13 @@ int main(int argc, char** argv) {
     float64_t cmd{};
     for (const lcm::LogEvent* ev = log.readNextEvent(); ev; ev = log.readNextEvent()) {
       if (ev->channel == js_channel) {
-        if (js.decode(ev->data, 0, int(ev->datalen)) < 0) continue;
+        if (!decode_guarded(js, ev->data, size_t(ev->datalen))) continue;
         states.push_back(js);
         state_wall.push_back(ev->timestamp);
         continue;
       }
       for (auto& p : pairs)
-        if (ev->channel == p.channel && cmd.decode(ev->data, 0, int(ev->datalen)) >= 0)
+        if (ev->channel == p.channel && decode_guarded(cmd, ev->data, size_t(ev->datalen)))
           p.commands.emplace_back(cmd.utime, cmd.data);
     }
     if (states.empty()) throw std::runtime_error(fmt::format("{}: no {} messages", log_path, js_channel));

@@ -14,7 +14,7 @@ namespace {
 class GainsClient {
  public:
   GainsClient(Bus& bus, std::string owner) : bus_(bus), owner_(std::move(owner)) {
-    bus_.lcm().subscribe(bus_.channel(gains_channel(owner_)), &GainsClient::on_answer, this);
+    subscribe_guarded<&GainsClient::on_answer>(bus_.lcm(), bus_.channel(gains_channel(owner_)), this);
   }
   // Sends req and waits up to timeout_s for the owner's answer, sending it
   // again every second (a query or the same gains twice change nothing) in

@@ -122,7 +122,7 @@ int run_wall(Publisher& pub, const Options& o) {
 class SimTimePacer {
  public:
   SimTimePacer(Bus& bus, Publisher& pub, const Options& o) : pub_(pub), o_(o) {
-    bus.lcm().subscribe(bus.channel(channels::kHardwareState), &SimTimePacer::on_state, this);
+    subscribe_guarded<&SimTimePacer::on_state>(bus.lcm(), bus.channel(channels::kHardwareState), this);
   }
   bool done() const { return done_; }
   bool started() const { return started_; }
@@ -214,9 +214,9 @@ class SourceWatcher {
   void on_command(const lcm::ReceiveBuffer* rb, const std::string&) {
     float64_array_t& many = many_;
     float64_t& one = one_;
-    if (o_.exprs.size() > 1 && many.decode(rb->data, 0, int(rb->data_size)) >= 0)
+    if (o_.exprs.size() > 1 && decode_guarded(many, rb->data, rb->data_size))
       fmt::print("{} {:.6f} {}\n", seen_, double(many.utime) * 1e-6, fmt::join(many.data, " "));
-    else if (o_.exprs.size() == 1 && one.decode(rb->data, 0, int(rb->data_size)) >= 0)
+    else if (o_.exprs.size() == 1 && decode_guarded(one, rb->data, rb->data_size))
       fmt::print("{} {:.6f} {}\n", seen_, double(one.utime) * 1e-6, one.data);
     std::fflush(stdout);
     ++seen_;

@@ -9,6 +9,8 @@
 #include "common/messages.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
+#include "lcm_control/joint_state_t.hpp"
+#include "common/bus.hpp"
 
 using namespace lcm_control;
 
@@ -53,4 +55,33 @@ TEST(HardwareWire, CommandCountsAreBoundedByTheRobotAndTheMessageSize) {
   EXPECT_NE(check_hardware_command_bytes(b.data(), b.size(), 2).find("not between 0 and 2"), std::string::npos);
   set_count(b, 32, 0x80000000u);
   EXPECT_NE(check_hardware_command_bytes(b.data(), b.size(), 3).find("-2147483648"), std::string::npos);
+}
+
+namespace {
+struct StateCounter {
+  int good = 0;
+  void on(const lcm::ReceiveBuffer*, const std::string&, const joint_state_t* m) { good += m->num_joints == 2; }
+};
+}  // namespace
+
+TEST(GuardedDecode, APayloadWhoseDecoderWouldThrowNeverReachesTheHandler) {
+  lcm::LCM lc("memq://");
+  StateCounter counter;
+  subscribe_guarded<&StateCounter::on>(lc, "joint_states", &counter);
+  joint_state_t s{};
+  resize(s, 2);
+  s.name = {"j1", "j2"};
+  std::vector<uint8_t> b = bytes_of(s);
+  for (uint32_t n : {0xFFFFFFFFu, 0x80000000u}) {  // lcm-gen's decoder resizes with these and throws
+    std::vector<uint8_t> bad = b;
+    for (int k = 0; k < 4; ++k) bad[16 + k] = uint8_t(n >> (24 - 8 * k));
+    joint_state_t probe;
+    EXPECT_FALSE(decode_guarded(probe, bad.data(), bad.size()));
+    lc.publish("joint_states", bad.data(), unsigned(bad.size()));
+    ASSERT_NO_THROW(lc.handleTimeout(0));
+  }
+  EXPECT_EQ(counter.good, 0);
+  lc.publish("joint_states", b.data(), unsigned(b.size()));
+  lc.handleTimeout(0);
+  EXPECT_EQ(counter.good, 1);
 }
