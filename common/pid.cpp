@@ -44,7 +44,10 @@ double Pid::compute(double error, double error_dot, double dt) {
   i_term_ = g.i * i_error_;
   if (!g.antiwindup) i_term_ = std::clamp(i_term_, g.i_clamp_min, g.i_clamp_max);
   d_term_ = g.d * error_dot;
-  return p_term_ + i_term_ + d_term_;
+  const double u = p_term_ + i_term_ + d_term_;
+  if (std::isfinite(u)) return u;
+  reset();  // terms that overflow (gains near 1e308) give no output rather than Inf or NaN
+  return 0;
 }
 
 }  // namespace lcm_control

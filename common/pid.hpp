@@ -27,7 +27,8 @@ class Pid {
   // Forgets the integral and the last error; the next sample has no D term.
   void reset();
 
-  // error = target - measured. de/dt is estimated from the previous error; 0 on the first sample.
+  // error = target - measured. de/dt is estimated from the previous error; 0 on the first sample. Always finite:
+  // when the terms overflow (absurd gains) the output is 0 and the state is reset.
   double compute(double error, double dt);
   // With an explicit error derivative (e.g. -velocity for a constant target).
   double compute(double error, double error_dot, double dt);

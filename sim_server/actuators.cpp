@@ -227,6 +227,7 @@ void Actuators::apply(double dt) {
         a.effort = hold ? 0.0 : clamp_abs(a.command, e_max);
         break;
     }
+    if (!std::isfinite(a.effort)) a.effort = 0;  // Bullet turns one Inf or NaN into NaN everywhere
     mb_.add_torque(a.link, a.effort + passive_torque(a.passive, qd));
   }
   for (const Passive& p : passive_) mb_.add_torque(p.link, passive_torque(p, mb_.velocity(p.link)));

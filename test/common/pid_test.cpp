@@ -63,3 +63,15 @@ TEST(Pid, CheckGains) {
   EXPECT_NE(lcm_control::check_gains(PidGains{NAN, 0, 0, 0, 0, false}), "");
   EXPECT_NE(lcm_control::check_gains(PidGains{1, 0, 0, 1, 1, false}), "");
 }
+
+TEST(Pid, AbsurdGainsGiveAFiniteOutput) {
+  Pid pid;
+  PidGains g;
+  g.p = 1e308;
+  g.d = 1e308;
+  pid.set_gains(g);
+  for (double e : {2.0, -3.0, 5.0}) {
+    const double u = pid.compute(e, 1e-3);
+    EXPECT_TRUE(std::isfinite(u)) << e;
+  }
+}

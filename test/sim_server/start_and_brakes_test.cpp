@@ -131,5 +131,23 @@ TEST(sim_velocity, EachJointKeepsItsOwnVelocityLimit) {
   EXPECT_LE(fast_peak, 50.0 + 1e-12);
 }
 
+TEST(sim_gains, AbsurdGainsNeverMakeTheStateNonFinite) {
+  Simulation sim(modes_bot(), {});
+  Actuators& act = sim.actuators();
+  const int pid = act.find_joint("j_pid"), vel = act.find_joint("j_vel_pid");
+  PidGains g;
+  g.p = 1e308;
+  g.d = 1e308;
+  ASSERT_TRUE(act.set_gains(pid, g));
+  ASSERT_TRUE(act.set_gains(vel, g));
+  run(sim, 500, [&](int k) {
+    act.set_command(pid, kPos, k % 2 ? 4.0 : -4.0);
+    act.set_command(vel, kVel, k % 2 ? 15.0 : -15.0);
+  }, [&](int k) {
+    for (int i = 0; i < act.size(); ++i)
+      ASSERT_TRUE(std::isfinite(act.joint_position(i)) && std::isfinite(act.joint_velocity(i))) << k << " " << i;
+  });
+}
+
 }  // namespace
 }  // namespace lcm_control::sim
