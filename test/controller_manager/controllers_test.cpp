@@ -18,6 +18,7 @@ using namespace lcm_control;
 using namespace lcm_control::cm;
 using lcm_control::testing::Recorder;
 using lcm_control::testing::Rig;
+using lcm_control::testing::trajectory_goal;
 
 namespace {
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
@@ -31,31 +32,6 @@ float64_array_t values(std::vector<double> v) {
   m.size = static_cast<int32_t>(v.size());
   m.data = v;
   return m;
-}
-// Loads and starts `name` on a ticking loop (a controller started before the
-// first hardware state restarts, and forgets its command, when it arrives).
-void start(Rig& rig, const std::string& name) {
-  if (!rig.cm->loop().has_state()) rig.cycle();
-  const Reply l = rig.load(name);
-  ASSERT_TRUE(l.ok) << l.message;
-  const Reply s = rig.switch_({name}, {});
-  ASSERT_TRUE(s.ok) << s.message;
-}
-joint_trajectory_t goal(int64_t id, std::vector<std::string> joints,
-                        std::vector<std::pair<double, std::vector<double>>> pts) {
-  joint_trajectory_t g{};
-  g.goal_id = id;
-  g.joint_names = joints;
-  g.num_joints = static_cast<int32_t>(joints.size());
-  for (auto& [t, pos] : pts) {
-    trajectory_point_t p{};
-    p.time_from_start = t;
-    p.positions = pos;
-    p.num_positions = static_cast<int32_t>(pos.size());
-    g.points.push_back(p);
-  }
-  g.num_points = static_cast<int32_t>(g.points.size());
-  return g;
 }
 }  // namespace
 
@@ -87,7 +63,7 @@ TEST(ControllerManagerLoad, RefusalsSayWhy) {
 
 TEST(ControllerManagerLoad, UnloadIsRefusedWhileRunning) {
   Rig rig;
-  start(rig, "slide_position");
+  rig.start("slide_position");
   Reply r = rig.cm->unload("slide_position");
   EXPECT_FALSE(r.ok);
   EXPECT_TRUE(has(r.message, "cannot unload 'slide_position': it is running; stop it first")) << r.message;
@@ -101,7 +77,7 @@ TEST(ControllerManagerForwardCommand, PositionStartsAtTheCurrentPositionThenFoll
   Rig rig;
   rig.actuator("slide_motor").position = 0.3;
   rig.cycle(3);
-  start(rig, "slide_position");
+  rig.start("slide_position");
   rig.cycle(5);
   EXPECT_DOUBLE_EQ(rig.actuator("slide_motor").position, 0.3);  // held, no jump to 0
   rig.publish("slide_position/command", value(0.8));
@@ -114,7 +90,7 @@ TEST(ControllerManagerForwardCommand, PositionStartsAtTheCurrentPositionThenFoll
 
 TEST(ControllerManagerForwardCommand, VelocityGoesThroughTheTransmission) {
   Rig rig;
-  start(rig, "wheel_velocity");
+  rig.start("wheel_velocity");
   rig.cycle(3);
   EXPECT_EQ(rig.actuator("wheel_motor").velocity, 0.0);
   rig.publish("wheel_velocity/command", value(2.0));
@@ -126,7 +102,7 @@ TEST(ControllerManagerForwardCommand, VelocityGoesThroughTheTransmission) {
 
 TEST(ControllerManagerForwardCommand, EffortStartsAtZeroThenForwards) {
   Rig rig;
-  start(rig, "arm_effort");
+  rig.start("arm_effort");
   rig.cycle(2);
   EXPECT_EQ(rig.commands.back().command[2], 0.0);
   rig.publish("arm_effort/command", value(5.0));
@@ -138,9 +114,9 @@ TEST(ControllerManagerForwardCommand, EffortStartsAtZeroThenForwards) {
 
 TEST(ControllerManagerForwardCommand, GroupsTakeOneValuePerJointAndCountWrongSizes) {
   Rig rig;
-  start(rig, "pos_group");
-  start(rig, "vel_group");
-  start(rig, "eff_group");
+  rig.start("pos_group");
+  rig.start("vel_group");
+  rig.start("eff_group");
   rig.publish("pos_group/command", values({0.2, -1.0}));
   rig.publish("vel_group/command", values({1.0, -2.0}));
   rig.publish("eff_group/command", values({3.0, 4.0}));
@@ -162,7 +138,7 @@ TEST(ControllerManagerForwardCommand, GroupsTakeOneValuePerJointAndCountWrongSiz
 TEST(ControllerManagerJointStateController, PublishesFirstCycleAtItsRateInTransmissionOrder) {
   Rig rig;
   Recorder<joint_state_t> js(rig.bus.lcm(), "joint_states");
-  start(rig, "joint_state_controller");
+  rig.start("joint_state_controller");
   rig.cycle(1);
   ASSERT_EQ(js.messages.size(), 1u);  // first cycle
   rig.cycle(999);
@@ -177,7 +153,7 @@ TEST(ControllerManagerJointStateController, PublishesFirstCycleAtItsRateInTransm
 TEST(ControllerManagerJointStateController, KeepsItsRateAfterTimeJumps) {
   Rig rig;
   Recorder<joint_state_t> js(rig.bus.lcm(), "joint_states");
-  start(rig, "joint_state_controller");
+  rig.start("joint_state_controller");
   rig.cycle(500);
   size_t n = js.messages.size();
   rig.time_offset_us = 100000000;  // +100 s: no burst to catch up
@@ -230,7 +206,7 @@ TEST(ControllerManagerPidControllers, EffortPositionHoldsAGravityLoadedJoint) {
   arm.gravity = 10.0;
   arm.inertia = 0.2;
   arm.position = 0.5;
-  start(rig, "arm_position");
+  rig.start("arm_position");
   double worst = 0;
   for (int k = 0; k < 3000; ++k) {
     rig.cycle();
@@ -246,8 +222,8 @@ TEST(ControllerManagerPidControllers, PositionErrorIsShortestAngleOnlyForContinu
   Rig rig;
   rig.actuator("wheel_motor").position = (0.2 - 0.5) * 10;  // wheel joint at 0.2
   rig.actuator("arm_motor").position = -2.9;
-  start(rig, "wheel_position");
-  start(rig, "arm_position");
+  rig.start("wheel_position");
+  rig.start("arm_position");
   rig.publish("wheel_position/command", value(2 * M_PI - 0.2));
   rig.publish("arm_position/command", value(2.9));
   rig.cycle(1);
@@ -260,7 +236,7 @@ TEST(ControllerManagerPidControllers, PositionErrorIsShortestAngleOnlyForContinu
 TEST(ControllerManagerPidControllers, EffortVelocityReachesItsSetPointAndPublishesState) {
   Rig rig;
   Recorder<controller_state_t> st(rig.bus.lcm(), "spin_velocity/state");
-  start(rig, "spin_velocity");
+  rig.start("spin_velocity");
   rig.publish("spin_velocity/command", value(3.0));
   rig.cycle(3000);
   EXPECT_NEAR(rig.actuator("spin_motor").velocity, 3.0, 0.05);
@@ -319,10 +295,10 @@ TEST(ControllerManagerTrajectoryController, FollowsThreeWaypointsAndSucceeds) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory/result");
   Recorder<trajectory_status_t> feedback(rig.bus.lcm(), "trajectory/feedback");
-  start(rig, "trajectory");
+  rig.start("trajectory");
   rig.cycle(2);
   rig.publish("trajectory/command",
-              goal(1, {"tilt", "slide"}, {{0.5, {0.3, 0.2}}, {1.0, {-0.4, 0.6}}, {1.5, {0.1, 0.5}}}));
+              trajectory_goal(1, {"tilt", "slide"}, {{0.5, {0.3, 0.2}}, {1.0, {-0.4, 0.6}}, {1.5, {0.1, 0.5}}}));
   rig.cycle(2500);
   ASSERT_EQ(result.messages.size(), 1u);
   const auto& r = result.messages[0];
@@ -336,9 +312,9 @@ TEST(ControllerManagerTrajectoryController, FollowsThreeWaypointsAndSucceeds) {
 TEST(ControllerManagerTrajectoryController, ImpossiblePathToleranceFailsNamingJointAndError) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory_tight/result");
-  start(rig, "trajectory_tight");
+  rig.start("trajectory_tight");
   rig.publish("trajectory_tight/command",
-              goal(2, {"slide", "tilt"}, {{0.5, {0.3, 0.0}}, {1.0, {0.6, 0.0}}, {1.5, {0.5, 0.0}}}));
+              trajectory_goal(2, {"slide", "tilt"}, {{0.5, {0.3, 0.0}}, {1.0, {0.6, 0.0}}, {1.5, {0.5, 0.0}}}));
   rig.cycle(2000);
   ASSERT_EQ(result.messages.size(), 1u);
   const auto& r = result.messages[0];
@@ -350,19 +326,19 @@ TEST(ControllerManagerTrajectoryController, ImpossiblePathToleranceFailsNamingJo
 TEST(ControllerManagerTrajectoryController, BadGoalsAreRejectedAndNewGoalsPreempt) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory/result");
-  start(rig, "trajectory");
-  rig.publish("trajectory/command", goal(3, {"tilt"}, {{1.0, {0.3}}}));
-  rig.publish("trajectory/command", goal(4, {"tilt", "slide"}, {{1.0, {0.3, 5.0}}}));
-  rig.publish("trajectory/command", goal(5, {"tilt", "slide"}, {{1.0, {0.3, 0.5}}, {0.5, {0.3, 0.5}}}));
+  rig.start("trajectory");
+  rig.publish("trajectory/command", trajectory_goal(3, {"tilt"}, {{1.0, {0.3}}}));
+  rig.publish("trajectory/command", trajectory_goal(4, {"tilt", "slide"}, {{1.0, {0.3, 5.0}}}));
+  rig.publish("trajectory/command", trajectory_goal(5, {"tilt", "slide"}, {{1.0, {0.3, 0.5}}, {0.5, {0.3, 0.5}}}));
   ASSERT_EQ(result.messages.size(), 3u);
   EXPECT_TRUE(has(result.messages[0].message, "joint 'slide' is missing")) << result.messages[0].message;
   EXPECT_TRUE(has(result.messages[1].message, "outside its limits [0, 1]")) << result.messages[1].message;
   EXPECT_TRUE(has(result.messages[2].message, "time_from_start 0.5 must be greater than 1"))
       << result.messages[2].message;
   for (const auto& m : result.messages) EXPECT_EQ(m.status, trajectory_status_t::REJECTED);
-  rig.publish("trajectory/command", goal(6, {"tilt", "slide"}, {{1.0, {0.3, 0.5}}}));
+  rig.publish("trajectory/command", trajectory_goal(6, {"tilt", "slide"}, {{1.0, {0.3, 0.5}}}));
   rig.cycle(100);
-  rig.publish("trajectory/command", goal(7, {"tilt", "slide"}, {{1.0, {0.0, 0.0}}}));
+  rig.publish("trajectory/command", trajectory_goal(7, {"tilt", "slide"}, {{1.0, {0.0, 0.0}}}));
   ASSERT_EQ(result.messages.size(), 4u);
   EXPECT_EQ(result.messages[3].status, trajectory_status_t::PREEMPTED);
   EXPECT_EQ(result.messages[3].goal_id, 6);
@@ -376,15 +352,15 @@ TEST(ControllerManagerTrajectoryController, BadGoalsAreRejectedAndNewGoalsPreemp
 TEST(ControllerManagerTrajectoryController, AGoalWithoutVelocitiesAfterOneWithThem) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory/result");
-  start(rig, "trajectory");
-  joint_trajectory_t with = goal(9, {"tilt", "slide"}, {{0.5, {0.2, 0.2}}, {1.0, {0.3, 0.4}}});
+  rig.start("trajectory");
+  joint_trajectory_t with = trajectory_goal(9, {"tilt", "slide"}, {{0.5, {0.2, 0.2}}, {1.0, {0.3, 0.4}}});
   for (auto& p : with.points) {
     p.velocities = {0.0, 0.0};
     p.num_velocities = 2;
   }
   rig.publish("trajectory/command", with);
   rig.cycle(1700);
-  rig.publish("trajectory/command", goal(10, {"tilt", "slide"}, {{0.5, {0.1, 0.1}}, {1.0, {0.0, 0.2}}}));
+  rig.publish("trajectory/command", trajectory_goal(10, {"tilt", "slide"}, {{0.5, {0.1, 0.1}}, {1.0, {0.0, 0.2}}}));
   rig.cycle(1700);
   ASSERT_EQ(result.messages.size(), 2u);
   EXPECT_EQ(result.messages[0].status, trajectory_status_t::SUCCEEDED) << result.messages[0].message;
@@ -400,9 +376,9 @@ TEST(ControllerManagerTrajectoryController, EffortVariantTracksWithItsGains) {
   arm.gravity = 10.0;
   arm.inertia = 0.2;
   rig.actuator("spin_motor").inertia = 0.1;
-  start(rig, "effort_trajectory");
+  rig.start("effort_trajectory");
   rig.publish("effort_trajectory/command",
-              goal(8, {"arm", "spin"}, {{1.0, {0.5, 1.0}}, {2.0, {1.0, 3.0}}, {3.0, {0.8, 6.0}}}));
+              trajectory_goal(8, {"arm", "spin"}, {{1.0, {0.5, 1.0}}, {2.0, {1.0, 3.0}}, {3.0, {0.8, 6.0}}}));
   rig.cycle(4500);
   ASSERT_EQ(result.messages.size(), 1u);
   EXPECT_EQ(result.messages[0].status, trajectory_status_t::SUCCEEDED) << result.messages[0].message;

@@ -3,6 +3,8 @@
 // unit tests drive the real loop deterministically without processes.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,6 +12,7 @@
 #include "common/bus.hpp"
 #include "common/robot_model.hpp"
 #include "controller_manager/manager.hpp"
+#include "lcm_control/joint_trajectory_t.hpp"
 #include "test/controller_manager/fake_hardware.hpp"
 #include "test/support/process.hpp"
 
@@ -68,6 +71,34 @@ struct Rig {
   int64_t step = 0, session = 42, time_offset_us = 0;
   int period_us = 1000;
   bool lockstep = true;
+
+  // Loads and starts `name` on a ticking loop (a controller started before the
+  // first hardware state restarts, and forgets its command, when it arrives).
+  void start(const std::string& name) {
+    if (!cm->loop().has_state()) cycle();
+    const cm::Reply l = load(name);
+    ASSERT_TRUE(l.ok) << l.message;
+    const cm::Reply s = switch_({name}, {});
+    ASSERT_TRUE(s.ok) << s.message;
+  }
 };
+
+// A trajectory goal: joints and (time_from_start, positions) points, no velocities.
+inline joint_trajectory_t trajectory_goal(int64_t id, std::vector<std::string> joints,
+                                          std::vector<std::pair<double, std::vector<double>>> pts) {
+  joint_trajectory_t g{};
+  g.goal_id = id;
+  g.joint_names = joints;
+  g.num_joints = static_cast<int32_t>(joints.size());
+  for (auto& [t, pos] : pts) {
+    trajectory_point_t p{};
+    p.time_from_start = t;
+    p.positions = pos;
+    p.num_positions = static_cast<int32_t>(pos.size());
+    g.points.push_back(p);
+  }
+  g.num_points = static_cast<int32_t>(g.points.size());
+  return g;
+}
 
 }  // namespace lcm_control::testing

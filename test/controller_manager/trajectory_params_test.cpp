@@ -16,43 +16,21 @@
 using namespace lcm_control;
 using lcm_control::testing::Recorder;
 using lcm_control::testing::Rig;
+using lcm_control::testing::trajectory_goal;
 
 namespace {
 
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
-void start(Rig& rig, const std::string& name) {
-  if (!rig.cm->loop().has_state()) rig.cycle();
-  const cm::Reply l = rig.load(name);
-  ASSERT_TRUE(l.ok) << l.message;
-  const cm::Reply s = rig.switch_({name}, {});
-  ASSERT_TRUE(s.ok) << s.message;
-}
 
-joint_trajectory_t goal(int64_t id, std::vector<std::string> joints,
-                        std::vector<std::pair<double, std::vector<double>>> pts) {
-  joint_trajectory_t g{};
-  g.goal_id = id;
-  g.joint_names = joints;
-  g.num_joints = static_cast<int32_t>(joints.size());
-  for (auto& [t, pos] : pts) {
-    trajectory_point_t p{};
-    p.time_from_start = t;
-    p.positions = pos;
-    p.num_positions = static_cast<int32_t>(pos.size());
-    g.points.push_back(p);
-  }
-  g.num_points = static_cast<int32_t>(g.points.size());
-  return g;
-}
 
 // Largest |position error| of a velocity JointTrajectoryController moving the wheel 3 rad in 2 s.
 double wheel_tracking_error(const std::string& controller) {
   Rig rig;
   rig.actuator("wheel_motor").inertia = 0.05;
   Recorder<joint_trajectory_controller_state_t> state(rig.bus.lcm(), controller + "/state");
-  start(rig, controller);
-  rig.publish(controller + "/command", goal(1, {"wheel"}, {{2.0, {3.0}}}));
+  rig.start(controller);
+  rig.publish(controller + "/command", trajectory_goal(1, {"wheel"}, {{2.0, {3.0}}}));
   rig.cycle(2500);
   double worst = 0;
   for (const auto& s : state.messages) worst = std::max(worst, std::abs(s.error_position[0]));
@@ -65,8 +43,8 @@ TEST(ControllerManagerTrajectoryParams, StateIsPublishedAtStatePublishRateAndNev
   Rig rig;
   Recorder<joint_trajectory_controller_state_t> state(rig.bus.lcm(), "trajectory_state/state");
   Recorder<joint_trajectory_controller_state_t> quiet(rig.bus.lcm(), "trajectory_quiet/state");
-  start(rig, "trajectory_state");
-  rig.publish("trajectory_state/command", goal(1, {"slide", "tilt"}, {{1.0, {0.5, 0.2}}}));
+  rig.start("trajectory_state");
+  rig.publish("trajectory_state/command", trajectory_goal(1, {"slide", "tilt"}, {{1.0, {0.5, 0.2}}}));
   rig.cycle(1000);
   EXPECT_NEAR(static_cast<double>(state.messages.size()), 50.0, 1.0);
   ASSERT_FALSE(state.messages.empty());
@@ -86,13 +64,13 @@ TEST(ControllerManagerTrajectoryParams, AnEmptyTrajectoryStopsWithinStopTrajecto
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory_state/result");
   Recorder<joint_trajectory_controller_state_t> state(rig.bus.lcm(), "trajectory_state/state");
-  start(rig, "trajectory_state");
-  rig.publish("trajectory_state/command", goal(1, {"slide", "tilt"}, {{2.0, {1.0, 0.0}}}));
+  rig.start("trajectory_state");
+  rig.publish("trajectory_state/command", trajectory_goal(1, {"slide", "tilt"}, {{2.0, {1.0, 0.0}}}));
   rig.cycle(1000);
   const double at_stop = rig.actuator("slide_motor").position;
   const double speed = state.messages.back().desired_velocity[0];
   ASSERT_GT(speed, 0.3);
-  rig.publish("trajectory_state/command", goal(2, {"slide", "tilt"}, {}));
+  rig.publish("trajectory_state/command", trajectory_goal(2, {"slide", "tilt"}, {}));
   ASSERT_EQ(result.messages.size(), 2u);
   EXPECT_EQ(result.messages[0].goal_id, 1);
   EXPECT_EQ(result.messages[0].status, trajectory_status_t::PREEMPTED) << result.messages[0].message;
@@ -112,9 +90,9 @@ TEST(ControllerManagerTrajectoryParams, AnEmptyTrajectoryStopsWithinStopTrajecto
 TEST(ControllerManagerTrajectoryParams, APartialGoalMovesItsJointsAndTheOthersHold) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "trajectory_partial/result");
-  start(rig, "trajectory_partial");
+  rig.start("trajectory_partial");
   const double tilt = rig.actuator("tilt_motor").position;
-  rig.publish("trajectory_partial/command", goal(1, {"slide"}, {{1.0, {0.7}}}));
+  rig.publish("trajectory_partial/command", trajectory_goal(1, {"slide"}, {{1.0, {0.7}}}));
   rig.cycle(1700);
   ASSERT_EQ(result.messages.size(), 1u);
   EXPECT_EQ(result.messages[0].status, trajectory_status_t::SUCCEEDED) << result.messages[0].message;
@@ -137,7 +115,7 @@ TEST(ControllerManagerGroupEffortPosition, EveryJointReachesItsSetPointAgainstGr
   arm.gravity = 10.0;
   arm.inertia = 0.2;
   rig.actuator("spin_motor").inertia = 0.1;
-  start(rig, "group_effort_position");
+  rig.start("group_effort_position");
   float64_array_t cmd{};
   cmd.size = 2;
   cmd.data = {0.6, 1.5};
