@@ -2,7 +2,9 @@
 // controller_manager (docs/hardware-protocol.md). Flags and wiring only.
 #include <csignal>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 
 #include "common/cli.hpp"
 #include "common/log.hpp"
@@ -90,6 +92,7 @@ int main(int argc, char** argv) {
     for (int i = 0; i < sim.actuators().size(); ++i) spdlog::info("{}", sim.actuators().describe(i));
     Bus bus(bus_flags.lcm_url, model.ns);
     sim::SimIo io(bus, sim, opt.lockstep, clock_every);
+    io.set_max_command_age(std::max<int64_t>(1, std::llround(opt.watchdog_s * rates.control_hz)));
     sim::Stepper stepper(sim, io, opt);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);

@@ -163,7 +163,8 @@ void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   if (cmd_.step > sim_.step_count())
     return drop(fmt::format("step {} is ahead of the hardware's step {}: it answers no published state", cmd_.step,
                             sim_.step_count()));
-  if (lockstep_ ? cmd_.step != expected_step_ : cmd_.step < last_step_) {
+  const bool too_old = max_age_ > 0 && cmd_.step < sim_.step_count() - max_age_;
+  if (lockstep_ ? cmd_.step != expected_step_ : cmd_.step < last_step_ || too_old) {
     ++stale_;
     return;
   }

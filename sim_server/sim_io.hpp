@@ -43,6 +43,9 @@ class SimIo {
 
   // Lockstep: only a command tagged with this step is accepted (others are ignored, counted stale).
   void expect_step(int64_t step) { expected_step_ = step; }
+  // Real time: a command answering a state more than `steps` old is stale (a controller manager that was stopped
+  // and resumes must not replay its backlog onto the robot); 0: no limit.
+  void set_max_command_age(int64_t steps) { max_age_ = steps; }
   bool has_command() const { return has_pending_; }
   // Hands the newest accepted command to the actuators; false if none arrived since the last call.
   bool take_command();
@@ -78,7 +81,7 @@ class SimIo {
   std::vector<double> pending_value_;
   bool has_pending_ = false;
   int64_t expected_step_ = -1, last_step_ = -1, last_command_us_ = -1;
-  int64_t dropped_ = 0, stale_ = 0, dropped_logged_ = 0, last_drop_log_us_ = 0;
+  int64_t dropped_ = 0, stale_ = 0, dropped_logged_ = 0, last_drop_log_us_ = 0, max_age_ = 0;
   e_stop_t e_stop_msg_;
 };
 

@@ -292,6 +292,27 @@ TEST(sim_e2e, ACommandFromAFutureStepIsDroppedAndGenuineCommandsStillApply) {
   EXPECT_EQ(server.output().find("watchdog"), std::string::npos) << server.output();
 }
 
+TEST(sim_e2e, CommandsAnsweringStatesOlderThanTheWatchdogAreStale) {
+  // Real time: a controller manager stopped (SIGSTOP) and resumed answers its backlog of old states. Those commands
+  // must not drive the robot; a command a few steps late still does.
+  SimServerProcess server;
+  std::string why;
+  ASSERT_TRUE(server.start({"--watchdog", "0.1"}, kTurretUrdf, kTurretYaml, &why)) << why;
+  FakeController cm(server.lc);
+  int64_t first = -1;
+  cm.policy = [&](const hardware_state_t& s, hardware_command_t& c) {
+    if (first < 0) first = s.step;
+    c.command[0] = 0.5;
+    c.step = s.step - (s.step - first < 1500 ? 500 : 50);  // 500 steps old, then 50 (the watchdog is 100)
+  };
+  ASSERT_TRUE(cm.run_until_step(first + 1450, 30.0)) << server.output();
+  double before = 0;
+  for (const auto& st : cm.states) before = std::max(before, std::abs(st.position[0]));
+  EXPECT_LT(before, 0.01) << "stale commands moved j1";
+  ASSERT_TRUE(cm.run_until_step(first + 3500, 30.0)) << server.output();
+  EXPECT_NEAR(cm.states.back().position[0], 0.5, 0.01) << server.output();
+}
+
 TEST(sim_e2e, LockstepWaitsRepublishesAndSaysSoOnce) {
   SimServerProcess server;
   std::string why;
