@@ -143,9 +143,16 @@ class LiveListener {
   Collector& c_;
 };
 
+// A gnuplot string literal: quotes doubled, and line breaks and other control characters made spaces, since a
+// new line would end the command and start another (a title must never run `system(...)`).
 std::string quoted(const std::string& s) {
   std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  for (char c : s) {
+    if (c == '\'')
+      out += "''";
+    else
+      out += static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? ' ' : c;
+  }
   return out + "'";
 }
 
@@ -176,15 +183,23 @@ std::string gnuplot_script(const std::string& terminal, const std::string& outpu
   return s + "\n";
 }
 
-// A unique name in the temp folder for the data and script files.
-std::string temp_base() {
-  std::string tmpl = (std::filesystem::temp_directory_path() / "plotter_XXXXXX").string();
-  const int fd = mkstemp(tmpl.data());
-  if (fd < 0) throw std::runtime_error("cannot create a file in " + std::filesystem::temp_directory_path().string());
-  close(fd);
-  std::remove(tmpl.c_str());
-  return tmpl;
-}
+// A private folder (mode 0700, made by mkdtemp) for the data and script files, removed with them: no name in the
+// shared temp folder that another user could create or link first.
+struct TempDir {
+  std::string path;
+  TempDir() {
+    std::string t = (std::filesystem::temp_directory_path() / "plotter_XXXXXX").string();
+    if (!mkdtemp(t.data()))
+      throw std::runtime_error("cannot create a folder in " + std::filesystem::temp_directory_path().string());
+    path = t;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+};
 
 std::string run_gnuplot(const std::string& script_file) {
   std::string out;
@@ -250,7 +265,8 @@ int main(int argc, char** argv) {
     Collector collector(series, time_source == "utime");
     const std::string xlabel = time_source == "utime" ? "t [s] (message utime)" : "t [s]";
     const bool keep = !data_file.empty();
-    const std::string tmp = temp_base();
+    const TempDir scratch;
+    const std::string tmp = scratch.path + "/plot";
     if (!keep) data_file = tmp + ".dat";
     const std::string script_file = tmp + ".gp";
     // Writes the data and runs gnuplot: the image (with_image) and/or a text plot it returns.

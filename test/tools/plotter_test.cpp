@@ -136,3 +136,14 @@ TEST(Plotter, LiveFromTheBus) {
   EXPECT_EQ(blocks[0][19].second, 19.0);
   EXPECT_GT(std::filesystem::file_size(dir + "/live.png"), 1000u);
 }
+
+TEST(Plotter, ATitleOrOutputNameCannotRunGnuplotCommands) {
+  const std::string dir = temp_dir("plotter_injection");
+  write_test_log(dir + "/run.lcmlog");
+  const std::string marker = dir + "/ran";
+  ChildProcess p({bin("plotter"), "/j2_controller/command", "--log", dir + "/run.lcmlog", "--output",
+                  dir + "/plot.svg", "--title", "x\nsystem(\"touch " + marker + "\")\nset title \"y"});
+  ASSERT_EQ(p.wait(30.0), 0) << p.output();
+  EXPECT_FALSE(std::filesystem::exists(marker)) << "the title ran a command";
+  EXPECT_NE(read_text(dir + "/plot.svg").find("<svg"), std::string::npos);
+}
