@@ -77,6 +77,10 @@ std::string normalize_namespace(const std::string& ns) {
   return out;
 }
 
+std::string robot_namespace(const std::string& given, const std::string& plugin_namespace) {
+  return normalize_namespace(given.empty() ? plugin_namespace : given);
+}
+
 RobotModel load_robot_model(const std::string& urdf_path, const std::string& config_path, const LoadOptions& options) {
   RobotModel model;
   model.options = options;
@@ -88,7 +92,7 @@ RobotModel load_robot_model(const std::string& urdf_path, const std::string& con
     parsed = false;
     problems.insert(problems.end(), e.problems().begin(), e.problems().end());
   }
-  model.ns = normalize_namespace(options.ns.empty() ? model.gazebo_plugin_namespace : options.ns);
+  model.ns = robot_namespace(options.ns, model.gazebo_plugin_namespace);
   if (options.ns.empty() && !model.ns.empty())
     model.notes.push_back(fmt::format("{}: namespace '{}' from the gazebo_ros_control plugin's <robotNamespace>; "
                                       "channels are {}/... (give the tools --namespace {})",

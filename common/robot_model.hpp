@@ -136,5 +136,7 @@ RobotModel load_robot_model(const std::string& urdf_path, const std::string& con
 
 // A namespace as written in ROS ("/rrbot/", "rrbot") as our channel prefix ("rrbot"); "" for "/" or "".
 std::string normalize_namespace(const std::string& ns);
+// The robot's namespace: the one given (--namespace), else the gazebo_ros_control plugin's <robotNamespace>.
+std::string robot_namespace(const std::string& given, const std::string& plugin_namespace);
 
 }  // namespace lcm_control

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "common/bus.hpp"
+
 namespace lcm_control::cm {
 
 // Publishes one message type on one channel; after the first message of a given
@@ -93,12 +95,7 @@ class Port {
       }
       Msg fresh;
       Msg& msg = keep ? *kept : fresh;
-      try {
-        if (msg.decode(rb.data, 0, rb.data_size) < 0) return bad("");
-      } catch (const std::exception& e) {  // lcm-gen's decoders resize arrays with counts from the wire
-        msg = Msg();
-        return bad(e.what());
-      }
+      if (!decode_guarded(msg, rb.data, rb.data_size)) return bad("");
       on_msg(msg);
     });
   }

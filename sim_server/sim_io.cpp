@@ -150,12 +150,8 @@ void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   if (const std::string why = check_hardware_command_bytes(rbuf->data, rbuf->data_size, sim_.actuators().size());
       !why.empty())
     return drop(why);
-  try {
-    if (cmd_.decode(rbuf->data, 0, int(rbuf->data_size)) < 0)
-      return drop("not a hardware_command_t (wrong fingerprint or truncated)");
-  } catch (const std::exception& e) {
-    return drop(fmt::format("undecodable: {}", e.what()));
-  }
+  if (!decode_guarded(cmd_, rbuf->data, rbuf->data_size))
+    return drop("not a hardware_command_t (wrong fingerprint, truncated or undecodable)");
   const std::string why = why_rejected();
   if (!why.empty()) return drop(why);
   // A command answers a state already published: a later step is forged or corrupt, and remembering it would make

@@ -13,6 +13,7 @@
 #include "common/cli.hpp"
 #include "common/messages.hpp"
 #include "common/scheduling.hpp"
+#include "common/urdf_reader.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
 #include "tools/cm_client.hpp"
@@ -71,17 +72,19 @@ class ReadinessProbe {
 };
 
 // --namespace, else the file's, else the URDF's robotNamespace: what sim_server and controller_manager will use, so
-// that launch waits for them where they are. A model that does not load is left for them to report.
-std::string robot_namespace(const LaunchPlan& plan, const std::string& flag, const std::vector<std::string>& path) {
+// that launch waits for them where they are. A URDF that does not load is left for them to report.
+std::string robot_namespace_of(const LaunchPlan& plan, const std::string& flag, const std::vector<std::string>& path) {
+  const std::string given = flag.empty() ? plan.ns : flag;
+  if (!given.empty()) return normalize_namespace(given);
   LoadOptions o;
   o.package_path = path;
-  o.ns = flag.empty() ? plan.ns : flag;
-  o.args = plan.args;
+  RobotModel urdf;
   try {
-    return load_robot_model(plan.urdf, plan.config, o).ns;
+    load_urdf_into(urdf, plan.urdf, o);
   } catch (const std::exception&) {
-    return normalize_namespace(o.ns);
+    return "";
   }
+  return robot_namespace("", urdf.gazebo_plugin_namespace);
 }
 
 std::vector<std::string> with_ns(std::vector<std::string> argv, const std::string& ns) {
@@ -140,7 +143,7 @@ int main(int argc, char** argv) {
     if (!cpu.empty()) plan.cpu = cpu;
     for (const auto& n : plan.notes) say("note: " + n);
 
-    const std::string ns = robot_namespace(plan, bus_flags.ns, package_path);
+    const std::string ns = robot_namespace_of(plan, bus_flags.ns, package_path);
     std::vector<std::string> yaml_args;
     for (const auto& [name, value] : plan.args) yaml_args.insert(yaml_args.end(), {"--arg", name + "=" + value});
     std::vector<std::string> sim{"sim_server", "--urdf", plan.urdf, "--config", plan.config};
