@@ -54,6 +54,7 @@ class TurretBot {
   }
 
   const std::string& sim_output() const { return sim_output_; }
+  pid_t controller_manager_pid() const { return cm_ ? cm_->pid() : -1; }
 
   void shut_down() {
     if (spawner_) {
