@@ -2,24 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <type_traits>
+
 #include "common/bus.hpp"
-#include "lcm_control/cm_request_t.hpp"
-#include "lcm_control/cm_response_t.hpp"
-#include "lcm_control/controller_info_t.hpp"
-#include "lcm_control/controller_state_t.hpp"
-#include "lcm_control/e_stop_t.hpp"
-#include "lcm_control/float64_array_t.hpp"
-#include "lcm_control/float64_t.hpp"
-#include "lcm_control/hardware_command_t.hpp"
-#include "lcm_control/hardware_state_t.hpp"
-#include "lcm_control/joint_state_t.hpp"
-#include "lcm_control/joint_trajectory_t.hpp"
-#include "lcm_control/link_poses_t.hpp"
-#include "lcm_control/loop_stats_t.hpp"
-#include "lcm_control/pid_gains_t.hpp"
-#include "lcm_control/sim_clock_t.hpp"
-#include "lcm_control/trajectory_point_t.hpp"
-#include "lcm_control/trajectory_status_t.hpp"
+#include "lcm_control/visit.hpp"
 
 namespace lcm_control::tools {
 
@@ -30,156 +17,48 @@ std::string Field::text() const {
 
 namespace {
 
-class Out {
+// A visitor (lcm_control/visit.hpp) that appends a message's numbers and strings as fields under a path prefix.
+class Flatten {
  public:
-  explicit Out(std::vector<Field>& f) : f_(f) {}
-  void num(const std::string& path, double v) { f_.push_back(Field{path, v, 0, false, false, ""}); }
-  void integer(const std::string& path, int64_t v) { f_.push_back(Field{path, double(v), v, true, false, ""}); }
-  void text(const std::string& path, const std::string& s) { f_.push_back(Field{path, 0, 0, false, true, s}); }
-  void texts(const std::string& path, const std::vector<std::string>& v) {
-    for (size_t k = 0; k < v.size(); ++k) text(fmt::format("{}[{}]", path, k), v[k]);
+  Flatten(std::vector<Field>& f, std::string prefix) : f_(f), prefix_(std::move(prefix)) {}
+  template <class T>
+  void value(const char* name, const T& x) {
+    put(prefix_ + name, x);
+  }
+  void count(const char*, int32_t) {}  // array lengths are left out
+  template <class T>
+  void list(const char* name, const std::vector<T>& xs, const char*) {
+    for (size_t k = 0; k < xs.size(); ++k) put(fmt::format("{}{}[{}]", prefix_, name, k), xs[k]);
   }
   template <class T>
-  void nums(const std::string& path, const std::vector<T>& v) {
-    for (size_t k = 0; k < v.size(); ++k) num(fmt::format("{}[{}]", path, k), double(v[k]));
+  void matrix(const char* name, const std::vector<std::vector<T>>& xs, const char*, int) {
+    for (size_t k = 0; k < xs.size(); ++k)
+      for (size_t j = 0; j < xs[k].size(); ++j) put(fmt::format("{}{}[{}][{}]", prefix_, name, k, j), xs[k][j]);
   }
-  template <class T>
-  void ints(const std::string& path, const std::vector<T>& v) {
-    for (size_t k = 0; k < v.size(); ++k) integer(fmt::format("{}[{}]", path, k), int64_t(v[k]));
+  template <class S>
+  void structs(const char* name, const std::vector<S>& xs, const char*) {
+    for (size_t k = 0; k < xs.size(); ++k) {
+      Flatten sub(f_, fmt::format("{}{}[{}].", prefix_, name, k));
+      visit(xs[k], sub);
+    }
   }
-  void nums2(const std::string& path, const std::vector<std::vector<double>>& v) {
-    for (size_t k = 0; k < v.size(); ++k) nums(fmt::format("{}[{}]", path, k), v[k]);
+  template <class S>
+  void nested(const char* name, const S& x) {
+    Flatten sub(f_, prefix_ + name + ".");
+    visit(x, sub);
   }
 
  private:
-  std::vector<Field>& f_;
-};
-
-void flatten(const float64_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.num("data", m.data);
-}
-void flatten(const float64_array_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.nums("data", m.data);
-}
-void flatten(const joint_state_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.nums("position", m.position);
-  o.nums("velocity", m.velocity);
-  o.nums("effort", m.effort);
-  o.texts("name", m.name);
-}
-void flatten(const hardware_state_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.integer("step", m.step);
-  o.integer("session", m.session);
-  o.integer("lockstep", m.lockstep);
-  o.integer("period_us", m.period_us);
-  o.integer("e_stop", m.e_stop);
-  o.num("real_time_factor", m.real_time_factor);
-  o.ints("mode", m.mode);
-  o.nums("position", m.position);
-  o.nums("velocity", m.velocity);
-  o.nums("effort", m.effort);
-  o.texts("name", m.name);
-}
-void flatten(const hardware_command_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.integer("step", m.step);
-  o.integer("session", m.session);
-  o.ints("mode", m.mode);
-  o.nums("command", m.command);
-  o.texts("name", m.name);
-}
-void flatten(const controller_state_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.num("set_point", m.set_point);
-  o.num("process_value", m.process_value);
-  o.num("process_value_dot", m.process_value_dot);
-  o.num("error", m.error);
-  o.num("time_step", m.time_step);
-  o.num("command", m.command);
-  o.num("p", m.p);
-  o.num("i", m.i);
-  o.num("d", m.d);
-  o.num("i_clamp", m.i_clamp);
-  o.integer("antiwindup", m.antiwindup);
-  o.text("controller", m.controller);
-  o.text("joint", m.joint);
-}
-void flatten(const e_stop_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.integer("engaged", m.engaged);
-  o.text("source", m.source);
-}
-void flatten(const link_poses_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.nums2("position", m.position);
-  o.nums2("orientation", m.orientation);
-  o.texts("name", m.name);
-}
-void flatten(const loop_stats_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.integer("cycles", m.cycles);
-  o.num("period_mean_us", m.period_mean_us);
-  o.num("period_min_us", m.period_min_us);
-  o.num("period_max_us", m.period_max_us);
-  o.num("period_jitter_us", m.period_jitter_us);
-  o.integer("overruns", m.overruns);
-  o.integer("missed", m.missed);
-  o.integer("dropped", m.dropped);
-  o.num("real_time_factor", m.real_time_factor);
-  o.num("exec_mean_us", m.exec_mean_us);
-  o.num("exec_max_us", m.exec_max_us);
-  o.nums("item_exec_mean_us", m.item_exec_mean_us);
-  o.nums("item_exec_max_us", m.item_exec_max_us);
-  o.text("process", m.process);
-  o.texts("item", m.item);
-}
-void flatten(const pid_gains_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.integer("request_id", m.request_id);
-  o.integer("query", m.query);
-  o.integer("ok", m.ok);
-  o.num("p", m.p);
-  o.num("i", m.i);
-  o.num("d", m.d);
-  o.num("i_clamp_min", m.i_clamp_min);
-  o.num("i_clamp_max", m.i_clamp_max);
-  o.integer("antiwindup", m.antiwindup);
-  o.text("owner", m.owner);
-  o.text("joint", m.joint);
-  o.text("message", m.message);
-}
-void flatten(const sim_clock_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.integer("step", m.step);
-  o.num("real_time_factor", m.real_time_factor);
-}
-void flatten(const trajectory_status_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.integer("goal_id", m.goal_id);
-  o.integer("status", m.status);
-  o.nums("desired", m.desired);
-  o.nums("actual", m.actual);
-  o.nums("error", m.error);
-  o.text("message", m.message);
-  o.texts("joint_names", m.joint_names);
-}
-void flatten(const joint_trajectory_t& m, Out& o) {
-  o.integer("utime", m.utime);
-  o.integer("goal_id", m.goal_id);
-  for (size_t k = 0; k < m.points.size(); ++k) {
-    const auto& p = m.points[k];
-    const std::string base = fmt::format("points[{}].", k);
-    o.num(base + "time_from_start", p.time_from_start);
-    o.nums(base + "positions", p.positions);
-    o.nums(base + "velocities", p.velocities);
-    o.nums(base + "accelerations", p.accelerations);
+  void put(std::string path, double v) { f_.push_back(Field{std::move(path), v, 0, false, false, ""}); }
+  void put(std::string path, float v) { put(std::move(path), double(v)); }
+  void put(std::string path, const std::string& v) { f_.push_back(Field{std::move(path), 0, 0, false, true, v}); }
+  template <class I, class = std::enable_if_t<std::is_integral_v<I>>>
+  void put(std::string path, I v) {
+    f_.push_back(Field{std::move(path), double(v), int64_t(v), true, false, ""});
   }
-  o.texts("joint_names", m.joint_names);
-}
+  std::vector<Field>& f_;
+  std::string prefix_;
+};
 
 struct TypeEntry {
   int64_t hash;
@@ -197,8 +76,10 @@ Decoded decode_as(const void* data, size_t size) {
     d.skip_reason = "malformed payload (decode failed)";
     return d;
   }
-  Out o(d.fields);
-  flatten(m, o);
+  Flatten flat(d.fields, "");
+  visit(m, flat);
+  // Strings after all the numbers: a numeric column keeps its position in a file without strings.
+  std::stable_partition(d.fields.begin(), d.fields.end(), [](const Field& f) { return !f.is_text; });
   return d;
 }
 
@@ -219,6 +100,7 @@ const std::vector<TypeEntry>& table() {
       decoded<hardware_state_t>(),
       decoded<hardware_command_t>(),
       decoded<controller_state_t>(),
+      decoded<command_source_t>(),
       decoded<e_stop_t>(),
       decoded<link_poses_t>(),
       decoded<loop_stats_t>(),
