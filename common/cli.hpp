@@ -77,6 +77,9 @@ int run_program(CLI::App& app, int argc, char** argv, Body&& body) {
   } catch (const BusError& e) {
     std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
     return kExitBus;
+  } catch (const CLI::ValidationError& e) {  // an argument found wrong after parsing
+    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    return kExitUsage;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
     return kExitFailure;

@@ -83,36 +83,25 @@ Decoded decode_as(const void* data, size_t size) {
   return d;
 }
 
-template <class Msg>
-TypeEntry decoded() {
-  return TypeEntry{Msg::getHash(), Msg::getTypeName(), &decode_as<Msg>, nullptr};
-}
-template <class Msg>
-TypeEntry skipped(const char* why) {
-  return TypeEntry{Msg::getHash(), Msg::getTypeName(), nullptr, why};
+// Types that carry no signal to plot or tabulate; every other type is decoded.
+const char* skip_reason(const std::string& type) {
+  if (type == cm_request_t::getTypeName()) return "controller-manager request: names and options, no signals (see cmctl)";
+  if (type == cm_response_t::getTypeName()) return "controller-manager answer: names and text, no signals (see cmctl list)";
+  if (type == controller_info_t::getTypeName()) return "controller description: names only, no numbers";
+  if (type == trajectory_point_t::getTypeName()) return "a part of joint_trajectory_t, not sent on its own";
+  return nullptr;
 }
 
 const std::vector<TypeEntry>& table() {
-  static const std::vector<TypeEntry> t = {
-      decoded<float64_t>(),
-      decoded<float64_array_t>(),
-      decoded<joint_state_t>(),
-      decoded<hardware_state_t>(),
-      decoded<hardware_command_t>(),
-      decoded<controller_state_t>(),
-      decoded<command_source_t>(),
-      decoded<e_stop_t>(),
-      decoded<link_poses_t>(),
-      decoded<loop_stats_t>(),
-      decoded<pid_gains_t>(),
-      decoded<sim_clock_t>(),
-      decoded<trajectory_status_t>(),
-      decoded<joint_trajectory_t>(),
-      skipped<cm_request_t>("controller-manager request: names and options, no signals (see cmctl)"),
-      skipped<cm_response_t>("controller-manager answer: names and text, no signals (see cmctl list)"),
-      skipped<controller_info_t>("controller description: names only, no numbers"),
-      skipped<trajectory_point_t>("a part of joint_trajectory_t, not sent on its own"),
-  };
+  static const std::vector<TypeEntry> t = [] {
+    std::vector<TypeEntry> out;
+    for_each_type([&](auto tag) {
+      using Msg = typename decltype(tag)::type;
+      const char* skip = skip_reason(Msg::getTypeName());
+      out.push_back(TypeEntry{Msg::getHash(), Msg::getTypeName(), skip ? nullptr : &decode_as<Msg>, skip});
+    });
+    return out;
+  }();
   return t;
 }
 

@@ -1,0 +1,256 @@
+// Messages as text (tools/message_text) and the bus program: list, hz, echo,
+// pub, types and info on a private LCM URL, against messages this test sends.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <thread>
+
+#include "lcm_control/e_stop_t.hpp"
+#include "lcm_control/joint_trajectory_t.hpp"
+#include "lcm_control/link_poses_t.hpp"
+#include "test/support/lcm_test.hpp"
+#include "test/support/process.hpp"
+#include "test/tools/tool_test_util.hpp"
+#include "tools/fields.hpp"
+#include "tools/message_text.hpp"
+
+namespace lt = lcm_control::testing;
+using namespace lcm_control;
+using namespace lcm_control::tools;
+
+namespace {
+
+template <class Msg>
+Msg decoded(const std::vector<uint8_t>& bytes) {
+  Msg m;
+  EXPECT_EQ(m.decode(bytes.data(), 0, int(bytes.size())), int(bytes.size()));
+  return m;
+}
+
+template <class Msg>
+std::vector<uint8_t> encoded(const Msg& m) {
+  std::vector<uint8_t> b(size_t(m.getEncodedSize()));
+  m.encode(b.data(), 0, int(b.size()));
+  return b;
+}
+
+std::string build_error(const std::string& type, const std::vector<std::string>& fields) {
+  try {
+    build_message(type, fields, 0);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(MessageText, BuildsNestedMessagesWithCountsFromTheArrays) {
+  const auto t = decoded<joint_trajectory_t>(build_message(
+      "joint_trajectory", {"joint_names=[j1, j2]", "points[1].positions=[1,2]", "points[0].positions=[0.5, 1.0]",
+                           "points[0].time_from_start=2", "points[1].time_from_start=3", "goal_id=7"},
+      42));
+  EXPECT_EQ(t.utime, 42);  // not assigned: the default
+  EXPECT_EQ(t.goal_id, 7);
+  EXPECT_EQ(t.num_joints, 2);
+  EXPECT_EQ(t.joint_names, (std::vector<std::string>{"j1", "j2"}));
+  ASSERT_EQ(t.num_points, 2);
+  EXPECT_EQ(t.points[0].positions, (std::vector<double>{0.5, 1.0}));
+  EXPECT_EQ(t.points[0].num_positions, 2);
+  EXPECT_EQ(t.points[1].time_from_start, 3);
+  EXPECT_EQ(t.points[1].num_velocities, 0);
+}
+
+TEST(MessageText, ElementsMatricesBooleansAndAnExplicitUtime) {
+  const auto p = decoded<link_poses_t>(build_message(
+      "lcm_control.link_poses_t",
+      {"name[1]=b", "name[0]=a", "position[1][2]=5", "position[0]=[1,2,3]", "orientation[1]=[1,0,0,0]",
+       "orientation[0][0]=1", "utime=9"},
+      42));
+  EXPECT_EQ(p.utime, 9);
+  EXPECT_EQ(p.num_links, 2);
+  EXPECT_EQ(p.position, (std::vector<std::vector<double>>{{1, 2, 3}, {0, 0, 5}}));
+  EXPECT_EQ(p.orientation[0], (std::vector<double>{1, 0, 0, 0}));
+  const auto e = decoded<e_stop_t>(build_message("e_stop_t", {"engaged=true", "source=a b, c"}, 0));
+  EXPECT_EQ(e.engaged, 1);
+  EXPECT_EQ(e.source, "a b, c");
+}
+
+TEST(MessageText, ErrorsNameTheTypeTheFieldAndTheFields) {
+  EXPECT_NE(build_error("float64_t", {"dat=1"}).find("float64_t: dat: no such field; its fields: utime (int64), data "
+                                                     "(double)"),
+            std::string::npos);
+  EXPECT_NE(build_error("joint_state_t", {"name=[a,b]", "position=[1]"}).find("position has 1 values but name has 2"),
+            std::string::npos);
+  EXPECT_NE(build_error("joint_state_t", {"num_joints=3"}).find("set from the length of the arrays"),
+            std::string::npos);
+  EXPECT_NE(build_error("float64_t", {"data=abc"}).find("'abc' is not a number"), std::string::npos);
+  EXPECT_NE(build_error("e_stop_t", {"engaged=300"}).find("out of range"), std::string::npos);
+  EXPECT_NE(build_error("float64_t", {"data"}).find("is not FIELD=VALUE"), std::string::npos);
+  EXPECT_NE(build_error("joint_trajectory_t", {"points[0]=1"}).find("points[K].FIELD=VALUE"), std::string::npos);
+  EXPECT_NE(build_error("joint_trajectory_t", {"points[0].nope=1"}).find("no field 'nope' in trajectory_point_t"),
+            std::string::npos);
+  EXPECT_NE(build_error("link_poses_t", {"position[0]=[1,2]"}).find("rows have 3"), std::string::npos);
+  EXPECT_NE(build_error("nosuch_t", {}).find("unknown message type 'nosuch_t'; the types are: cm_request_t"),
+            std::string::npos);
+}
+
+TEST(MessageText, YamlShowsEveryFieldAndQuotesStringsThatNeedIt) {
+  joint_trajectory_t t{};
+  t.utime = 5;
+  t.num_joints = 2;
+  t.joint_names = {"j1", "a: b"};
+  t.num_points = 1;
+  t.points.resize(1);
+  t.points[0].time_from_start = 1.5;
+  t.points[0].num_positions = 2;
+  t.points[0].positions = {0.25, -1};
+  const auto b = encoded(t);
+  EXPECT_EQ(message_yaml(b.data(), b.size()),
+            "utime: 5\ngoal_id: 0\njoint_names: [j1, \"a: b\"]\npoints:\n- time_from_start: 1.5\n"
+            "  positions: [0.25, -1]\n  velocities: []\n  accelerations: []\n");
+  EXPECT_THROW(message_yaml(b.data(), 4), std::runtime_error);
+  std::vector<uint8_t> cut(b.begin(), b.begin() + 20);
+  EXPECT_THROW(message_yaml(cut.data(), cut.size()), std::runtime_error);
+}
+
+TEST(MessageText, EveryTypeBuildsAndReadsBack) {
+  // Built with only its utime (if any), every type encodes, decodes by fingerprint, and prints.
+  for (const auto& type : message_type_names()) {
+    const auto b = build_message(type, {}, 1);
+    EXPECT_EQ(type_of_payload(b.data(), b.size()), "lcm_control." + type);
+    EXPECT_NO_THROW(message_yaml(b.data(), b.size())) << type;
+    EXPECT_FALSE(message_fields(type).empty()) << type;
+  }
+}
+
+// --- the program ------------------------------------------------------------------------------------------------
+
+namespace {
+
+// Publishes a float64_t on `channel` every period_ms until destroyed.
+class Ticker {
+ public:
+  Ticker(const std::string& url, std::string channel, int period_ms) : lc_(url), channel_(std::move(channel)) {
+    thread_ = std::thread([this, period_ms] {
+      float64_t m{};
+      while (!stop_) {
+        m.utime += 1000;
+        m.data += 0.5;
+        lc_.publish(channel_, &m);
+        std::this_thread::sleep_for(std::chrono::milliseconds(period_ms));
+      }
+    });
+  }
+  ~Ticker() {
+    stop_ = true;
+    thread_.join();
+  }
+
+ private:
+  lcm::LCM lc_;
+  std::string channel_;
+  std::atomic<bool> stop_{false};
+  std::thread thread_;
+};
+
+std::map<std::string, std::string> env(const std::string& url) { return {{"LCM_DEFAULT_URL", url}}; }
+
+}  // namespace
+
+TEST(BusTool, ListHzAndEchoSeeWhatIsOnTheBus) {
+  const std::string url = lt::unique_lcm_url();
+  Ticker fast(url, "robot/fast", 5), slow(url, "robot/slow", 100);
+  lt::ChildProcess list({lt::bin("bus"), "list", "--duration", "1.5"}, env(url));
+  ASSERT_EQ(list.wait(20), 0) << list.output();
+  EXPECT_NE(list.output().find("robot/fast"), std::string::npos) << list.output();
+  EXPECT_NE(list.output().find("lcm_control.float64_t"), std::string::npos) << list.output();
+  EXPECT_NE(list.output().find("2 channels over"), std::string::npos) << list.output();
+
+  lt::ChildProcess hz({lt::bin("bus"), "hz", "/robot/fast", "--duration", "2.2"}, env(url));
+  ASSERT_EQ(hz.wait(20), 0) << hz.output();
+  const auto at = hz.output().find("average rate: ");
+  ASSERT_NE(at, std::string::npos) << hz.output();
+  const double rate = std::stod(hz.output().substr(at + 14));
+  EXPECT_GT(rate, 80);  // 5 ms period plus the publisher's own time: under 200 Hz, well over 80
+  EXPECT_LT(rate, 205);
+
+  lt::ChildProcess echo({lt::bin("bus"), "--namespace", "robot", "echo", "slow", "--count", "2"}, env(url));
+  ASSERT_EQ(echo.wait(20), 0) << echo.output();
+  EXPECT_NE(echo.output().find("utime: "), std::string::npos) << echo.output();
+  EXPECT_NE(echo.output().find("data: "), std::string::npos) << echo.output();
+
+  lt::ChildProcess csv({lt::bin("bus"), "echo", "robot/slow", "--count", "1", "--csv"}, env(url));
+  ASSERT_EQ(csv.wait(20), 0) << csv.output();
+  EXPECT_NE(csv.output().find("utime,data\n"), std::string::npos) << csv.output();
+}
+
+TEST(BusTool, NothingOnTheChannelExits4AndListsWhatWasSeen) {
+  const std::string url = lt::unique_lcm_url();
+  Ticker other(url, "joint_states_typo", 10);
+  lt::ChildProcess echo({lt::bin("bus"), "echo", "/joint_states", "--duration", "1"}, env(url));
+  EXPECT_EQ(echo.wait(20), 4) << echo.output();
+  EXPECT_NE(echo.output().find("no message on 'joint_states'"), std::string::npos) << echo.output();
+  EXPECT_NE(echo.output().find("channels seen: joint_states_typo"), std::string::npos) << echo.output();
+  lt::ChildProcess hz({lt::bin("bus"), "hz", "nothing", "--duration", "1"}, env(url));
+  EXPECT_EQ(hz.wait(20), 4) << hz.output();
+  const std::string quiet = lt::unique_lcm_url();
+  lt::ChildProcess list({lt::bin("bus"), "list", "--duration", "0.5"}, env(quiet));
+  EXPECT_EQ(list.wait(20), 4) << list.output();
+  EXPECT_NE(list.output().find("no messages on"), std::string::npos) << list.output();
+}
+
+TEST(BusTool, PubSendsWhatEchoAndAReceiverRead) {
+  const std::string url = lt::unique_lcm_url();
+  lcm::LCM lc(url);
+  lt::Recorder<e_stop_t> stops(lc, "e_stop");
+  lt::ChildProcess pub({lt::bin("bus"), "pub", "/e_stop", "e_stop_t", "engaged=true", "source=bus test"}, env(url));
+  ASSERT_EQ(pub.wait(20), 0) << pub.output();
+  ASSERT_TRUE(lt::pump_until(lc, [&] { return !stops.messages.empty(); }, 5));
+  EXPECT_EQ(stops.messages[0].engaged, 1);
+  EXPECT_EQ(stops.messages[0].source, "bus test");
+  EXPECT_GT(stops.messages[0].utime, 0);
+
+  lt::Recorder<float64_t> cmds(lc, "j1/command");
+  lt::ChildProcess rated({lt::bin("bus"), "pub", "j1/command", "float64", "data=0.5", "--rate", "100", "--count", "5"},
+                         env(url));
+  ASSERT_EQ(rated.wait(20), 0) << rated.output();
+  ASSERT_TRUE(lt::pump_until(lc, [&] { return cmds.messages.size() >= 5; }, 5));
+  EXPECT_EQ(cmds.messages[4].data, 0.5);
+
+  lt::ChildProcess bad({lt::bin("bus"), "pub", "x", "float64_t", "dat=1"}, env(url));
+  EXPECT_EQ(bad.wait(20), 2) << bad.output();
+  EXPECT_NE(bad.output().find("no such field; its fields: utime (int64), data (double)"), std::string::npos)
+      << bad.output();
+}
+
+TEST(BusTool, InfoSummarisesALogAndRefusesWhatIsNotOne) {
+  const std::string dir = lt::temp_dir("bus_info");
+  {
+    lt::TestLog log(dir + "/run.lcmlog");
+    float64_t m{};
+    for (int k = 0; k < 11; ++k) log.put_message("j1/command", k * 100000, m);
+    log.put("raw", 0, {1, 2, 3});
+  }
+  lt::ChildProcess info({lt::bin("bus"), "info", dir + "/run.lcmlog"});
+  ASSERT_EQ(info.wait(20), 0) << info.output();
+  EXPECT_NE(info.output().find("duration:  1.000 s"), std::string::npos) << info.output();
+  EXPECT_NE(info.output().find("messages:  12"), std::string::npos) << info.output();
+  EXPECT_NE(info.output().find("11 msgs       10.0 Hz  lcm_control.float64_t"), std::string::npos) << info.output();
+  EXPECT_NE(info.output().find("? (3 bytes)"), std::string::npos) << info.output();
+
+  lt::ChildProcess folder({lt::bin("bus"), "info", dir});
+  EXPECT_EQ(folder.wait(20), 3) << folder.output();
+  EXPECT_NE(folder.output().find(dir + ": not a regular file"), std::string::npos) << folder.output();
+  lt::ChildProcess missing({lt::bin("bus"), "info", dir + "/none.lcmlog"});
+  EXPECT_EQ(missing.wait(20), 3) << missing.output();
+}
+
+TEST(BusTool, TypesListsTypesAndFields) {
+  lt::ChildProcess types({lt::bin("bus"), "types"});
+  ASSERT_EQ(types.wait(20), 0) << types.output();
+  EXPECT_NE(types.output().find("joint_trajectory_t\n"), std::string::npos);
+  lt::ChildProcess fields({lt::bin("bus"), "types", "joint_trajectory_t"});
+  ASSERT_EQ(fields.wait(20), 0) << fields.output();
+  EXPECT_NE(fields.output().find("points[].positions[] (double)"), std::string::npos) << fields.output();
+}

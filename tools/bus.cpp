@@ -1,0 +1,414 @@
+// bus: rostopic and rosbag info for LCM, headless: list the channels on the bus
+// with their types and rates, measure one channel's rate, print its messages,
+// publish any lcm_control message from field=value pairs, summarise a log.
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cstring>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <deque>
+#include <map>
+#include <memory>
+
+#include "common/cli.hpp"
+#include "tools/csv.hpp"
+#include "tools/fields.hpp"
+#include "tools/message_text.hpp"
+#include "tools/support.hpp"
+
+namespace lcm_control::tools {
+namespace {
+
+std::string regex_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (std::string("\\^$.|?*+()[]{}").find(c) != std::string::npos) out += '\\';
+    out += c;
+  }
+  return out;
+}
+
+std::string rate_text(double hz) { return hz >= 100 ? fmt::format("{:.0f}", hz) : fmt::format("{:.1f}", hz); }
+
+std::string bytes_text(double b) {
+  if (b >= 1e6) return fmt::format("{:.1f} MB", b / 1e6);
+  if (b >= 1e3) return fmt::format("{:.1f} KB", b / 1e3);
+  return fmt::format("{:.0f} B", b);
+}
+
+// What was seen on each channel: count, bytes, first and last receive time, type.
+struct ChannelSeen {
+  int64_t count = 0, bytes = 0, first_us = 0, last_us = 0;
+  std::string type;
+  double rate(int64_t window_us) const {
+    if (count >= 2 && last_us > first_us) return double(count - 1) * 1e6 / double(last_us - first_us);
+    return window_us > 0 ? double(count) * 1e6 / double(window_us) : 0;
+  }
+};
+
+std::string type_name(const void* data, size_t size) {
+  const std::string t = type_of_payload(data, size);
+  if (!t.empty()) return t;
+  if (size < 8) return fmt::format("? ({} bytes)", size);
+  const auto* b = static_cast<const uint8_t*>(data);
+  uint64_t h = 0;
+  for (int k = 0; k < 8; ++k) h = (h << 8) | b[k];
+  return fmt::format("? 0x{:016x}", h);
+}
+
+// Every channel on the bus (or in the namespace), counted.
+class Census {
+ public:
+  explicit Census(Bus& bus) : bus_(bus) {
+    auto* sub = bus.lcm().subscribe(regex_escape(bus.channel("")) + ".*", &Census::on, this);
+    sub->setQueueCapacity(10000);
+  }
+  const std::map<std::string, ChannelSeen>& seen() const { return seen_; }
+  std::string names() const {
+    if (seen_.empty()) return "none";
+    std::string out;
+    for (const auto& [name, s] : seen_) out += (out.empty() ? "" : ", ") + name;
+    return out;
+  }
+
+ private:
+  void on(const lcm::ReceiveBuffer* rb, const std::string& channel) {
+    auto& s = seen_[channel];
+    const int64_t now = monotonic_us();
+    if (s.count++ == 0) {
+      s.first_us = now;
+      s.type = type_name(rb->data, rb->data_size);
+    }
+    s.last_us = now;
+    s.bytes += rb->data_size;
+  }
+  Bus& bus_;
+  std::map<std::string, ChannelSeen> seen_;
+};
+
+[[noreturn]] void nothing_on(const std::string& channel, const Bus& bus, const Census& census) {
+  throw BusError(fmt::format("no message on '{}' ({}); channels seen: {}. Check the channel name, --namespace and "
+                             "--lcm-url (or LCM_DEFAULT_URL)",
+                             channel, bus.url(), census.names()));
+}
+
+// Runs the bus until stop(), Ctrl-C or `duration` seconds (0: no limit); every 5 s without a message on
+// `channel`, says which channels it did see.
+template <class Stop>
+void run_until(Bus& bus, const Census& census, const std::string& channel, double duration, Stop&& stop) {
+  const int64_t start = monotonic_us();
+  int64_t next_hint = start + 5000000;
+  while (!stop_requested() && !stop()) {
+    const int64_t now = monotonic_us();
+    if (duration > 0 && now - start >= int64_t(duration * 1e6)) break;
+    if (now >= next_hint) {
+      auto it = census.seen().find(channel);
+      if (it == census.seen().end())
+        fmt::print(stderr, "bus: no message on '{}' yet; channels seen: {}\n", channel, census.names());
+      next_hint = now + 5000000;
+    }
+    handle_bus(bus, 50);
+  }
+}
+
+int cmd_list(Bus& bus, double duration) {
+  Census census(bus);
+  const int64_t start = monotonic_us();
+  pump_until(bus, [] { return false; }, duration);
+  const int64_t window = monotonic_us() - start;
+  if (census.seen().empty())
+    throw BusError(fmt::format("no messages on {} in {}: is anything running with this --lcm-url / LCM_DEFAULT_URL{}?",
+                               bus.url(), seconds_text(duration),
+                               bus.ns().empty() ? "" : " in namespace " + bus.ns()));
+  size_t width = 7;
+  for (const auto& [name, s] : census.seen()) width = std::max(width, name.size());
+  fmt::print("{:<{}}  {:<42} {:>8} {:>9} {:>12}\n", "CHANNEL", width, "TYPE", "MSGS", "RATE Hz", "BANDWIDTH");
+  for (const auto& [name, s] : census.seen())
+    fmt::print("{:<{}}  {:<42} {:>8} {:>9} {:>10}/s\n", name, width, s.type, s.count, rate_text(s.rate(window)),
+               bytes_text(double(s.bytes) * 1e6 / double(window)));
+  fmt::print("{} channels over {:.1f} s on {}\n", census.seen().size(), double(window) * 1e-6, bus.url());
+  return kExitOk;
+}
+
+class RateMeter {
+ public:
+  RateMeter(Bus& bus, const std::string& channel, size_t window) : window_(window) {
+    auto* sub = bus.lcm().subscribe(regex_escape(channel), &RateMeter::on, this);
+    sub->setQueueCapacity(10000);
+  }
+  int64_t total() const { return total_; }
+  // One rostopic-hz line for the messages since the last report, over the window.
+  std::string report() {
+    const int64_t fresh = total_ - reported_;
+    reported_ = total_;
+    if (fresh == 0) return "no new messages";
+    if (periods_.empty()) return fmt::format("{} message", total_);
+    double sum = 0, lo = periods_.front(), hi = periods_.front();
+    for (double p : periods_) {
+      sum += p;
+      lo = std::min(lo, p);
+      hi = std::max(hi, p);
+    }
+    const double mean = sum / double(periods_.size());
+    double var = 0;
+    for (double p : periods_) var += (p - mean) * (p - mean);
+    const double sd = std::sqrt(var / double(periods_.size()));
+    return fmt::format("average rate: {:.3f} Hz  min {:.3f} ms  max {:.3f} ms  std dev {:.3f} ms  window {}",
+                       1e6 / mean, lo * 1e-3, hi * 1e-3, sd * 1e-3, periods_.size() + 1);
+  }
+
+ private:
+  void on(const lcm::ReceiveBuffer*, const std::string&) {
+    const int64_t now = monotonic_us();
+    if (last_ >= 0) {
+      periods_.push_back(double(now - last_));
+      if (periods_.size() > window_) periods_.pop_front();
+    }
+    last_ = now;
+    ++total_;
+  }
+  size_t window_;
+  std::deque<double> periods_;
+  int64_t last_ = -1, total_ = 0, reported_ = 0;
+};
+
+int cmd_hz(Bus& bus, const std::string& name, size_t window, double duration) {
+  const std::string channel = bus.channel(name);
+  Census census(bus);
+  RateMeter meter(bus, channel, window);
+  int64_t next = monotonic_us() + 1000000;
+  run_until(bus, census, channel, duration, [&] {
+    if (monotonic_us() < next) return false;
+    next += 1000000;
+    if (meter.total() > 0) fmt::print("{}: {}\n", channel, meter.report());
+    std::fflush(stdout);
+    return false;
+  });
+  if (meter.total() == 0) nothing_on(channel, bus, census);
+  fmt::print("{}: {}\n", channel, meter.report());
+  return kExitOk;
+}
+
+class Echo {
+ public:
+  Echo(Bus& bus, const std::string& channel, bool csv) {
+    auto* sub = bus.lcm().subscribe(regex_escape(channel), &Echo::on, this);
+    sub->setQueueCapacity(10000);
+    if (csv) csv_ = std::make_unique<CsvWriter>("-");
+  }
+  int64_t printed() const { return printed_; }
+
+ private:
+  void on(const lcm::ReceiveBuffer* rb, const std::string& channel) {
+    try {
+      if (csv_) {
+        const Decoded d = decode_fields(rb->data, rb->data_size);
+        if (!d.ok()) throw std::runtime_error((d.type.empty() ? "" : d.type + ": ") + d.skip_reason);
+        csv_->write(d.fields);
+        csv_->flush();
+      } else {
+        fmt::print("{}---\n", message_yaml(rb->data, rb->data_size));
+        std::fflush(stdout);
+      }
+      ++printed_;
+    } catch (const std::exception& e) {
+      if (skipped_++ == 0 || skipped_ % 1000 == 0)
+        fmt::print(stderr, "bus: {}: skipping a message ({} so far): {}\n", channel, skipped_, e.what());
+    }
+  }
+  std::unique_ptr<CsvWriter> csv_;
+  int64_t printed_ = 0, skipped_ = 0;
+};
+
+int cmd_echo(Bus& bus, const std::string& name, bool csv, int64_t count, double duration) {
+  const std::string channel = bus.channel(name);
+  Census census(bus);
+  Echo echo(bus, channel, csv);
+  run_until(bus, census, channel, duration, [&] { return count > 0 && echo.printed() >= count; });
+  if (echo.printed() == 0) {
+    if (census.seen().count(channel))
+      throw BusError(fmt::format("'{}' carried {} messages, none of an lcm_control type that decodes ({})", channel,
+                                 census.seen().at(channel).count, census.seen().at(channel).type));
+    nothing_on(channel, bus, census);
+  }
+  return kExitOk;
+}
+
+int cmd_pub(Bus& bus, const std::string& name, const std::string& type, const std::vector<std::string>& fields,
+            double rate, int64_t count) {
+  const std::string channel = bus.channel(name);
+  std::vector<uint8_t> bytes;
+  try {
+    bytes = build_message(type, fields, wall_us());
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError(e.what());
+  }
+  const std::string full_type = type_of_payload(bytes.data(), bytes.size());
+  if (rate <= 0) {
+    if (bus.lcm().publish(channel, bytes.data(), unsigned(bytes.size())) != 0)
+      throw BusError("could not publish on " + channel + " (" + bus.url() + ")");
+    fmt::print(stderr, "bus: published {} on {} ({} bytes)\n", full_type, channel, bytes.size());
+    return kExitOk;
+  }
+  fmt::print(stderr, "bus: publishing {} on {} at {} Hz{}\n", full_type, channel, rate_text(rate),
+             count > 0 ? fmt::format(", {} messages", count) : " until Ctrl-C");
+  const int64_t period = std::max<int64_t>(1, int64_t(std::llround(1e6 / rate)));
+  int64_t next = monotonic_us(), sent = 0;
+  while (!stop_requested() && (count <= 0 || sent < count)) {
+    if (bus.lcm().publish(channel, bytes.data(), unsigned(bytes.size())) != 0)
+      throw BusError("could not publish on " + channel + " (" + bus.url() + ")");
+    ++sent;
+    next += period;
+    sleep_until_us(next);
+  }
+  fmt::print(stderr, "bus: published {} messages\n", sent);
+  return kExitOk;
+}
+
+std::string date_text(int64_t utime) {
+  const time_t secs = time_t(utime / 1000000);
+  std::tm tm{};
+  localtime_r(&secs, &tm);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M:%S", &tm);
+  return fmt::format("{}.{:06d} ({:.6f})", buf, int(utime % 1000000), double(utime) * 1e-6);
+}
+
+int cmd_info(const std::string& path) {
+  struct stat st{};
+  if (stat(path.c_str(), &st) != 0)
+    throw ModelError({fmt::format("{}: cannot read the log: {}", path, std::strerror(errno))});
+  if (!S_ISREG(st.st_mode))
+    throw ModelError({fmt::format("{}: not a regular file; give a log written by lcm-logger", path)});
+  lcm::LogFile log(path, "r");
+  if (!log.good()) throw ModelError({fmt::format("{}: cannot open the log", path)});
+  std::map<std::string, ChannelSeen> seen;
+  int64_t messages = 0, first = 0, last = 0;
+  while (const lcm::LogEvent* e = log.readNextEvent()) {
+    auto& s = seen[e->channel];
+    const std::string type = type_name(e->data, size_t(std::max<int32_t>(0, e->datalen)));
+    if (s.count++ == 0) {
+      s.first_us = e->timestamp;
+      s.type = type;
+    } else if (s.type != type && s.type.find("mixed") == std::string::npos) {
+      s.type += " (mixed types)";
+    }
+    s.last_us = e->timestamp;
+    s.bytes += e->datalen;
+    if (messages++ == 0) first = e->timestamp;
+    last = std::max(last, e->timestamp);
+  }
+  if (messages == 0)
+    throw ModelError({fmt::format("{}: no events: not a log written by lcm-logger, or an empty one", path)});
+  const double duration = double(last - first) * 1e-6;
+  fmt::print("path:      {}\n", path);
+  fmt::print("size:      {}\n", bytes_text(double(st.st_size)));
+  fmt::print("duration:  {:.3f} s\n", duration);
+  fmt::print("start:     {}\n", date_text(first));
+  fmt::print("end:       {}\n", date_text(last));
+  fmt::print("messages:  {}\n", messages);
+  fmt::print("channels:\n");
+  size_t width = 7;
+  for (const auto& [name, s] : seen) width = std::max(width, name.size());
+  for (const auto& [name, s] : seen)
+    fmt::print("  {:<{}}  {:>8} msgs  {:>9} Hz  {}\n", name, width, s.count,
+               rate_text(s.count >= 2 && s.last_us > s.first_us ? double(s.count - 1) * 1e6 / double(s.last_us - s.first_us)
+                                                                 : 0.0),
+               s.type);
+  return kExitOk;
+}
+
+int cmd_types(const std::string& type) {
+  if (type.empty()) {
+    for (const auto& t : message_type_names()) fmt::print("{}\n", t);
+    return kExitOk;
+  }
+  try {
+    for (const auto& f : message_fields(type)) fmt::print("{}\n", f);
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError(e.what());
+  }
+  return kExitOk;
+}
+
+}  // namespace
+}  // namespace lcm_control::tools
+
+int main(int argc, char** argv) {
+  using namespace lcm_control;
+  using namespace lcm_control::tools;
+  CLI::App app{
+      "The bus from a terminal (rostopic, rosbag info): list the channels with their types, rates and bandwidth, "
+      "measure a channel's rate, print its messages, publish any lcm_control message, summarise a log. Channel "
+      "names may start with '/' as in ROS. A command that sees no message on its channel exits 4 and lists the "
+      "channels it did see.\n"
+      "Examples:\n"
+      "  bus list                                      # what is on the bus (2 s)\n"
+      "  bus hz hardware/state\n"
+      "  bus echo joint_states --count 1\n"
+      "  bus echo /j2_controller/command --csv --duration 5\n"
+      "  bus pub j1_controller/command float64_t data=0.5\n"
+      "  bus pub e_stop e_stop_t engaged=true source=me\n"
+      "  bus pub arm_controller/command joint_trajectory_t joint_names=[j1,j2] \\\n"
+      "      points[0].positions=[0.5,1.0] points[0].time_from_start=2\n"
+      "  bus types joint_trajectory_t                  # the fields pub takes\n"
+      "  bus info run.lcmlog",
+      "bus"};
+  app.require_subcommand(1);
+  app.fallthrough();
+  BusFlags bus_flags;
+  add_bus_flags(app, bus_flags);
+
+  double list_duration = 2;
+  auto* list = app.add_subcommand("list", "channels seen on the bus: type, messages, rate, bandwidth (like lcm-spy)");
+  list->add_option("--duration", list_duration, "seconds to listen (default 2)")->check(CLI::PositiveNumber);
+
+  std::string channel, type, log_path;
+  double duration = 0;
+  int64_t count = 0;
+  size_t window = 1000;
+  auto* hz = app.add_subcommand("hz", "a channel's rate each second (rostopic hz)");
+  hz->add_option("CHANNEL", channel, "channel (the namespace is prefixed)")->required();
+  hz->add_option("--window", window, "periods the statistics cover (default 1000)")->check(CLI::PositiveNumber);
+  hz->add_option("--duration", duration, "stop after S seconds")->check(CLI::PositiveNumber);
+
+  bool csv = false;
+  auto* echo = app.add_subcommand("echo", "a channel's messages, decoded (rostopic echo)");
+  echo->add_option("CHANNEL", channel, "channel (the namespace is prefixed)")->required();
+  echo->add_option("--count", count, "stop after N messages")->check(CLI::PositiveNumber);
+  echo->add_option("--duration", duration, "stop after S seconds")->check(CLI::PositiveNumber);
+  echo->add_flag("--csv", csv, "CSV rows (state-logger's columns) instead of YAML");
+
+  std::vector<std::string> assignments;
+  double rate = 0;
+  auto* pub = app.add_subcommand("pub", "publish one lcm_control message built from FIELD=VALUE (rostopic pub)");
+  pub->add_option("CHANNEL", channel, "channel (the namespace is prefixed)")->required();
+  pub->add_option("TYPE", type, "message type, e.g. float64_t (bus types lists them)")->required();
+  pub->add_option("FIELD=VALUE", assignments,
+                  "fields by path: data=0.5, position[1]=2, name=[j1,j2], points[0].positions=[0.1,0.2]; "
+                  "unset fields are 0 or empty, array lengths follow the arrays, utime defaults to now");
+  pub->add_option("--rate", rate, "publish at HZ until Ctrl-C or --count (default: once)")->check(CLI::PositiveNumber);
+  pub->add_option("--count", count, "with --rate: stop after N messages")->check(CLI::PositiveNumber);
+
+  auto* types = app.add_subcommand("types", "the message types, or one type's fields as pub takes them");
+  types->add_option("TYPE", type, "a type to describe");
+
+  auto* info = app.add_subcommand("info", "channels, counts, rates and duration of an lcm-logger log (rosbag info)");
+  info->add_option("LOG", log_path, "log file written by lcm-logger")->required();
+
+  return run_program(app, argc, argv, [&] {
+    channel = without_leading_slashes(channel);
+    if (info->parsed()) return cmd_info(log_path);
+    if (types->parsed()) return cmd_types(type);
+    install_stop_signals();
+    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    if (list->parsed()) return cmd_list(bus, list_duration);
+    if (hz->parsed()) return cmd_hz(bus, channel, window, duration);
+    if (echo->parsed()) return cmd_echo(bus, channel, csv, count, duration);
+    return cmd_pub(bus, channel, type, assignments, rate, count);
+  });
+}
