@@ -19,6 +19,7 @@
 #include "tools/fields.hpp"
 #include "tools/message_text.hpp"
 #include "tools/support.hpp"
+#include "tools/time_base.hpp"
 
 namespace lcm_control::tools {
 namespace {
@@ -241,28 +242,35 @@ int cmd_echo(Bus& bus, const std::string& name, bool csv, int64_t count, double 
 int cmd_pub(Bus& bus, const std::string& name, const std::string& type, const std::vector<std::string>& fields,
             double rate, int64_t count) {
   const std::string channel = bus.channel(name);
-  std::vector<uint8_t> bytes;
-  try {
-    bytes = build_message(type, fields, wall_us());
-  } catch (const std::invalid_argument& e) {
-    throw CLI::ValidationError(e.what());
-  }
-  const std::string full_type = type_of_payload(bytes.data(), bytes.size());
-  if (rate <= 0) {
+  const CommandClock clock(bus, 0.3);
+  auto make = [&] {
+    try {
+      return build_message(type, fields, clock.now_us());
+    } catch (const std::invalid_argument& e) {
+      throw CLI::ValidationError(e.what());
+    }
+  };
+  auto send = [&](const std::vector<uint8_t>& bytes) {
     if (bus.lcm().publish(channel, bytes.data(), unsigned(bytes.size())) != 0)
       throw BusError("could not publish on " + channel + " (" + bus.url() + ")");
-    fmt::print(stderr, "bus: published {} on {} ({} bytes)\n", full_type, channel, bytes.size());
+  };
+  std::vector<uint8_t> bytes = make();
+  const std::string full_type = type_of_payload(bytes.data(), bytes.size());
+  const char* stamp = clock.on_sim() ? "sim time" : "wall-clock time";
+  if (rate <= 0) {
+    send(bytes);
+    fmt::print(stderr, "bus: published {} on {} ({} bytes, stamped in {})\n", full_type, channel, bytes.size(), stamp);
     return kExitOk;
   }
-  fmt::print(stderr, "bus: publishing {} on {} at {} Hz{}\n", full_type, channel, rate_text(rate),
-             count > 0 ? fmt::format(", {} messages", count) : " until Ctrl-C");
+  fmt::print(stderr, "bus: publishing {} on {} at {} Hz{}, stamped in {}\n", full_type, channel, rate_text(rate),
+             count > 0 ? fmt::format(", {} messages", count) : " until Ctrl-C", stamp);
   const int64_t period = std::max<int64_t>(1, int64_t(std::llround(1e6 / rate)));
   int64_t next = monotonic_us(), sent = 0;
   while (!stop_requested() && (count <= 0 || sent < count)) {
-    if (bus.lcm().publish(channel, bytes.data(), unsigned(bytes.size())) != 0)
-      throw BusError("could not publish on " + channel + " (" + bus.url() + ")");
+    send(sent == 0 ? bytes : make());
     ++sent;
     next += period;
+    pump_until(bus, [] { return false; }, double(next - monotonic_us() - 1000) * 1e-6);  // sim time moves on
     sleep_until_us(next);
   }
   fmt::print(stderr, "bus: published {} messages\n", sent);
@@ -390,7 +398,8 @@ int main(int argc, char** argv) {
   pub->add_option("TYPE", type, "message type, e.g. float64_t (bus types lists them)")->required();
   pub->add_option("FIELD=VALUE", assignments,
                   "fields by path: data=0.5, position[1]=2, name=[j1,j2], points[0].positions=[0.1,0.2]; "
-                  "unset fields are 0 or empty, array lengths follow the arrays, utime defaults to now");
+                  "unset fields are 0 or empty, array lengths follow the arrays, utime defaults to now (sim time when "
+                  "sim_server's clock is on the bus)");
   pub->add_option("--rate", rate, "publish at HZ until Ctrl-C or --count (default: once)")->check(CLI::PositiveNumber);
   pub->add_option("--count", count, "with --rate: stop after N messages")->check(CLI::PositiveNumber);
 

@@ -14,6 +14,7 @@
 #include "common/cli.hpp"
 #include "tools/fields.hpp"
 #include "tools/support.hpp"
+#include "tools/time_base.hpp"
 
 namespace lcm_control::tools {
 namespace {
@@ -320,6 +321,17 @@ int main(int argc, char** argv) {
           "read the text with log2csv or state-logger",
           s.path, s.field, s.channel));
     }
+    if (time_source == "utime")
+      for (const auto& s : series) {
+        if (s.points.empty() || series[0].points.empty()) continue;
+        const std::string mixed =
+            mixed_clocks(series[0].channel, series[0].points.front().first, s.channel, s.points.front().first);
+        if (mixed.empty()) continue;
+        if (!keep) std::remove(data_file.c_str());
+        throw std::runtime_error(mixed + "; plot against receive time (--time receive, the default), or publish the "
+                                         "commands on the sim clock (turret-cmd and bus pub stamp sim time when "
+                                         "sim_server's clock is on the bus)");
+      }
     std::string missing;
     for (const auto& s : series)
       if (s.points.empty()) missing += (missing.empty() ? "" : ", ") + s.path;

@@ -15,7 +15,9 @@
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "tools/cm_client.hpp"
+#include "tools/time_base.hpp"
 #include "tools/support.hpp"
+#include "tools/time_base.hpp"
 
 namespace lcm_control::tools {
 namespace {
@@ -86,10 +88,11 @@ bool more(const Options& o, int64_t i, double t) {
 
 // Wall clock: message i is due at start + i/rate on the monotonic clock. When the
 // process falls more than one period behind, it re-anchors instead of bursting.
-int run_wall(Publisher& pub, const Options& o) {
+// Messages are stamped by `clock` (sim time when sim_server is on the bus).
+int run_wall(Bus& bus, Publisher& pub, const Options& o, const CommandClock& clock) {
   const int64_t start = monotonic_us();
   if (o.rate <= 0) {
-    pub.send(0, 0.0, wall_us());
+    pub.send(0, 0.0, clock.now_us());
     return kExitOk;
   }
   const double period_us = 1e6 / o.rate;
@@ -98,6 +101,7 @@ int run_wall(Publisher& pub, const Options& o) {
     int64_t due = anchor + std::llround(double(i - anchor_i) * period_us);
     const double t = double(due - start) / 1e6;
     if (!more(o, i, t)) break;
+    pump_until(bus, [] { return false; }, double(due - monotonic_us() - 1000) * 1e-6);  // sim time moves on
     sleep_until_us(due);
     if (stop_requested()) break;
     const int64_t now = monotonic_us();
@@ -106,7 +110,7 @@ int run_wall(Publisher& pub, const Options& o) {
       anchor_i = i;
       ++late;
     }
-    pub.send(i, double(due - start) / 1e6, wall_us());
+    pub.send(i, double(due - start) / 1e6, clock.now_us());
   }
   if (late) fmt::print(stderr, "turret-cmd: fell behind the {:g} Hz schedule {} times\n", o.rate, late);
   return kExitOk;
@@ -324,7 +328,13 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "turret-cmd: {} on '{}' {}{} (Ctrl-C to stop)\n", pub.type(), bus.channel(pub.channel()),
                  o.rate > 0 ? fmt::format("at {:g} Hz", o.rate) : std::string("every control step"),
                  o.sim_time ? " of sim time" : "");
-    const int rc = o.sim_time ? run_sim_time(bus, pub, o) : run_wall(pub, o);
+    int rc = kExitOk;
+    if (o.sim_time) {
+      rc = run_sim_time(bus, pub, o);
+    } else {
+      const CommandClock clock(bus, 0.3);
+      rc = run_wall(bus, pub, o, clock);
+    }
     fmt::print(stderr, "turret-cmd: sent {} message{} on '{}'\n", pub.sent(), pub.sent() == 1 ? "" : "s",
                bus.channel(pub.channel()));
     return rc;
