@@ -5,8 +5,21 @@
 
 namespace lcm_control::cm {
 
+// A joint a controller takes over from one stopped in the same switch keeps that controller's last command
+// (bumpless); any other joint is first commanded to hold where it is, so that the command written in this cycle,
+// before the new controller's first update, is never a stale or zero value.
+bool Loop::handed_over(const JointData* j) const {
+  for (const ControllerSlot* s : pending_stop_)
+    for (const JointData* k : s->claimed)
+      if (k == j) return true;
+  return false;
+}
+
 void Loop::start(ControllerSlot& s) {
-  for (JointData* j : s.claimed) j->owner = s.controller.get();
+  for (JointData* j : s.claimed) {
+    if (!handed_over(j)) j->command = j->offered.front() == Interface::Position ? j->position : 0.0;
+    j->owner = s.controller.get();
+  }
   s.controller->running_ = true;
   s.controller->starting(now_);
   s.running = true;

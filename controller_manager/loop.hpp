@@ -5,6 +5,9 @@
 // A new session, time or step going backwards, an e-stop release or a resume
 // after silence restarts the running controllers from the current state.
 // Command sources deliver their due ticks after restarts, before the updates.
+// A started controller's joints hold their measured position (velocity and
+// effort 0) until its first update, unless taken over from a controller
+// stopped in the same switch, whose last command they keep.
 // cycle() does not allocate, log or lock.
 #pragma once
 
@@ -66,6 +69,7 @@ class Loop {
 
  private:
   void apply_switch();
+  bool handed_over(const JointData* j) const;
   void start(ControllerSlot& s);
   void stop(ControllerSlot& s);
 

@@ -282,3 +282,21 @@ TEST(ControllerManagerLoop, ActuatorCountChangingWithinASessionIsReboundNotTrust
   rig.cycle(2);  // all six again: bound again, answered
   EXPECT_EQ(rig.cm->loop().stats().cycles(), cycles + 2);
 }
+
+// A controller manager (re)started under a robot that is not at 0: the cycle that starts a controller writes its
+// joints before the controller's first update, and must command where the joint is, not 0 (issue 18).
+TEST(ControllerManagerLoop, AStartedControllerHoldsTheMeasuredPositionUntilItsFirstUpdate) {
+  g_updates.clear();
+  Rig rig(test_registry(), data("test_bot.urdf"), data("switch_test.yaml"));
+  rig.actuator("tilt_motor").position = 0.8;
+  rig.cycle(3);
+  ASSERT_TRUE(rig.load("rec_a").ok);
+  const size_t before = rig.commands.size();
+  ASSERT_TRUE(rig.switch_({"rec_a"}, {}).ok);
+  rig.cycle(2);
+  ASSERT_GE(rig.commands.size(), before + 3);
+  const hardware_command_t& first = rig.commands[before];  // the switching cycle
+  ASSERT_EQ(first.mode[0], hardware_command_t::MODE_POSITION);
+  EXPECT_EQ(first.command[0], 0.8) << "step " << first.step;
+  EXPECT_EQ(rig.commands[before + 1].command[0], 1.0);  // then the controller's own command
+}
