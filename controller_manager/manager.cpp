@@ -18,6 +18,10 @@
 
 namespace lcm_control::cm {
 
+namespace {
+const char* const kShuttingDown = "the controller manager is shutting down";
+}  // namespace
+
 ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry& registry, ManagerOptions options)
     : model_(std::move(model)),
       bus_(bus),
@@ -110,6 +114,7 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Port&
 }
 
 Reply ControllerManager::load(const std::string& name) {
+  if (shutting_down_) return {false, kShuttingDown};
   if (ControllerSlot* s = find(name))
     return {false, fmt::format("cannot load '{}': it is already loaded (state: {})", name, s->state())};
   const ControllerSpec* spec = model_.controller(name);
@@ -168,6 +173,7 @@ Reply ControllerManager::unload(const std::string& name) {
 
 void ControllerManager::switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop,
                                            int strictness, Done done) {
+  if (shutting_down_) return done({false, kShuttingDown});
   if (busy()) {
     done({false, "another switch is being applied; retry"});
     return;
@@ -211,6 +217,7 @@ void ControllerManager::complete_pending() {
 }
 
 void ControllerManager::reload(bool force, Done done) {
+  if (shutting_down_) return done({false, kShuttingDown});
   std::vector<std::string> loaded, running;
   for (const auto& s : loop_.slots()) {
     loaded.push_back(s->name);
@@ -340,10 +347,12 @@ loop_stats_t ControllerManager::statistics() {
 
 std::string ControllerManager::shutdown() {
   std::vector<std::string> stopped, unloaded;
-  if (pending_done_) {
+  shutting_down_ = true;
+  // Answering a pending switch lets the services start the requests that waited for it; those are refused at once.
+  while (pending_done_) {
     Done d = std::move(pending_done_);
     pending_done_ = nullptr;
-    d({false, "the controller manager is shutting down"});
+    d({false, kShuttingDown});
   }
   for (const auto& s : loop_.slots()) {
     if (s->running) stopped.push_back(s->name);

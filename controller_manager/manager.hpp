@@ -106,6 +106,7 @@ class ControllerManager {
   Publisher<hardware_command_t> command_pub_;
   Publisher<loop_stats_t> stats_pub_;
   Done pending_done_;
+  bool shutting_down_ = false;  // from shutdown() on, switches and reloads are refused
   std::string pending_summary_;
   int64_t last_state_us_ = 0, last_stats_us_ = 0, bad_session_ = 0, dropped_ = 0, bad_state_logged_ = 0,
           reported_dropped_ = 0;

@@ -55,3 +55,27 @@ TEST(ControllerManagerServices, ListTypesAndEmptyNames) {
   EXPECT_FALSE(responses.messages[1].ok);
   EXPECT_EQ(responses.messages[1].message, "malformed request: start[0] is an empty name");
 }
+
+// SIGINT while a switch is pending and another waits for it: every request gets a refusal, and nothing is left
+// pending that points at the Services (main destroys them before the manager: this was a double free).
+TEST(ControllerManagerServices, ShutdownAnswersThePendingAndTheWaitingSwitchAndLeavesNothingPending) {
+  Rig rig;
+  auto services = std::make_unique<Services>(*rig.cm, rig.bus);
+  Recorder<cm_response_t> responses(rig.bus.lcm(), "controller_manager/response");
+  rig.cycle(2);
+  rig.publish("controller_manager/request", request(1, cm_request_t::LOAD, {"slide_position", "tilt_position"}));
+  rig.publish("controller_manager/request", request(2, cm_request_t::SWITCH, {}, {"slide_position"}));
+  rig.publish("controller_manager/request", request(3, cm_request_t::SWITCH, {}, {"tilt_position"}));
+  ASSERT_TRUE(rig.cm->busy());
+  rig.cm->shutdown();
+  EXPECT_FALSE(rig.cm->busy());
+  services.reset();
+  rig.pump();
+  ASSERT_EQ(responses.messages.size(), 3u);
+  for (int k = 1; k < 3; ++k) {
+    EXPECT_EQ(responses.messages[k].request_id, k + 1);
+    EXPECT_FALSE(responses.messages[k].ok);
+    EXPECT_NE(responses.messages[k].message.find("shutting down"), std::string::npos) << responses.messages[k].message;
+  }
+  rig.cm.reset();  // the manager's destructor shuts down again: no answer to give, nothing to call
+}
