@@ -72,7 +72,10 @@ int main(int argc, char** argv) {
         continue;
       }
       errors = 0;
-      manager.poll(monotonic_us(), r == 0);
+      // What is already queued first (bounded, so that a flood cannot starve the housekeeping), then silence.
+      for (int k = 0; r > 0 && k < 1000 && bus.lcm().handleTimeout(0) > 0; ++k) {
+      }
+      manager.poll(monotonic_us());
     }
     spdlog::info("shutting down: {}", manager.shutdown());
     return kExitOk;

@@ -308,9 +308,9 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
   if (pending_done_ && !loop_.switch_pending()) complete_pending();
 }
 
-void ControllerManager::poll(int64_t now, bool idle) {
+void ControllerManager::poll(int64_t now) {
   sources_.poll();
-  if (idle && loop_.has_state() && !silent_ && now - last_state_us_ > options_.silence_us) {
+  if (loop_.has_state() && !silent_ && now - last_state_us_ > options_.silence_us) {
     silent_ = true;
     spdlog::warn("no hardware/state for {} ms (last step {}): controllers are not updated until it resumes",
                  (now - last_state_us_) / 1000, loop_.step());

@@ -75,9 +75,11 @@ class ControllerManager {
 
   // One hardware/state message (already checked): bind, cycle, publish the command.
   void on_hardware_state(const hardware_state_t& state);
-  // Housekeeping between messages: silence (only when `idle`, i.e. nothing was
-  // waiting), a pending switch without hardware, statistics at 1 Hz.
-  void poll(int64_t monotonic_now_us, bool idle);
+  // Housekeeping between messages: silence (no hardware/state for silence_us,
+  // whatever else arrives; call it with the receive queue drained, so that a
+  // state waiting in it is not mistaken for silence), a pending switch without
+  // hardware, statistics at 1 Hz.
+  void poll(int64_t monotonic_now_us);
   bool ticking() const { return loop_.has_state() && !silent_; }
   void count_dropped(int64_t n) { dropped_ += n; }
   const hardware_command_t& last_command() const { return command_; }

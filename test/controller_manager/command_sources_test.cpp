@@ -85,7 +85,7 @@ TEST(CommandSources, RateTicksOnHardwareTimeAndEndsAfterDuration) {
   Recorder<cm_response_t> answers(rig.bus.lcm(), "controller_manager/response");
   ASSERT_TRUE(rig.cm->command_sources().handle(source("slide_position", {"i"}, 60, 0, 0.1)).ok);
   rig.cycle(200);
-  rig.cm->poll(monotonic_us(), false);
+  rig.cm->poll(monotonic_us());
   rig.pump();
   // ticks 0..5 (t = j/60 < 0.1), due at start + j/60 s, used from the first step at or after that
   ASSERT_EQ(echo.messages.size(), 6u);
@@ -142,7 +142,7 @@ TEST(CommandSources, RemoveUnloadAndReplaceEndTheSource) {
   ASSERT_TRUE(rig.cm->unload("slide_position").ok);
   EXPECT_EQ(cs.active(), 0u);
   rig.cycle(2);
-  rig.cm->poll(monotonic_us(), false);
+  rig.cm->poll(monotonic_us());
 }
 
 TEST(CommandSources, RefusalsNameTheProblem) {
@@ -172,7 +172,7 @@ TEST(CommandSources, NotFiniteEndsTheSourceAndNothingIsDelivered) {
   Recorder<cm_response_t> answers(rig.bus.lcm(), "controller_manager/response");
   ASSERT_TRUE(rig.cm->command_sources().handle(source("slide_position", {"sqrt(2-i)"})).ok);
   rig.cycle(6);
-  rig.cm->poll(monotonic_us(), false);
+  rig.cm->poll(monotonic_us());
   rig.pump();
   const auto v = commanded(rig, "slide_motor");
   EXPECT_DOUBLE_EQ(v[5], 0.0);

@@ -3,6 +3,9 @@
 // over LCM exactly as cmctl / spawner / turret-cmd would.
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -542,6 +545,29 @@ TEST(ControllerManagerE2E, SilenceIsReportedAndANewSessionRestartsFromTheCurrent
   s.command("slide_position", 0.8);
   ASSERT_TRUE(hw.run_steps(100, 10));
   EXPECT_DOUBLE_EQ(hw.actuator("slide_motor").position, 0.8);
+}
+
+// Other traffic must not hide a dead simulator: with a controller's commands arriving at 60 Hz (a turret-cmd),
+// silence is still measured from the last hardware/state (issue 18: only a bus quiet for 20 ms was checked).
+TEST(ControllerManagerE2E, SilenceIsReportedWhileOtherMessagesKeepComing) {
+  Session s;
+  ASSERT_TRUE(s.ready) << s.proc.output();
+  FakeHardware hw(s.url, actuators_for(test_bot()));
+  hw.start();
+  ASSERT_TRUE(hw.run_steps(10, 10));
+  s.load_and_start({"slide_position"});
+  hw.pause(true);
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+  bool reported = false;
+  while (!reported && std::chrono::steady_clock::now() < until) {
+    s.command("slide_position", 0.3);
+    std::this_thread::sleep_for(std::chrono::milliseconds(16));
+    reported = s.proc.output().find("no hardware/state for") != std::string::npos;
+  }
+  EXPECT_TRUE(reported) << s.proc.output();
+  hw.pause(false);
+  ASSERT_TRUE(hw.run_steps(50, 10));
+  EXPECT_TRUE(s.proc.wait_for_output("hardware/state resumed", 3)) << s.proc.output();
 }
 
 TEST(ControllerManagerE2E, CleanShutdownStopsAndUnloadsEverything) {

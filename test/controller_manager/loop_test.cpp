@@ -96,7 +96,7 @@ TEST(ControllerManagerLoop, SilenceStopsUpdatesAndResumeRestartsFromTheCurrentSt
   ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
   rig.cycle(5);
   EXPECT_TRUE(rig.cm->ticking());
-  rig.cm->poll(monotonic_us() + 1000000, true);
+  rig.cm->poll(monotonic_us() + 1000000);
   EXPECT_FALSE(rig.cm->ticking());
   // A switch while silent applies at once.
   ASSERT_TRUE(rig.load("tilt_position").ok);
@@ -259,7 +259,7 @@ TEST(ControllerManagerLoop, LockstepResumeWithTheNextStepContinuesWithoutRestart
   ASSERT_TRUE(rig.load("trajectory").ok);
   ASSERT_TRUE(rig.switch_({"trajectory"}, {}).ok);
   rig.cycle(5);
-  rig.cm->poll(monotonic_us() + 1000000, true);  // a lost message: the hardware republishes later
+  rig.cm->poll(monotonic_us() + 1000000);  // a lost message: the hardware republishes later
   EXPECT_FALSE(rig.cm->ticking());
   const int64_t restarts = rig.cm->loop().restarts();
   rig.cycle(2);
