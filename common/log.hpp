@@ -4,11 +4,33 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cstdint>
 #include <string>
 
 namespace lcm_control {
 
 // level: "debug", "info", "warn", "error" (default info, or LCM_CONTROL_LOG_LEVEL).
 void setup_logging(const std::string& program, const std::string& level = "");
+
+// `s` if it has at most max_chars characters, else its start and "... (N bytes)": strings from the bus in log lines.
+std::string clip(const std::string& s, size_t max_chars = 80);
+
+// Log lines about what arrives on the bus, where anyone may send anything as often as they like: every line is
+// clipped to max_chars, and at most `per_second` lines are written each second; the others are counted and the
+// count is told with the next line written, so a flood cannot fill the disk.
+class BusLog {
+ public:
+  explicit BusLog(int per_second = 20, size_t max_chars = 400) : per_second_(per_second), max_chars_(max_chars) {}
+  void info(const std::string& line) { write(spdlog::level::info, line); }
+  void warn(const std::string& line) { write(spdlog::level::warn, line); }
+  int64_t suppressed() const { return suppressed_total_; }
+
+ private:
+  void write(spdlog::level::level_enum level, const std::string& line);
+  int per_second_;
+  size_t max_chars_;
+  int64_t window_us_ = -1, suppressed_ = 0, suppressed_total_ = 0;
+  int in_window_ = 0;
+};
 
 }  // namespace lcm_control

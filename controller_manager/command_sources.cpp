@@ -45,7 +45,7 @@ CommandSources::CommandSources(Loop& loop, Bus& bus)
       channel, [this](const command_source_t& r) { answer(r.request_id, handle(r)); },
       [this](const std::string& why) {
         const Reply reply{false, "malformed command source request: " + why + "; dropped (answered as -1)"};
-        spdlog::warn("{}", reply.message);
+        log_.warn(reply.message);
         answer(-1, reply);
       });
 }
@@ -67,7 +67,7 @@ void CommandSources::answer(int64_t request_id, const Reply& reply) {
 Reply CommandSources::handle(const command_source_t& r) {
   auto refuse = [&](const std::string& why) {
     Reply reply{false, fmt::format("command source for '{}' refused: {}", r.controller, why)};
-    spdlog::warn("request {}{}: {}", r.request_id, r.client.empty() ? "" : " from " + r.client, reply.message);
+    log_.warn(fmt::format("request {}{}: {}", r.request_id, r.client.empty() ? "" : " from " + clip(r.client), reply.message));
     return reply;
   };
   if (r.controller.empty()) return refuse("no controller named");
@@ -78,7 +78,7 @@ Reply CommandSources::handle(const command_source_t& r) {
         s->slot = nullptr;
         const Reply reply{true, fmt::format("command source for '{}' removed after {} tick(s)", r.controller,
                                             s->ticks)};
-        spdlog::info("request {}{}: {}", r.request_id, r.client.empty() ? "" : " from " + r.client, reply.message);
+        log_.info(fmt::format("request {}{}: {}", r.request_id, r.client.empty() ? "" : " from " + clip(r.client), reply.message));
         return reply;
       }
     return refuse("it has no command source to remove");
@@ -148,7 +148,7 @@ Reply CommandSources::handle(const command_source_t& r) {
                              limits.empty() ? "" : fmt::format(", for {}", fmt::join(limits, " or ")));
   const Reply reply{true, fmt::format("command source for '{}': {}; tick 0 at the {} cycle in which it runs{}",
                                       r.controller, src->summary, loop_.has_state() ? "next" : "first", replaced)};
-  spdlog::info("request {}{}: {}", r.request_id, r.client.empty() ? "" : " from " + r.client, reply.message);
+  log_.info(fmt::format("request {}{}: {}", r.request_id, r.client.empty() ? "" : " from " + clip(r.client), reply.message));
   sources_.push_back(std::move(src));
   return reply;
 }
@@ -237,9 +237,9 @@ void CommandSources::poll() {
                                                   s.controller, why, s.ticks,
                                                   s.started ? fmt::format(", last at {:.6f} s", s.last_us * 1e-6) : "")};
     if (reply.ok)
-      spdlog::info("{}", reply.message);
+      log_.info(reply.message);
     else
-      spdlog::warn("{}", reply.message);
+      log_.warn(reply.message);
     answer(s.request_id, reply);
     sources_.erase(sources_.begin() + static_cast<std::ptrdiff_t>(k));
   }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common/bus.hpp"
+#include "common/log.hpp"
 #include "common/expression.hpp"
 #include "controller_manager/controller.hpp"
 #include "controller_manager/port.hpp"
@@ -60,6 +61,7 @@ class CommandSources {
   Port port_;
   Publisher<cm_response_t> response_pub_;
   std::vector<std::unique_ptr<Source>> sources_;
+  BusLog log_;
 };
 
 }  // namespace lcm_control::cm

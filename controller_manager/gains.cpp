@@ -1,5 +1,7 @@
 #include "controller_manager/gains.hpp"
 
+#include "common/log.hpp"
+
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -63,14 +65,15 @@ void serve_gains(ControllerSlot& slot, Bus& bus) {
   auto pub =
       std::make_shared<Publisher<pid_gains_t>>(slot.port->publisher<pid_gains_t>(bus.channel(gains_channel(name))));
   auto answer = std::make_shared<pid_gains_t>();
+  auto log = std::make_shared<BusLog>();
   slot.port->subscribe<pid_gains_t>(
       bus.channel(gains_set_channel(name)),
-      [c, name, pub, answer](const pid_gains_t& req) {
+      [c, name, pub, answer, log](const pid_gains_t& req) {
         apply_gains_request(*c, name, req, *answer);
-        if (!req.query) spdlog::info("{}", answer->message);
+        if (!req.query) log->info(answer->message);
         pub->publish(*answer);
       },
-      [name](const std::string& why) { spdlog::warn("{} gains: {}", name, why); });
+      [name, log](const std::string& why) { log->warn(name + " gains: " + why); });
 }
 
 }  // namespace lcm_control::cm

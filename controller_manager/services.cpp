@@ -54,7 +54,7 @@ Services::Services(ControllerManager& cm, Bus& bus)
         r.request_id = -1;
         r.op = 0;
         const Reply reply{false, "malformed request: " + why + "; dropped (request_id unknown, answered as -1)"};
-        spdlog::warn("{}", reply.message);
+        log_.warn(reply.message);
         answer(r, reply);
       });
 }
@@ -72,8 +72,8 @@ void Services::answer(const cm_request_t& req, const Reply& reply, bool with_typ
   m.num_types = static_cast<int32_t>(m.types.size());
   pub_.publish(m);
   if (req.request_id >= 0)
-    spdlog::info("request {}{}: {} -> {}: {}", req.request_id, req.client.empty() ? "" : " from " + req.client,
-                 describe(req), reply.ok ? "ok" : "refused", reply.message);
+    log_.info(fmt::format("request {}{}: {} -> {}: {}", req.request_id, req.client.empty() ? "" : " from " + clip(req.client),
+                 describe(req), reply.ok ? "ok" : "refused", reply.message));
 }
 
 void Services::drain() {

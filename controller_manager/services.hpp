@@ -9,6 +9,7 @@
 #include <string>
 
 #include "common/bus.hpp"
+#include "common/log.hpp"
 #include "controller_manager/manager.hpp"
 #include "controller_manager/port.hpp"
 #include "lcm_control/cm_request_t.hpp"
@@ -31,6 +32,7 @@ class Services {
   Publisher<cm_response_t> pub_;
   std::deque<cm_request_t> deferred_;
   int64_t malformed_ = 0;
+  BusLog log_;
 };
 
 // "load j1_controller" for the log.

@@ -177,12 +177,13 @@ void SimIo::on_e_stop(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   if (!decode_guarded(e_stop_msg_, rbuf->data, rbuf->data_size)) return drop("e_stop: not an e_stop_t");
   Actuators& act = sim_.actuators();
   if (e_stop_msg_.engaged != act.e_stop()) {
-    const std::string who = e_stop_msg_.source.empty() ? "" : fmt::format(" by '{}'", e_stop_msg_.source);
+    const std::string who = e_stop_msg_.source.empty() ? "" : fmt::format(" by '{}'", clip(e_stop_msg_.source));
     if (e_stop_msg_.engaged)
-      spdlog::warn("e-stop engaged{} at step {}: position actuators hold where they are, velocity and effort get 0",
-                   who, sim_.step_count());
+      log_.warn(fmt::format(
+          "e-stop engaged{} at step {}: position actuators hold where they are, velocity and effort get 0", who,
+          sim_.step_count()));
     else
-      spdlog::info("e-stop released{} at step {}: commands resume", who, sim_.step_count());
+      log_.info(fmt::format("e-stop released{} at step {}: commands resume", who, sim_.step_count()));
   }
   act.set_e_stop(e_stop_msg_.engaged);
 }
@@ -216,8 +217,9 @@ void SimIo::on_gains(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     const std::string problem = check_gains(g);
     if (problem.empty()) {
       act.set_gains(i, g);
-      spdlog::info("pid_gains of '{}' set to p {:g} i {:g} d {:g} i_clamp [{:g}, {:g}]{} from step {}", req.joint, g.p,
-                   g.i, g.d, g.i_clamp_min, g.i_clamp_max, g.antiwindup ? " antiwindup" : "", sim_.step_count());
+      log_.info(fmt::format("pid_gains of '{}' set to p {:g} i {:g} d {:g} i_clamp [{:g}, {:g}]{} from step {}", req.joint,
+                            g.p, g.i, g.d, g.i_clamp_min, g.i_clamp_max, g.antiwindup ? " antiwindup" : "",
+                            sim_.step_count()));
       ans.message = fmt::format("applied from step {}", sim_.step_count());
     } else {
       ans.message = fmt::format("refused: {}", problem);

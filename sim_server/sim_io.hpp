@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/bus.hpp"
+#include "common/log.hpp"
 #include "lcm_control/e_stop_t.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
@@ -83,6 +84,7 @@ class SimIo {
   int64_t expected_step_ = -1, last_step_ = -1, last_command_us_ = -1;
   int64_t dropped_ = 0, stale_ = 0, dropped_logged_ = 0, last_drop_log_us_ = 0, max_age_ = 0;
   e_stop_t e_stop_msg_;
+  BusLog log_;  // e-stop and gains lines: anyone can send those
 };
 
 }  // namespace lcm_control::sim
