@@ -4,6 +4,8 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "common/wire_check.hpp"
+
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
@@ -61,10 +63,12 @@ class Bus {
   std::string url_, ns_, prefix_;
 };
 
-// Decodes bytes from the bus into msg; false when they are not a Msg, also when lcm-gen's decoder throws on an
-// array count from the wire (negative, or too large to allocate). Every decode of bus input goes through here.
+// Decodes bytes from the bus into msg; false when they are not a Msg: a count or length that does not fit the bytes
+// (checked by wire_fits before lcm-gen's decoder, which would allocate what the count says), or a decoder that throws.
+// Every decode of bus input goes through here.
 template <class Msg>
 bool decode_guarded(Msg& msg, const void* data, size_t size) noexcept {
+  if (!wire_fits<Msg>(data, size)) return false;
   try {
     return msg.decode(data, 0, int(size)) >= 0;
   } catch (const std::exception&) {

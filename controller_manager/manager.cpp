@@ -282,12 +282,13 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
   if (!hw_.bound() || st.session != hw_.session() || st.num_actuators != command_.num_actuators) {
     const std::string why = hw_.bind(st, command_);
     if (!why.empty()) {
-      if (st.session != bad_session_) spdlog::error("hardware session {:x}: {}; not answering it", st.session, why);
+      if (st.session != bad_session_)
+        hardware_log_.warn(fmt::format("hardware session {:x}: {}; not answering it", st.session, why));
       bad_session_ = st.session;
       return;
     }
-    spdlog::info("hardware session {:x}: {} actuators, {}, period {} us, step {}", st.session, st.num_actuators,
-                 st.lockstep ? "lockstep" : "real time", st.period_us, st.step);
+    hardware_log_.info(fmt::format("hardware session {:x}: {} actuators, {}, period {} us, step {}", st.session,
+                                   st.num_actuators, st.lockstep ? "lockstep" : "real time", st.period_us, st.step));
   }
   if (silent_) {
     silent_ = false;

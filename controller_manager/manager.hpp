@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/bus.hpp"
+#include "common/log.hpp"
 #include "common/robot_model.hpp"
 #include "controller_manager/command_sources.hpp"
 #include "controller_manager/hardware.hpp"
@@ -108,7 +109,8 @@ class ControllerManager {
   Publisher<hardware_command_t> command_pub_;
   Publisher<loop_stats_t> stats_pub_;
   Done pending_done_;
-  bool shutting_down_ = false;  // from shutdown() on, switches and reloads are refused
+  bool shutting_down_ = false;
+  BusLog hardware_log_;  // session lines: a peer can send a new session with every message  // from shutdown() on, switches and reloads are refused
   std::string pending_summary_;
   int64_t last_state_us_ = 0, last_stats_us_ = 0, bad_session_ = 0, dropped_ = 0, bad_state_logged_ = 0,
           reported_dropped_ = 0;

@@ -20,4 +20,10 @@ std::vector<const Port::RawHandler*> Port::handlers_for(const std::string& chann
   return out;
 }
 
+std::vector<std::string> Port::channels() const {
+  std::vector<std::string> out;
+  for (const auto& h : handlers_) out.push_back(h->channel);
+  return out;
+}
+
 }  // namespace lcm_control::cm

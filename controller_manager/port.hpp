@@ -73,6 +73,8 @@ class Port {
   // in-process exactly as a received message (command sources).
   using RawHandler = std::function<void(const lcm::ReceiveBuffer&)>;
   std::vector<const RawHandler*> handlers_for(const std::string& channel) const;
+  // Every channel subscribed, in subscription order (tests send to each).
+  std::vector<std::string> channels() const;
 
   template <class Msg>
   Publisher<Msg> publisher(const std::string& channel) {

@@ -4,12 +4,15 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <vector>
 
 #include "common/messages.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
+#include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
+#include "lcm_control/joint_trajectory_t.hpp"
 #include "common/bus.hpp"
 
 using namespace lcm_control;
@@ -84,4 +87,35 @@ TEST(GuardedDecode, APayloadWhoseDecoderWouldThrowNeverReachesTheHandler) {
   lc.publish("joint_states", b.data(), unsigned(b.size()));
   lc.handleTimeout(0);
   EXPECT_EQ(counter.good, 1);
+}
+
+// A forged array count on any type (here a request's names, 67,108,866 for 1) is refused by the walk along the schema
+// before lcm-gen's decoder allocates 67 million strings (it took over a second; the fuzz test found it).
+TEST(GuardedDecode, ForgedCountsOfAnyTypeAreRefusedBeforeDecoding) {
+  cm_request_t r = cm_request(cm_request_t::LOAD, {"j1_controller"});
+  std::vector<uint8_t> b(size_t(r.getEncodedSize()));
+  r.encode(b.data(), 0, int(b.size()));
+  EXPECT_TRUE(wire_fits<cm_request_t>(b.data(), b.size()));
+  const size_t at = 8 + 8 + 8 + 4 + 1 + 1;  // fingerprint, utime, request_id, client "" (length 1 + NUL), op
+  ASSERT_EQ(b[at + 3], 1);                   // num_names
+  for (int32_t forged : {67108866, -1, 2}) {
+    for (int k = 0; k < 4; ++k) b[at + size_t(k)] = uint8_t(uint32_t(forged) >> (24 - 8 * k));
+    EXPECT_FALSE(wire_fits<cm_request_t>(b.data(), b.size())) << forged;
+    cm_request_t out;
+    const auto t0 = std::chrono::steady_clock::now();
+    EXPECT_FALSE(decode_guarded(out, b.data(), b.size())) << forged;
+    EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::milliseconds(10)) << forged;
+  }
+  // Truncated anywhere, extended, or a string whose length says more than there is: refused too.
+  for (size_t n = 0; n < b.size(); ++n) EXPECT_FALSE(wire_fits<cm_request_t>(b.data(), n)) << n;
+  joint_trajectory_t t{};
+  t.num_points = 1;
+  t.points.resize(1);
+  t.points[0].num_positions = 2;
+  t.points[0].positions = {1, 2};
+  std::vector<uint8_t> tb(size_t(t.getEncodedSize()));
+  t.encode(tb.data(), 0, int(tb.size()));
+  EXPECT_TRUE(wire_fits<joint_trajectory_t>(tb.data(), tb.size()));
+  tb[tb.size() - 4 - 4 - 16 - 4] = 0x7f;  // point 0's num_positions (then 2 doubles and two empty arrays), made huge
+  EXPECT_FALSE(wire_fits<joint_trajectory_t>(tb.data(), tb.size()));
 }

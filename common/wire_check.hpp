@@ -1,0 +1,129 @@
+// Walks an LCM payload along its type's schema (lcm_control/visit.hpp) before
+// lcm-gen's decoder sees it: lcm-gen trusts every array count and string
+// length on the wire, so one forged count makes it allocate millions of
+// elements before it finds the buffer too short. The walk allocates nothing
+// and reads each byte at most once.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "lcm_control/visit.hpp"
+
+namespace lcm_control {
+
+namespace detail {
+
+class WireWalk {
+ public:
+  WireWalk(const uint8_t* data, size_t size) : p_(data), left_(size) {}
+  bool ok() const { return ok_; }
+  size_t left() const { return left_; }
+
+  template <class T>
+  void value(const char*, const T& x) {
+    scalar(x);
+  }
+  void count(const char* name, const int32_t&) {
+    int32_t n = 0;
+    if (!read_int32(n)) return;
+    if (n < 0 || num_counts_ == counts_.size()) return fail();
+    counts_[num_counts_++] = {name, n};
+  }
+  template <class T>
+  void list(const char*, const std::vector<T>&, const char* counter) {
+    const int64_t n = count_of(counter);
+    if (!ok_) return;
+    if constexpr (std::is_same_v<T, std::string>) {
+      for (int64_t k = 0; k < n && ok_; ++k) scalar(std::string());
+    } else {
+      skip(uint64_t(n) * sizeof(T));
+    }
+  }
+  template <class T>
+  void matrix(const char*, const std::vector<std::vector<T>>&, const char* counter, int inner) {
+    const int64_t n = count_of(counter);
+    if (ok_) skip(uint64_t(n) * uint64_t(inner) * sizeof(T));
+  }
+  template <class S>
+  void structs(const char*, const std::vector<S>&, const char* counter) {
+    const int64_t n = count_of(counter);
+    const S empty{};
+    for (int64_t k = 0; k < n && ok_; ++k) nested("", empty);
+  }
+  template <class S>
+  void nested(const char*, const S& x) {
+    WireWalk inner(p_, left_);
+    visit(x, inner);
+    if (!inner.ok_) return fail();
+    p_ += left_ - inner.left_;
+    left_ = inner.left_;
+  }
+
+ private:
+  void fail() {
+    ok_ = false;
+    left_ = 0;
+  }
+  void skip(uint64_t n) {
+    if (!ok_ || n > left_) return fail();
+    p_ += n;
+    left_ -= size_t(n);
+  }
+  bool read_int32(int32_t& v) {
+    if (!ok_ || left_ < 4) {
+      fail();
+      return false;
+    }
+    v = int32_t(uint32_t(p_[0]) << 24 | uint32_t(p_[1]) << 16 | uint32_t(p_[2]) << 8 | uint32_t(p_[3]));
+    skip(4);
+    return true;
+  }
+  void scalar(const std::string&) {
+    int32_t len = 0;
+    if (!read_int32(len)) return;
+    if (len < 1) return fail();  // the length counts the terminating NUL
+    skip(uint64_t(len));
+  }
+  template <class T>
+  void scalar(const T&) {
+    skip(sizeof(T));
+  }
+  int64_t count_of(const char* counter) {
+    for (size_t k = 0; k < num_counts_; ++k)
+      if (std::strcmp(counts_[k].first, counter) == 0) return counts_[k].second;
+    fail();
+    return 0;
+  }
+
+  const uint8_t* p_;
+  size_t left_;
+  bool ok_ = true;
+  std::array<std::pair<const char*, int32_t>, 8> counts_{};  // this struct's array counts so far (no allocation)
+  size_t num_counts_ = 0;
+};
+
+}  // namespace detail
+
+// True when `size` bytes can be a Msg as far as its counts and lengths go: the fingerprint matches, no count is
+// negative, and every array and string fits in the bytes that follow. False means lcm-gen's decoder must not see it.
+template <class Msg>
+bool wire_fits(const void* data, size_t size) noexcept {
+  const auto* b = static_cast<const uint8_t*>(data);
+  if (size < 8) return false;
+  uint64_t hash = 0;
+  for (int k = 0; k < 8; ++k) hash = hash << 8 | b[k];
+  if (int64_t(hash) != Msg::getHash()) return false;
+  detail::WireWalk walk(b + 8, size - 8);
+  static const Msg empty{};
+  visit(empty, walk);
+  return walk.ok();
+}
+
+}  // namespace lcm_control
