@@ -37,11 +37,75 @@ bool moves_anything_below(const RobotModel& model, const Joint& j) {
   return false;
 }
 
+// Largest magnitudes taken (SI units): beyond them, or not finite, a value is a typo or a corrupted file, and
+// Bullet would turn it into non-finite states.
+constexpr double kMaxLength = 1e4;     // m: origins, collision sizes
+constexpr double kMaxMass = 1e6;       // kg
+constexpr double kMaxInertia = 1e6;    // kg m^2
+constexpr double kMaxLimit = 1e6;      // rad or m: position limits
+constexpr double kMaxVelocity = 1e6;   // rad/s or m/s
+constexpr double kMaxEffort = 1e9;     // N m or N; also damping and friction
+
+// Appends "<what> is <v>, ..." when v is not finite or larger than max in magnitude.
+void check_number(std::vector<std::string>& problems, const std::string& where, const char* what, double v,
+                  double max) {
+  if (std::isfinite(v) && std::abs(v) <= max) return;
+  problems.push_back(fmt::format("{}: {} is {}; every number must be finite and at most {:g} in magnitude here "
+                                 "(SI units): fix the value",
+                                 where, what, v, max));
+}
+
+void check_pose(std::vector<std::string>& problems, const std::string& where, const char* what,
+                const Eigen::Isometry3d& pose) {
+  const Eigen::Vector3d t = pose.translation();
+  for (int k = 0; k < 3; ++k) check_number(problems, where, what, t[k], kMaxLength);
+  if (!pose.linear().allFinite())
+    problems.push_back(fmt::format("{}: {} has a non-finite rpy; fix the value", where, what));
+}
+
+void check_numbers(const RobotModel& model, std::vector<std::string>& problems) {
+  const std::string& u = model.urdf_path;
+  for (const auto& l : model.links) {
+    const std::string where = fmt::format("{}: link '{}'", u, l.name);
+    if (l.inertial) {
+      check_number(problems, where, "<mass value>", l.inertial->mass, kMaxMass);
+      check_pose(problems, where, "<inertial><origin>", l.inertial->origin);
+      for (int r = 0; r < 3; ++r)
+        for (int k = r; k < 3; ++k) check_number(problems, where, "an <inertia> entry", l.inertial->inertia(r, k), kMaxInertia);
+    }
+    for (const auto& g : l.collisions) {
+      check_pose(problems, where, "<collision><origin>", g.origin);
+      for (int k = 0; k < 3; ++k) {
+        check_number(problems, where, "a <box size>", g.size[k], kMaxLength);
+        check_number(problems, where, "a <mesh scale>", g.scale[k], kMaxLength);
+      }
+      check_number(problems, where, "a collision radius", g.radius, kMaxLength);
+      check_number(problems, where, "a collision length", g.length, kMaxLength);
+    }
+  }
+  for (const auto& j : model.joints) {
+    const std::string where = fmt::format("{}: joint '{}'", u, j.name);
+    check_pose(problems, where, "<origin>", j.origin);
+    if (!j.axis.allFinite()) problems.push_back(fmt::format("{}: <axis> is not finite; fix the value", where));
+    if (j.type == JointType::Fixed) continue;
+    if (j.has_position_limits) {
+      check_number(problems, where, "<limit lower>", j.lower, kMaxLimit);
+      check_number(problems, where, "<limit upper>", j.upper, kMaxLimit);
+    }
+    // No <limit> (a continuous joint) reads as infinite effort and velocity: no limit, which is fine.
+    if (j.effort_limit != HUGE_VAL) check_number(problems, where, "<limit effort>", j.effort_limit, kMaxEffort);
+    if (j.velocity_limit != HUGE_VAL) check_number(problems, where, "<limit velocity>", j.velocity_limit, kMaxVelocity);
+    check_number(problems, where, "<dynamics damping>", j.damping, kMaxEffort);
+    check_number(problems, where, "<dynamics friction>", j.friction, kMaxEffort);
+  }
+}
+
 }  // namespace
 
 void check_model(RobotModel& model, std::vector<std::string>& problems) {
   const std::string& u = model.urdf_path;
   const std::string& c = model.config_path;
+  check_numbers(model, problems);
 
   for (const auto& j : model.joints) {
     if (j.type == JointType::Fixed) continue;

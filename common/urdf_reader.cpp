@@ -4,12 +4,15 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <tinyxml2.h>
+
 #include <urdf_parser/urdf_parser.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <sstream>
 
 #include "common/input_file.hpp"
 #include "common/packages.hpp"
@@ -318,6 +321,44 @@ void parse_gazebo_plugin(RobotModel& model, const tinyxml2::XMLElement* robot) {
   }
 }
 
+// urdfdom reads a number it cannot parse as 0, or drops the whole element (a mass of "nan" left the link
+// massless, silently): every numeric attribute of links and joints must be finite numbers, checked on the XML.
+void check_numeric_attributes(const tinyxml2::XMLElement* e, const std::string& file, const std::string& owner,
+                              std::vector<std::string>& problems) {
+  static const std::map<std::string, std::vector<const char*>> kNumeric = {
+      {"mass", {"value"}},
+      {"inertia", {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}},
+      {"origin", {"xyz", "rpy"}},
+      {"axis", {"xyz"}},
+      {"limit", {"lower", "upper", "effort", "velocity"}},
+      {"dynamics", {"damping", "friction"}},
+      {"box", {"size"}},
+      {"cylinder", {"radius", "length"}},
+      {"sphere", {"radius"}},
+      {"mesh", {"scale"}},
+  };
+  for (const auto* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const auto it = kNumeric.find(c->Name());
+    if (it != kNumeric.end())
+      for (const char* attr : it->second) {
+        const char* v = c->Attribute(attr);
+        if (!v) continue;
+        std::istringstream in(v);
+        bool ok = true;
+        int count = 0;
+        for (std::string tok; in >> tok; ++count) {
+          char* end = nullptr;
+          const double x = std::strtod(tok.c_str(), &end);
+          ok = ok && end && *end == '\0' && std::isfinite(x);
+        }
+        if (!ok || count == 0)
+          problems.push_back(fmt::format("{}:{}: {}: <{} {}=\"{}\"> is not a finite number; write numbers such as 0.5",
+                                         file, c->GetLineNum(), owner, c->Name(), attr, v));
+      }
+    check_numeric_attributes(c, file, owner, problems);
+  }
+}
+
 }  // namespace
 
 void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOptions& options,
@@ -349,6 +390,13 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
       }
     throw ModelError(fmt::format("{}: invalid URDF: {}", urdf_path, why));
   }
+
+  for (auto* le = robot->FirstChildElement("link"); le; le = le->NextSiblingElement("link"))
+    check_numeric_attributes(le, urdf_path, fmt::format("link '{}'", le->Attribute("name") ? le->Attribute("name") : ""),
+                             problems);
+  for (auto* je = robot->FirstChildElement("joint"); je; je = je->NextSiblingElement("joint"))
+    check_numeric_attributes(je, urdf_path, fmt::format("joint '{}'", je->Attribute("name") ? je->Attribute("name") : ""),
+                             problems);
 
   model.name = urdf->getName();
   model.root_link = urdf->getRoot() ? urdf->getRoot()->name : "";

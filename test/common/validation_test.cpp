@@ -212,3 +212,22 @@ INSTANTIATE_TEST_SUITE_P(
         BadInput{"YamlNotAMap", kGoodUrdf, "- 1\n- 2\n", "r.yaml: expected a map of controllers"},
         BadInput{"EmptyYaml", kGoodUrdf, "", "r.yaml: the file is empty"}),
     [](const auto& info) { return std::string(info.param.name); });
+
+// Numbers Bullet would turn into non-finite states (they passed doctor with exit 0, issue 18): a 1e308 or NaN mass,
+// a 1e308 effort limit, an infinite origin. Each is one problem naming the file, the link or joint and the value.
+TEST(Validation, NonFiniteOrAbsurdNumbersAreRefused) {
+  struct Case {
+    std::string from, to, expect;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"<mass value=\"16\"/>", "<mass value=\"1e308\"/>", "link 'base': <mass value> is 1e+308"},
+           {"<mass value=\"16\"/>", "<mass value=\"nan\"/>", "link 'base': <mass value=\"nan\"> is not a finite number"},
+           {"<mass value=\"9.8075\"/>", "<mass value=\"-inf\"/>", "robot.urdf:35: link 'slider': <mass value=\"-inf\"> is not a finite number"},
+           {"upper=\"1\" effort=\"1000\"", "upper=\"1\" effort=\"1e308\"", "joint 'j1': <limit effort> is 1e+308"},
+           {"<origin xyz=\"0 0.05 0.165\"", "<origin xyz=\"0 1e300 0.165\"", "is 1e+300"},
+       }) {
+    const auto e = load_error(turret_urdf_with(c.from, c.to), kYaml);
+    EXPECT_NE(e.find(c.expect), std::string::npos) << c.to << "\n" << e;
+    EXPECT_NE(e.find("robot.urdf"), std::string::npos) << e;
+  }
+}
