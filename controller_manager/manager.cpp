@@ -278,7 +278,18 @@ std::vector<controller_info_t> ControllerManager::list() const {
 }
 
 void ControllerManager::on_hardware_state(const hardware_state_t& st) {
-  last_state_us_ = monotonic_us();
+  const int64_t now = monotonic_us();
+  if (hw_.bound() && st.session != hw_.session() && loop_.has_state() && !silent_ &&
+      now - last_state_us_ < options_.silence_us) {
+    // A second session while the one we follow is alive: two simulators on one namespace. Keep following the first.
+    ++dropped_;  // counted in controller_manager/statistics
+    hardware_log_.warn(fmt::format("two hardware sessions publish {}: following {:x}, ignoring {:x} while the first "
+                                   "keeps publishing. Two sim_servers on one namespace? Stop one, or give each robot "
+                                   "its own --namespace",
+                                   bus_.channel(channels::kHardwareState), hw_.session(), st.session));
+    return;
+  }
+  last_state_us_ = now;
   if (!hw_.bound() || st.session != hw_.session() || st.num_actuators != command_.num_actuators) {
     const std::string why = hw_.bind(st, command_);
     if (!why.empty()) {

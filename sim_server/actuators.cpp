@@ -80,7 +80,8 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
       a.motor = mb.add_motor(a.link, kUnlimitedEffort * dt);
     else if (a.mode == ActuatorMode::VelocityMotor)
       a.motor = mb.add_motor(a.link, finite_or(a.effort_limit, kUnlimitedEffort) * dt);
-    else if (a.mode == ActuatorMode::Effort || a.mode == ActuatorMode::VelocityPid)
+    else if (a.mode == ActuatorMode::Effort || a.mode == ActuatorMode::VelocityPid ||
+             a.mode == ActuatorMode::PositionPid)  // a PID with soft gains would let a held joint drift
       a.brake = mb.add_motor(a.link, finite_or(a.effort_limit, kUnlimitedEffort) * dt);
     a.braking = a.brake != nullptr;
     a.q = a.hold_position = mb.position(a.link);

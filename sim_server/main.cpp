@@ -102,8 +102,10 @@ int main(int argc, char** argv) {
                  bus.url(), bus.ns().empty() ? "" : ", namespace " + bus.ns(), io.session(),
                  scheduling.empty() ? "" : ", " + scheduling);
     if (!stepper.run(g_stop)) throw BusError("LCM stopped working (handle failed); is the multicast route still there?");
-    spdlog::info("stopped at step {} (sim time {:.3f} s); {} commands dropped", sim.step_count(), sim.time(),
-                 io.dropped());
+    spdlog::info("stopped at step {} (sim time {:.3f} s); {} commands dropped{}", sim.step_count(), sim.time(),
+                 io.dropped(),
+                 io.foreign_states() ? fmt::format("; {} hardware/state from another simulator", io.foreign_states())
+                                     : "");
     return int(kExitOk);
   });
 }

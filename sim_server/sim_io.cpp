@@ -64,6 +64,7 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
   subs_.push_back(lc.subscribe(bus.channel(channels::kHardwareCommand), &SimIo::on_command, this));
   subs_.push_back(lc.subscribe(bus.channel(channels::kEStop), &SimIo::on_e_stop, this));
   subs_.push_back(lc.subscribe(bus.channel(gains_set_channel(channels::kSimGainsOwner)), &SimIo::on_gains, this));
+  subs_.push_back(lc.subscribe(state_channel_, &SimIo::on_state, this));
 }
 
 SimIo::~SimIo() {
@@ -171,6 +172,22 @@ void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   has_pending_ = true;
   last_step_ = cmd_.step;
   last_command_us_ = monotonic_us();
+}
+
+// hardware/state comes back to us (every socket on the port receives it anyway); one with another session is a second
+// simulator on this namespace. Only the fingerprint and the session (bytes 24-31) are read.
+void SimIo::on_state(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  if (rbuf->data_size < 32) return;
+  const auto* b = static_cast<const uint8_t*>(rbuf->data);
+  uint64_t hash = 0, session = 0;
+  for (int k = 0; k < 8; ++k) hash = hash << 8 | b[k];
+  for (int k = 24; k < 32; ++k) session = session << 8 | b[k];
+  if (int64_t(hash) != hardware_state_t::getHash() || int64_t(session) == session_) return;
+  ++foreign_states_;
+  log_.warn(fmt::format("another simulator publishes {} (session {:x}; this one is {:x}): the controller manager "
+                        "follows one of them and the other is not controlled. Stop one, or give each robot its own "
+                        "--namespace",
+                        state_channel_, session, session_));
 }
 
 void SimIo::on_e_stop(const lcm::ReceiveBuffer* rbuf, const std::string&) {

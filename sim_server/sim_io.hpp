@@ -55,10 +55,12 @@ class SimIo {
 
   int64_t dropped() const { return dropped_; }  // malformed, NaN, wrong size, session or mode
   int64_t stale() const { return stale_; }      // well-formed but for another step
+  int64_t foreign_states() const { return foreign_states_; }  // hardware/state of another simulator on our channel
 
  private:
   void on_command(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void on_e_stop(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void on_state(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void on_gains(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   std::string why_rejected();
   void drop(const std::string& why);
@@ -82,6 +84,7 @@ class SimIo {
   std::vector<double> pending_value_;
   bool has_pending_ = false;
   int64_t expected_step_ = -1, last_step_ = -1, last_command_us_ = -1;
+  int64_t foreign_states_ = 0;
   int64_t dropped_ = 0, stale_ = 0, dropped_logged_ = 0, last_drop_log_us_ = 0, max_age_ = 0;
   e_stop_t e_stop_msg_;
   BusLog log_;  // e-stop and gains lines: anyone can send those

@@ -55,15 +55,20 @@ TEST(FuzzOverLcm, RunningProgramsSurviveHostilePayloadsOnEveryChannel) {
   lcm::LCM lc(url);
   // The gains in force, to restore after the flood (a well-formed hostile message may legitimately change them).
   lt::Recorder<pid_gains_t> gains(lc, "sim_server/gains");
-  for (const char* joint : {"j1", "j2"}) {
-    pid_gains_t q{};
-    q.owner = "sim_server";
-    q.joint = joint;
-    q.query = true;
-    lc.publish("sim_server/gains/set", &q);
-  }
-  ASSERT_TRUE(lt::pump_until(lc, [&] { return gains.messages.size() >= 2; }, 5)) << sim.output();
-  const std::vector<pid_gains_t> before = gains.messages;
+  auto ask = [&] {  // until sim_server is up and answers both
+    for (const char* joint : {"j1", "j2"}) {
+      pid_gains_t q{};
+      q.owner = "sim_server";
+      q.joint = joint;
+      q.query = true;
+      lc.publish("sim_server/gains/set", &q);
+    }
+    return lt::pump_until(lc, [&] { return gains.messages.size() >= 2; }, 0.5);
+  };
+  bool answered = false;
+  for (int k = 0; k < 40 && !answered; ++k) answered = ask();
+  ASSERT_TRUE(answered) << sim.output();
+  const std::vector<pid_gains_t> before(gains.messages.end() - 2, gains.messages.end());
   lt::Hints hints{{"j1", "j2", "j1_motor", "j2_motor", "j1_controller", "j2_controller", "joint_state_controller"},
                   {0, 1, 1000}};
   lt::Payloads p(181818);
