@@ -18,6 +18,17 @@
 
 namespace lcm_control {
 
+// An int64 as LCM puts it on the wire (big-endian); the caller checks that the 8 bytes are there.
+inline int64_t read_int64_be(const void* p) {
+  const auto* b = static_cast<const uint8_t*>(p);
+  uint64_t v = 0;
+  for (int k = 0; k < 8; ++k) v = v << 8 | b[k];
+  return int64_t(v);
+}
+
+// The type fingerprint in an LCM payload's first 8 bytes.
+inline int64_t payload_fingerprint(const void* data) { return read_int64_be(data); }
+
 namespace detail {
 
 class WireWalk {
@@ -116,10 +127,7 @@ class WireWalk {
 template <class Msg>
 bool wire_fits(const void* data, size_t size) noexcept {
   const auto* b = static_cast<const uint8_t*>(data);
-  if (size < 8) return false;
-  uint64_t hash = 0;
-  for (int k = 0; k < 8; ++k) hash = hash << 8 | b[k];
-  if (int64_t(hash) != Msg::getHash()) return false;
+  if (size < 8 || payload_fingerprint(data) != Msg::getHash()) return false;
   detail::WireWalk walk(b + 8, size - 8);
   static const Msg empty{};
   visit(empty, walk);

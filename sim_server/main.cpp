@@ -63,8 +63,8 @@ int main(int argc, char** argv) {
       });
   bool no_brakes = false;
   app.add_flag("--no-brakes", no_brakes,
-               "effort and velocity-PID joints nobody commands are limp, as in Gazebo (default: braked where they "
-               "are until a controller commands them)");
+               "joints nobody commands, or held by the watchdog, are left to their PID (position) or limp (effort, "
+               "velocity), as in Gazebo (default: braked where they are)");
   app.add_option("--log-level", log_level, "debug, info, warn or error");
   add_bus_flags(app, bus_flags);
   add_package_path_flag(app, package_path);

@@ -178,11 +178,8 @@ void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
 // simulator on this namespace. Only the fingerprint and the session (bytes 24-31) are read.
 void SimIo::on_state(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   if (rbuf->data_size < 32) return;
-  const auto* b = static_cast<const uint8_t*>(rbuf->data);
-  uint64_t hash = 0, session = 0;
-  for (int k = 0; k < 8; ++k) hash = hash << 8 | b[k];
-  for (int k = 24; k < 32; ++k) session = session << 8 | b[k];
-  if (int64_t(hash) != hardware_state_t::getHash() || int64_t(session) == session_) return;
+  const int64_t session = read_int64_be(static_cast<const uint8_t*>(rbuf->data) + 24);
+  if (payload_fingerprint(rbuf->data) != hardware_state_t::getHash() || session == session_) return;
   ++foreign_states_;
   log_.warn(fmt::format("another simulator publishes {} (session {:x}; this one is {:x}): the controller manager "
                         "follows one of them and the other is not controlled. Stop one, or give each robot its own "

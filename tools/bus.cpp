@@ -24,15 +24,6 @@
 namespace lcm_control::tools {
 namespace {
 
-std::string regex_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (std::string("\\^$.|?*+()[]{}").find(c) != std::string::npos) out += '\\';
-    out += c;
-  }
-  return out;
-}
-
 std::string rate_text(double hz) { return hz >= 100 ? fmt::format("{:.0f}", hz) : fmt::format("{:.1f}", hz); }
 
 std::string bytes_text(double b) {
@@ -55,10 +46,7 @@ std::string type_name(const void* data, size_t size) {
   const std::string t = type_of_payload(data, size);
   if (!t.empty()) return t;
   if (size < 8) return fmt::format("? ({} bytes)", size);
-  const auto* b = static_cast<const uint8_t*>(data);
-  uint64_t h = 0;
-  for (int k = 0; k < 8; ++k) h = (h << 8) | b[k];
-  return fmt::format("? 0x{:016x}", h);
+  return fmt::format("? 0x{:016x}", uint64_t(payload_fingerprint(data)));
 }
 
 // Every channel on the bus (or in the namespace), counted.

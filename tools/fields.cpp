@@ -105,13 +105,6 @@ const std::vector<TypeEntry>& table() {
   return t;
 }
 
-int64_t read_hash(const void* data) {
-  const auto* b = static_cast<const uint8_t*>(data);
-  uint64_t h = 0;
-  for (int k = 0; k < 8; ++k) h = (h << 8) | b[k];
-  return int64_t(h);
-}
-
 }  // namespace
 
 Decoded decode_fields(const void* data, size_t size) {
@@ -120,7 +113,7 @@ Decoded decode_fields(const void* data, size_t size) {
     d.skip_reason = fmt::format("payload of {} bytes is too short for an LCM message", size);
     return d;
   }
-  const int64_t hash = read_hash(data);
+  const int64_t hash = payload_fingerprint(data);
   for (const auto& e : table()) {
     if (e.hash != hash) continue;
     if (e.decode) return e.decode(data, size);

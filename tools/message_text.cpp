@@ -16,13 +16,6 @@
 namespace lcm_control::tools {
 namespace {
 
-int64_t payload_hash(const void* data) {
-  const auto* b = static_cast<const uint8_t*>(data);
-  uint64_t h = 0;
-  for (int k = 0; k < 8; ++k) h = (h << 8) | b[k];
-  return int64_t(h);
-}
-
 // Calls f(type_tag<Msg>) for the type whose short name ("joint_state_t") is `name`; false if none is.
 template <class F>
 bool with_type_named(const std::string& name, F&& f) {
@@ -455,7 +448,7 @@ std::string list_text(const std::vector<std::string>& xs) {
 std::string type_of_payload(const void* data, size_t size) {
   std::string out;
   if (size >= 8)
-    with_type_hash(payload_hash(data), [&](auto tag) {
+    with_type_hash(payload_fingerprint(data), [&](auto tag) {
       out = std::string("lcm_control.") + decltype(tag)::type::getTypeName();
     });
   return out;
@@ -472,7 +465,7 @@ std::string message_yaml(const void* data, size_t size) {
   if (size < 8) throw std::runtime_error(fmt::format("{} bytes are too short for an LCM message", size));
   std::string out;
   bool decoded = false;
-  const bool known = with_type_hash(payload_hash(data), [&](auto tag) {
+  const bool known = with_type_hash(payload_fingerprint(data), [&](auto tag) {
     typename decltype(tag)::type m{};
     if (!decode_guarded(m, data, size)) return;
     decoded = true;
@@ -480,7 +473,7 @@ std::string message_yaml(const void* data, size_t size) {
     visit(m, y);
   });
   if (!known)
-    throw std::runtime_error(fmt::format("not an lcm_control type (fingerprint 0x{:016x})", uint64_t(payload_hash(data))));
+    throw std::runtime_error(fmt::format("not an lcm_control type (fingerprint 0x{:016x})", uint64_t(payload_fingerprint(data))));
   if (!decoded) throw std::runtime_error(type_of_payload(data, size) + ": malformed payload (decode failed)");
   return out;
 }

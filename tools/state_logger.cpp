@@ -13,15 +13,6 @@
 namespace lcm_control::tools {
 namespace {
 
-std::string regex_escape(const std::string& s) {
-  std::string out;
-  for (char c : s) {
-    if (std::string("\\^$.|?*+()[]{}").find(c) != std::string::npos) out += '\\';
-    out += c;
-  }
-  return out;
-}
-
 struct ChannelLog {
   std::string channel;  // with the namespace
   std::string path;

@@ -115,4 +115,13 @@ std::string without_leading_slashes(std::string name) {
   return first == std::string::npos ? std::string() : name.substr(first);
 }
 
+std::string regex_escape(const std::string& s) {
+  std::string out;
+  for (char c : s) {
+    if (std::string("\\^$.|?*+()[]{}").find(c) != std::string::npos) out += '\\';
+    out += c;
+  }
+  return out;
+}
+
 }  // namespace lcm_control::tools

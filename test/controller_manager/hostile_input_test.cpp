@@ -3,9 +3,6 @@
 // on answering the real hardware.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
-#include <cstdio>
 #include <vector>
 
 #include "common/messages.hpp"
@@ -34,29 +31,6 @@ TEST(ControllerManagerHostileInput, ForgedActuatorCountsOnHardwareStateAreDroppe
   EXPECT_EQ(rig.commands.back().step, rig.step - 1);
 }
 
-namespace {
-// Bytes the process writes to stdout and stderr while `f` runs (both sent to a scratch file).
-template <class F>
-long output_bytes(F&& f) {
-  std::fflush(stdout);
-  std::fflush(stderr);
-  FILE* scratch = std::tmpfile();
-  const int out = dup(1), err = dup(2);
-  dup2(fileno(scratch), 1);
-  dup2(fileno(scratch), 2);
-  f();
-  std::fflush(stdout);
-  std::fflush(stderr);
-  dup2(out, 1);
-  dup2(err, 2);
-  close(out);
-  close(err);
-  const long n = std::ftell(scratch) > 0 ? std::ftell(scratch) : lseek(fileno(scratch), 0, SEEK_END);
-  std::fclose(scratch);
-  return n;
-}
-}  // namespace
-
 // 2,000 requests and 2,000 command-source requests from a client with a 60 KB name: the log is clipped and rate
 // limited (it was 120 MB), every request is still answered.
 TEST(ControllerManagerHostileInput, AFloodOfRequestsWithHugeNamesCannotFillTheLog) {
@@ -65,7 +39,7 @@ TEST(ControllerManagerHostileInput, AFloodOfRequestsWithHugeNamesCannotFillTheLo
   lcm_control::testing::Recorder<cm_response_t> responses(rig.bus.lcm(), "controller_manager/response");
   rig.cycle(2);
   const std::string huge(60000, 'x');
-  const long bytes = output_bytes([&] {
+  const long bytes = lcm_control::testing::output_bytes([&] {
     for (int k = 0; k < 2000; ++k) {
       cm_request_t r = cm_request(cm_request_t::LOAD, {huge});
       r.request_id = k;

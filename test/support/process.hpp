@@ -3,6 +3,9 @@
 #pragma once
 
 #include <sys/types.h>
+#include <unistd.h>
+
+#include <cstdio>
 
 #include <map>
 #include <string>
@@ -35,6 +38,28 @@ class ChildProcess {
   bool exited_ = false;
   std::string log_path_;
 };
+
+// Bytes this process writes to stdout and stderr while f() runs (both sent to a scratch file meanwhile): how much a
+// flood of bad input makes an in-process server log.
+template <class F>
+long output_bytes(F&& f) {
+  std::fflush(stdout);
+  std::fflush(stderr);
+  FILE* scratch = std::tmpfile();
+  const int out = dup(1), err = dup(2);
+  dup2(fileno(scratch), 1);
+  dup2(fileno(scratch), 2);
+  f();
+  std::fflush(stdout);
+  std::fflush(stderr);
+  dup2(out, 1);
+  dup2(err, 2);
+  close(out);
+  close(err);
+  const long n = lseek(fileno(scratch), 0, SEEK_END);
+  std::fclose(scratch);
+  return n;
+}
 
 // Path of a program built by this project (build/bin/NAME).
 std::string bin(const std::string& name);
