@@ -99,7 +99,9 @@ class WireWalk {
   void scalar(const std::string&) {
     int32_t len = 0;
     if (!read_int32(len)) return;
-    if (len < 1) return fail();  // the length counts the terminating NUL
+    // The length counts the terminating NUL. A NUL inside would decode, but lcm-gen encodes strings up to their
+    // first NUL while it sizes them by length: such a message could not be sent on again.
+    if (len < 1 || uint64_t(len) > left_ || p_[len - 1] != 0 || std::memchr(p_, 0, size_t(len - 1))) return fail();
     skip(uint64_t(len));
   }
   template <class T>
@@ -123,7 +125,8 @@ class WireWalk {
 }  // namespace detail
 
 // True when `size` bytes can be a Msg as far as its counts and lengths go: the fingerprint matches, no count is
-// negative, and every array and string fits in the bytes that follow. False means lcm-gen's decoder must not see it.
+// negative, every array and string fits in the bytes that follow, and every string is NUL-terminated with no NUL
+// inside. False means lcm-gen's decoder must not see it.
 template <class Msg>
 bool wire_fits(const void* data, size_t size) noexcept {
   const auto* b = static_cast<const uint8_t*>(data);

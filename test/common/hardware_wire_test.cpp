@@ -13,6 +13,7 @@
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/joint_trajectory_t.hpp"
+#include "lcm_control/pid_gains_t.hpp"
 #include "common/bus.hpp"
 
 using namespace lcm_control;
@@ -118,4 +119,22 @@ TEST(GuardedDecode, ForgedCountsOfAnyTypeAreRefusedBeforeDecoding) {
   EXPECT_TRUE(wire_fits<joint_trajectory_t>(tb.data(), tb.size()));
   tb[tb.size() - 4 - 4 - 16 - 4] = 0x7f;  // point 0's num_positions (then 2 doubles and two empty arrays), made huge
   EXPECT_FALSE(wire_fits<joint_trajectory_t>(tb.data(), tb.size()));
+}
+
+// A string with a NUL inside decodes, but lcm-gen would then encode it only up to that NUL while sizing it by its
+// length, so the message could not be published on (libFuzzer found it on pid_gains_t): refused before decoding.
+TEST(GuardedDecode, AStringWithANulInsideIsRefused) {
+  pid_gains_t g{};
+  g.joint = "j1";
+  std::vector<uint8_t> b(size_t(g.getEncodedSize()));
+  g.encode(b.data(), 0, int(b.size()));
+  pid_gains_t out;
+  EXPECT_TRUE(decode_guarded(out, b.data(), b.size()));
+  const size_t owner = 8 + 8 + 8;  // fingerprint, utime, request_id: then owner "" (length 1, NUL), joint "j1"
+  ASSERT_EQ(b[owner + 3], 1);
+  b[owner + 4 + 1 + 4] = 0;  // joint "j1" becomes "\01"
+  EXPECT_FALSE(decode_guarded(out, b.data(), b.size()));
+  b[owner + 4 + 1 + 4] = 'j';
+  b[owner + 4 + 1 + 4 + 2] = 'x';  // joint's terminating NUL overwritten
+  EXPECT_FALSE(decode_guarded(out, b.data(), b.size()));
 }

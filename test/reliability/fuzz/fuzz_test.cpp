@@ -1,4 +1,4 @@
-// In-process fuzz of every channel the two servers subscribe (issue 18): the
+// In-process fuzz of every channel the two servers and the tools subscribe (issue 18): the
 // real controller manager (test_bot, every configured controller loaded, as
 // many running as their claims allow) and the real sim_server I/O around a
 // Bullet turret_bot, on LCM's in-process memq:// bus, take 10,000 seeded
@@ -20,6 +20,9 @@
 #include "test/controller_manager/rig.hpp"
 #include "test/reliability/fuzz/payloads.hpp"
 #include "test/support/lcm_test.hpp"
+#include "tools/fields.hpp"
+#include "tools/message_text.hpp"
+#include "tools/time_base.hpp"
 
 namespace lt = lcm_control::testing;
 using namespace lcm_control;
@@ -244,4 +247,47 @@ TEST(Fuzz, SimServerTakesHostilePayloadsOnEveryChannel) {
               static_cast<long long>(io.stale()), states.messages.back().position[0]);
   EXPECT_EQ(bad, 0);
   EXPECT_NEAR(states.messages.back().position[0], 0.5, 0.05);
+}
+
+// What the tools decode from the bus: `clock` (turret-cmd's and bus pub's CommandClock, through the guarded
+// subscription), and joint_states and every other channel through the field paths (state-logger, log2csv,
+// plotter) and the YAML of `bus echo`.
+TEST(Fuzz, ToolsTakeHostilePayloadsOnClockAndJointStates) {
+  const int n = payloads_per_channel();
+  Bus bus("memq://", "");
+  tools::CommandClock clock(bus, 0);
+  lt::Hints hints{{"j1", "j2"}, {0, 1000}};
+  lt::Payloads payloads(7);
+  Tally c = flood(
+      bus.lcm(), "clock", n, [&] { return payload_of(payloads, "sim_clock_t", hints); },
+      [&] { bus.lcm().handleTimeout(0); }, [] {});
+  c.channel = "tools clock (sim_clock_t, CommandClock)";
+  c.print("in-process");
+  EXPECT_EQ(c.crashes + c.hangs, 0);
+  EXPECT_TRUE(tools::time_base(clock.now_us()) == tools::TimeBase::Sim || !clock.on_sim());
+
+  int64_t decoded = 0, refused = 0, crashes = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int k = 0; k < n; ++k) {
+    const auto b = payload_of(payloads, "joint_state_t", hints);
+    try {
+      const tools::Decoded d = tools::decode_fields(b.data(), b.size());
+      if (d.ok()) {
+        ++decoded;
+        tools::message_yaml(b.data(), b.size());
+      } else {
+        ++refused;
+      }
+    } catch (const std::runtime_error&) {
+      ++refused;  // message_yaml's answer to bytes that are not a message
+    } catch (...) {
+      ++crashes;
+    }
+  }
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("RELIABILITY|fuzz|tools joint_states (joint_state_t: field paths, bus echo's YAML)|tried=%d|ok=%lld|"
+              "crashes=%lld|hangs=0|in-process; %lld decoded, %lld refused, %.2f s\n",
+              n, static_cast<long long>(decoded + refused), static_cast<long long>(crashes),
+              static_cast<long long>(decoded), static_cast<long long>(refused), s);
+  EXPECT_EQ(crashes, 0);
 }
