@@ -63,18 +63,24 @@ class Bus {
   std::string url_, ns_, prefix_;
 };
 
-// Decodes bytes from the bus into msg; false when they are not a Msg: a count or length that does not fit the bytes
-// (checked by wire_fits before lcm-gen's decoder, which would allocate what the count says), or a decoder that throws.
-// Every decode of bus input goes through here.
+// lcm-gen's decode of bytes the schema walk (wire_fits or wire_problem) has accepted; false if it still fails or
+// throws. Only for bytes already walked: decode_guarded is the one to call otherwise.
 template <class Msg>
-bool decode_guarded(Msg& msg, const void* data, size_t size) noexcept {
-  if (!wire_fits<Msg>(data, size)) return false;
+bool decode_walked(Msg& msg, const void* data, size_t size) noexcept {
   try {
     return msg.decode(data, 0, int(size)) >= 0;
   } catch (const std::exception&) {
     msg = Msg();
     return false;
   }
+}
+
+// Decodes bytes from the bus into msg; false when they are not a Msg: a count or length that does not fit the bytes
+// (checked by wire_fits before lcm-gen's decoder, which would allocate what the count says), or a decoder that throws.
+// Every decode of bus input goes through here.
+template <class Msg>
+bool decode_guarded(Msg& msg, const void* data, size_t size) noexcept {
+  return wire_fits<Msg>(data, size) && decode_walked(msg, data, size);
 }
 
 namespace detail {

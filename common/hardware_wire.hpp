@@ -1,7 +1,6 @@
-// Checks on the raw bytes of hardware/state and hardware/command before they
-// are decoded: lcm-gen's decoders trust the array counts, so a negative count
-// throws from inside the LCM handler and a huge one allocates millions of
-// elements before the decoder finds the buffer too short.
+// The schema walk of common/wire_check.hpp for hardware/state and
+// hardware/command, with num_actuators also bounded by the robot's actuators:
+// what the two processes run on those bytes before decoding them.
 #pragma once
 
 #include <cstddef>
@@ -9,7 +8,7 @@
 
 namespace lcm_control {
 
-// "" when the message's num_actuators is between 0 and max_actuators and fits in `size` bytes; else why not.
+// "" when the bytes can be the message with num_actuators between 0 and max_actuators; else why not.
 std::string check_hardware_state_bytes(const void* data, size_t size, int max_actuators);
 std::string check_hardware_command_bytes(const void* data, size_t size, int max_actuators);
 

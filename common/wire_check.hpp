@@ -33,9 +33,16 @@ namespace detail {
 
 class WireWalk {
  public:
-  WireWalk(const uint8_t* data, size_t size) : p_(data), left_(size) {}
+  // What stopped the walk: nothing, the bytes ran out, a count beyond [0, max_count], or a malformed string.
+  enum class Fault { None, Short, Count, String };
+
+  WireWalk(const uint8_t* data, size_t size, int32_t max_count) : p_(data), left_(size), max_count_(max_count) {}
   bool ok() const { return ok_; }
   size_t left() const { return left_; }
+  Fault fault() const { return fault_; }
+  // The last array count read (nullptr before any), for the reason.
+  const char* last_count() const { return last_count_; }
+  int32_t last_value() const { return last_value_; }
 
   template <class T>
   void value(const char*, const T& x) {
@@ -44,7 +51,10 @@ class WireWalk {
   void count(const char* name, const int32_t&) {
     int32_t n = 0;
     if (!read_int32(n)) return;
-    if (n < 0 || num_counts_ == counts_.size()) return fail();
+    last_count_ = name;
+    last_value_ = n;
+    if (n < 0 || n > max_count_) return fail(Fault::Count);
+    if (num_counts_ == counts_.size()) return fail(Fault::Short);
     counts_[num_counts_++] = {name, n};
   }
   template <class T>
@@ -70,15 +80,20 @@ class WireWalk {
   }
   template <class S>
   void nested(const char*, const S& x) {
-    WireWalk inner(p_, left_);
+    WireWalk inner(p_, left_, max_count_);
     visit(x, inner);
-    if (!inner.ok_) return fail();
+    if (inner.last_count_) {
+      last_count_ = inner.last_count_;
+      last_value_ = inner.last_value_;
+    }
+    if (!inner.ok_) return fail(inner.fault_);
     p_ += left_ - inner.left_;
     left_ = inner.left_;
   }
 
  private:
-  void fail() {
+  void fail(Fault f = Fault::Short) {
+    if (ok_) fault_ = f;
     ok_ = false;
     left_ = 0;
   }
@@ -101,7 +116,8 @@ class WireWalk {
     if (!read_int32(len)) return;
     // The length counts the terminating NUL. A NUL inside would decode, but lcm-gen encodes strings up to their
     // first NUL while it sizes them by length: such a message could not be sent on again.
-    if (len < 1 || uint64_t(len) > left_ || p_[len - 1] != 0 || std::memchr(p_, 0, size_t(len - 1))) return fail();
+    if (len < 1 || uint64_t(len) > left_) return fail();
+    if (p_[len - 1] != 0 || std::memchr(p_, 0, size_t(len - 1))) return fail(Fault::String);
     skip(uint64_t(len));
   }
   template <class T>
@@ -117,21 +133,45 @@ class WireWalk {
 
   const uint8_t* p_;
   size_t left_;
+  int32_t max_count_;
   bool ok_ = true;
+  Fault fault_ = Fault::None;
+  const char* last_count_ = nullptr;
+  int32_t last_value_ = 0;
   std::array<std::pair<const char*, int32_t>, 8> counts_{};  // this struct's array counts so far (no allocation)
   size_t num_counts_ = 0;
 };
 
 }  // namespace detail
 
-// True when `size` bytes can be a Msg as far as its counts and lengths go: the fingerprint matches, no count is
-// negative, every array and string fits in the bytes that follow, and every string is NUL-terminated with no NUL
-// inside. False means lcm-gen's decoder must not see it.
+// "" when `size` bytes can be a Msg as far as its counts and lengths go: the fingerprint matches, every array count
+// is between 0 and max_count, every array and string fits in the bytes that follow, and every string is
+// NUL-terminated with no NUL inside. Else why not, naming the count at fault; `bound_of` says what max_count is
+// ("the robot's actuators"). No allocation when the answer is "".
+template <class Msg>
+std::string wire_problem(const void* data, size_t size, int32_t max_count = INT32_MAX, const char* bound_of = nullptr) {
+  auto too_short = [&] { return std::to_string(size) + " bytes: too short for a " + Msg::getTypeName(); };
+  if (size < 8) return too_short();
+  if (payload_fingerprint(data) != Msg::getHash()) return std::string("not a ") + Msg::getTypeName();
+  detail::WireWalk walk(static_cast<const uint8_t*>(data) + 8, size - 8, max_count);
+  static const Msg empty{};
+  visit(empty, walk);
+  using Fault = detail::WireWalk::Fault;
+  if (walk.fault() == Fault::None) return {};
+  if (walk.fault() == Fault::String) return "a string is not NUL-terminated or holds a NUL";
+  if (!walk.last_count()) return too_short();
+  const std::string count = std::string(walk.last_count()) + " " + std::to_string(walk.last_value());
+  if (walk.fault() == Fault::Count)
+    return count + " is not between 0 and " + std::to_string(max_count) +
+           (bound_of ? std::string(" (") + bound_of + ")" : std::string());
+  return count + " does not fit in " + std::to_string(size) + " bytes";
+}
+
+// wire_problem() without the reason: true when lcm-gen's decoder may see the bytes.
 template <class Msg>
 bool wire_fits(const void* data, size_t size) noexcept {
-  const auto* b = static_cast<const uint8_t*>(data);
   if (size < 8 || payload_fingerprint(data) != Msg::getHash()) return false;
-  detail::WireWalk walk(b + 8, size - 8);
+  detail::WireWalk walk(static_cast<const uint8_t*>(data) + 8, size - 8, INT32_MAX);
   static const Msg empty{};
   visit(empty, walk);
   return walk.ok();

@@ -48,7 +48,8 @@ class Port {
   // Raw bytes; the handler runs in the thread that calls handle().
   void subscribe_raw(const std::string& channel, std::function<void(const lcm::ReceiveBuffer&)> handler);
 
-  // "" when raw bytes may be decoded, else why not (e.g. an array count the message cannot hold).
+  // "" when raw bytes may be decoded, else why not: the schema walk of common/wire_check.hpp (wire_problem, with
+  // a tighter bound on the counts), which then replaces decode_guarded's own walk.
   using Precheck = std::function<std::string(const void* data, size_t size)>;
 
   // Decodes into a message kept by the Port; on_bad gets the reason when the
@@ -97,7 +98,8 @@ class Port {
       }
       Msg fresh;
       Msg& msg = keep ? *kept : fresh;
-      if (!decode_guarded(msg, rb.data, rb.data_size)) return bad("");
+      if (!(precheck ? decode_walked(msg, rb.data, rb.data_size) : decode_guarded(msg, rb.data, rb.data_size)))
+        return bad("");
       on_msg(msg);
     });
   }

@@ -151,7 +151,7 @@ void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   if (const std::string why = check_hardware_command_bytes(rbuf->data, rbuf->data_size, sim_.actuators().size());
       !why.empty())
     return drop(why);
-  if (!decode_guarded(cmd_, rbuf->data, rbuf->data_size))
+  if (!decode_walked(cmd_, rbuf->data, rbuf->data_size))
     return drop("not a hardware_command_t (wrong fingerprint, truncated or undecodable)");
   const std::string why = why_rejected();
   if (!why.empty()) return drop(why);

@@ -420,23 +420,6 @@ class Counts {
   bool set_ = false;
 };
 
-struct HasUtime {
-  bool yes = false;
-  template <class T>
-  void value(const char* name, T&) {
-    yes = yes || std::string(name) == "utime";
-  }
-  void count(const char*, int32_t&) {}
-  template <class A>
-  void list(const char*, A&, const char*) {}
-  template <class A>
-  void matrix(const char*, A&, const char*, int) {}
-  template <class A>
-  void structs(const char*, A&, const char*) {}
-  template <class S>
-  void nested(const char*, S&) {}
-};
-
 std::string list_text(const std::vector<std::string>& xs) {
   std::string out;
   for (const auto& x : xs) out += (out.empty() ? "" : ", ") + x;
@@ -516,9 +499,8 @@ std::vector<uint8_t> build_message(const std::string& type, const std::vector<st
                                                 list_text(message_fields(name))));
       }
     }
-    HasUtime u;
-    visit(m, u);
-    if (u.yes && !utime_set) {
+    const auto fields = message_fields(name);
+    if (!utime_set && std::find(fields.begin(), fields.end(), "utime (int64)") != fields.end()) {
       Assign set(parse_path("utime"), 0, std::to_string(default_utime));
       visit(m, set);
     }

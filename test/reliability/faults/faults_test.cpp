@@ -178,6 +178,15 @@ class Robot {
     j2_ = std::make_unique<lt::ChildProcess>(
         std::vector<std::string>{lt::bin("turret-cmd"), "j2_controller", "3.14*sin(i/100)", "--rate", "60"}, env());
   }
+  // sim_server (into `sim`), the controller manager and its controllers, then the motion for settle_s seconds;
+  // "" or what did not come up.
+  std::string bring_up(std::unique_ptr<lt::ChildProcess>& sim, double settle_s) {
+    sim = start_sim();
+    if (!start_manager()) return spawner_->output() + cm_->output();
+    start_motion();
+    sleep_s(settle_s);
+    return "";
+  }
   lt::ChildProcess& manager() { return *cm_; }
   lt::ChildProcess& spawner() { return *spawner_; }
 
@@ -198,10 +207,8 @@ TEST(Faults, ControllerManagerKilledAndRestartedUnderMotion) {
   const int n = rounds();
   Robot robot;
   Watcher w(robot.url());
-  auto sim = robot.start_sim();
-  ASSERT_TRUE(robot.start_manager()) << robot.spawner().output() << robot.manager().output();
-  robot.start_motion();
-  sleep_s(1.5);
+  std::unique_ptr<lt::ChildProcess> sim;
+  ASSERT_EQ(robot.bring_up(sim, 1.5), "");
   const auto base = max_step_change(w.between(w.now() - 1.0, w.now()));
   int survived = 0;
   double worst_hold_j1 = 0, worst_hold_j2 = 0, worst_jump_j2 = 0, worst_offset = 0;
@@ -243,10 +250,8 @@ TEST(Faults, ControllerManagerKilledAndRestartedUnderMotion) {
 TEST(Faults, SimServerKilledAndRestartedUnderARunningControllerManager) {
   Robot robot;
   Watcher w(robot.url());
-  auto sim = robot.start_sim();
-  ASSERT_TRUE(robot.start_manager()) << robot.spawner().output() << robot.manager().output();
-  robot.start_motion();
-  sleep_s(1.5);
+  std::unique_ptr<lt::ChildProcess> sim;
+  ASSERT_EQ(robot.bring_up(sim, 1.5), "");
   const auto before = w.between(w.now() - 0.2, w.now());
   ASSERT_FALSE(before.empty());
   EXPECT_NEAR(before.back().j1, 0.5, 0.02);
@@ -286,10 +291,8 @@ TEST(Faults, StoppedFor3sAndContinuedInRealTimeAndLockstep) {
     for (const char* who : {"controller_manager", "sim_server"}) {
       Robot robot(lockstep);
       Watcher w(robot.url());
-      auto sim = robot.start_sim();
-      ASSERT_TRUE(robot.start_manager()) << robot.spawner().output() << robot.manager().output();
-      robot.start_motion();
-      sleep_s(1.0);
+      std::unique_ptr<lt::ChildProcess> sim;
+      ASSERT_EQ(robot.bring_up(sim, 1.0), "");
       const auto base = max_step_change(w.between(w.now() - 0.8, w.now()));
       const pid_t pid = std::string(who) == "sim_server" ? sim->pid() : robot.manager().pid();
       const double stopped = w.now();
@@ -355,10 +358,8 @@ TEST(Faults, TwoSimServersOnOneNamespaceAreReportedByAll) {
 TEST(Faults, AFloodOf50000CommandsASecondKeepsTheLoopRateAndMemory) {
   Robot robot;
   Watcher w(robot.url());
-  auto sim = robot.start_sim();
-  ASSERT_TRUE(robot.start_manager()) << robot.spawner().output() << robot.manager().output();
-  robot.start_motion();
-  sleep_s(1.5);
+  std::unique_ptr<lt::ChildProcess> sim;
+  ASSERT_EQ(robot.bring_up(sim, 1.5), "");
   const long rss_before = rss_kb(robot.manager().pid());
   const double t_before = w.now();
   const size_t n_before = w.commands_between(t_before - 1.0, t_before);

@@ -5,7 +5,9 @@
 // robot still follows a command, and joint_states are finite.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <filesystem>
 #include <cmath>
 #include <thread>
 
@@ -16,6 +18,7 @@
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
+#include "lcm_control/link_poses_t.hpp"
 #include "lcm_control/pid_gains_t.hpp"
 #include "test/reliability/fuzz/payloads.hpp"
 #include "test/support/lcm_test.hpp"
@@ -86,45 +89,82 @@ TEST(FuzzOverLcm, RunningProgramsSurviveHostilePayloadsOnEveryChannel) {
   send<pid_gains_t>(lc, p, hints, "sim_server/gains/set", n);
   const double flood_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-  // Undo what a well-formed hostile message may legitimately have done: release the e-stop, restore the gains.
+  // Undo what a well-formed hostile message may legitimately have done (anyone on the bus may, as with ROS):
+  // release the e-stop and restore the gains, repeated until hardware/state and sim_server's answers show both
+  // took; a message sent into a subscription whose queue the flood still fills is dropped by LCM.
+  sleep_ms(500);  // let the flood's backlog drain
+  lt::Recorder<hardware_state_t> hw(lc, "hardware/state");
   e_stop_t release{};
   release.engaged = false;
   release.source = "fuzz test";
-  for (int k = 0; k < 3; ++k) lc.publish("e_stop", &release);
-  for (pid_gains_t g : before) {
-    g.query = false;
-    lc.publish("sim_server/gains/set", &g);
+  auto same = [](const pid_gains_t& a, const pid_gains_t& b) {
+    return a.p == b.p && a.i == b.i && a.d == b.d && a.i_clamp_min == b.i_clamp_min &&
+           a.i_clamp_max == b.i_clamp_max && a.antiwindup == b.antiwindup;
+  };
+  auto restored = [&] {
+    if (hw.messages.empty() || hw.messages.back().e_stop) return false;
+    for (const pid_gains_t& b : before) {
+      auto it = std::find_if(gains.messages.rbegin(), gains.messages.rend(),
+                             [&](const pid_gains_t& g) { return g.joint == b.joint; });
+      if (it == gains.messages.rend() || !same(*it, b)) return false;
+    }
+    return true;
+  };
+  bool sim_answers = false, undone = false;
+  for (int k = 0; k < 40 && !undone; ++k) {
+    gains.messages.clear();
+    lc.publish("e_stop", &release);
+    for (pid_gains_t g : before) {
+      g.query = false;
+      lc.publish("sim_server/gains/set", &g);
+    }
+    undone = lt::pump_until(lc, restored, 0.25);
+    sim_answers = sim_answers || !gains.messages.empty();
   }
-  // A well-formed hostile request may have stopped or unloaded the controllers (anyone on the bus may, as with
-  // ROS): reload the configuration (stopping and unloading what is left) and spawn them again.
-  sleep_ms(500);  // let the flood's backlog drain
+  EXPECT_TRUE(undone) << "e-stop " << (hw.messages.empty() ? "unknown (no hardware/state)"
+                                                           : hw.messages.back().e_stop ? "engaged" : "released")
+                      << ", " << gains.messages.size() << " gains answers";
+  // A well-formed hostile request may have stopped or unloaded the controllers: reload the configuration
+  // (stopping and unloading what is left) and spawn them again.
   lt::ChildProcess reload({lt::bin("cmctl"), "reload", "--force"}, env);
-  EXPECT_EQ(reload.wait(20), 0) << reload.output();
+  const bool cm_answers = reload.wait(20) == 0;
+  EXPECT_TRUE(cm_answers) << reload.output();
   lt::ChildProcess respawn({lt::bin("spawner"), "joint_state_controller", "j1_controller", "j2_controller"}, env);
   EXPECT_TRUE(respawn.wait_for_output("spawner: ready", 20)) << respawn.output() << cm.output().substr(0, 2000);
   lt::Recorder<joint_state_t> states(lc, "joint_states");
+  lt::Recorder<link_poses_t> poses(lc, "link_poses");
+  const auto logged_before = std::filesystem::file_size(dir + "/joint_states.csv");
   float64_t cmd{};
   cmd.data = 0.5;
   const bool reached = lt::pump_until(
       lc,
       [&] {
-        lc.publish("e_stop", &release);  // again and again: a release sent into the flood's backlog can be dropped
         lc.publish("j1_controller/command", &cmd);
         if (states.messages.size() < 30) return false;
         const auto& last = states.messages.back();
         return !last.position.empty() && std::abs(last.position[0] - 0.5) < 0.02;
       },
       15);
-  int alive = 0;
-  for (lt::ChildProcess* proc : {&sim, &cm, &publisher, &logger}) alive += proc->running();
+  sleep_ms(300);  // state-logger writes what it has
+  // Alive: the process runs. Hung: it runs but no longer does its job (answers, publishes, writes).
+  const bool logger_writes = std::filesystem::file_size(dir + "/joint_states.csv") > logged_before;
+  int alive = 0, hung = 0;
+  const std::pair<lt::ChildProcess*, bool> jobs[] = {
+      {&sim, sim_answers}, {&cm, cm_answers}, {&publisher, !poses.messages.empty()}, {&logger, logger_writes}};
+  for (const auto& [proc, works] : jobs) {
+    alive += proc->running();
+    hung += proc->running() && !works;
+  }
   bool finite = true;
   for (size_t k = states.messages.size() > 20 ? states.messages.size() - 20 : 0; k < states.messages.size(); ++k)
     for (double x : states.messages[k].position) finite = finite && std::isfinite(x);
   std::printf("RELIABILITY|fuzz|over LCM: sim_server, controller_manager, state-publisher, state-logger, 9 channels|"
-              "tried=%d|ok=%d|crashes=%d|hangs=0|%d payloads in %.1f s; afterwards j1 %s 0.5, joint_states %s\n",
-              9 * n, alive == 4 ? 9 * n : 0, 4 - alive, 9 * n, flood_s, reached ? "reached" : "did NOT reach",
+              "tried=%d|ok=%d|crashes=%d|hangs=%d|%d payloads in %.1f s; afterwards j1 %s 0.5, joint_states %s\n",
+              9 * n, alive == 4 && hung == 0 ? 9 * n : 0, 4 - alive, hung, 9 * n, flood_s, reached ? "reached" : "did NOT reach",
               finite ? "finite" : "NOT finite");
   EXPECT_EQ(alive, 4) << sim.output().substr(0, 2000) << cm.output().substr(0, 2000);
+  EXPECT_EQ(hung, 0) << "sim answers " << sim_answers << ", controller_manager answers " << cm_answers
+                     << ", link_poses " << poses.messages.size() << ", state-logger writes " << logger_writes;
   EXPECT_TRUE(reached) << "j1 at " << (states.messages.empty() ? NAN : states.messages.back().position[0]) << "\n"
                        << cm.output().substr(cm.output().size() > 3000 ? cm.output().size() - 3000 : 0) << "\n"
                        << sim.output().substr(sim.output().size() > 3000 ? sim.output().size() - 3000 : 0);
