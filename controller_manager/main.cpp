@@ -18,7 +18,10 @@ int main(int argc, char** argv) {
   using namespace lcm_control;
   CLI::App app{
       "controller_manager: hosts ros_control-style controllers and runs read -> update -> write against "
-      "hardware/state and hardware/command on LCM",
+      "hardware/state and hardware/command on LCM. Controllers are loaded and started by spawner or cmctl.\n"
+      "Examples:\n"
+      "  controller_manager --urdf config/turret_bot.urdf --config config/turret_bot.yaml\n"
+      "  controller_manager --urdf robot.urdf --config robot.yaml --namespace r1 --cpu 1 --rt-priority 80",
       "controller_manager"};
   std::string urdf, config;
   BusFlags bus_flags;

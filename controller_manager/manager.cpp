@@ -277,6 +277,10 @@ std::vector<controller_info_t> ControllerManager::list() const {
   return out;
 }
 
+std::string ControllerManager::hardware_summary(int64_t now) const {
+  return hw_status_.describe(now, options_.silence_us, bus_.channel(channels::kHardwareState));
+}
+
 void ControllerManager::on_hardware_state(const hardware_state_t& st) {
   const int64_t now = monotonic_us();
   if (hw_.bound() && st.session != hw_.session() && loop_.has_state() && !silent_ &&
@@ -301,6 +305,7 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
     hardware_log_.info(fmt::format("hardware session {:x}: {} actuators, {}, period {} us, step {}", st.session,
                                    st.num_actuators, st.lockstep ? "lockstep" : "real time", st.period_us, st.step));
   }
+  hw_status_.seen(st, now);
   if (silent_) {
     silent_ = false;
     // In lockstep, time stands still while nobody answers: the next step of the
@@ -334,6 +339,7 @@ void ControllerManager::poll(int64_t now) {
   }
   if (now - last_stats_us_ >= 1000000) {
     last_stats_us_ = now;
+    hw_status_.close_window(now);
     stats_pub_.publish(statistics());
   }
 }

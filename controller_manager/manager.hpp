@@ -15,6 +15,7 @@
 #include "common/robot_model.hpp"
 #include "controller_manager/command_sources.hpp"
 #include "controller_manager/hardware.hpp"
+#include "controller_manager/hardware_status.hpp"
 #include "controller_manager/loop.hpp"
 #include "controller_manager/registry.hpp"
 #include "lcm_control/controller_info_t.hpp"
@@ -82,6 +83,8 @@ class ControllerManager {
   // hardware, statistics at 1 Hz.
   void poll(int64_t monotonic_now_us);
   bool ticking() const { return loop_.has_state() && !silent_; }
+  // The hardware this manager follows, one line (HardwareStatus::describe).
+  std::string hardware_summary(int64_t monotonic_now_us) const;
   void count_dropped(int64_t n) { dropped_ += n; }
   const hardware_command_t& last_command() const { return command_; }
 
@@ -109,8 +112,9 @@ class ControllerManager {
   Publisher<hardware_command_t> command_pub_;
   Publisher<loop_stats_t> stats_pub_;
   Done pending_done_;
-  bool shutting_down_ = false;
-  BusLog hardware_log_;  // session lines: a peer can send a new session with every message  // from shutdown() on, switches and reloads are refused
+  bool shutting_down_ = false;  // from shutdown() on, switches and reloads are refused
+  BusLog hardware_log_;         // session lines: a peer can send a new session with every message
+  HardwareStatus hw_status_;
   std::string pending_summary_;
   int64_t last_state_us_ = 0, last_stats_us_ = 0, bad_session_ = 0, dropped_ = 0, bad_state_logged_ = 0,
           reported_dropped_ = 0;

@@ -4,6 +4,8 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include "common/messages.hpp"
+
 namespace lcm_control::cm {
 
 namespace {
@@ -96,7 +98,8 @@ void Services::handle(const cm_request_t& r) {
   };
   switch (r.op) {
     case cm_request_t::LIST:
-      answer(r, {true, fmt::format("{} controller(s) loaded", cm_.list().size())});
+      answer(r, {true, fmt::format("{} controller(s) loaded{}{}", cm_.list().size(), kListHardwareKey,
+                                   cm_.hardware_summary(monotonic_us()))});
       return;
     case cm_request_t::LIST_TYPES:
       answer(r, {true, fmt::format("{} controller types", cm_.types().size())}, true);

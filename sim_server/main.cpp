@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "Simulate a URDF robot in Bullet and play its hardware over LCM (hardware/state, hardware/command, clock, "
       "e_stop, sim_server/gains).\n"
-      "Example: sim_server --urdf config/turret_bot.urdf --config config/turret_bot.yaml --lockstep",
+      "Example: sim_server --urdf config/turret_bot.urdf --config config/turret_bot.yaml --mode lockstep",
       "sim_server"};
   std::string urdf, config, log_level;
   std::vector<std::string> package_path;
@@ -34,7 +34,12 @@ int main(int argc, char** argv) {
   double clock_hz = 100;
   app.add_option("--urdf", urdf, "URDF with <transmission> tags")->required();
   app.add_option("--config", config, "ros_control YAML (gazebo_ros_control/pid_gains); none: every joint direct");
-  app.add_flag("--lockstep", opt.lockstep, "step only when the controller manager answers (deterministic)");
+  std::string mode = "realtime";
+  app.add_option("--mode", mode,
+                 "realtime: paced by the wall clock; lockstep: step only when the controller manager answers "
+                 "(deterministic, as fast as the two processes go)")
+      ->check(CLI::IsMember({"realtime", "lockstep"}))
+      ->capture_default_str();
   app.add_option("--physics-rate", rates.physics_hz, "physics steps per second")->capture_default_str();
   app.add_option("--control-rate", rates.control_hz, "hardware state/command exchanges per second (divides "
                                                       "--physics-rate)")
@@ -73,6 +78,7 @@ int main(int argc, char** argv) {
   add_scheduling_flags(app, sched);
 
   return run_program(app, argc, argv, [&] {
+    opt.lockstep = mode == "lockstep";
     sim::substeps_for(rates);  // bad rates fail before anything else is said
     const int clock_every = sim::clock_every_for(rates.control_hz, clock_hz);
     const std::string scheduling = apply_scheduling(sched);

@@ -1,20 +1,17 @@
 // bus: rostopic and rosbag info for LCM, headless: list the channels on the bus
 // with their types and rates, measure one channel's rate, print its messages,
 // publish any lcm_control message from field=value pairs, summarise a log.
-#include <sys/stat.h>
-
-#include <cerrno>
-#include <cstring>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
 #include <deque>
+#include <filesystem>
 #include <map>
 #include <memory>
 
 #include "common/cli.hpp"
+#include "tools/census.hpp"
 #include "tools/csv.hpp"
 #include "tools/fields.hpp"
 #include "tools/message_text.hpp"
@@ -31,53 +28,6 @@ std::string bytes_text(double b) {
   if (b >= 1e3) return fmt::format("{:.1f} KB", b / 1e3);
   return fmt::format("{:.0f} B", b);
 }
-
-// What was seen on each channel: count, bytes, first and last receive time, type.
-struct ChannelSeen {
-  int64_t count = 0, bytes = 0, first_us = 0, last_us = 0;
-  std::string type;
-  double rate(int64_t window_us) const {
-    if (count >= 2 && last_us > first_us) return double(count - 1) * 1e6 / double(last_us - first_us);
-    return window_us > 0 ? double(count) * 1e6 / double(window_us) : 0;
-  }
-};
-
-std::string type_name(const void* data, size_t size) {
-  const std::string t = type_of_payload(data, size);
-  if (!t.empty()) return t;
-  if (size < 8) return fmt::format("? ({} bytes)", size);
-  return fmt::format("? 0x{:016x}", uint64_t(payload_fingerprint(data)));
-}
-
-// Every channel on the bus (or in the namespace), counted.
-class Census {
- public:
-  explicit Census(Bus& bus) : bus_(bus) {
-    auto* sub = bus.lcm().subscribe(regex_escape(bus.channel("")) + ".*", &Census::on, this);
-    sub->setQueueCapacity(10000);
-  }
-  const std::map<std::string, ChannelSeen>& seen() const { return seen_; }
-  std::string names() const {
-    if (seen_.empty()) return "none";
-    std::string out;
-    for (const auto& [name, s] : seen_) out += (out.empty() ? "" : ", ") + name;
-    return out;
-  }
-
- private:
-  void on(const lcm::ReceiveBuffer* rb, const std::string& channel) {
-    auto& s = seen_[channel];
-    const int64_t now = monotonic_us();
-    if (s.count++ == 0) {
-      s.first_us = now;
-      s.type = type_name(rb->data, rb->data_size);
-    }
-    s.last_us = now;
-    s.bytes += rb->data_size;
-  }
-  Bus& bus_;
-  std::map<std::string, ChannelSeen> seen_;
-};
 
 [[noreturn]] void nothing_on(const std::string& channel, const Bus& bus, const Census& census) {
   throw BusError(fmt::format("no message on '{}' ({}); channels seen: {}. Check the channel name, --namespace and "
@@ -275,13 +225,8 @@ std::string date_text(int64_t utime) {
 }
 
 int cmd_info(const std::string& path) {
-  struct stat st{};
-  if (stat(path.c_str(), &st) != 0)
-    throw ModelError({fmt::format("{}: cannot read the log: {}", path, std::strerror(errno))});
-  if (!S_ISREG(st.st_mode))
-    throw ModelError({fmt::format("{}: not a regular file; give a log written by lcm-logger", path)});
-  lcm::LogFile log(path, "r");
-  if (!log.good()) throw ModelError({fmt::format("{}: cannot open the log", path)});
+  const auto log_file = open_log(path);
+  lcm::LogFile& log = *log_file;
   std::map<std::string, ChannelSeen> seen;
   int64_t messages = 0, first = 0, last = 0;
   while (const lcm::LogEvent* e = log.readNextEvent()) {
@@ -302,7 +247,7 @@ int cmd_info(const std::string& path) {
     throw ModelError({fmt::format("{}: no events: not a log written by lcm-logger, or an empty one", path)});
   const double duration = double(last - first) * 1e-6;
   fmt::print("path:      {}\n", path);
-  fmt::print("size:      {}\n", bytes_text(double(st.st_size)));
+  fmt::print("size:      {}\n", bytes_text(double(std::filesystem::file_size(path))));
   fmt::print("duration:  {:.3f} s\n", duration);
   fmt::print("start:     {}\n", date_text(first));
   fmt::print("end:       {}\n", date_text(last));

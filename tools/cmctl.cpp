@@ -46,7 +46,10 @@ int main(int argc, char** argv) {
     cm_response_t r;
     if (list->parsed()) {
       r = cm.list(timeout);
-      if (r.ok) fmt::print("{}", r.controllers.empty() ? "no controllers loaded\n" : controller_table(r.controllers));
+      if (r.ok) {
+        fmt::print("{}", r.controllers.empty() ? "no controllers loaded\n" : controller_table(r.controllers));
+        if (const std::string hw = hardware_of(r); !hw.empty()) fmt::print("hardware: {}\n", hw);
+      }
     } else if (types->parsed()) {
       r = cm.list_types(timeout);
       if (r.ok)

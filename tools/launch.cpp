@@ -58,17 +58,22 @@ class ReadinessProbe {
   }
   bool hardware_seen() const { return state_seen_; }
   bool manager_answered() const { return cm_answered_; }
+  const std::string& manager_message() const { return cm_message_; }  // its answer to LIST
 
  private:
   void on_state(const lcm::ReceiveBuffer*, const std::string&) { state_seen_ = true; }
   void on_cm(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     cm_response_t m;
-    if (decode_guarded(m, rbuf->data, rbuf->data_size) && m.request_id == list_id_) cm_answered_ = true;
+    if (decode_guarded(m, rbuf->data, rbuf->data_size) && m.request_id == list_id_) {
+      cm_answered_ = true;
+      cm_message_ = m.message;
+    }
   }
   Bus& bus_;
   lcm::Subscription* state_sub_ = nullptr;
   bool state_seen_ = false, cm_answered_ = false;
   int64_t list_id_ = 0, last_list_us_ = 0;
+  std::string cm_message_;
 };
 
 // --namespace, else the file's, else the URDF's robotNamespace: what sim_server and controller_manager will use, so
@@ -150,7 +155,7 @@ int main(int argc, char** argv) {
     sim.insert(sim.end(), yaml_args.begin(), yaml_args.end());
     for (const auto& [joint, q] : plan.initial_positions)
       sim.insert(sim.end(), {"--initial-position", fmt::format("{}={}", joint, q)});
-    if (plan.mode == "lockstep") sim.push_back("--lockstep");
+    if (plan.mode == "lockstep") sim.insert(sim.end(), {"--mode", "lockstep"});
     if (plan.physics_rate > 0) sim.insert(sim.end(), {"--physics-rate", fmt::format("{:g}", plan.physics_rate)});
     if (plan.control_rate > 0) sim.insert(sim.end(), {"--control-rate", fmt::format("{:g}", plan.control_rate)});
     sim.insert(sim.end(), plan.sim_args.begin(), plan.sim_args.end());
@@ -167,6 +172,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> spawner{"spawner"};
     spawner.insert(spawner.end(), plan.controllers.begin(), plan.controllers.end());
     spawner.insert(spawner.end(), {"--shutdown-timeout", fmt::format("{:g}", stop_timeout * 0.3)});
+    if (plan.sim && plan.mode == "lockstep") spawner.push_back("--hardware-later");  // the sim starts after it
     spawner.insert(spawner.end(), plan.spawner_args.begin(), plan.spawner_args.end());
     std::vector<std::string> rsp{"state-publisher", "--urdf", plan.urdf, "--config", plan.config};
     rsp.insert(rsp.end(), yaml_args.begin(), yaml_args.end());
@@ -191,6 +197,27 @@ int main(int argc, char** argv) {
     Supervisor sup(env);
     auto probe = std::make_unique<ReadinessProbe>(*bus);
     sup.watch(probe->fd(), [&] { probe->handle(); });
+    // A robot already up on this namespace would fight the one started here: its simulator takes the commands of
+    // one manager and drops the other's, and each manager follows one of two simulators.
+    sup.wait_until(
+        [&] {
+          if (plan.controller_manager) probe->ask_manager();
+          return probe->manager_answered() || (plan.sim && probe->hardware_seen());
+        },
+        0.6);
+    const std::string where = ns.empty() ? "the default namespace" : "namespace '" + ns + "'";
+    if (plan.controller_manager && probe->manager_answered())
+      throw std::runtime_error(fmt::format(
+          "a controller manager already answers on '{}' in {} ({}): a second one would fight it for the robot. Stop "
+          "the robot that runs there (Ctrl-C its launch), or launch this one with --namespace NAME or another "
+          "--lcm-url",
+          bus->channel(channels::kCmResponse), where,
+          probe->manager_message().substr(0, probe->manager_message().find(kListHardwareKey))));
+    if (plan.sim && probe->hardware_seen())
+      throw std::runtime_error(fmt::format(
+          "hardware already publishes '{}' in {}: a second simulator there would make two sessions the controller "
+          "manager cannot both follow. Stop it, or launch this robot with --namespace NAME or another --lcm-url",
+          bus->channel(channels::kHardwareState), where));
     Child *sim_c = nullptr, *cm_c = nullptr, *spawner_c = nullptr;
     std::vector<Child*> others;
     std::string failure;

@@ -9,6 +9,7 @@
 #include "common/cli.hpp"
 #include "tools/csv.hpp"
 #include "tools/fields.hpp"
+#include "tools/support.hpp"
 
 int main(int argc, char** argv) {
   using namespace lcm_control;
@@ -37,9 +38,8 @@ int main(int argc, char** argv) {
       throw std::runtime_error(fmt::format("--channel '{}' is not a valid regular expression: {}", channel_regex,
                                            e.what()));
     }
-    if (!std::filesystem::is_regular_file(log_path)) throw std::runtime_error(log_path + ": no such log file");
-    lcm::LogFile log(log_path, "r");
-    if (!log.good()) throw std::runtime_error(log_path + ": cannot open as an LCM log");
+    const auto log_file = open_log(log_path);
+    lcm::LogFile& log = *log_file;
     std::error_code ec;
     std::filesystem::create_directories(output_dir, ec);
     if (ec) throw std::runtime_error("cannot create " + output_dir + ": " + ec.message());

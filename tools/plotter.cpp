@@ -121,9 +121,8 @@ class Collector {
 };
 
 void read_log(const std::string& path, Collector& c) {
-  if (!std::filesystem::is_regular_file(path)) throw std::runtime_error(path + ": no such log file");
-  lcm::LogFile log(path, "r");
-  if (!log.good()) throw std::runtime_error(path + ": cannot open as an LCM log");
+  const auto log_file = open_log(path);
+  lcm::LogFile& log = *log_file;
   for (const lcm::LogEvent* ev = log.readNextEvent(); ev; ev = log.readNextEvent())
     c.add(ev->channel, ev->timestamp, ev->data, size_t(ev->datalen));
 }
@@ -337,8 +336,10 @@ int main(int argc, char** argv) {
       if (s.points.empty()) missing += (missing.empty() ? "" : ", ") + s.path;
     if (!missing.empty()) {
       if (!keep) std::remove(data_file.c_str());
-      throw std::runtime_error(fmt::format("no data for {} in {}; what there was:{}", missing,
-                                           log_path.empty() ? "the bus" : log_path, collector.hint()));
+      const std::string why = fmt::format("no data for {} in {}; what there was:{}", missing,
+                                          log_path.empty() ? "the bus" : log_path, collector.hint());
+      if (log_path.empty()) throw BusError(why);  // nothing came: exit code 4
+      throw std::runtime_error(why);
     }
     const std::string text = render(!term.empty(), terminal);
     if (!keep) std::remove(data_file.c_str());

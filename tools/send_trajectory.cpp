@@ -25,7 +25,7 @@ struct Options {
   std::string target, joints, file, csv;
   std::vector<std::string> points;
   bool relative = false, no_wait = false, verbose = false;
-  double timeout = 0, cm_timeout = 3, state_timeout = 3;
+  double result_timeout = 0, timeout = 3;
 };
 
 // No result (or no joint_states) in time: exit code kExitBus, as for every unanswered request.
@@ -154,7 +154,7 @@ std::string no_result(CmClient& cm, const Bus& bus, const std::string& controlle
       if (c.state != "running")
         return fmt::format("{}: the controller manager now lists it as {}, not running (cmctl list)", head, c.state);
       if (feedback > 0)
-        return fmt::format("{}: it is running and sent {} feedback messages for this goal; give a longer --timeout",
+        return fmt::format("{}: it is running and sent {} feedback messages for this goal; give a longer --result-timeout",
                            head, feedback);
       return fmt::format("{}: it is running but sent no feedback for this goal on '{}': does its time advance? (is "
                          "sim_server running and stepping?)",
@@ -184,7 +184,7 @@ int run(const Options& o, const BusFlags& bus_flags) {
   install_stop_signals();
   Bus bus(bus_flags.lcm_url, bus_flags.ns);
   CmClient cm(bus, "send-trajectory");
-  const std::vector<controller_info_t> listed = cm.list(o.cm_timeout).controllers;
+  const std::vector<controller_info_t> listed = cm.list(o.timeout).controllers;
   const controller_info_t info = trajectory_controller(listed, controller);
   if (goal.joints.empty()) {
     goal.joints = info.joints;
@@ -192,7 +192,7 @@ int run(const Options& o, const BusFlags& bus_flags) {
     check_goal(goal);
   }
   if (o.relative) {
-    const std::vector<double> start = CurrentPositions(bus).of(goal.joints, o.state_timeout, listed);
+    const std::vector<double> start = CurrentPositions(bus).of(goal.joints, o.timeout, listed);
     add_offsets(goal, start);
     if (o.verbose) {
       std::vector<std::string> at;
@@ -204,7 +204,7 @@ int run(const Options& o, const BusFlags& bus_flags) {
   const int64_t goal_id = new_request_id();
   GoalWatch watch(bus, controller, goal_id, o.verbose);  // listening before the goal goes out
   const double span = goal.points.back().time;
-  const double timeout = o.timeout > 0 ? o.timeout : span + 10.0;
+  const double timeout = o.result_timeout > 0 ? o.result_timeout : span + 10.0;
   const std::string command = bus.channel(controller + "/command");
   bus.publish(controller + "/command", to_message(goal, goal_id, wall_us()));
   if (o.no_wait || o.verbose)
@@ -256,7 +256,7 @@ int main(int argc, char** argv) {
       "Without --joints (or joint names in the file) the controller's joints are used, in the order `cmctl list` "
       "shows. Exit codes: 0 SUCCEEDED (one line on stdout), 1 any other result (status and the controller's reason on "
       "stderr) or a controller that is not a running JointTrajectoryController, 2 usage, 3 bad waypoints, 4 no answer "
-      "(no result within --timeout, no controller manager, no joint_states), 130 Ctrl-C (the controller is sent an "
+      "(no result within --result-timeout, no controller manager, no joint_states), 130 Ctrl-C (the controller is sent an "
       "empty trajectory, which stops it).",
       "send-trajectory"};
   Options o;
@@ -271,14 +271,15 @@ int main(int argc, char** argv) {
                                    "time_from_start: 2.0 or {secs: 2, nsecs: 0}}]");
   app.add_option("--csv", o.csv, "CSV: header time,<joint>,...; one row per point");
   app.add_flag("--relative", o.relative, "positions are offsets from the current ones (the first joint_states)");
-  app.add_option("--timeout", o.timeout, "seconds to wait for the result (default: the last point's time + 10)")
+  app.add_option("--result-timeout", o.result_timeout,
+                 "seconds to wait for the result (default: the last point's time + 10)")
       ->check(CLI::PositiveNumber);
   app.add_flag("--no-wait", o.no_wait, "send the goal and exit");
   app.add_flag("-v,--verbose", o.verbose, "print the goal sent and the controller's feedback while it runs");
-  app.add_option("--cm-timeout", o.cm_timeout, "seconds to wait for the controller manager's answer")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--state-timeout", o.state_timeout, "with --relative: seconds to wait for joint_states")
-      ->check(CLI::PositiveNumber);
+  app.add_option("--timeout", o.timeout,
+                 "seconds to wait for the controller manager's answer and, with --relative, for joint_states")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
     const int sources = int(!o.points.empty()) + int(!o.file.empty()) + int(!o.csv.empty());

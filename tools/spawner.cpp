@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> names;
   SpawnOptions o;
   double shutdown_timeout = 1.5;
+  bool hardware_later = false;
   BusFlags bus_flags;
   app.add_option("NAME", names, "controllers (top-level keys of the ros_control YAML)")->required();
   app.add_flag("--stopped", o.stopped, "load only, do not start");
@@ -26,6 +27,8 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_option("--shutdown-timeout", shutdown_timeout, "seconds for stopping and unloading at exit")
       ->check(CLI::PositiveNumber);
+  // launch in lockstep starts the simulator after the spawner: no warning about its missing state then.
+  app.add_flag("--hardware-later", hardware_later, "do not warn when no hardware state has arrived yet")->group("");
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
     install_stop_signals();
@@ -35,6 +38,11 @@ int main(int argc, char** argv) {
       Bus bus(bus_flags.lcm_url, bus_flags.ns);
       CmClient cm(bus, "spawner");
       spawner.spawn(cm);
+      if (!o.stopped && !hardware_later) {
+        const cm_response_t listed = cm.list(o.timeout_s);
+        if (no_hardware_state(listed))
+          o.say(fmt::format("warning: the controllers run, but the controller manager reports {}", hardware_of(listed)));
+      }
     }
     // Idle without an LCM socket: a udpm socket receives every message on the
     // bus, which costs CPU the simulation could use.

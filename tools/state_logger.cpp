@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "common/cli.hpp"
+#include "tools/census.hpp"
 #include "tools/csv.hpp"
 #include "tools/fields.hpp"
 #include "tools/support.hpp"
@@ -116,6 +117,7 @@ int main(int argc, char** argv) {
     for (auto& l : logs)
       if (l.path != "-") CsvWriter probe(l.path);
     Logger logger(bus, logs, count);
+    Census census(bus);  // to say which channels there were when one had no messages
     for (const auto& l : logs)
       fmt::print(stderr, "state-logger: logging {} -> {}\n", l.channel, l.path == "-" ? "stdout" : l.path);
     const int64_t start = monotonic_us();
@@ -129,7 +131,9 @@ int main(int argc, char** argv) {
         next_flush += 200000;
       }
     }
+    std::vector<std::string> silent;
     for (auto& l : logs) {
+      if (!l.csv) silent.push_back(l.channel);
       if (l.csv) {
         l.csv->flush();
         fmt::print(stderr, "state-logger: {}: {} rows, {} columns -> {}\n", l.channel, l.csv->rows(),
@@ -139,6 +143,10 @@ int main(int argc, char** argv) {
                    l.skipped ? fmt::format(" of an lcm_control type ({} skipped)", l.skipped) : "");
       }
     }
+    if (!silent.empty())
+      throw BusError(fmt::format("no messages on {} ({}); channels seen: {}. Check the channel name, --namespace and "
+                                 "--lcm-url (or LCM_DEFAULT_URL)",
+                                 fmt::join(silent, ", "), bus.url(), census.names()));
     return int(kExitOk);
   });
 }

@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <time.h>
@@ -16,6 +17,8 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
+
+#include "common/robot_model.hpp"
 
 extern char** environ;
 
@@ -122,6 +125,16 @@ std::string regex_escape(const std::string& s) {
     out += c;
   }
   return out;
+}
+
+std::unique_ptr<lcm::LogFile> open_log(const std::string& path) {
+  struct stat st {};
+  if (stat(path.c_str(), &st) != 0)
+    throw ModelError(fmt::format("{}: cannot read the log: {}", path, std::strerror(errno)));
+  if (!S_ISREG(st.st_mode)) throw ModelError(fmt::format("{}: not a regular file; give a log written by lcm-logger", path));
+  auto log = std::make_unique<lcm::LogFile>(path, "r");
+  if (!log->good()) throw ModelError(fmt::format("{}: cannot open as an LCM log", path));
+  return log;
 }
 
 }  // namespace lcm_control::tools

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,10 @@ std::string seconds_text(double s);
 
 // `s` with LCM's regular-expression characters escaped: a subscription to exactly that channel.
 std::string regex_escape(const std::string& s);
+
+// An lcm-logger log opened for reading; a path that is not a readable regular file, or not a log, is a
+// ModelError (exit code 3) naming it.
+std::unique_ptr<lcm::LogFile> open_log(const std::string& path);
 
 // A name as ROS users write it ("/j2_controller", "/j2_controller/command") without its leading '/'s.
 std::string without_leading_slashes(std::string name);

@@ -41,7 +41,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> joints;
   bool no_timing = false;
   std::string time_source = "utime";
-  app.add_option("LOGFILE", log_path, "log written by lcm-logger")->required()->check(CLI::ExistingFile);
+  app.add_option("LOGFILE", log_path, "log written by lcm-logger")->required();
   app.add_option("--joint", joints, "JOINT=CHANNEL: a joint of joint_states and its command channel (float64_t)")
       ->required();
   app.add_option("--joint-states", js_channel, "channel of joint_state_t");
@@ -56,8 +56,8 @@ int main(int argc, char** argv) {
         throw std::runtime_error(fmt::format("--joint '{}': expected JOINT=CHANNEL, e.g. j2=j2_controller/command", j));
       pairs.push_back({j.substr(0, eq), j.substr(eq + 1), {}});
     }
-    lcm::LogFile log(log_path, "r");
-    if (!log.good()) throw std::runtime_error(fmt::format("cannot read {}", log_path));
+    const auto log_file = lcm_control::tools::open_log(log_path);
+    lcm::LogFile& log = *log_file;
     const bool by_log = time_source == "log";
     std::vector<joint_state_t> states;
     std::vector<int64_t> state_wall, state_time;

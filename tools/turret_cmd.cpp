@@ -15,7 +15,6 @@
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "tools/cm_client.hpp"
-#include "tools/time_base.hpp"
 #include "tools/support.hpp"
 #include "tools/time_base.hpp"
 
@@ -29,7 +28,7 @@ struct Options {
   int64_t count = 0;
   double duration = 0;
   bool raw_channel = false, array = false, sim_time = false, print = false;
-  double clock_timeout = 5, answer_timeout = 5;
+  double timeout = 5;  // for sim time, and for the controller manager's answer
 };
 
 // TARGET as given, without ROS's leading '/'.
@@ -39,6 +38,50 @@ std::string clean_target(const std::string& target) {
   return t;
 }
 bool is_channel(const Options& o) { return o.raw_channel || clean_target(o.target).find('/') != std::string::npos; }
+
+// The controller TARGET commands: its name, or NAME of a channel TARGET "NAME/command"; "" for any other channel.
+std::string controller_of(const Options& o) {
+  const std::string t = clean_target(o.target), suffix = "/command";
+  if (!is_channel(o)) return t;
+  if (t.size() <= suffix.size() || t.compare(t.size() - suffix.size(), suffix.size(), suffix) != 0) return "";
+  const std::string name = t.substr(0, t.size() - suffix.size());
+  return name.find('/') == std::string::npos ? name : "";
+}
+
+// Says on stderr when nothing will take the commands: no controller manager answers in this namespace, the
+// controller is not running in it, or the manager has no hardware. The commands are sent regardless (a manager
+// may come later), as rostopic pub does.
+void say_who_takes(Bus& bus, const std::string& controller) {
+  CmClient cm(bus, "turret-cmd");
+  const std::string channel = bus.channel(controller + "/command");
+  cm_response_t r;
+  try {
+    r = cm.list(0.5);
+  } catch (const CmTimeout&) {
+    fmt::print(stderr,
+               "turret-cmd: warning: no controller manager answers on '{}': nothing takes the commands on '{}' until "
+               "one runs (launch, or controller_manager and spawner; --namespace and --lcm-url must match)\n",
+               cm.response_channel(), channel);
+    return;
+  }
+  std::vector<std::string> loaded;
+  const controller_info_t* found = nullptr;
+  for (const auto& c : r.controllers) {
+    loaded.push_back(c.name);
+    if (c.name == controller) found = &c;
+  }
+  if (!found)
+    fmt::print(stderr,
+               "turret-cmd: warning: '{}' is not loaded in the controller manager (loaded: {}): nothing takes the "
+               "commands on '{}' until `spawner {}` starts it\n",
+               controller, loaded.empty() ? "none" : fmt::format("{}", fmt::join(loaded, ", ")), channel, controller);
+  else if (found->state != "running")
+    fmt::print(stderr,
+               "turret-cmd: warning: '{}' is {}, not running: it ignores the commands on '{}' until `cmctl start {}`\n",
+               controller, found->state, channel, controller);
+  if (no_hardware_state(r))
+    fmt::print(stderr, "turret-cmd: warning: the controller manager reports {}\n", hardware_of(r));
+}
 
 class Publisher {
  public:
@@ -185,7 +228,7 @@ class SimTimePacer {
 int run_sim_time(Bus& bus, Publisher& pub, const Options& o) {
   SimTimePacer pacer(bus, pub, o);
   const int64_t begin = monotonic_us();
-  const int64_t timeout_us = int64_t(o.clock_timeout * 1e6);
+  const int64_t timeout_us = int64_t(o.timeout * 1e6);
   while (!pacer.done() && !stop_requested()) {
     handle_bus(bus, 50);
     const int64_t since = monotonic_us() - (pacer.started() ? pacer.last_state_us() : begin);
@@ -193,10 +236,10 @@ int run_sim_time(Bus& bus, Publisher& pub, const Options& o) {
       if (!pacer.started())
         throw std::runtime_error(fmt::format(
             "no hardware_state_t on '{}' for {}: is sim_server running on this --lcm-url/--namespace?",
-            bus.channel(channels::kHardwareState), seconds_text(o.clock_timeout)));
+            bus.channel(channels::kHardwareState), seconds_text(o.timeout)));
       throw std::runtime_error(fmt::format(
           "sim time on '{}' stopped at {:.6f} s for {} after {} messages (sim_server paused or gone?)",
-          bus.channel(channels::kHardwareState), double(pacer.sim_us()) * 1e-6, seconds_text(o.clock_timeout), pub.sent()));
+          bus.channel(channels::kHardwareState), double(pacer.sim_us()) * 1e-6, seconds_text(o.timeout), pub.sent()));
     }
   }
   if (!pacer.error().empty()) throw std::runtime_error(pacer.error());
@@ -242,7 +285,7 @@ int run_command_source(Bus& bus, const Options& o) {
   req.rate_hz = o.rate;
   req.count = o.count;
   req.duration_s = o.duration;
-  const cm_response_t answer = cm.command_source(req, o.answer_timeout);
+  const cm_response_t answer = cm.command_source(req, o.timeout);
   if (!answer.ok) throw std::runtime_error(answer.message);
   fmt::print(stderr, "turret-cmd: {}\n", answer.message);
   const int64_t id = answer.request_id;
@@ -305,11 +348,11 @@ int main(int argc, char** argv) {
   app.add_flag("--sim-time", o.sim_time,
                "sim time instead of the wall clock: a controller TARGET gets a command source in the controller manager "
                "(exact, deterministic under lockstep); a channel TARGET is paced by hardware/state (best effort)");
-  app.add_option("--clock-timeout", o.clock_timeout, "with --sim-time and a channel TARGET: give up after S seconds without sim time (hardware/state)")
-      ->check(CLI::PositiveNumber);
-  app.add_option("--answer-timeout", o.answer_timeout,
-                 "with --sim-time and a controller TARGET: seconds to wait for the controller manager's answer")
-      ->check(CLI::PositiveNumber);
+  app.add_option("--timeout", o.timeout,
+                 "with --sim-time: seconds to wait for the controller manager's answer (controller TARGET) or for sim "
+                 "time on hardware/state (channel TARGET)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_flag("--print", o.print, "print `i t value...` for every message sent");
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
@@ -324,6 +367,7 @@ int main(int argc, char** argv) {
       return run_command_source(bus, o);
     }
     Publisher pub(bus, o);
+    if (const std::string controller = controller_of(o); !controller.empty()) say_who_takes(bus, controller);
     if (o.rate > 0 || o.sim_time)
       fmt::print(stderr, "turret-cmd: {} on '{}' {}{} (Ctrl-C to stop)\n", pub.type(), bus.channel(pub.channel()),
                  o.rate > 0 ? fmt::format("at {:g} Hz", o.rate) : std::string("every control step"),

@@ -49,7 +49,7 @@ class Session {
     spawner.insert(spawner.end(), controllers.begin(), controllers.end());
     spawner_ = std::make_unique<lt::ChildProcess>(spawner, env_);
     ASSERT_TRUE(spawner_->wait_for_output("spawner: ready", 30)) << spawner_->output() << cm_->output();
-    std::vector<std::string> sim{lt::bin("sim_server"), "--urdf", urdf_, "--config", config_, "--lockstep"};
+    std::vector<std::string> sim{lt::bin("sim_server"), "--urdf", urdf_, "--config", config_, "--mode", "lockstep"};
     sim.insert(sim.end(), flags_.begin(), flags_.end());
     sim.insert(sim.end(), sim_flags.begin(), sim_flags.end());
     sim_ = std::make_unique<lt::ChildProcess>(sim, env_);

@@ -96,7 +96,7 @@ TEST(Replay, LogplayerReproducesTheLiveCsvAndPlot) {
   lt::ChildProcess j1({lt::bin("turret-cmd"), "j1_controller", "0.5"}, bot.env());
   ASSERT_EQ(j1.wait(15), 0) << j1.output();
   lt::ChildProcess j2({lt::bin("turret-cmd"), "j2_controller", "3.14*sin(i/100)", "--rate", "60", "--sim-time",
-                       "--clock-timeout", "30"},
+                       "--timeout", "30"},
                       bot.env());
   bot.run_sim(6.0);
   if (HasFatalFailure()) return;

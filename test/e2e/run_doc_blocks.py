@@ -74,7 +74,7 @@ def wait_controllers_running(root, env, timeout_s=40):
     deadline = time.time() + timeout_s
     while time.time() < deadline:
         r = subprocess.run(["build/bin/cmctl", "list"], cwd=root, env=env, capture_output=True, text=True)
-        states = [l.split()[2] for l in r.stdout.splitlines()[1:] if len(l.split()) >= 3]
+        states = [l.split()[2] for l in r.stdout.splitlines()[1:] if len(l.split()) >= 3 and not l.startswith("hardware:")]
         if r.returncode == 0 and states and all(st == "running" for st in states):
             return True
         time.sleep(0.5)

@@ -45,7 +45,7 @@ class TurretBot {
   // sim_server in lockstep for sim_seconds of sim time; returns when it has stopped.
   void run_sim(double sim_seconds, std::vector<std::string> extra = {}) {
     std::vector<std::string> argv{bin("sim_server"), "--urdf", source("config/turret_bot.urdf"), "--config",
-                                  source("config/turret_bot.yaml"), "--lockstep", "--duration",
+                                  source("config/turret_bot.yaml"), "--mode", "lockstep", "--duration",
                                   std::to_string(sim_seconds)};
     argv.insert(argv.end(), extra.begin(), extra.end());
     ChildProcess sim(argv, env());

@@ -34,7 +34,7 @@ const std::string kData = SIM_TEST_DATA;
 std::vector<hardware_state_t> lockstep_run(int steps) {
   SimServerProcess server;
   std::string why;
-  if (!server.start({"--lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) {
+  if (!server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) {
     ADD_FAILURE() << why;
     return {};
   }
@@ -72,7 +72,7 @@ TEST(sim_e2e, LockstepRunsWithTheSameCommandsAreBitIdenticalFor10000Steps) {
 TEST(sim_e2e, GainsSetAtRunTimeActOnTheNextStepAndAreEchoed) {
   SimServerProcess server;
   std::string why;
-  ASSERT_TRUE(server.start({"--lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) << why;
+  ASSERT_TRUE(server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) << why;
   Recorder<pid_gains_t> echo(server.lc, "sim_server/gains");
   FakeController cm(server.lc);
   constexpr int64_t kChange = 200;
@@ -120,7 +120,7 @@ TEST(sim_e2e, GainsSetAtRunTimeActOnTheNextStepAndAreEchoed) {
 TEST(sim_e2e, EStopHoldsTheJointWithin1mmUnderAContraryCommand) {
   SimServerProcess server;
   std::string why;
-  ASSERT_TRUE(server.start({"--lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) << why;
+  ASSERT_TRUE(server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) << why;
   FakeController cm(server.lc);
   constexpr int64_t kEngage = 6000, kRelease = 9000;  // engaged once j1 has settled at 0.5
   cm.policy = [](const hardware_state_t& s, hardware_command_t& c) {
@@ -152,7 +152,7 @@ TEST(sim_e2e, EStopHoldsTheJointWithin1mmUnderAContraryCommand) {
 TEST(sim_e2e, ActuatorSpaceOnTheWireReductionTwoMovesTheJointToHalfTheCommand) {
   SimServerProcess server;
   std::string why;
-  ASSERT_TRUE(server.start({"--lockstep", "--lockstep-timeout", "0.1"}, kData + "/modes_bot.urdf", kData + "/modes_bot.yaml", &why)) << why;
+  ASSERT_TRUE(server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1"}, kData + "/modes_bot.urdf", kData + "/modes_bot.yaml", &why)) << why;
   FakeController cm(server.lc);
   cm.policy = [](const hardware_state_t& s, hardware_command_t& c) {
     for (int i = 0; i < s.num_actuators; ++i)
@@ -171,7 +171,7 @@ TEST(sim_e2e, ActuatorSpaceOnTheWireReductionTwoMovesTheJointToHalfTheCommand) {
 TEST(sim_e2e, ControlRateBelowThePhysicsRateSetsThePeriodAndSimTime) {
   SimServerProcess server;
   std::string why;
-  ASSERT_TRUE(server.start({"--lockstep", "--lockstep-timeout", "0.1", "--physics-rate", "2000", "--control-rate",
+  ASSERT_TRUE(server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1", "--physics-rate", "2000", "--control-rate",
                             "500", "--duration", "0.2"},
                            kTurretUrdf, kTurretYaml, &why))
       << why;
@@ -187,7 +187,7 @@ TEST(sim_e2e, ClockComesAtItsRateInSimTimeAndEveryStepWithRateZero) {
   for (const std::string rate : {"", "0", "250"}) {
     SimServerProcess server;
     Recorder<sim_clock_t> clock(server.lc, "clock");
-    std::vector<std::string> flags{"--lockstep", "--lockstep-timeout", "0.1", "--duration", "0.1"};
+    std::vector<std::string> flags{"--mode", "lockstep", "--lockstep-timeout", "0.1", "--duration", "0.1"};
     if (!rate.empty()) flags.insert(flags.end(), {"--clock-rate", rate});
     std::string why;
     ASSERT_TRUE(server.start(flags, kTurretUrdf, kTurretYaml, &why)) << why;
@@ -210,7 +210,7 @@ TEST(sim_e2e, ClockComesAtItsRateInSimTimeAndEveryStepWithRateZero) {
 TEST(sim_e2e, MalformedNanWrongSizeAndForeignCommandsAreDroppedAndCounted) {
   SimServerProcess server;
   std::string why;
-  ASSERT_TRUE(server.start({"--lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) << why;
+  ASSERT_TRUE(server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) << why;
   Recorder<loop_stats_t> stats(server.lc, "sim_server/statistics");
   FakeController cm(server.lc);
   cm.policy = [](const hardware_state_t&, hardware_command_t& c) { c.command[1] = 1.0; };
@@ -316,7 +316,7 @@ TEST(sim_e2e, CommandsAnsweringStatesOlderThanTheWatchdogAreStale) {
 TEST(sim_e2e, LockstepWaitsRepublishesAndSaysSoOnce) {
   SimServerProcess server;
   std::string why;
-  ASSERT_TRUE(server.start({"--lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) << why;
+  ASSERT_TRUE(server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) << why;
   FakeController cm(server.lc);
   cm.answering = false;
   cm.pump_for(0.6);

@@ -39,7 +39,16 @@ TEST_F(CmTools, SpawnerStartsTheTutorialControllersAndCmctlListsThemRunning) {
   auto [rc, out] = run({bin("cmctl"), "list"});
   ASSERT_EQ(rc, 0) << out;
   const auto lines = split(out.substr(0, out.size() - 1), '\n');
-  ASSERT_EQ(lines.size(), 4u) << out;
+  ASSERT_EQ(lines.size(), 5u) << out;  // header, three controllers, the hardware
+  // No simulator in this fixture: the spawner succeeds, but says so, and so does the list.
+  EXPECT_EQ(lines[4].rfind("hardware: no hardware state received on 'hardware/state': is sim_server (or the robot's "
+                           "driver) running with this namespace and LCM URL?", 0),
+            0u)
+      << out;
+  EXPECT_NE(spawner.output().find("spawner: warning: the controllers run, but the controller manager reports no "
+                                  "hardware state received"),
+            std::string::npos)
+      << spawner.output();
   EXPECT_EQ(split(lines[0], ' ')[0], "NAME");
   EXPECT_NE(lines[0].find("TYPE"), std::string::npos);
   EXPECT_NE(lines[0].find("INTERFACE"), std::string::npos);
@@ -57,7 +66,7 @@ TEST_F(CmTools, SpawnerStartsTheTutorialControllersAndCmctlListsThemRunning) {
   EXPECT_EQ(spawner.stop(5.0), 0) << spawner.output();
   EXPECT_NE(spawner.output().find("stopped and unloaded"), std::string::npos) << spawner.output();
   std::tie(rc, out) = run({bin("cmctl"), "list"});
-  EXPECT_EQ(out, "no controllers loaded\n");
+  EXPECT_EQ(out.substr(0, out.find('\n') + 1), "no controllers loaded\n") << out;
 }
 
 TEST_F(CmTools, SpawnerFailureExitsNonZeroWithTheReasonAndLeavesNothingLoaded) {
@@ -69,7 +78,7 @@ TEST_F(CmTools, SpawnerFailureExitsNonZeroWithTheReasonAndLeavesNothingLoaded) {
       << out;
   EXPECT_NE(out.find("unloaded joint_state_controller"), std::string::npos) << out;
   std::tie(rc, out) = run({bin("cmctl"), "list"});
-  EXPECT_EQ(out, "no controllers loaded\n");
+  EXPECT_EQ(out.substr(0, out.find('\n') + 1), "no controllers loaded\n") << out;
 }
 
 TEST_F(CmTools, SpawnerConflictStartsNoneAndSaysWhy) {
@@ -86,7 +95,7 @@ TEST_F(CmTools, SpawnerConflictStartsNoneAndSaysWhy) {
       << out;
   EXPECT_NE(out.find("j1"), std::string::npos);
   std::tie(rc, out) = run({bin("cmctl"), "list"});
-  EXPECT_EQ(out, "no controllers loaded\n");
+  EXPECT_EQ(out.substr(0, out.find('\n') + 1), "no controllers loaded\n") << out;
 }
 
 TEST_F(CmTools, SpawnerExitsPromptlyWhenTheManagerIsGone) {
@@ -135,6 +144,34 @@ TEST_F(CmTools, CmctlRefusalAndSilence) {
   EXPECT_EQ(lonely.wait(5.0), 4);
   EXPECT_NE(lonely.output().find("cmctl: error: no answer from the controller manager within 0.5 s to list (sent on "
                                  "'controller_manager/request', nothing came back on 'controller_manager/response')"),
+            std::string::npos)
+      << lonely.output();
+}
+
+TEST_F(CmTools, TurretCmdSaysWhenNothingTakesItsCommands) {
+  auto [rc, out] = run({bin("turret-cmd"), "j1_controller", "0.5"});
+  EXPECT_EQ(rc, 0) << out;  // sent anyway, as rostopic pub does
+  EXPECT_NE(out.find("turret-cmd: warning: 'j1_controller' is not loaded in the controller manager (loaded: none): "
+                     "nothing takes the commands on 'j1_controller/command' until `spawner j1_controller` starts it"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("turret-cmd: warning: the controller manager reports no hardware state received"),
+            std::string::npos)
+      << out;
+  std::tie(rc, out) = run({bin("cmctl"), "load", "j1_controller"});
+  ASSERT_EQ(rc, 0) << out;
+  std::tie(rc, out) = run({bin("turret-cmd"), "/j1_controller/command", "0.5"});  // the ROS-style channel too
+  EXPECT_NE(out.find("turret-cmd: warning: 'j1_controller' is initialized, not running: it ignores the commands on "
+                     "'j1_controller/command' until `cmctl start j1_controller`"),
+            std::string::npos)
+      << out;
+  std::tie(rc, out) = run({bin("turret-cmd"), "some/other/channel", "0.5"});
+  EXPECT_EQ(out.find("warning"), std::string::npos) << "not a controller's channel: nothing to check\n" << out;
+
+  ChildProcess lonely({bin("turret-cmd"), "j1_controller", "0.5", "--lcm-url", unique_lcm_url()});
+  EXPECT_EQ(lonely.wait(5.0), 0) << lonely.output();
+  EXPECT_NE(lonely.output().find("turret-cmd: warning: no controller manager answers on 'controller_manager/response': "
+                                 "nothing takes the commands on 'j1_controller/command' until one runs"),
             std::string::npos)
       << lonely.output();
 }

@@ -215,7 +215,7 @@ TEST_F(SendTrajectory, CtrlCStopsTheControllerWithAnEmptyTrajectory) {
 // stands still: no result, no feedback, and no joint_states for --relative.
 TEST(SendTrajectoryNoSim, TimeoutsSayWhatIsMissing) {
   const std::string url = unique_lcm_url();
-  Outcome r = send_trajectory({"trajectory_controller", "--point", "1:0,0", "--cm-timeout", "0.5"}, url);
+  Outcome r = send_trajectory({"trajectory_controller", "--point", "1:0,0", "--timeout", "0.5"}, url);
   EXPECT_EQ(r.rc, 4) << shown(r);
   EXPECT_TRUE(has(r.err, "no answer from the controller manager within 0.5 s to list")) << shown(r);
 
@@ -225,13 +225,13 @@ TEST(SendTrajectoryNoSim, TimeoutsSayWhatIsMissing) {
   ChildProcess spawner({bin("spawner"), "joint_state_controller", "trajectory_controller", "--lcm-url", url});
   ASSERT_TRUE(spawner.wait_for_output("spawner: ready", 10.0)) << spawner.output();
 
-  r = send_trajectory({"trajectory_controller", "--point", "0.5:0,0", "--timeout", "1"}, url);
+  r = send_trajectory({"trajectory_controller", "--point", "0.5:0,0", "--result-timeout", "1"}, url);
   EXPECT_EQ(r.rc, 4) << shown(r);
   EXPECT_EQ(r.err, "send-trajectory: error: no result from 'trajectory_controller' on 'trajectory_controller/result' "
                    "within 1 s: it is running but sent no feedback for this goal on 'trajectory_controller/feedback': "
                    "does its time advance? (is sim_server running and stepping?)\n");
 
-  r = send_trajectory({"trajectory_controller", "--relative", "--point", "0.5:0,0", "--state-timeout", "0.5"}, url);
+  r = send_trajectory({"trajectory_controller", "--relative", "--point", "0.5:0,0", "--timeout", "0.5"}, url);
   EXPECT_EQ(r.rc, 4) << shown(r);
   EXPECT_EQ(r.err, "send-trajectory: error: --relative needs the current positions, but no valid joint_state_t came "
                    "on 'joint_states' within 0.5 s (no other channel either); the controller manager runs "

@@ -44,6 +44,10 @@ std::pair<int, std::string> run(std::vector<std::string> argv, const std::string
 void expect_three_running(const std::string& url) {
   auto [rc, out] = run({bin("cmctl"), "list"}, url);
   ASSERT_EQ(rc, 0) << out;
+  // The hardware the manager follows, measured: sim_server in real time at the URDF's 1 kHz.
+  EXPECT_TRUE(std::regex_search(out, std::regex("\nhardware: session [0-9a-f]+, real time, 1000 Hz( \\([0-9.]+ "
+                                                "measured\\))?, step [0-9]+, last state 0\\.[0-9]+ s ago\n$")))
+      << out;
   for (const std::string name : {"joint_state_controller ", "j1_controller ", "j2_controller "}) {
     const auto at = out.find(name);
     ASSERT_NE(at, std::string::npos) << out;
@@ -84,6 +88,34 @@ TEST(Launch, TurretBotUpAndDownCleanly) {
   EXPECT_LT(unloaded, cm_down);
   EXPECT_NE(out.find("[launch] all 4 processes stopped"), std::string::npos) << out;
   EXPECT_EQ(out.find(", cpu "), std::string::npos) << "real time: not pinned by default\n" << out;
+}
+
+// A second launch onto a bus where a robot already runs in the same namespace would fight it for the robot.
+TEST(Launch, RefusesANamespaceWhereAControllerManagerOrSimulatorRuns) {
+  const std::string url = unique_lcm_url();
+  const std::string urdf = source("config/turret_bot.urdf"), yaml = source("config/turret_bot.yaml");
+  {
+    ChildProcess cm({bin("controller_manager"), "--urdf", urdf, "--config", yaml, "--lcm-url", url});
+    ASSERT_TRUE(cm.wait_for_output("ready", 10.0)) << cm.output();
+    auto [rc, out] = run({bin("launch"), source("config/turret_bot.launch.yaml")}, url);
+    EXPECT_EQ(rc, 1) << out;
+    EXPECT_NE(out.find("launch: error: a controller manager already answers on 'controller_manager/response' in the "
+                       "default namespace (0 controller(s) loaded): a second one would fight it for the robot"),
+              std::string::npos)
+        << out;
+    EXPECT_EQ(out.find("[launch] started"), std::string::npos) << "nothing started\n" << out;
+    // Another namespace is another robot: that one comes up.
+    ChildProcess other({bin("launch"), source("config/turret_bot.launch.yaml"), "--namespace", "r2", "--lcm-url", url});
+    EXPECT_TRUE(other.wait_for_output("[launch] up:", 25.0)) << other.output();
+    EXPECT_EQ(other.stop(15.0), 0) << other.output();
+  }
+  ChildProcess sim({bin("sim_server"), "--urdf", urdf, "--config", yaml, "--lcm-url", url});
+  ASSERT_TRUE(sim.wait_for_output("ready", 10.0)) << sim.output();
+  auto [rc, out] = run({bin("launch"), source("config/turret_bot.launch.yaml")}, url);
+  EXPECT_EQ(rc, 1) << out;
+  EXPECT_NE(out.find("launch: error: hardware already publishes 'hardware/state' in the default namespace"),
+            std::string::npos)
+      << out;
 }
 
 TEST(Launch, AChildsDeathStopsEverythingWithANonZeroExit) {

@@ -111,7 +111,7 @@ TEST(TurretCmd, NanIsNeverSent) {
 
 // A controller TARGET on sim time asks the controller manager for a command source.
 TEST(TurretCmd, SimTimeWithoutControllerManagerTimesOut) {
-  ChildProcess p({bin("turret-cmd"), "j2_controller", "1", "--sim-time", "--answer-timeout", "0.5", "--lcm-url",
+  ChildProcess p({bin("turret-cmd"), "j2_controller", "1", "--sim-time", "--timeout", "0.5", "--lcm-url",
                   unique_lcm_url()});
   EXPECT_EQ(p.wait(5.0), 4);  // kExitBus
   EXPECT_NE(p.output().find("no answer from the controller manager within 0.5 s to the command source for "
@@ -121,7 +121,7 @@ TEST(TurretCmd, SimTimeWithoutControllerManagerTimesOut) {
 }
 
 TEST(TurretCmd, SimTimeWithoutHardwareStateTimesOut) {
-  ChildProcess p({bin("turret-cmd"), "j2_controller/command", "1", "--sim-time", "--clock-timeout", "0.5",
+  ChildProcess p({bin("turret-cmd"), "j2_controller/command", "1", "--sim-time", "--timeout", "0.5",
                   "--lcm-url", unique_lcm_url()});
   EXPECT_EQ(p.wait(5.0), 1);
   EXPECT_NE(p.output().find("no hardware_state_t on 'hardware/state'"), std::string::npos) << p.output();

@@ -152,7 +152,7 @@ class Robot {
   std::unique_ptr<lt::ChildProcess> start_sim(std::vector<std::string> extra = {}) {
     std::vector<std::string> argv{lt::bin("sim_server"), "--urdf", lt::source("config/turret_bot.urdf"), "--config",
                                   lt::source("config/turret_bot.yaml")};
-    if (lockstep_) argv.push_back("--lockstep");
+    if (lockstep_) argv.insert(argv.end(), {"--mode", "lockstep"});
     argv.insert(argv.end(), extra.begin(), extra.end());
     return std::make_unique<lt::ChildProcess>(argv, env());
   }

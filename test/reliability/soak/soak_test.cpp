@@ -69,11 +69,11 @@ TEST(Soak, LockstepRunsWithoutLosingStatesOrGrowing) {
   lt::ChildProcess j1({lt::bin("turret-cmd"), "j1_controller", "0.5"}, bot.env());
   ASSERT_EQ(j1.wait(15), 0) << j1.output();
   lt::ChildProcess j2({lt::bin("turret-cmd"), "j2_controller", "3.14*sin(i/100)", "--rate", "60", "--sim-time",
-                       "--clock-timeout", "60"},
+                       "--timeout", "60"},
                       bot.env());
 
   std::vector<std::string> argv{lt::bin("sim_server"), "--urdf", lt::source("config/turret_bot.urdf"), "--config",
-                                lt::source("config/turret_bot.yaml"), "--lockstep", "--duration",
+                                lt::source("config/turret_bot.yaml"), "--mode", "lockstep", "--duration",
                                 std::to_string(sim_seconds)};
   const auto t0 = std::chrono::steady_clock::now();
   lt::ChildProcess sim(argv, bot.env());

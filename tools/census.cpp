@@ -1,0 +1,41 @@
+#include "tools/census.hpp"
+
+#include <fmt/format.h>
+
+#include "common/wire_check.hpp"
+#include "tools/message_text.hpp"
+#include "tools/support.hpp"
+
+namespace lcm_control::tools {
+
+std::string type_name(const void* data, size_t size) {
+  const std::string t = type_of_payload(data, size);
+  if (!t.empty()) return t;
+  if (size < 8) return fmt::format("? ({} bytes)", size);
+  return fmt::format("? 0x{:016x}", uint64_t(payload_fingerprint(data)));
+}
+
+Census::Census(Bus& bus) {
+  auto* sub = bus.lcm().subscribe(regex_escape(bus.channel("")) + ".*", &Census::on, this);
+  sub->setQueueCapacity(10000);
+}
+
+std::string Census::names() const {
+  if (seen_.empty()) return "none";
+  std::string out;
+  for (const auto& [name, s] : seen_) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+void Census::on(const lcm::ReceiveBuffer* rb, const std::string& channel) {
+  auto& s = seen_[channel];
+  const int64_t now = monotonic_us();
+  if (s.count++ == 0) {
+    s.first_us = now;
+    s.type = type_name(rb->data, rb->data_size);
+  }
+  s.last_us = now;
+  s.bytes += rb->data_size;
+}
+
+}  // namespace lcm_control::tools

@@ -1,0 +1,39 @@
+// Every channel on the bus (or in the namespace), counted: what `bus list`
+// shows, and what a tool that waited in vain says it did see.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+#include "common/bus.hpp"
+
+namespace lcm_control::tools {
+
+// What was seen on one channel: count, bytes, first and last receive time, type.
+struct ChannelSeen {
+  int64_t count = 0, bytes = 0, first_us = 0, last_us = 0;
+  std::string type;
+  double rate(int64_t window_us) const {
+    if (count >= 2 && last_us > first_us) return double(count - 1) * 1e6 / double(last_us - first_us);
+    return window_us > 0 ? double(count) * 1e6 / double(window_us) : 0;
+  }
+};
+
+// The lcm_control type a payload carries ("? (N bytes)" or "? 0x<fingerprint>" for others).
+std::string type_name(const void* data, size_t size);
+
+class Census {
+ public:
+  explicit Census(Bus& bus);
+  Census(const Census&) = delete;
+  Census& operator=(const Census&) = delete;
+  const std::map<std::string, ChannelSeen>& seen() const { return seen_; }
+  std::string names() const;  // "a, b, c", or "none"
+
+ private:
+  void on(const lcm::ReceiveBuffer* rb, const std::string& channel);
+  std::map<std::string, ChannelSeen> seen_;
+};
+
+}  // namespace lcm_control::tools
