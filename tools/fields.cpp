@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <map>
+#include <utility>
 #include <type_traits>
 
 #include "common/bus.hpp"
@@ -17,34 +19,73 @@ std::string Field::text() const {
 
 namespace {
 
+const FieldInfo* field_info(const std::string& type, const std::string& field) {
+  for (const FieldInfo& i : kFieldInfo)
+    if (type == i.type && field == i.field) return &i;
+  return nullptr;
+}
+
+std::vector<std::string> words(const char* text) {
+  std::vector<std::string> out;
+  std::string w;
+  for (const char* c = text; *c; ++c) {
+    if (*c != ' ') w += *c;
+    if ((*c == ' ' || !c[1]) && !w.empty()) out.push_back(std::exchange(w, {}));
+  }
+  return out;
+}
+
+// Names usable as row labels in a path: non-empty, distinct, none of the path's own characters.
+bool labels_ok(const std::vector<std::string>& names) {
+  for (size_t k = 0; k < names.size(); ++k) {
+    if (names[k].empty() || names[k].find_first_of("[].,\"\r\n ") != std::string::npos) return false;
+    if (std::find(names.begin(), names.begin() + long(k), names[k]) != names.begin() + long(k)) return false;
+  }
+  return true;
+}
+
 // A visitor (lcm_control/visit.hpp) that appends a message's numbers and strings as fields under a path prefix.
+// A matrix's rows are labelled by the message's `name` list of the same count when there is one (link_poses:
+// position[rotor].z), its columns by the schema's component names (kFieldInfo).
 class Flatten {
  public:
-  Flatten(std::vector<Field>& f, std::string prefix) : f_(f), prefix_(std::move(prefix)) {}
+  Flatten(std::vector<Field>& f, std::string prefix, std::string type)
+      : f_(f), prefix_(std::move(prefix)), type_(std::move(type)) {}
   template <class T>
   void value(const char* name, const T& x) {
     put(prefix_ + name, x);
   }
   void count(const char*, int32_t) {}  // array lengths are left out
   template <class T>
-  void list(const char* name, const std::vector<T>& xs, const char*) {
+  void list(const char* name, const std::vector<T>& xs, const char* count) {
+    if constexpr (std::is_same_v<T, std::string>)
+      if (std::string(name) == "name" && labels_ok(xs)) row_names_[count] = &xs;
     for (size_t k = 0; k < xs.size(); ++k) put(fmt::format("{}{}[{}]", prefix_, name, k), xs[k]);
   }
   template <class T>
-  void matrix(const char* name, const std::vector<std::vector<T>>& xs, const char*, int) {
-    for (size_t k = 0; k < xs.size(); ++k)
-      for (size_t j = 0; j < xs[k].size(); ++j) put(fmt::format("{}{}[{}][{}]", prefix_, name, k, j), xs[k][j]);
+  void matrix(const char* name, const std::vector<std::vector<T>>& xs, const char* count, int) {
+    const FieldInfo* info = field_info(type_, name);
+    const std::vector<std::string> cols = info ? words(info->components) : std::vector<std::string>{};
+    const auto rows = row_names_.find(count);
+    for (size_t k = 0; k < xs.size(); ++k) {
+      const bool named_row = rows != row_names_.end() && k < rows->second->size();
+      const std::string row = named_row ? (*rows->second)[k] : std::to_string(k);
+      for (size_t j = 0; j < xs[k].size(); ++j)
+        put(j < cols.size() && named_row ? fmt::format("{}{}[{}].{}", prefix_, name, row, cols[j])
+                                         : fmt::format("{}{}[{}][{}]", prefix_, name, row, j),
+            xs[k][j]);
+    }
   }
   template <class S>
   void structs(const char* name, const std::vector<S>& xs, const char*) {
     for (size_t k = 0; k < xs.size(); ++k) {
-      Flatten sub(f_, fmt::format("{}{}[{}].", prefix_, name, k));
+      Flatten sub(f_, fmt::format("{}{}[{}].", prefix_, name, k), S::getTypeName());
       visit(xs[k], sub);
     }
   }
   template <class S>
   void nested(const char* name, const S& x) {
-    Flatten sub(f_, prefix_ + name + ".");
+    Flatten sub(f_, prefix_ + name + ".", S::getTypeName());
     visit(x, sub);
   }
 
@@ -57,7 +98,8 @@ class Flatten {
     f_.push_back(Field{std::move(path), double(v), int64_t(v), true, false, ""});
   }
   std::vector<Field>& f_;
-  std::string prefix_;
+  std::string prefix_, type_;
+  std::map<std::string, const std::vector<std::string>*> row_names_;  // by the count that sizes them
 };
 
 struct TypeEntry {
@@ -76,7 +118,7 @@ Decoded decode_as(const void* data, size_t size) {
     d.skip_reason = "malformed payload (decode failed)";
     return d;
   }
-  Flatten flat(d.fields, "");
+  Flatten flat(d.fields, "", Msg::getTypeName());
   visit(m, flat);
   // Strings after all the numbers: a numeric column keeps its position in a file without strings.
   std::stable_partition(d.fields.begin(), d.fields.end(), [](const Field& f) { return !f.is_text; });
@@ -137,6 +179,21 @@ std::string csv_file_name(const std::string& channel) {
   for (char c : channel) s += c == '/' ? std::string("__") : std::string(1, c);
   while (!s.empty() && s[0] == '_') s.erase(0, 1);
   return (s.empty() ? std::string("channel") : s) + ".csv";
+}
+
+std::string field_unit(const std::string& type, const std::string& path) {
+  std::string t = type.rfind("lcm_control.", 0) == 0 ? type.substr(12) : type;
+  size_t at = 0;
+  while (at < path.size()) {
+    const size_t end = path.find_first_of(".[", at);
+    const FieldInfo* info = field_info(t, path.substr(at, end - at));
+    if (!info) return "";
+    if (!*info->nested) return info->unit;
+    t = info->nested;  // a nested message: its field follows the next '.'
+    at = path.find('.', end == std::string::npos ? path.size() : end);
+    at = at == std::string::npos ? path.size() : at + 1;
+  }
+  return "";
 }
 
 }  // namespace lcm_control::tools

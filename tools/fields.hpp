@@ -33,6 +33,10 @@ struct Decoded {
 // a numeric column has the same position as in a file without strings.
 Decoded decode_fields(const void* data, size_t size);
 
+// The unit the schema gives a field path of a message type ("lcm_control.joint_state_t", "position[1]" ->
+// "rad or m"; "link_poses_t", "position[rotor].z" -> "m"); "" when it gives none.
+std::string field_unit(const std::string& type, const std::string& path);
+
 // Every type decode_fields knows: "name" or "name (skipped: reason)", for --help texts.
 std::vector<std::string> known_types();
 

@@ -24,6 +24,7 @@ namespace {
 struct Series {
   std::string path;                 // as the user typed it
   std::string channel, field;       // resolved
+  std::string unit;                 // from the schema ("" when it gives none)
   bool text = false;                // the field is a string: an error to report, nothing to plot
   std::vector<std::pair<int64_t, double>> points;  // (time us, value)
 };
@@ -75,6 +76,7 @@ class Collector {
         if (!f) continue;
         s.channel = channel;
         s.field = *f;
+        s.unit = field_unit(d->type, *f);
         s.text = std::any_of(d->fields.begin(), d->fields.end(),
                              [&](const Field& x) { return x.path == *f && x.is_text; });
       }
@@ -169,17 +171,30 @@ void write_data(const std::string& file, const std::vector<Series>& series, int6
   if (!out.flush()) throw std::runtime_error("cannot write " + file);
 }
 
+// The y axis: the one unit all series share, else a pointer to the legend, which gives each series' unit.
+std::string ylabel(const std::vector<Series>& series) {
+  std::set<std::string> units;
+  for (const auto& s : series) units.insert(s.unit);
+  if (units.size() == 1) return units.begin()->empty() ? "value" : "[" + *units.begin() + "]";
+  return "value (units in the legend)";
+}
+
+std::string legend(const Series& s) { return s.unit.empty() ? s.path : fmt::format("{} [{}]", s.path, s.unit); }
+
+// A text plot (--terminal) puts each legend entry on a line of its own: side by side they run together.
 std::string gnuplot_script(const std::string& terminal, const std::string& output, const std::string& data,
-                           const std::vector<Series>& series, const std::string& title, const std::string& xlabel) {
+                           const std::vector<Series>& series, const std::string& title, const std::string& xlabel,
+                           bool text = false) {
   std::string s = fmt::format("set terminal {}\n", terminal);
   s += output.empty() ? std::string("set output\n") : fmt::format("set output {}\n", quoted(output));
-  s += "set termoption noenhanced\nset grid\nset key outside bottom center horizontal\n";
-  s += fmt::format("set xlabel {}\n", quoted(xlabel));
+  s += "set termoption noenhanced\nset grid\n";
+  s += text ? "set key below left vertical maxcols 1 Left reverse\n" : "set key outside bottom center horizontal\n";
+  s += fmt::format("set xlabel {}\nset ylabel {}\n", quoted(xlabel), quoted(ylabel(series)));
   if (!title.empty()) s += fmt::format("set title {}\n", quoted(title));
   s += "plot ";
   for (size_t k = 0; k < series.size(); ++k)
     s += fmt::format("{}{} index {} using 1:2 with {} title {}", k ? ", \\\n     " : "", quoted(data), k,
-                     series[k].points.size() < 2 ? "points pt 7" : "lines lw 1.5", quoted(series[k].path));
+                     series[k].points.size() < 2 ? "points pt 7" : "lines lw 1.5", quoted((text ? " " : "") + legend(series[k])));
   return s + "\n";
 }
 
@@ -261,7 +276,7 @@ int main(int argc, char** argv) {
       throw std::runtime_error(fmt::format("--output '{}': the name must end in .png or .svg", output));
 
     std::vector<Series> series;
-    for (const auto& p : paths) series.push_back(Series{p, "", "", false, {}});
+    for (const auto& p : paths) series.push_back(Series{p, "", "", "", false, {}});
     Collector collector(series, time_source == "utime");
     const std::string xlabel = time_source == "utime" ? "t [s] (message utime)" : "t [s]";
     const bool keep = !data_file.empty();
@@ -281,7 +296,7 @@ int main(int argc, char** argv) {
       {
         std::ofstream sc(script_file);
         if (with_image) sc << gnuplot_script(term, output, data_file, have, title, xlabel);
-        if (with_text) sc << gnuplot_script("dumb size 100,30", "", data_file, have, title, xlabel);
+        if (with_text) sc << gnuplot_script("dumb size 100,30", "", data_file, have, title, xlabel, true);
       }
       std::string text;
       try {

@@ -113,8 +113,13 @@ TEST(Fields, CommandsAndNestedTypes) {
   lp.orientation = {{1, 0, 0, 0}};
   buf = encode(lp);
   d = decode_fields(buf.data(), buf.size());
-  EXPECT_EQ(paths(d)[3], "position[0][2]");
+  EXPECT_EQ(paths(d)[3], "position[base].z");  // rows by link name, columns by the schema's {x y z}
   EXPECT_EQ(d.fields[3].value, 3);
+  EXPECT_EQ(paths(d)[4], "orientation[base].w");
+  lp.name = {""};  // a name that cannot label a row: by index
+  buf = encode(lp);
+  d = decode_fields(buf.data(), buf.size());
+  EXPECT_EQ(paths(d)[3], "position[0][2]");
 
   joint_trajectory_t jt{};
   jt.num_joints = 1;
@@ -161,4 +166,16 @@ TEST(Fields, CsvFileNames) {
   EXPECT_EQ(csv_file_name("joint_states"), "joint_states.csv");
   EXPECT_EQ(csv_file_name("j2_controller/command"), "j2_controller__command.csv");
   EXPECT_EQ(csv_file_name("/robot1/joint_states"), "robot1__joint_states.csv");
+}
+
+TEST(Fields, UnitsComeFromTheSchemaComments) {
+  EXPECT_EQ(field_unit("lcm_control.joint_state_t", "position[1]"), "rad or m");
+  EXPECT_EQ(field_unit("lcm_control.joint_state_t", "effort[0]"), "N*m or N");
+  EXPECT_EQ(field_unit("joint_state_t", "utime"), "us");
+  EXPECT_EQ(field_unit("lcm_control.link_poses_t", "position[rotor].z"), "m");
+  EXPECT_EQ(field_unit("lcm_control.link_poses_t", "orientation[rotor].w"), "");
+  EXPECT_EQ(field_unit("lcm_control.joint_trajectory_t", "points[2].velocities[1]"), "rad/s or m/s");
+  EXPECT_EQ(field_unit("lcm_control.joint_trajectory_t", "points[0].time_from_start"), "s");
+  EXPECT_EQ(field_unit("lcm_control.float64_t", "data"), "");
+  EXPECT_EQ(field_unit("lcm_control.no_such_t", "x"), "");
 }

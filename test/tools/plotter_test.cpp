@@ -77,6 +77,36 @@ TEST(Plotter, RosStylePathsSvgAndMessageTime) {
   EXPECT_NEAR(blocks[1][3].second, 0.03, 1e-12);
 }
 
+// Units from the schema: on the y axis when the series share one, else in the legend; in a text plot each
+// legend entry has a line of its own.
+TEST(Plotter, UnitsOnTheAxisOrInTheLegend) {
+  const std::string dir = temp_dir("plotter_units");
+  write_test_log(dir + "/run.lcmlog");
+  ChildProcess same({bin("plotter"), "joint_states/position[0]", "joint_states/position[1]", "--log",
+                     dir + "/run.lcmlog", "--output", dir + "/same.svg"});
+  ASSERT_EQ(same.wait(30.0), 0) << same.output();
+  const std::string svg = read_text(dir + "/same.svg");
+  EXPECT_NE(svg.find("[rad or m]"), std::string::npos) << "y axis label";
+  EXPECT_NE(svg.find("joint_states/position[1] [rad or m]"), std::string::npos);
+
+  ChildProcess mixed({bin("plotter"), "/j2_controller/command", "joint_states/position[0]", "joint_states/velocity[1]",
+                      "--log", dir + "/run.lcmlog", "--output", dir + "/mixed.svg", "--terminal"});
+  ASSERT_EQ(mixed.wait(30.0), 0) << mixed.output();
+  const std::string mixed_svg = read_text(dir + "/mixed.svg");
+  EXPECT_NE(mixed_svg.find("value (units in the legend)"), std::string::npos);
+  EXPECT_NE(mixed_svg.find("joint_states/velocity[1] [rad/s or m/s]"), std::string::npos);
+  EXPECT_NE(mixed_svg.find("/j2_controller/command<"), std::string::npos) << "no unit: float64_t.data has none";
+  const std::string out = mixed.output();
+  const std::vector<std::string> entries = {"/j2_controller/command", "joint_states/position[0] [rad or m]",
+                                            "joint_states/velocity[1] [rad/s or m/s]"};
+  for (const auto& line : split(out, '\n')) {
+    int on_line = 0;
+    for (const auto& e : entries) on_line += line.find(e) != std::string::npos;
+    EXPECT_LE(on_line, 1) << "legend entries run together:\n" << out;
+  }
+  for (const auto& e : entries) EXPECT_NE(out.find(e), std::string::npos) << out;
+}
+
 TEST(Plotter, UnknownPathListsWhatThereWas) {
   const std::string dir = temp_dir("plotter_bad");
   write_test_log(dir + "/run.lcmlog");
