@@ -7,6 +7,7 @@
 #include "common/log.hpp"
 #include "common/scheduling.hpp"
 #include "controller_manager/manager.hpp"
+#include "controller_manager/plugins.hpp"
 #include "controller_manager/services.hpp"
 
 namespace {
@@ -52,7 +53,9 @@ int main(int argc, char** argv) {
     options.silence_us = static_cast<int64_t>(silence_s * 1e6);
     const size_t configured = model.controllers.size();
     const size_t actuated = model.transmissions.size();
-    cm::ControllerManager manager(std::move(model), bus, cm::builtin_registry(), options);
+    cm::Registry registry = cm::builtin_registry();
+    for (const auto& line : cm::load_plugins(registry, cm::plugin_libraries(model))) spdlog::info("{}", line);
+    cm::ControllerManager manager(std::move(model), bus, registry, options);
     cm::Services services(manager, bus);
     for (const auto& c : manager.check_configured()) {
       if (c.outcome != cm::ControllerCheck::Loads) spdlog::warn("configured controller will not load: {}", c.message);

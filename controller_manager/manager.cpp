@@ -98,6 +98,7 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Port&
     return c;
   }
   c.notes = std::move(ctx.notes);
+  if (params.has("plugin")) params.node("plugin");  // the controller library, loaded before (plugins.hpp)
   const auto& known = ros_parameters_of(spec.type);
   for (const auto& k : params.unused()) {
     const std::string where = fmt::format("{}: {}/{}", model_.config_path, yaml_key(spec.name), k);

@@ -39,6 +39,10 @@ const Registry& builtin_registry() {
 
 void Registry::add(const std::string& type, Factory factory) { factories_[type] = std::move(factory); }
 
+void Registry::merge(Registry&& other) {
+  for (auto& [t, f] : other.factories_) factories_[t] = std::move(f);
+}
+
 std::unique_ptr<Controller> Registry::create(const std::string& type) const {
   auto it = factories_.find(type);
   return it == factories_.end() ? nullptr : it->second(type);

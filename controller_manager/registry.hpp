@@ -1,6 +1,7 @@
-// Controller types by name (ros_controllers' pluginlib names), statically
-// linked: no plugin to build, install or source. Unknown names get the list
-// of valid types and the closest one by edit distance.
+// Controller types by name (ros_controllers' pluginlib names): the built-in
+// ones are linked in (no plugin to build, install or source); your own come
+// from libraries the YAML names (plugins.hpp). Unknown names get the list of
+// valid types and the closest one by edit distance.
 #pragma once
 
 #include <functional>
@@ -19,6 +20,7 @@ using Factory = std::function<std::unique_ptr<Controller>(const std::string& typ
 class Registry {
  public:
   void add(const std::string& type, Factory factory);
+  void merge(Registry&& other);  // adds other's types
   bool has(const std::string& type) const { return factories_.count(type) > 0; }
   std::unique_ptr<Controller> create(const std::string& type) const;  // nullptr if unknown
   std::vector<std::string> types() const;                             // sorted

@@ -11,6 +11,7 @@
 #include "common/model_report.hpp"
 #include "common/robot_model.hpp"
 #include "controller_manager/manager.hpp"
+#include "controller_manager/plugins.hpp"
 
 namespace {
 
@@ -61,7 +62,9 @@ int main(int argc, char** argv) {
             "robot's namespace{}); see the warnings above for what was read instead",
             config, model.ns.empty() ? "" : " '" + model.ns + ":'"));
       Bus bus("memq://", model.ns);
-      cm::ControllerManager manager(model, bus);
+      cm::Registry registry = cm::builtin_registry();
+      for (const auto& line : cm::load_plugins(registry, cm::plugin_libraries(model))) std::printf("%s\n", line.c_str());
+      cm::ControllerManager manager(model, bus, registry);
       const auto checks = manager.check_configured();
       if (!checks.empty()) std::printf("\ncontroller check (as controller_manager would load them):\n");
       for (const auto& c : checks) {
