@@ -33,7 +33,9 @@ int main(int argc, char** argv) {
   return run_program(app, argc, argv, [&] {
     std::regex filter;
     try {
-      filter = std::regex(channel_regex.empty() ? ".*" : channel_regex, std::regex::ECMAScript);
+      // ROS's /joint_states too: a channel never starts with '/'.
+      const std::string pattern = without_leading_slashes(channel_regex);
+      filter = std::regex(pattern.empty() ? ".*" : pattern, std::regex::ECMAScript);
     } catch (const std::regex_error& e) {
       throw std::runtime_error(fmt::format("--channel '{}' is not a valid regular expression: {}", channel_regex,
                                            e.what()));

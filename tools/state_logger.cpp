@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
     std::vector<ChannelLog> logs;
     for (const auto& name : channel_names) {
       ChannelLog l;
-      l.channel = bus.channel(name);
+      l.channel = bus.channel(without_leading_slashes(name));  // ROS's /joint_states too
       l.path = !output_dir.empty() ? (std::filesystem::path(output_dir) / csv_file_name(l.channel)).string()
                                    : (output.empty() ? "-" : output);
       logs.push_back(std::move(l));

@@ -54,8 +54,9 @@ int main(int argc, char** argv) {
       const auto eq = j.find('=');
       if (eq == std::string::npos || eq == 0 || eq + 1 == j.size())
         throw std::runtime_error(fmt::format("--joint '{}': expected JOINT=CHANNEL, e.g. j2=j2_controller/command", j));
-      pairs.push_back({j.substr(0, eq), j.substr(eq + 1), {}});
+      pairs.push_back({j.substr(0, eq), lcm_control::tools::without_leading_slashes(j.substr(eq + 1)), {}});
     }
+    js_channel = lcm_control::tools::without_leading_slashes(js_channel);  // ROS's /joint_states too
     const auto log_file = lcm_control::tools::open_log(log_path);
     lcm::LogFile& log = *log_file;
     const bool by_log = time_source == "log";

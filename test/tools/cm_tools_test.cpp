@@ -176,6 +176,31 @@ TEST_F(CmTools, TurretCmdSaysWhenNothingTakesItsCommands) {
       << lonely.output();
 }
 
+// One validation: what doctor refuses, controller_manager refuses with the same words (issue 12: `jont: j2` and
+// `publish_rat` passed doctor and were refused by the manager).
+TEST(DoctorAndManager, RefuseTheSameControllersWithTheSameReason) {
+  const std::string dir = temp_dir("doctor_cm");
+  std::string yaml = read_text(source("config/turret_bot.yaml"));
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"  joint: j2", "  jont: j2"},
+                                 {"publish_rate: 60", "publish_rat: 60"}})
+    yaml.replace(yaml.find(from), from.size(), to);
+  std::ofstream(dir + "/typo.yaml") << yaml;
+  const std::string urdf = source("config/turret_bot.urdf");
+  ChildProcess doctor({bin("doctor"), "--urdf", urdf, "--config", dir + "/typo.yaml"});
+  EXPECT_EQ(doctor.wait(10.0), 3) << doctor.output();
+  const std::string url = unique_lcm_url();
+  ChildProcess cm({bin("controller_manager"), "--urdf", urdf, "--config", dir + "/typo.yaml", "--lcm-url", url});
+  ASSERT_TRUE(cm.wait_for_output("ready", 10.0)) << cm.output();
+  for (const std::string controller : {"j2_controller", "joint_state_controller"}) {
+    const std::string why = dir + "/typo.yaml: " + controller +
+                            (controller == "j2_controller" ? "/joint: missing (required)" : "/publish_rate: missing (required)");
+    EXPECT_NE(doctor.output().find("doctor: error: " + why), std::string::npos) << doctor.output();
+    ChildProcess load({bin("cmctl"), "load", controller, "--lcm-url", url});
+    EXPECT_EQ(load.wait(10.0), 1) << load.output();
+    EXPECT_NE(load.output().find(why), std::string::npos) << load.output();
+  }
+}
+
 TEST(Spawner, WithoutAManagerGivesUpWithinTheTimeout) {
   ChildProcess p({bin("spawner"), "j1_controller", "--timeout", "1", "--lcm-url", unique_lcm_url()});
   EXPECT_EQ(p.wait(5.0), 4) << p.output();

@@ -75,6 +75,12 @@ TEST(Log2Csv, ChannelFilterAndLogTime) {
   EXPECT_EQ(cmd.header, (std::vector<std::string>{"log_utime", "utime", "data"}));
   ASSERT_EQ(cmd.rows.size(), 20u);
   EXPECT_EQ(cmd.rows[1][0], "1025000");
+
+  const std::string ros = temp_dir("log2csv_filter_ros");  // ROS's leading slash
+  ChildProcess q({bin("log2csv"), dir + "/run.lcmlog", "--output-dir", ros, "--channel", "/joint_states"});
+  ASSERT_EQ(q.wait(10.0), 0) << q.output();
+  EXPECT_TRUE(std::filesystem::exists(ros + "/joint_states.csv")) << q.output();
+  EXPECT_FALSE(std::filesystem::exists(ros + "/j2_controller__command.csv"));
 }
 
 TEST(Log2Csv, FailuresSayWhat) {

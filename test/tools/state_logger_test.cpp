@@ -51,6 +51,21 @@ TEST(StateLogger, JointStatesToCsvWithCount) {
   EXPECT_NE(p.output().find("joint_states: 25 rows, 9 columns"), std::string::npos) << p.output();
 }
 
+TEST(StateLogger, TakesTheRosStyleChannelName) {
+  const std::string url = unique_lcm_url();
+  const std::string dir = temp_dir("logger_slash");
+  ChildProcess p({bin("state-logger"), "/joint_states", "--output", dir + "/js.csv", "--count", "5", "--lcm-url", url});
+  ASSERT_TRUE(p.wait_for_output("logging joint_states", 5.0)) << p.output();
+  lcm::LCM lc(url);
+  for (int k = 0; k < 40 && p.running(); ++k) {
+    const joint_state_t js = state(k);
+    lc.publish("joint_states", &js);
+    pump_until(lc, [] { return false; }, 0.005);
+  }
+  ASSERT_EQ(p.wait(5.0), 0) << p.output();
+  EXPECT_EQ(read_csv(dir + "/js.csv").rows.size(), 5u);
+}
+
 TEST(StateLogger, EveryRowIsOnDiskAfterCtrlC) {
   const std::string url = unique_lcm_url();
   const std::string dir = temp_dir("logger_int");

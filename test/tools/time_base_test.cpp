@@ -117,8 +117,8 @@ TEST(TimeBase, TrackingSummaryRefusesMixedClocksAndJoinsByLogTimeOnRequest) {
       << mixed.output();
   EXPECT_NE(mixed.output().find("--time log"), std::string::npos) << mixed.output();
 
-  ChildProcess by_log({bin("tracking-summary"), dir + "/mixed.lcmlog", "--joint", "j2=j2_controller/command",
-                       "--time", "log", "--no-timing"});
+  ChildProcess by_log({bin("tracking-summary"), dir + "/mixed.lcmlog", "--joint", "j2=/j2_controller/command",
+                       "--joint-states", "/joint_states", "--time", "log", "--no-timing"});  // ROS-style names too
   EXPECT_EQ(by_log.wait(10), 0) << by_log.output();
   EXPECT_NE(by_log.output().find("rms error 0.400000, max error 0.400000 (49 samples"), std::string::npos)
       << by_log.output();
