@@ -25,6 +25,16 @@ joint_state_t state(int k) {
   js.effort = {3, 4};
   return js;
 }
+// Up to 40 joint_states (state(k)) at 200 Hz while the logger runs.
+void publish_states(const std::string& url, ChildProcess& logger) {
+  lcm::LCM lc(url);
+  for (int k = 0; k < 40 && logger.running(); ++k) {
+    const joint_state_t js = state(k);
+    lc.publish("joint_states", &js);
+    pump_until(lc, [] { return false; }, 0.005);
+  }
+}
+
 }  // namespace
 
 TEST(StateLogger, JointStatesToCsvWithCount) {
@@ -32,12 +42,7 @@ TEST(StateLogger, JointStatesToCsvWithCount) {
   const std::string dir = temp_dir("logger");
   ChildProcess p({bin("state-logger"), "--output", dir + "/js.csv", "--count", "25", "--lcm-url", url});
   ASSERT_TRUE(p.wait_for_output("logging joint_states", 5.0)) << p.output();
-  lcm::LCM lc(url);
-  for (int k = 0; k < 40 && p.running(); ++k) {
-    const joint_state_t js = state(k);
-    lc.publish("joint_states", &js);
-    pump_until(lc, [] { return false; }, 0.005);
-  }
+  publish_states(url, p);
   ASSERT_EQ(p.wait(5.0), 0) << p.output();
   const Csv csv = read_csv(dir + "/js.csv");
   EXPECT_EQ(csv.header, (std::vector<std::string>{"utime", "position[0]", "position[1]", "velocity[0]", "velocity[1]",
@@ -56,12 +61,7 @@ TEST(StateLogger, TakesTheRosStyleChannelName) {
   const std::string dir = temp_dir("logger_slash");
   ChildProcess p({bin("state-logger"), "/joint_states", "--output", dir + "/js.csv", "--count", "5", "--lcm-url", url});
   ASSERT_TRUE(p.wait_for_output("logging joint_states", 5.0)) << p.output();
-  lcm::LCM lc(url);
-  for (int k = 0; k < 40 && p.running(); ++k) {
-    const joint_state_t js = state(k);
-    lc.publish("joint_states", &js);
-    pump_until(lc, [] { return false; }, 0.005);
-  }
+  publish_states(url, p);
   ASSERT_EQ(p.wait(5.0), 0) << p.output();
   EXPECT_EQ(read_csv(dir + "/js.csv").rows.size(), 5u);
 }
