@@ -13,6 +13,7 @@
 #include <vector>
 #include <yaml-cpp/yaml.h>
 
+#include "common/joint_limits.hpp"
 #include "common/pid.hpp"
 #include "common/transmission.hpp"
 
@@ -72,6 +73,16 @@ struct Joint {
   double lower = 0, upper = 0;
   double effort_limit = 0, velocity_limit = 0;  // 0 only for fixed joints (validated)
   double damping = 0, friction = 0;
+  std::optional<SoftLimits> soft;  // <safety_controller>
+  JointLimits limits() const {     // as joint_limits_interface reads them from the URDF
+    JointLimits l;
+    l.has_position = has_position_limits;
+    l.lower = lower;
+    l.upper = upper;
+    l.max_velocity = velocity_limit;
+    l.max_effort = effort_limit;
+    return l;
+  }
 };
 
 struct TransmissionSpec {

@@ -332,6 +332,7 @@ void check_numeric_attributes(const tinyxml2::XMLElement* e, const std::string& 
       {"axis", {"xyz"}},
       {"limit", {"lower", "upper", "effort", "velocity"}},
       {"dynamics", {"damping", "friction"}},
+      {"safety_controller", {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"}},
       {"box", {"size"}},
       {"cylinder", {"radius", "length"}},
       {"sphere", {"radius"}},
@@ -464,6 +465,9 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
       j.damping = uj->dynamics->damping;
       j.friction = uj->dynamics->friction;
     }
+    if (uj->safety)
+      j.soft = SoftLimits{uj->safety->soft_lower_limit, uj->safety->soft_upper_limit, uj->safety->k_position,
+                          uj->safety->k_velocity};
     model.joints.push_back(std::move(j));
   }
   parse_transmissions(model, robot, urdf_path, problems);

@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "controller_manager/controller.hpp"
+
 namespace lcm_control::cm {
 
 int8_t to_mode(Interface i) {
@@ -95,6 +97,29 @@ void Hardware::read(const hardware_state_t& s) {
     j.velocity = j.map.actuator_to_joint_velocity(s.velocity[a]);
     j.effort = j.map.actuator_to_joint_effort(s.effort[a]);
   }
+}
+
+void Hardware::enforce_soft_limits(double dt) {
+  for (JointData& j : joints_) {
+    if (!j.owner || !j.urdf || !j.urdf->soft || !j.owner->claim().interface) continue;
+    const JointLimits l = j.urdf->limits();
+    const SoftLimits& s = *j.urdf->soft;
+    switch (*j.owner->claim().interface) {
+      case Interface::Position:
+        j.command = j.soft_position.enforce(l, s, j.command, j.position, dt);
+        break;
+      case Interface::Velocity:
+        j.command = velocity_soft_limits(l, s, j.command, j.position);
+        break;
+      case Interface::Effort:
+        j.command = effort_soft_limits(l, s, j.command, j.position, j.velocity);
+        break;
+    }
+  }
+}
+
+void Hardware::reset_soft_limits() {
+  for (JointData& j : joints_) j.soft_position.reset();
 }
 
 void Hardware::write(const hardware_state_t& s, hardware_command_t& c) const {

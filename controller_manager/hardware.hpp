@@ -2,7 +2,7 @@
 // transmission order), filled from hardware/state (actuator -> joint) and
 // turned into hardware/command (joint -> actuator) as docs/hardware-protocol.md
 // says. Binding a session (matching actuator names) is the only step that
-// allocates; read() and write() do not.
+// allocates; read(), enforce_soft_limits() and write() do not.
 #pragma once
 
 #include <cstdint>
@@ -29,6 +29,7 @@ struct JointData {
   double position = 0, velocity = 0, effort = 0;  // joint space, from the last read
   double command = 0;                             // joint space, written by the owning controller
   const Controller* owner = nullptr;              // the running controller that claims it
+  PositionSoftLimits soft_position;               // the previous position command, under soft limits
 };
 
 class Hardware {
@@ -47,6 +48,10 @@ class Hardware {
   void unbind() { bound_ = false; }
 
   void read(const hardware_state_t& state);
+  // The URDF's soft limits (<safety_controller>) on every owned joint's command, for the interface its controller
+  // claimed, as joint_limits_interface's *SoftLimitsHandle (common/joint_limits.hpp). dt: this cycle's period (s).
+  void enforce_soft_limits(double dt);
+  void reset_soft_limits();  // after a (re)start: position commands restart from the measured position
   void write(const hardware_state_t& state, hardware_command_t& command) const;
 
  private:

@@ -19,6 +19,7 @@ void Loop::start(ControllerSlot& s) {
   for (JointData* j : s.claimed) {
     if (!handed_over(j)) j->command = j->offered.front() == Interface::Position ? j->position : 0.0;
     j->owner = s.controller.get();
+    j->soft_position.reset();
   }
   s.controller->running_ = true;
   s.controller->starting(now_);
@@ -59,6 +60,7 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
   hw_.read(st);
   if (restart) {
     ++restarts_;
+    hw_.reset_soft_limits();
     for (auto& s : slots_)
       if (s->running) s->controller->restart(now_);
   }
@@ -73,6 +75,7 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
     apply_switch();
     last_switch_step_ = step_;
   }
+  hw_.enforce_soft_limits(period);
   hw_.write(st, cmd);
   stats_.set_real_time_factor(st.real_time_factor);
   stats_.add_cycle(t0, monotonic_us(), st.period_us);

@@ -1,7 +1,8 @@
 // The real-time loop: one cycle per hardware state: read (actuator -> joint),
 // update every running controller in load order with the period measured on
 // the hardware clock, apply a pending switch (stopping() then starting(), all
-// in this cycle), write (joint -> actuator) tagged with the step it answers.
+// in this cycle), the URDF's soft limits on the commands, write (joint ->
+// actuator) tagged with the step it answers.
 // A new session, time or step going backwards, an e-stop release or a resume
 // after silence restarts the running controllers from the current state.
 // Command sources deliver their due ticks after restarts, before the updates.

@@ -49,13 +49,7 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
     a.effort_limit = j.effort_limit;
     a.velocity_limit = j.velocity_limit;
     a.passive = passive_for(mj, model.urdf_path);
-    JointLimits limits;
-    limits.has_position = j.has_position_limits;
-    limits.lower = j.lower;
-    limits.upper = j.upper;
-    limits.max_velocity = j.velocity_limit;
-    limits.max_effort = j.effort_limit;
-    a.saturation = PositionSaturation(limits);
+    a.saturation = PositionSaturation(j.limits());
     const auto gains = model.pid_gains.find(t.joint);
     const bool with_gains = gains != model.pid_gains.end();
     switch (t.interfaces.front()) {
