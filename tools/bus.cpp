@@ -15,6 +15,7 @@
 #include "tools/csv.hpp"
 #include "tools/fields.hpp"
 #include "tools/message_text.hpp"
+#include "tools/netcheck.hpp"
 #include "tools/support.hpp"
 #include "tools/time_base.hpp"
 
@@ -289,6 +290,7 @@ int main(int argc, char** argv) {
       "channels it did see.\n"
       "Examples:\n"
       "  bus list                                      # what is on the bus (2 s)\n"
+      "  bus netcheck --lcm-url 'udpm://239.255.76.67:7667?ttl=1'   # on two computers at once: can they hear each other?\n"
       "  bus hz hardware/state\n"
       "  bus echo joint_states --count 1\n"
       "  bus echo /j2_controller/command --csv --duration 5\n"
@@ -339,6 +341,14 @@ int main(int argc, char** argv) {
   auto* types = app.add_subcommand("types", "the message types, or one type's fields as pub takes them");
   types->add_option("TYPE", type, "a type to describe");
 
+  bool answer_only = false;
+  double net_duration = 3;
+  auto* netcheck = app.add_subcommand(
+      "netcheck", "does multicast on this URL reach other computers? ttl, route, firewall, and who answers a probe");
+  netcheck->add_option("--duration", net_duration, "seconds to probe (with --answer: 0, the default there, until Ctrl-C)")
+      ->check(CLI::NonNegativeNumber);
+  netcheck->add_flag("--answer", answer_only, "only answer the probes of other computers' netcheck");
+
   auto* info = app.add_subcommand("info", "channels, counts, rates and duration of an lcm-logger log (rosbag info)");
   info->add_option("LOG", log_path, "log file written by lcm-logger")->required();
 
@@ -349,6 +359,8 @@ int main(int argc, char** argv) {
     install_stop_signals();
     Bus bus(bus_flags.lcm_url, bus_flags.ns);
     if (list->parsed()) return cmd_list(bus, list_duration);
+    if (netcheck->parsed())
+      return cmd_netcheck(bus, answer_only && netcheck->count("--duration") == 0 ? 0.0 : net_duration, answer_only);
     if (hz->parsed()) return cmd_hz(bus, channel, window, duration);
     if (echo->parsed()) return cmd_echo(bus, channel, csv, count, duration);
     return cmd_pub(bus, channel, type, assignments, rate, count);

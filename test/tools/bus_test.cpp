@@ -254,3 +254,28 @@ TEST(BusTool, TypesListsTypesAndFields) {
   ASSERT_EQ(fields.wait(20), 0) << fields.output();
   EXPECT_NE(fields.output().find("points[].positions[] (double)"), std::string::npos) << fields.output();
 }
+
+// Two netchecks on one URL hear each other (here both on this computer, over loopback); a lone one exits 4 and says
+// what to do. The URL's ttl=0 is reported as keeping everything on this computer.
+TEST(BusTool, NetcheckFindsTheOtherNetcheckAndSaysWhenNoneAnswers) {
+  const std::string url = lt::unique_lcm_url();
+  lt::ChildProcess answerer({lt::bin("bus"), "netcheck", "--answer", "--duration", "6"}, env(url));
+  ASSERT_TRUE(answerer.wait_for_output("host:", 5)) << answerer.output();
+  lt::ChildProcess checker({lt::bin("bus"), "netcheck", "--duration", "2"}, env(url));
+  EXPECT_EQ(checker.wait(10), 0) << checker.output();
+  const std::string pid = std::to_string(answerer.pid());
+  EXPECT_NE(checker.output().find("pid " + pid + ": answered our probe (both ways work)"), std::string::npos)
+      << checker.output();
+  EXPECT_NE(checker.output().find("ttl:       0: nothing leaves this computer"), std::string::npos)
+      << checker.output();
+  EXPECT_NE(checker.output().find("route:     multicast to 239.255.76.67 leaves by "), std::string::npos)
+      << checker.output();
+  EXPECT_NE(answerer.output().find("peer:      "), std::string::npos) << answerer.output();
+
+  lt::ChildProcess lone({lt::bin("bus"), "netcheck", "--duration", "1"}, env(lt::unique_lcm_url()));
+  EXPECT_EQ(lone.wait(10), 4) << lone.output();
+  EXPECT_NE(lone.output().find("bus: error: no other netcheck answered on udpm://"), std::string::npos)
+      << lone.output();
+  EXPECT_NE(lone.output().find("with ttl=0 only programs on this computer can answer"), std::string::npos)
+      << lone.output();
+}

@@ -14,6 +14,7 @@
 #include <map>
 
 #include "controller_manager/services.hpp"
+#include "lcm_control/pid_gains_t.hpp"
 #include "lcm_control/sim_clock_t.hpp"
 #include "lcm_control/visit.hpp"
 #include "sim_server/sim_io.hpp"
@@ -215,6 +216,19 @@ TEST(Fuzz, SimServerTakesHostilePayloadsOnEveryChannel) {
   };
   cycle();
   cycle();
+  // The gains in force, to restore after the flood: a well-formed hostile pid_gains_t may legitimately change them.
+  lt::Recorder<pid_gains_t> gains(bus.lcm(), "sim_server/gains");
+  for (const char* joint : {"j1", "j2"}) {
+    pid_gains_t q{};
+    q.owner = "sim_server";
+    q.joint = joint;
+    q.query = true;
+    bus.lcm().publish("sim_server/gains/set", &q);
+  }
+  io.poll_until(monotonic_us());
+  bus.lcm().handleTimeout(0);
+  ASSERT_EQ(gains.messages.size(), 2u);
+  const std::vector<pid_gains_t> before = gains.messages;
   const std::vector<std::pair<std::string, std::string>> channels{
       {"hardware/command", "hardware_command_t"}, {"e_stop", "e_stop_t"}, {"sim_server/gains/set", "pid_gains_t"}};
   lt::Payloads payloads(1123);
@@ -234,10 +248,14 @@ TEST(Fuzz, SimServerTakesHostilePayloadsOnEveryChannel) {
     EXPECT_LT(double(t.log_bytes), 16384 * (t.seconds + 1)) << channel << ": the log grows with the flood";
     EXPECT_GT(sim.step_count(), steps + n / 10 - 1) << channel;
   }
-  // Release an e-stop the flood may have left engaged, and the robot follows genuine commands again.
+  // Release an e-stop the flood may have left engaged, restore the gains, and the robot follows genuine commands.
   e_stop_t release{};
   release.engaged = false;
   bus.lcm().publish("e_stop", &release);
+  for (pid_gains_t g : before) {
+    g.query = false;
+    bus.lcm().publish("sim_server/gains/set", &g);
+  }
   for (int k = 0; k < 3000; ++k) cycle();
   bus.lcm().handleTimeout(0);
   int64_t bad = 0;

@@ -1,0 +1,179 @@
+#include "tools/netcheck.hpp"
+
+#include <arpa/inet.h>
+#include <ifaddrs.h>
+#include <net/if.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <map>
+#include <regex>
+#include <string>
+
+#include "lcm_control/netcheck_t.hpp"
+#include "tools/support.hpp"
+
+namespace lcm_control::tools {
+namespace {
+
+constexpr const char* kChannel = "lcm_control/netcheck";
+
+struct Url {
+  std::string group;
+  int port = 0, ttl = 0;
+};
+
+Url parse_url(const std::string& url) {
+  std::smatch m;
+  const std::regex re(R"(udpm://([0-9.]+):([0-9]+)(\?(.*))?)");
+  if (!std::regex_match(url, m, re))
+    throw std::runtime_error(fmt::format("{}: netcheck checks udpm:// URLs (udpm://GROUP:PORT?ttl=N)", url));
+  Url u{m[1], std::stoi(m[2]), 0};
+  std::smatch t;
+  const std::string options = m[4];
+  if (std::regex_search(options, t, std::regex(R"((^|&)ttl=([0-9]+))"))) u.ttl = std::stoi(t[2]);
+  return u;
+}
+
+// "eth0=192.168.1.5 lo=127.0.0.1", and the interface that holds `address`.
+std::string addresses(const in_addr* address = nullptr, std::string* interface = nullptr) {
+  ifaddrs* list = nullptr;
+  if (getifaddrs(&list) != 0) return "";
+  std::string out;
+  for (ifaddrs* i = list; i; i = i->ifa_next) {
+    if (!i->ifa_addr || i->ifa_addr->sa_family != AF_INET) continue;
+    const in_addr a = reinterpret_cast<sockaddr_in*>(i->ifa_addr)->sin_addr;
+    char text[INET_ADDRSTRLEN] = {};
+    inet_ntop(AF_INET, &a, text, sizeof text);
+    out += fmt::format("{}{}={}", out.empty() ? "" : " ", i->ifa_name, text);
+    if (address && interface && a.s_addr == address->s_addr) *interface = i->ifa_name;
+  }
+  freeifaddrs(list);
+  return out;
+}
+
+// The interface multicast to the group leaves by (the kernel's route), or why there is none.
+std::string route_line(const Url& u) {
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(uint16_t(u.port));
+  inet_pton(AF_INET, u.group.c_str(), &to.sin_addr);
+  std::string line;
+  if (connect(fd, reinterpret_cast<sockaddr*>(&to), sizeof to) != 0) {
+    line = fmt::format("no route for multicast to {} ({}): as root, `ip route add 224.0.0.0/4 dev IF` with IF the "
+                       "network the other computers are on (lo for this computer only)",
+                       u.group, std::strerror(errno));
+  } else {
+    sockaddr_in from{};
+    socklen_t n = sizeof from;
+    getsockname(fd, reinterpret_cast<sockaddr*>(&from), &n);
+    std::string interface = "?";
+    addresses(&from.sin_addr, &interface);
+    char text[INET_ADDRSTRLEN] = {};
+    inet_ntop(AF_INET, &from.sin_addr, text, sizeof text);
+    line = fmt::format("multicast to {} leaves by {} ({})", u.group, interface, text);
+    if (interface == "lo" && u.ttl > 0)
+      line += ": only this computer hears it. To reach the others, route multicast to their network instead (as "
+              "root: `ip route replace 224.0.0.0/4 dev IF`)";
+  }
+  close(fd);
+  return line;
+}
+
+struct Peer {
+  std::string addresses;
+  bool heard = false, answered = false;  // its probe reached us; it answered ours
+};
+
+}  // namespace
+
+int cmd_netcheck(Bus& bus, double duration_s, bool answer_only) {
+  const Url url = parse_url(bus.url());
+  char name[256] = {};
+  gethostname(name, sizeof name - 1);
+  const std::string host = name;
+  const int32_t pid = int32_t(getpid());
+  fmt::print("url:       {} (group {}, port {}, ttl {})\n", bus.url(), url.group, url.port, url.ttl);
+  if (url.ttl == 0)
+    fmt::print("ttl:       0: nothing leaves this computer (the default). For a robot on several computers give every "
+               "program --lcm-url 'udpm://{}:{}?ttl=1' (or set LCM_DEFAULT_URL)\n",
+               url.group, url.port);
+  fmt::print("route:     {}\n", route_line(url));
+  std::string nft_out;
+  if (run_and_wait({"nft", "list", "table", "inet", "lcm_control"}, 3.0, &nft_out) == 0)
+    fmt::print("firewall:  nftables table inet lcm_control is installed (scripts/lcm-firewall): UDP to its ports is "
+               "taken only on lo and the interfaces it allows; allow the robot's network with scripts/lcm-firewall "
+               "install --port {} --allow-interface IF\n",
+               url.port);
+  fmt::print("host:      {} pid {}: {}\n", host, pid, addresses());
+  std::fflush(stdout);  // line by line, for whoever watches it run
+
+  std::map<std::pair<std::string, int32_t>, Peer> peers;
+  netcheck_t out{};
+  out.host = host;
+  out.pid = pid;
+  out.addresses = addresses();
+  auto on_probe = [&](const lcm::ReceiveBuffer* rb, const std::string&) {
+    netcheck_t m;
+    if (!decode_guarded(m, rb->data, rb->data_size) || (m.host == host && m.pid == pid)) return;
+    Peer& p = peers[{m.host, m.pid}];
+    const bool news = !p.heard && !p.answered;
+    p.addresses = m.addresses;
+    if (m.answer) {
+      if (m.to_host != host || m.to_pid != pid) return;
+      p.answered = true;
+    } else if (!p.heard) {
+      p.heard = true;
+      netcheck_t a = out;  // answer each one once
+      a.utime = wall_us();
+      a.answer = true;
+      a.to_host = m.host;
+      a.to_pid = m.pid;
+      bus.lcm().publish(kChannel, &a);
+    }
+    if (news) {
+      fmt::print("peer:      {} pid {}: {}\n", m.host, m.pid, m.addresses);
+      std::fflush(stdout);
+    }
+  };
+  struct Handler {
+    decltype(on_probe)& f;
+    void on(const lcm::ReceiveBuffer* rb, const std::string& channel) { f(rb, channel); }
+  } handler{on_probe};
+  auto* sub = bus.lcm().subscribe(kChannel, &Handler::on, &handler);
+  sub->setQueueCapacity(1000);
+  const int64_t start = monotonic_us();
+  int64_t next_probe = start;
+  while (!stop_requested() && (duration_s <= 0 || monotonic_us() - start < int64_t(duration_s * 1e6))) {
+    if (!answer_only && monotonic_us() >= next_probe) {
+      out.utime = wall_us();
+      bus.lcm().publish(kChannel, &out);
+      next_probe += 500000;
+    }
+    bus.lcm().handleTimeout(50);
+  }
+  bus.lcm().unsubscribe(sub);
+  int both = 0;
+  for (const auto& [who, p] : peers) {
+    fmt::print("result:    {} pid {}: {}\n", who.first, who.second,
+               p.answered ? "answered our probe (both ways work)"
+                          : answer_only ? "its probe reached us (we answered)"
+                                        : "its probe reached us, but it did not answer ours (one way only: check the "
+                                          "other computer's route and firewall)");
+    both += p.answered || answer_only;
+  }
+  if (both > 0) return 0;
+  throw BusError(fmt::format(
+      "no other netcheck answered on {} within {}: run `bus netcheck` on the other computers at the same time (or "
+      "`bus netcheck --answer` there), with the same --lcm-url{}",
+      bus.url(), seconds_text(duration_s), url.ttl == 0 ? "; with ttl=0 only programs on this computer can answer" : ""));
+}
+
+}  // namespace lcm_control::tools
