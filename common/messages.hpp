@@ -38,11 +38,6 @@ void resize(hardware_command_t& m, int n);
 cm_request_t cm_request(int8_t op, std::vector<std::string> names = {}, std::vector<std::string> start = {},
                         std::vector<std::string> stop = {}, int8_t strictness = cm_request_t::STRICT);
 
-// The controller manager's LIST answer says in its message what hardware it follows:
-// "<n> controller(s) loaded; hardware: <one line>", the line starting with kNoHardwareState when none published yet.
-inline constexpr const char* kListHardwareKey = "; hardware: ";
-inline constexpr const char* kNoHardwareState = "no hardware state received";
-
 // PID gains between the wire (pid_gains_t) and the PID.
 PidGains gains_of(const pid_gains_t& m);
 void set_gains(pid_gains_t& m, const PidGains& g);

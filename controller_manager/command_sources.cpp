@@ -61,6 +61,7 @@ void CommandSources::answer(int64_t request_id, const Reply& reply) {
   m.message = reply.message;
   m.num_controllers = 0;
   m.num_types = 0;
+  m.hardware_age_us = -1;
   response_pub_.publish(m);
 }
 

@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include "common/messages.hpp"
-
 namespace lcm_control::cm {
 
 void HardwareStatus::seen(const hardware_state_t& s, int64_t now) {
@@ -28,9 +26,9 @@ void HardwareStatus::close_window(int64_t now) {
 
 std::string HardwareStatus::describe(int64_t now, int64_t silence_us, const std::string& channel) const {
   if (!any_)
-    return fmt::format("{} on '{}': is sim_server (or the robot's driver) running with this namespace and LCM URL? "
-                       "Controllers are not updated until it publishes",
-                       kNoHardwareState, channel);
+    return fmt::format("no hardware state received on '{}': is sim_server (or the robot's driver) running with this "
+                       "namespace and LCM URL? Controllers are not updated until it publishes",
+                       channel);
   const double age_s = static_cast<double>(now - last_us_) / 1e6;
   std::string rate = period_us_ > 0 ? fmt::format("{:g} Hz", 1e6 / period_us_) : std::string("period unknown");
   if (measured_hz_ >= 0) rate += fmt::format(" ({:.1f} measured)", measured_hz_);

@@ -15,10 +15,10 @@ class HardwareStatus {
  public:
   void seen(const hardware_state_t& state, int64_t monotonic_us);  // a state the loop followed
   void close_window(int64_t monotonic_us);                        // measured rate over the window it ends
-  bool any() const { return any_; }
+  int64_t age_us(int64_t monotonic_us) const { return any_ ? monotonic_us - last_us_ : -1; }  // -1: none yet
 
   // One line, e.g. "session 3fa9c2d1, real time, 1000 Hz (999.7 measured), step 5123, last state 0.001 s ago";
-  // after silence_us without a state it says the loop is silent; with none, kNoHardwareState (common/messages.hpp) and where it was expected.
+  // after silence_us without a state it says the loop is silent; with none, where it was expected.
   std::string describe(int64_t monotonic_us, int64_t silence_us, const std::string& state_channel) const;
 
  private:

@@ -83,8 +83,9 @@ class ControllerManager {
   // hardware, statistics at 1 Hz.
   void poll(int64_t monotonic_now_us);
   bool ticking() const { return loop_.has_state() && !silent_; }
-  // The hardware this manager follows, one line (HardwareStatus::describe).
+  // The hardware this manager follows, one line (HardwareStatus::describe), and the age of its last state (-1: none).
   std::string hardware_summary(int64_t monotonic_now_us) const;
+  int64_t hardware_age_us(int64_t monotonic_now_us) const { return hw_status_.age_us(monotonic_now_us); }
   void count_dropped(int64_t n) { dropped_ += n; }
   const hardware_command_t& last_command() const { return command_; }
 

@@ -4,8 +4,6 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
-#include "common/messages.hpp"
-
 namespace lcm_control::cm {
 
 namespace {
@@ -61,7 +59,7 @@ Services::Services(ControllerManager& cm, Bus& bus)
       });
 }
 
-void Services::answer(const cm_request_t& req, const Reply& reply, bool with_types) {
+void Services::answer(const cm_request_t& req, const Reply& reply, bool with_types, bool with_hardware) {
   cm_response_t m;
   m.utime = wall_us();
   m.request_id = req.request_id;
@@ -72,6 +70,9 @@ void Services::answer(const cm_request_t& req, const Reply& reply, bool with_typ
   m.num_controllers = static_cast<int32_t>(m.controllers.size());
   if (with_types) m.types = cm_.types();
   m.num_types = static_cast<int32_t>(m.types.size());
+  const int64_t now = monotonic_us();
+  m.hardware = with_hardware ? cm_.hardware_summary(now) : "";
+  m.hardware_age_us = with_hardware ? cm_.hardware_age_us(now) : -1;
   pub_.publish(m);
   if (req.request_id >= 0)
     log_.info(fmt::format("request {}{}: {} -> {}: {}", req.request_id, req.client.empty() ? "" : " from " + clip(req.client),
@@ -98,8 +99,7 @@ void Services::handle(const cm_request_t& r) {
   };
   switch (r.op) {
     case cm_request_t::LIST:
-      answer(r, {true, fmt::format("{} controller(s) loaded{}{}", cm_.list().size(), kListHardwareKey,
-                                   cm_.hardware_summary(monotonic_us()))});
+      answer(r, {true, fmt::format("{} controller(s) loaded", cm_.list().size())}, false, true);
       return;
     case cm_request_t::LIST_TYPES:
       answer(r, {true, fmt::format("{} controller types", cm_.types().size())}, true);

@@ -24,7 +24,7 @@ class Services {
   int64_t malformed() const { return malformed_; }
 
  private:
-  void answer(const cm_request_t& req, const Reply& reply, bool with_types = false);
+  void answer(const cm_request_t& req, const Reply& reply, bool with_types = false, bool with_hardware = false);
   void drain();
 
   ControllerManager& cm_;

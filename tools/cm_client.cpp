@@ -190,16 +190,6 @@ cm_response_t CmClient::wait_for_manager(double timeout_s, const std::function<v
   throw CmTimeout(no_answer("list", timeout_s));
 }
 
-std::string hardware_of(const cm_response_t& r) {
-  const std::string key = kListHardwareKey;
-  const auto at = r.message.find(key);
-  return at == std::string::npos ? std::string() : r.message.substr(at + key.size());
-}
-
-bool no_hardware_state(const cm_response_t& r) {
-  return hardware_of(r).rfind(kNoHardwareState, 0) == 0;
-}
-
 std::string controller_table(const std::vector<controller_info_t>& controllers) {
   std::vector<std::vector<std::string>> rows = {{"NAME", "TYPE", "STATE", "JOINTS", "INTERFACE"}};
   for (const auto& c : controllers)

@@ -75,11 +75,6 @@ class CmClient {
   std::map<int64_t, cm_response_t> answers_;
 };
 
-// The hardware part of a LIST answer (after "hardware: "), "" when the manager sent none.
-std::string hardware_of(const cm_response_t& list_answer);
-// True when a LIST answer says the manager has received no hardware state.
-bool no_hardware_state(const cm_response_t& list_answer);
-
 // "name  type  state  joints  interface" as an aligned table, one controller a line.
 std::string controller_table(const std::vector<controller_info_t>& controllers);
 

@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
       r = cm.list(timeout);
       if (r.ok) {
         fmt::print("{}", r.controllers.empty() ? "no controllers loaded\n" : controller_table(r.controllers));
-        if (const std::string hw = hardware_of(r); !hw.empty()) fmt::print("hardware: {}\n", hw);
+        if (!r.hardware.empty()) fmt::print("hardware: {}\n", r.hardware);
       }
     } else if (types->parsed()) {
       r = cm.list_types(timeout);

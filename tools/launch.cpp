@@ -212,7 +212,7 @@ int main(int argc, char** argv) {
           "the robot that runs there (Ctrl-C its launch), or launch this one with --namespace NAME or another "
           "--lcm-url",
           bus->channel(channels::kCmResponse), where,
-          probe->manager_message().substr(0, probe->manager_message().find(kListHardwareKey))));
+          probe->manager_message()));
     if (plan.sim && probe->hardware_seen())
       throw std::runtime_error(fmt::format(
           "hardware already publishes '{}' in {}: a second simulator there would make two sessions the controller "

@@ -15,6 +15,7 @@
 #include <map>
 #include <regex>
 #include <string>
+#include <utility>
 
 #include "lcm_control/netcheck_t.hpp"
 #include "tools/support.hpp"
@@ -92,6 +93,48 @@ struct Peer {
   bool heard = false, answered = false;  // its probe reached us; it answered ours
 };
 
+// Answers every probe it hears (a lost answer is made good by the next one), and keeps who was heard.
+class Prober {
+ public:
+  Prober(Bus& bus, netcheck_t self) : bus_(bus), self_(std::move(self)) {
+    sub_ = subscribe_guarded<&Prober::on>(bus_.lcm(), kChannel, this);
+    sub_->setQueueCapacity(1000);
+  }
+  ~Prober() { bus_.lcm().unsubscribe(sub_); }
+  void probe() {
+    self_.utime = wall_us();
+    bus_.lcm().publish(kChannel, &self_);
+  }
+  const std::map<std::pair<std::string, int32_t>, Peer>& peers() const { return peers_; }
+
+ private:
+  void on(const lcm::ReceiveBuffer*, const std::string&, const netcheck_t* m) {
+    if (m->host == self_.host && m->pid == self_.pid) return;
+    if (m->answer && (m->to_host != self_.host || m->to_pid != self_.pid)) return;  // an answer to someone else
+    Peer& p = peers_[{m->host, m->pid}];
+    if (!p.heard && !p.answered) {
+      fmt::print("peer:      {} pid {}: {}\n", m->host, m->pid, m->addresses);
+      std::fflush(stdout);
+    }
+    p.addresses = m->addresses;
+    if (m->answer) {
+      p.answered = true;
+      return;
+    }
+    p.heard = true;
+    netcheck_t a = self_;
+    a.utime = wall_us();
+    a.answer = true;
+    a.to_host = m->host;
+    a.to_pid = m->pid;
+    bus_.lcm().publish(kChannel, &a);
+  }
+  Bus& bus_;
+  netcheck_t self_;
+  lcm::Subscription* sub_ = nullptr;
+  std::map<std::pair<std::string, int32_t>, Peer> peers_;
+};
+
 }  // namespace
 
 int cmd_netcheck(Bus& bus, double duration_s, bool answer_only) {
@@ -112,56 +155,25 @@ int cmd_netcheck(Bus& bus, double duration_s, bool answer_only) {
                "taken only on lo and the interfaces it allows; allow the robot's network with scripts/lcm-firewall "
                "install --port {} --allow-interface IF\n",
                url.port);
-  fmt::print("host:      {} pid {}: {}\n", host, pid, addresses());
+  netcheck_t self{};
+  self.host = host;
+  self.pid = pid;
+  self.addresses = addresses();
+  fmt::print("host:      {} pid {}: {}\n", host, pid, self.addresses);
   std::fflush(stdout);  // line by line, for whoever watches it run
 
-  std::map<std::pair<std::string, int32_t>, Peer> peers;
-  netcheck_t out{};
-  out.host = host;
-  out.pid = pid;
-  out.addresses = addresses();
-  auto on_probe = [&](const lcm::ReceiveBuffer* rb, const std::string&) {
-    netcheck_t m;
-    if (!decode_guarded(m, rb->data, rb->data_size) || (m.host == host && m.pid == pid)) return;
-    Peer& p = peers[{m.host, m.pid}];
-    const bool news = !p.heard && !p.answered;
-    p.addresses = m.addresses;
-    if (m.answer) {
-      if (m.to_host != host || m.to_pid != pid) return;
-      p.answered = true;
-    } else if (!p.heard) {
-      p.heard = true;
-      netcheck_t a = out;  // answer each one once
-      a.utime = wall_us();
-      a.answer = true;
-      a.to_host = m.host;
-      a.to_pid = m.pid;
-      bus.lcm().publish(kChannel, &a);
-    }
-    if (news) {
-      fmt::print("peer:      {} pid {}: {}\n", m.host, m.pid, m.addresses);
-      std::fflush(stdout);
-    }
-  };
-  struct Handler {
-    decltype(on_probe)& f;
-    void on(const lcm::ReceiveBuffer* rb, const std::string& channel) { f(rb, channel); }
-  } handler{on_probe};
-  auto* sub = bus.lcm().subscribe(kChannel, &Handler::on, &handler);
-  sub->setQueueCapacity(1000);
+  Prober prober(bus, self);
   const int64_t start = monotonic_us();
   int64_t next_probe = start;
   while (!stop_requested() && (duration_s <= 0 || monotonic_us() - start < int64_t(duration_s * 1e6))) {
     if (!answer_only && monotonic_us() >= next_probe) {
-      out.utime = wall_us();
-      bus.lcm().publish(kChannel, &out);
+      prober.probe();
       next_probe += 500000;
     }
     bus.lcm().handleTimeout(50);
   }
-  bus.lcm().unsubscribe(sub);
   int both = 0;
-  for (const auto& [who, p] : peers) {
+  for (const auto& [who, p] : prober.peers()) {
     fmt::print("result:    {} pid {}: {}\n", who.first, who.second,
                p.answered ? "answered our probe (both ways work)"
                           : answer_only ? "its probe reached us (we answered)"

@@ -194,7 +194,8 @@ std::string gnuplot_script(const std::string& terminal, const std::string& outpu
   s += "plot ";
   for (size_t k = 0; k < series.size(); ++k)
     s += fmt::format("{}{} index {} using 1:2 with {} title {}", k ? ", \\\n     " : "", quoted(data), k,
-                     series[k].points.size() < 2 ? "points pt 7" : "lines lw 1.5", quoted((text ? " " : "") + legend(series[k])));
+                     series[k].points.size() < 2 ? "points pt 7" : "lines lw 1.5",
+                     quoted((text ? " " : "") + legend(series[k])));
   return s + "\n";
 }
 

@@ -40,8 +40,8 @@ int main(int argc, char** argv) {
       spawner.spawn(cm);
       if (!o.stopped && !hardware_later) {
         const cm_response_t listed = cm.list(o.timeout_s);
-        if (no_hardware_state(listed))
-          o.say(fmt::format("warning: the controllers run, but the controller manager reports {}", hardware_of(listed)));
+        if (listed.hardware_age_us < 0)
+          o.say(fmt::format("warning: the controllers run, but the controller manager reports {}", listed.hardware));
       }
     }
     // Idle without an LCM socket: a udpm socket receives every message on the

@@ -79,8 +79,8 @@ void say_who_takes(Bus& bus, const std::string& controller) {
     fmt::print(stderr,
                "turret-cmd: warning: '{}' is {}, not running: it ignores the commands on '{}' until `cmctl start {}`\n",
                controller, found->state, channel, controller);
-  if (no_hardware_state(r))
-    fmt::print(stderr, "turret-cmd: warning: the controller manager reports {}\n", hardware_of(r));
+  if (r.hardware_age_us < 0)
+    fmt::print(stderr, "turret-cmd: warning: the controller manager reports {}\n", r.hardware);
 }
 
 class Publisher {

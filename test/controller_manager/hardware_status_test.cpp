@@ -19,7 +19,7 @@ hardware_state_t state(int64_t step, bool lockstep = false) {
 
 TEST(HardwareStatus, NoneYetSaysWhereItWasExpected) {
   HardwareStatus h;
-  EXPECT_FALSE(h.any());
+  EXPECT_EQ(h.age_us(5'000'000), -1);
   EXPECT_EQ(h.describe(5'000'000, 250'000, "r1/hardware/state"),
             "no hardware state received on 'r1/hardware/state': is sim_server (or the robot's driver) running with "
             "this namespace and LCM URL? Controllers are not updated until it publishes");
@@ -29,6 +29,7 @@ TEST(HardwareStatus, SessionModeRatesAndAge) {
   HardwareStatus h;
   const int64_t t0 = 1'000'000;
   for (int k = 0; k < 500; ++k) h.seen(state(k), t0 + k * 2000);  // 500 states in 1 s: half the nominal rate
+  EXPECT_EQ(h.age_us(t0 + 999'000), 1'000);
   EXPECT_EQ(h.describe(t0 + 999'000, 250'000, "hardware/state"),
             "session 3fa9c2d1, real time, 1000 Hz, step 499, last state 0.001 s ago");
   h.close_window(t0 + 1'000'000);
