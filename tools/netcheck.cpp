@@ -2,16 +2,12 @@
 
 #include <arpa/inet.h>
 #include <ifaddrs.h>
-#include <net/if.h>
-#include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
 
-#include <cerrno>
 #include <cstdio>
-#include <cstring>
 #include <map>
 #include <regex>
 #include <string>
@@ -42,49 +38,35 @@ Url parse_url(const std::string& url) {
   return u;
 }
 
-// "eth0=192.168.1.5 lo=127.0.0.1", and the interface that holds `address`.
-std::string addresses(const in_addr* address = nullptr, std::string* interface = nullptr) {
+// "eth0=192.168.1.5 lo=127.0.0.1".
+std::string addresses() {
   ifaddrs* list = nullptr;
   if (getifaddrs(&list) != 0) return "";
   std::string out;
   for (ifaddrs* i = list; i; i = i->ifa_next) {
     if (!i->ifa_addr || i->ifa_addr->sa_family != AF_INET) continue;
-    const in_addr a = reinterpret_cast<sockaddr_in*>(i->ifa_addr)->sin_addr;
     char text[INET_ADDRSTRLEN] = {};
-    inet_ntop(AF_INET, &a, text, sizeof text);
+    inet_ntop(AF_INET, &reinterpret_cast<sockaddr_in*>(i->ifa_addr)->sin_addr, text, sizeof text);
     out += fmt::format("{}{}={}", out.empty() ? "" : " ", i->ifa_name, text);
-    if (address && interface && a.s_addr == address->s_addr) *interface = i->ifa_name;
   }
   freeifaddrs(list);
   return out;
 }
 
-// The interface multicast to the group leaves by (the kernel's route), or why there is none.
+// The interface multicast to the group leaves by, from the kernel's route (`ip route get`: the source address
+// alone does not tell it), or why there is none.
 std::string route_line(const Url& u) {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_port = htons(uint16_t(u.port));
-  inet_pton(AF_INET, u.group.c_str(), &to.sin_addr);
-  std::string line;
-  if (connect(fd, reinterpret_cast<sockaddr*>(&to), sizeof to) != 0) {
-    line = fmt::format("no route for multicast to {} ({}): as root, `ip route add 224.0.0.0/4 dev IF` with IF the "
+  std::string out;
+  const int rc = run_and_wait({"ip", "route", "get", u.group}, 3.0, &out);
+  std::smatch dev;
+  if (rc != 0 || !std::regex_search(out, dev, std::regex(R"(\bdev (\S+))")))
+    return fmt::format("no route for multicast to {} ({}): as root, `ip route add 224.0.0.0/4 dev IF` with IF the "
                        "network the other computers are on (lo for this computer only)",
-                       u.group, std::strerror(errno));
-  } else {
-    sockaddr_in from{};
-    socklen_t n = sizeof from;
-    getsockname(fd, reinterpret_cast<sockaddr*>(&from), &n);
-    std::string interface = "?";
-    addresses(&from.sin_addr, &interface);
-    char text[INET_ADDRSTRLEN] = {};
-    inet_ntop(AF_INET, &from.sin_addr, text, sizeof text);
-    line = fmt::format("multicast to {} leaves by {} ({})", u.group, interface, text);
-    if (interface == "lo" && u.ttl > 0)
-      line += ": only this computer hears it. To reach the others, route multicast to their network instead (as "
-              "root: `ip route replace 224.0.0.0/4 dev IF`)";
-  }
-  close(fd);
+                       u.group, out.empty() ? "ip route get failed" : out.substr(0, out.find('\n')));
+  std::string line = fmt::format("multicast to {} leaves by {}", u.group, dev[1].str());
+  if (dev[1] == "lo" && u.ttl > 0)
+    line += ": only this computer hears it. To reach the others, route multicast to their network instead (as "
+            "root: `ip route replace 224.0.0.0/4 dev IF`)";
   return line;
 }
 
