@@ -8,8 +8,8 @@
 #include <fmt/format.h>
 
 #include <cstdio>
+#include <cstdlib>
 #include <map>
-#include <regex>
 #include <string>
 #include <utility>
 
@@ -27,14 +27,14 @@ struct Url {
 };
 
 Url parse_url(const std::string& url) {
-  std::smatch m;
-  const std::regex re(R"(udpm://([0-9.]+):([0-9]+)(\?(.*))?)");
-  if (!std::regex_match(url, m, re))
+  char group[64] = {};
+  int port = 0, used = 0;
+  if (std::sscanf(url.c_str(), "udpm://%63[0-9.]:%d%n", group, &port, &used) != 2 ||
+      (url[size_t(used)] != '\0' && url[size_t(used)] != '?'))
     throw std::runtime_error(fmt::format("{}: netcheck checks udpm:// URLs (udpm://GROUP:PORT?ttl=N)", url));
-  Url u{m[1], std::stoi(m[2]), 0};
-  std::smatch t;
-  const std::string options = m[4];
-  if (std::regex_search(options, t, std::regex(R"((^|&)ttl=([0-9]+))"))) u.ttl = std::stoi(t[2]);
+  Url u{group, port, 0};
+  for (size_t at = url.find("ttl=", size_t(used)); at != std::string::npos; at = url.find("ttl=", at + 1))
+    if (url[at - 1] == '?' || url[at - 1] == '&') u.ttl = std::atoi(url.c_str() + at + 4);
   return u;
 }
 
@@ -58,13 +58,14 @@ std::string addresses() {
 std::string route_line(const Url& u) {
   std::string out;
   const int rc = run_and_wait({"ip", "route", "get", u.group}, 3.0, &out);
-  std::smatch dev;
-  if (rc != 0 || !std::regex_search(out, dev, std::regex(R"(\bdev (\S+))")))
+  const size_t at = out.find(" dev ");
+  if (rc != 0 || at == std::string::npos)
     return fmt::format("no route for multicast to {} ({}): as root, `ip route add 224.0.0.0/4 dev IF` with IF the "
                        "network the other computers are on (lo for this computer only)",
                        u.group, out.empty() ? "ip route get failed" : out.substr(0, out.find('\n')));
-  std::string line = fmt::format("multicast to {} leaves by {}", u.group, dev[1].str());
-  if (dev[1] == "lo" && u.ttl > 0)
+  const std::string dev = out.substr(at + 5, out.find_first_of(" \n", at + 5) - (at + 5));
+  std::string line = fmt::format("multicast to {} leaves by {}", u.group, dev);
+  if (dev == "lo" && u.ttl > 0)
     line += ": only this computer hears it. To reach the others, route multicast to their network instead (as "
             "root: `ip route replace 224.0.0.0/4 dev IF`)";
   return line;
