@@ -5,6 +5,7 @@
 namespace lcm_control::cm {
 
 void HardwareStatus::seen(const hardware_state_t& s, int64_t now) {
+  if (!any_ || s.step != step_ || s.session != session_) step_since_us_ = now;
   any_ = true;
   session_ = s.session;
   step_ = s.step;
@@ -36,6 +37,10 @@ std::string HardwareStatus::describe(int64_t now, int64_t silence_us, const std:
   if (lockstep_) text += fmt::format(", {:.2f}x real time", real_time_factor_);
   text += fmt::format(", step {}, last state {:.3f} s ago", step_, age_s);
   if (e_stop_) text += "; e-stop engaged: the hardware holds still";
+  if (last_us_ - step_since_us_ > silence_us && now - last_us_ <= silence_us)
+    text += fmt::format("; step {} repeated for {:.1f} s: the hardware is paused (cmctl resume){}", step_,
+                        static_cast<double>(last_us_ - step_since_us_) / 1e6,
+                        lockstep_ ? " or waiting for a command" : "");
   if (now - last_us_ > silence_us)
     text += fmt::format("; SILENT for {:.1f} s: controllers are not updated until '{}' resumes", age_s, channel);
   return text;

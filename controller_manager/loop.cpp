@@ -41,7 +41,11 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
   if (!have_state_ || st.session != session_) {
     restart = true;
   } else if (st.step == step_) {
-    return Outcome::Repeated;
+    if (!pending_) return Outcome::Repeated;
+    apply_switch();  // a paused hardware repeats its step: switching must not wait for an update
+    last_switch_step_ = step_;
+    hw_.write(st, cmd);
+    return Outcome::Answered;
   } else if (st.step < step_ || st.utime < now_.utime) {
     restart = true;
   } else if (e_stop_ && !st.e_stop) {

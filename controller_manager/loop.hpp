@@ -3,8 +3,10 @@
 // the hardware clock, apply a pending switch (stopping() then starting(), all
 // in this cycle), the URDF's soft limits on the commands, write (joint ->
 // actuator) tagged with the step it answers.
-// A new session, time or step going backwards, an e-stop release or a resume
-// after silence restarts the running controllers from the current state.
+// A new session, time or step going backwards (a reset), an e-stop release or
+// a resume after silence restarts the running controllers from the current
+// state. The same step again (a lockstep republish, a paused hardware) updates
+// nothing, but a pending switch is applied on it and the command rewritten.
 // Command sources deliver their due ticks after restarts, before the updates.
 // A started controller's joints hold their measured position (velocity and
 // effort 0) until its first update, unless taken over from a controller
@@ -45,8 +47,9 @@ class Loop {
   const std::vector<std::unique_ptr<ControllerSlot>>& slots() const { return slots_; }
 
   enum class Outcome { Answered, Repeated };
-  // One control step. Repeated: the same step again (a lockstep republish):
-  // controllers are not updated and `command` still holds the last answer.
+  // One control step. Repeated: the same step again (a lockstep republish or a
+  // paused hardware) with no switch pending: controllers are not updated and
+  // `command` still holds the last answer.
   Outcome cycle(const hardware_state_t& state, hardware_command_t& command);
 
   // A switch to apply right after the next update (or now with apply_now()).

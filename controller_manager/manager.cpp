@@ -320,6 +320,10 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
       spdlog::info("hardware/state resumed at step {}: running controllers restart from the current state", st.step);
     }
   }
+  if (loop_.has_state() && !silent_ && st.session == hw_.session() && st.step < loop_.step())
+    hardware_log_.info(fmt::format("hardware step went back from {} to {} (a reset): running controllers restart from "
+                                   "the measured state",
+                                   loop_.step(), st.step));
   loop_.cycle(st, command_);
   sources_.after_cycle();  // before the command: the echo is on the bus before the next state
   command_pub_.publish(command_);

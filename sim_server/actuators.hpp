@@ -41,11 +41,13 @@ class Actuators {
   void set_command(int i, int8_t wire_mode, double value);
   // Watchdog or lost controller: every actuator holds while set.
   void set_hold_all(bool hold) { hold_all_ = hold; }
+  bool hold_all() const { return hold_all_; }
   // Brakes (default on): an effort, velocity-PID or position-PID actuator nobody commands, or held by the watchdog,
   // is held at its position by a motor capped at the effort limit, so an arm does not sag before its controllers
   // start and does not drift on soft gains while its controller manager is gone. Off: such a joint is limp (effort,
   // velocity) or held by its PID alone, as in Gazebo. The e-stop never brakes (velocity and effort get 0).
   void set_brakes(bool on) { brakes_ = on; }
+  bool brakes() const { return brakes_; }
   // Position actuators latch their position when it engages; velocity and effort get 0.
   void set_e_stop(bool engaged);
   bool e_stop() const { return e_stop_; }

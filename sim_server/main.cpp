@@ -60,12 +60,15 @@ int main(int argc, char** argv) {
                  "start at 0, and a start outside the URDF limits is clamped into them")
       ->check([](const std::string& v) {
         try {
-          sim::parse_initial_position(v);
+          parse_initial_position(v);
           return std::string();
         } catch (const std::invalid_argument& e) {
           return std::string(e.what());
         }
       });
+  app.add_flag("--paused", opt.start_paused,
+               "start paused, as Gazebo's paused:=true: the state is published and controllers can be spawned, but "
+               "nothing steps until `cmctl resume` (or `cmctl step N`)");
   bool no_brakes = false;
   app.add_flag("--no-brakes", no_brakes,
                "joints nobody commands, or held by the watchdog, are left to their PID (position) or limp (effort, "
@@ -86,14 +89,15 @@ int main(int argc, char** argv) {
     const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
     for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
-    sim::InitialPositions start;
+    InitialPositions start;
     for (const auto& a : initial) {
-      const auto [joint, q] = sim::parse_initial_position(a);
+      const auto [joint, q] = parse_initial_position(a);
       start[joint] = q;
     }
     sim::Simulation sim(model, rates, start);
     sim.actuators().set_brakes(!no_brakes);
     for (const auto& w : sim.multibody().warnings()) spdlog::warn("{}", w);
+    for (const auto& w : sim.multibody().start_warnings()) spdlog::warn("{}", w);
     for (const auto& w : sim.actuators().warnings()) spdlog::warn("{}", w);
     for (int i = 0; i < sim.actuators().size(); ++i) spdlog::info("{}", sim.actuators().describe(i));
     Bus bus(bus_flags.lcm_url, model.ns);
@@ -102,8 +106,8 @@ int main(int argc, char** argv) {
     sim::Stepper stepper(sim, io, opt);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
-    spdlog::info("ready ({}, {} actuators, physics {:g} Hz, control {:g} Hz, clock {:g} Hz, lcm {}{}, session {}{})",
-                 opt.lockstep ? "lockstep" : "real time", sim.actuators().size(), rates.physics_hz, rates.control_hz,
+    spdlog::info("ready ({}{}, {} actuators, physics {:g} Hz, control {:g} Hz, clock {:g} Hz, lcm {}{}, session {}{})",
+                 opt.lockstep ? "lockstep" : "real time", opt.start_paused ? ", paused" : "", sim.actuators().size(), rates.physics_hz, rates.control_hz,
                  rates.control_hz / clock_every,
                  bus.url(), bus.ns().empty() ? "" : ", namespace " + bus.ns(), io.session(),
                  scheduling.empty() ? "" : ", " + scheduling);

@@ -123,7 +123,7 @@ void Multibody::set_initial_positions(const RobotModel& model, const InitialPosi
     double q = wanted;
     if (j.urdf->has_position_limits) q = std::clamp(wanted, j.urdf->lower, j.urdf->upper);
     if (q != wanted)
-      warnings_.push_back(fmt::format("joint '{}' would start at {:g}{}, outside its limits [{:g}, {:g}] in {}; it "
+      start_warnings_.push_back(fmt::format("joint '{}' would start at {:g}{}, outside its limits [{:g}, {:g}] in {}; it "
                                       "starts at {:g} (choose a start with --initial-position {}=VALUE or the launch "
                                       "file's initial_positions)",
                                       j.urdf->name, wanted, it == initial.end() ? " (no initial position given)" : "",

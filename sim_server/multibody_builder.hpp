@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "common/initial_positions.hpp"
 #include "common/robot_model.hpp"
 #include "sim_server/collision_shapes.hpp"
 #include "sim_server/limit_constraint.hpp"
@@ -37,9 +38,6 @@ struct MultibodyJoint {
   SpeculativeJointLimit* limit = nullptr;  // null for continuous joints
   double max_velocity = 0;             // URDF velocity limit, 0: none
 };
-
-// Joint positions (joint units) to start from, by joint name; joints not named start at 0.
-using InitialPositions = std::map<std::string, double>;
 
 class Multibody {
  public:
@@ -79,6 +77,8 @@ class Multibody {
   btMultiBodyDynamicsWorld& world() { return *world_; }
   // Findings worth a WARN (massless moving links, inertia fixes, damping capped for stability).
   const std::vector<std::string>& warnings() const { return warnings_; }
+  // Initial positions outside the limits, clamped into them (one WARN each).
+  const std::vector<std::string>& start_warnings() const { return start_warnings_; }
 
  private:
   void build(const RobotModel& model);
@@ -99,7 +99,7 @@ class Multibody {
   std::vector<MultibodyJoint> joints_;
   std::map<std::string, int> link_index_;               // URDF link -> Bullet link (-1: base)
   std::map<std::string, Eigen::Isometry3d> link_from_com_;  // URDF link frame -> its Bullet COM frame
-  std::vector<std::string> warnings_;
+  std::vector<std::string> warnings_, start_warnings_;
 };
 
 }  // namespace lcm_control::sim

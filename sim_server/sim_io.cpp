@@ -16,6 +16,8 @@ namespace lcm_control::sim {
 
 namespace {
 constexpr int kMaxMessagesPastDeadline = 100;
+constexpr size_t kMaxQueuedRequests = 16;
+constexpr size_t kRememberedAnswers = 16;
 
 int64_t random_session() {
   std::random_device rd;
@@ -43,7 +45,8 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
       state_channel_(bus.channel(channels::kHardwareState)),
       clock_channel_(bus.channel(channels::kClock)),
       gains_channel_(bus.channel(gains_channel(channels::kSimGainsOwner))),
-      stats_channel_(bus.channel(channels::kSimStatistics)) {
+      stats_channel_(bus.channel(channels::kSimStatistics)),
+      response_channel_(bus.channel(channels::kSimResponse)) {
   const Actuators& act = sim.actuators();
   const int n = act.size();
   resize(state_, n);
@@ -65,13 +68,14 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
   subs_.push_back(lc.subscribe(bus.channel(channels::kEStop), &SimIo::on_e_stop, this));
   subs_.push_back(lc.subscribe(bus.channel(gains_set_channel(channels::kSimGainsOwner)), &SimIo::on_gains, this));
   subs_.push_back(lc.subscribe(state_channel_, &SimIo::on_state, this));
+  subs_.push_back(lc.subscribe(bus.channel(channels::kSimRequest), &SimIo::on_request, this));
 }
 
 SimIo::~SimIo() {
   for (auto* s : subs_) bus_.lcm().unsubscribe(s);
 }
 
-void SimIo::publish_state(double real_time_factor) {
+void SimIo::publish_state(double real_time_factor, bool clock_again) {
   const Actuators& act = sim_.actuators();
   state_.utime = sim_.time_us();
   state_.step = sim_.step_count();
@@ -84,7 +88,8 @@ void SimIo::publish_state(double real_time_factor) {
   }
   const int n = state_.encode(state_buf_.data(), 0, int(state_buf_.size()));
   if (n > 0) bus_.lcm().publish(state_channel_, state_buf_.data(), unsigned(n));
-  if (state_.step == clock_step_ || (clock_step_ >= 0 && state_.step % clock_every_ != 0)) return;
+  const bool due = clock_step_ < 0 || (state_.step != clock_step_ && state_.step % clock_every_ == 0);
+  if (!due && !clock_again) return;
   clock_step_ = state_.step;
   clock_.utime = state_.utime;
   clock_.step = state_.step;
@@ -95,7 +100,7 @@ void SimIo::publish_state(double real_time_factor) {
 
 void SimIo::publish_statistics(const loop_stats_t& stats) { bus_.lcm().publish(stats_channel_, &stats); }
 
-bool SimIo::poll_until(int64_t deadline_us, bool until_command) {
+bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_request) {
   pollfd p{bus_.lcm().getFileno(), POLLIN, 0};
   for (int late = 0; late < kMaxMessagesPastDeadline;) {
     const int64_t left = std::max<int64_t>(0, deadline_us - monotonic_us());
@@ -105,7 +110,7 @@ bool SimIo::poll_until(int64_t deadline_us, bool until_command) {
     if (r < 0) return errno == EINTR;
     if (r == 0) return true;
     if (bus_.lcm().handle() < 0) return false;
-    if (until_command && has_pending_) return true;
+    if ((until_command && has_pending_) || (until_request && has_request())) return true;
   }
   return true;
 }
@@ -157,6 +162,10 @@ void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   if (!why.empty()) return drop(why);
   // A command answers a state already published: a later step is forged or corrupt, and remembering it would make
   // every genuine command after it look stale.
+  if (cmd_.step > sim_.step_count() && cmd_.step <= pre_reset_step_) {
+    ++stale_;
+    return;
+  }
   if (cmd_.step > sim_.step_count())
     return drop(fmt::format("step {} is ahead of the hardware's step {}: it answers no published state", cmd_.step,
                             sim_.step_count()));
@@ -171,6 +180,7 @@ void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   }
   has_pending_ = true;
   last_step_ = cmd_.step;
+  pre_reset_step_ = -1;
   last_command_us_ = monotonic_us();
 }
 
@@ -248,5 +258,52 @@ void SimIo::on_gains(const lcm::ReceiveBuffer* rbuf, const std::string&) {
 }
 
 void SimIo::answer_gains(pid_gains_t answer) { bus_.lcm().publish(gains_channel_, &answer); }
+
+
+void SimIo::on_request(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  sim_request_t req;
+  if (!decode_guarded(req, rbuf->data, rbuf->data_size)) return drop("sim_server/request: not a sim_request_t");
+  for (const sim_response_t& a : answered_)
+    if (a.request_id == req.request_id) return answer(a);
+  if (req.request_id == in_progress_) return;  // a STEP under way: answered when its steps are done
+  for (const sim_request_t& q : requests_)
+    if (q.request_id == req.request_id) return;
+  if (requests_.size() >= kMaxQueuedRequests) {
+    sim_response_t busy{};
+    busy.utime = sim_.time_us();
+    busy.request_id = req.request_id;
+    busy.op = req.op;
+    busy.message = fmt::format("{} requests are already waiting; try again", requests_.size());
+    busy.lockstep = lockstep_;
+    busy.step = sim_.step_count();
+    busy.period_us = int32_t(std::llround(sim_.control_period() * 1e6));
+    return answer(busy);
+  }
+  requests_.push_back(std::move(req));
+}
+
+sim_request_t SimIo::take_request() {
+  sim_request_t r = std::move(requests_.front());
+  requests_.pop_front();
+  in_progress_ = r.request_id;
+  return r;
+}
+
+void SimIo::answer(const sim_response_t& a) {
+  bus_.lcm().publish(response_channel_, &a);
+  if (a.request_id == in_progress_) in_progress_ = 0;
+  for (const sim_response_t& k : answered_)
+    if (k.request_id == a.request_id) return;
+  answered_.push_back(a);
+  if (answered_.size() > kRememberedAnswers) answered_.pop_front();
+}
+
+void SimIo::after_reset(int64_t previous_step) {
+  has_pending_ = false;
+  last_step_ = -1;
+  clock_step_ = -1;
+  expected_step_ = 0;
+  pre_reset_step_ = previous_step;
+}
 
 }  // namespace lcm_control::sim

@@ -2,12 +2,15 @@
 // publishes hardware/state (every control step) and clock (at its own
 // rate) from preallocated buffers; takes
 // hardware/command (checked, and dropped and counted when malformed, NaN,
-// wrong-size, from another session or in the wrong mode), e_stop and
-// sim_server/gains/set; publishes the gains in force and the statistics.
+// wrong-size, from another session or in the wrong mode), e_stop,
+// sim_server/gains/set and sim_server/request (queued for the stepper, a
+// repeated request_id answered again, not queued twice); publishes the gains in
+// force, the answers and the statistics.
 // Handlers run inside poll_until(), i.e. between control steps.
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -19,6 +22,8 @@
 #include "lcm_control/loop_stats_t.hpp"
 #include "lcm_control/pid_gains_t.hpp"
 #include "lcm_control/sim_clock_t.hpp"
+#include "lcm_control/sim_request_t.hpp"
+#include "lcm_control/sim_response_t.hpp"
 #include "sim_server/simulation.hpp"
 
 namespace lcm_control::sim {
@@ -34,13 +39,24 @@ class SimIo {
   int64_t session() const { return session_; }
 
   // hardware/state for the simulation's current step, and `clock` once on every
-  // clock_every-th step (and the first).
-  void publish_state(double real_time_factor);
+  // clock_every-th step (and the first), or again with `clock_again` (paused: a tool that starts then learns the
+  // sim time).
+  void publish_state(double real_time_factor, bool clock_again = false);
   void publish_statistics(const loop_stats_t& stats);
 
   // Handles LCM messages as they come until `deadline_us` (monotonic_us()), or until a command is
-  // accepted if `until_command`; at least one non-blocking pass. False if LCM failed.
-  bool poll_until(int64_t deadline_us, bool until_command = false);
+  // accepted if `until_command`, or a request is queued if `until_request`; at least one non-blocking pass. False if
+  // LCM failed.
+  bool poll_until(int64_t deadline_us, bool until_command = false, bool until_request = false);
+
+  // sim_server/request, oldest first. answer() publishes on sim_server/response and remembers the answer, so that a
+  // client resending the request (a lost answer) gets it again.
+  bool has_request() const { return !requests_.empty(); }
+  sim_request_t take_request();
+  void answer(const sim_response_t& answer);
+  // After Simulation::reset(): the pending command is forgotten, `clock` starts again, and commands answering the
+  // states before the reset (up to `previous_step`, still in flight) are stale rather than dropped as forged.
+  void after_reset(int64_t previous_step);
 
   // Lockstep: only a command tagged with this step is accepted (others are ignored, counted stale).
   void expect_step(int64_t step) { expected_step_ = step; }
@@ -62,6 +78,7 @@ class SimIo {
   void on_e_stop(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void on_state(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   void on_gains(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void on_request(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
   std::string why_rejected();
   void drop(const std::string& why);
   void answer_gains(pid_gains_t answer);
@@ -72,7 +89,7 @@ class SimIo {
   const int clock_every_;
   int64_t clock_step_ = -1;  // step of the last `clock` sent
   const int64_t session_;
-  const std::string state_channel_, clock_channel_, gains_channel_, stats_channel_;
+  const std::string state_channel_, clock_channel_, gains_channel_, stats_channel_, response_channel_;
   std::vector<lcm::Subscription*> subs_;
 
   hardware_state_t state_;
@@ -86,7 +103,11 @@ class SimIo {
   int64_t expected_step_ = -1, last_step_ = -1, last_command_us_ = -1;
   int64_t foreign_states_ = 0;
   int64_t dropped_ = 0, stale_ = 0, dropped_logged_ = 0, last_drop_log_us_ = 0, max_age_ = 0;
+  int64_t pre_reset_step_ = -1;  // commands up to this step answer states from before the last reset
   e_stop_t e_stop_msg_;
+  std::deque<sim_request_t> requests_;
+  int64_t in_progress_ = 0;  // request_id taken and not answered yet
+  std::deque<sim_response_t> answered_;  // the latest answers, for repeated request ids
   BusLog log_;  // e-stop and gains lines: anyone can send those
 };
 

@@ -6,20 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "common/substitution.hpp"
-#include "common/text.hpp"
 
 namespace lcm_control::sim {
-
-std::pair<std::string, double> parse_initial_position(const std::string& assignment) {
-  const auto [name, text] = parse_arg(assignment);
-  double value = 0;
-  if (!parse_double(text, value))
-    throw std::invalid_argument(fmt::format("initial position '{}': '{}' is not a number; write JOINT=VALUE in rad "
-                                            "(or m), e.g. {}=-1.57",
-                                            assignment, text, name));
-  return {name, value};
-}
 
 int substeps_for(const SimulationRates& r) {
   if (!(r.physics_hz > 0) || !(r.control_hz > 0) || !std::isfinite(r.physics_hz) || !std::isfinite(r.control_hz))
@@ -42,11 +30,34 @@ int clock_every_for(double control_hz, double clock_hz) {
 }
 
 Simulation::Simulation(const RobotModel& model, const SimulationRates& rates, const InitialPositions& initial)
-    : control_period_(1.0 / rates.control_hz), control_hz_(rates.control_hz), substeps_(substeps_for(rates)) {
-  multibody_ = std::make_unique<Multibody>(model, 1.0 / rates.physics_hz, initial);
-  actuators_ = std::make_unique<Actuators>(model, *multibody_);
+    : model_(model),
+      initial_(initial),
+      control_period_(1.0 / rates.control_hz),
+      control_hz_(rates.control_hz),
+      substeps_(substeps_for(rates)) {
+  multibody_ = std::make_unique<Multibody>(model_, 1.0 / rates.physics_hz, initial_);
+  actuators_ = std::make_unique<Actuators>(model_, *multibody_);
   multibody_->size_solver_buffers();
   actuators_->read(multibody_->dt());
+}
+
+std::vector<std::string> Simulation::reset(const InitialPositions& changes) {
+  InitialPositions initial = initial_;
+  for (const auto& [joint, q] : changes) initial[joint] = q;
+  auto multibody = std::make_unique<Multibody>(model_, multibody_->dt(), initial);
+  auto actuators = std::make_unique<Actuators>(model_, *multibody);
+  for (int i = 0; i < actuators->size(); ++i)
+    if (actuators->has_pid(i)) actuators->set_gains(i, actuators_->gains(i));
+  actuators->set_brakes(actuators_->brakes());
+  actuators->set_hold_all(actuators_->hold_all());
+  multibody->size_solver_buffers();
+  actuators->read(multibody->dt());
+  actuators->set_e_stop(actuators_->e_stop());
+  actuators_ = std::move(actuators);  // before the multibody it refers to
+  multibody_ = std::move(multibody);
+  initial_ = std::move(initial);
+  steps_ = 0;
+  return multibody_->start_warnings();
 }
 
 void Simulation::step() {

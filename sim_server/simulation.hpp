@@ -1,12 +1,14 @@
 // The simulated robot in one object: the multibody and its actuators, advanced
-// one control period (one or more physics steps) at a time. step() is the
-// real-time path: no allocation, logging, locks or wall-clock input.
+// one control period (one or more physics steps) at a time, and put back to its
+// start by reset(). step() is the real-time path: no allocation, logging, locks
+// or wall-clock input.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "common/robot_model.hpp"
 #include "sim_server/actuators.hpp"
@@ -18,9 +20,6 @@ struct SimulationRates {
   double physics_hz = 1000;
   double control_hz = 1000;  // physics_hz must be a whole multiple of it
 };
-
-// "JOINT=VALUE" (or JOINT:=VALUE) of --initial-position; throws std::invalid_argument naming what is wrong.
-std::pair<std::string, double> parse_initial_position(const std::string& assignment);
 
 // Physics steps per control step; throws std::invalid_argument unless physics_hz is a whole multiple of control_hz.
 int substeps_for(const SimulationRates& rates);
@@ -38,6 +37,15 @@ class Simulation {
   // One control period: substeps() times (actuators -> physics step -> read back).
   void step();
 
+  // Back to the state the constructor made: the multibody and its actuators are built afresh from the model (so a
+  // run after a reset repeats the first one bit for bit), at the initial positions with `changes` merged into them
+  // (kept for later resets); step and sim time 0. What the user set since the start carries over: PID gains, brakes,
+  // e-stop (still latched: it holds the new pose). Returns the start positions clamped into the limits (one line
+  // each). Throws ModelError for a change naming no moving joint or not finite; nothing changes then. References
+  // from multibody() and actuators() do not survive it.
+  std::vector<std::string> reset(const InitialPositions& changes = {});
+  const InitialPositions& initial_positions() const { return initial_; }
+
   int64_t step_count() const { return steps_; }                  // control steps taken
   int64_t time_us() const;                                       // sim time of step_count()
   double time() const { return double(steps_) * control_period_; }
@@ -50,6 +58,8 @@ class Simulation {
   const Actuators& actuators() const { return *actuators_; }
 
  private:
+  RobotModel model_;  // the multibody points into it
+  InitialPositions initial_;
   std::unique_ptr<Multibody> multibody_;
   std::unique_ptr<Actuators> actuators_;
   double control_period_;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/log.hpp"
+
 namespace lcm_control::sim {
 
 namespace {
@@ -13,10 +15,15 @@ constexpr int64_t kStatsPeriodUs = 1000000;
 // Real time: after a stall shorter than this the steps run back to back until sim time has caught up with
 // the wall clock; after a longer one (a suspended machine) the missed steps are skipped and counted.
 constexpr int64_t kMaxCatchUpUs = 500000;
+// Paused: the state is republished this often, below the controller manager's default silence timeout (0.25 s), so
+// that it keeps following the hardware and applies switches on the repeated state.
+constexpr int64_t kPausedRepublishUs = 100000;
 }  // namespace
 
 Stepper::Stepper(Simulation& sim, SimIo& io, const StepperOptions& options)
-    : sim_(sim), io_(io), opt_(options), period_us_(sim.control_period() * 1e6) {}
+    : sim_(sim), io_(io), opt_(options), period_us_(sim.control_period() * 1e6), paused_(options.start_paused) {
+  step_request_.request_id = 0;
+}
 
 bool Stepper::run(const std::atomic<bool>& stop) {
   start_us_ = monotonic_us();
@@ -47,7 +54,7 @@ void Stepper::step_timed(int64_t deadline_us) {
   last_cycle_us_ = t0;
   sim_.step();
   const int64_t t1 = monotonic_us();
-  io_.publish_state(real_time_factor());
+  publish(real_time_factor());
   const int64_t t2 = monotonic_us();
   ++w_.cycles;
   w_.step_sum += double(t1 - t0);
@@ -59,16 +66,21 @@ void Stepper::step_timed(int64_t deadline_us) {
 
 bool Stepper::run_lockstep(const std::atomic<bool>& stop) {
   const int64_t timeout_us = std::max<int64_t>(1000, std::llround(opt_.lockstep_timeout_s * 1e6));
-  io_.publish_state(real_time_factor());
+  publish(real_time_factor());
   while (!stop && !done()) {
+    serve_requests();
+    if (holding()) {
+      if (!wait_paused()) return false;
+      continue;
+    }
     io_.expect_step(sim_.step_count());
     int64_t published = monotonic_us();
     bool said = false;
-    while (!io_.has_command()) {
+    while (!io_.has_command() && !io_.has_request()) {
       if (stop) return true;
       const int64_t now = monotonic_us();
       if (now - published >= timeout_us) {
-        io_.publish_state(real_time_factor());
+        publish(real_time_factor());
         published = now;
         ++w_.missed;
         if (!said)
@@ -79,19 +91,21 @@ bool Stepper::run_lockstep(const std::atomic<bool>& stop) {
       }
       tick_statistics(now);
       if (!io_.poll_until(std::min({published + timeout_us, now + kMaxWaitSliceUs, w_.start_us + kStatsPeriodUs}),
-                          true))
+                          true, true))
         return false;
     }
+    if (!io_.has_command()) continue;  // a request first: it may pause or reset
     if (said) spdlog::info("lockstep: command for step {} arrived; stepping", sim_.step_count());
     io_.take_command();
     step_timed(0);
+    after_step();
     tick_statistics(monotonic_us());
   }
   return true;
 }
 
 void Stepper::watchdog(int64_t now) {
-  const int64_t last = io_.last_command_us();
+  const int64_t last = std::max(io_.last_command_us(), resumed_us_);
   const bool lost = last >= 0 && double(now - last) > opt_.watchdog_s * 1e6;
   if (lost == watchdog_holding_) return;
   watchdog_holding_ = lost;
@@ -104,10 +118,16 @@ void Stepper::watchdog(int64_t now) {
 }
 
 bool Stepper::run_real_time(const std::atomic<bool>& stop) {
-  int64_t base_us = start_us_, base_step = sim_.step_count();
-  io_.publish_state(1.0);
+  base_us_ = start_us_;
+  base_step_ = sim_.step_count();
+  publish(1.0);
   while (!stop && !done()) {
-    const int64_t deadline = base_us + std::llround(double(sim_.step_count() + 1 - base_step) * period_us_);
+    serve_requests();
+    if (holding()) {
+      if (!wait_paused()) return false;
+      continue;
+    }
+    const int64_t deadline = base_us_ + std::llround(double(sim_.step_count() + 1 - base_step_) * period_us_);
     int64_t now = monotonic_us();
     do {  // at least one pass, so messages are handled even while catching up
       if (stop) return true;
@@ -118,15 +138,145 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
     const int64_t late = now - deadline;
     if (late > std::max<int64_t>(kMaxCatchUpUs, std::llround(10 * period_us_))) {
       w_.missed += std::llround(double(late) / period_us_);
-      base_us = now;
-      base_step = sim_.step_count();
+      rebase(now);
     }
     if (!io_.take_command() && io_.last_command_us() >= 0) ++w_.missed;  // the controller did not answer in time
     watchdog(now);
     step_timed(deadline + std::llround(period_us_));
+    after_step();
     tick_statistics(monotonic_us());
   }
   return true;
+}
+
+void Stepper::rebase(int64_t now) {
+  base_us_ = now;
+  base_step_ = sim_.step_count();
+}
+
+void Stepper::publish(double real_time_factor, bool clock_again) {
+  io_.publish_state(real_time_factor, clock_again);
+  last_publish_us_ = monotonic_us();
+}
+
+bool Stepper::wait_paused() {
+  const int64_t now = monotonic_us();
+  if (now - last_publish_us_ >= kPausedRepublishUs) publish(real_time_factor(), true);
+  tick_statistics(now);
+  return io_.poll_until(std::min({last_publish_us_ + kPausedRepublishUs, now + kMaxWaitSliceUs,
+                                  w_.start_us + kStatsPeriodUs}),
+                        false, true);
+}
+
+std::string Stepper::where() const { return fmt::format("step {} (t={:.3f} s)", sim_.step_count(), sim_.time()); }
+
+sim_response_t Stepper::response_to(const sim_request_t& req, bool ok, std::string message) const {
+  sim_response_t a{};
+  a.utime = sim_.time_us();
+  a.request_id = req.request_id;
+  a.op = req.op;
+  a.ok = ok;
+  a.message = std::move(message);
+  a.paused = paused_;
+  a.lockstep = opt_.lockstep;
+  a.step = sim_.step_count();
+  a.period_us = int32_t(std::llround(period_us_));
+  a.resets = resets_;
+  return a;
+}
+
+void Stepper::serve_requests() {
+  while (io_.has_request()) serve(io_.take_request());
+}
+
+void Stepper::finish_step_request(const std::string& how) {
+  if (step_request_.request_id == 0) return;
+  spdlog::info("{}", how);
+  io_.answer(response_to(step_request_, true, how));
+  step_request_ = sim_request_t{};
+  step_request_.request_id = 0;
+}
+
+void Stepper::after_step() {
+  if (steps_left_ == 0 || --steps_left_ > 0) return;
+  finish_step_request(fmt::format("stepped {} control step{}: paused at {}", step_request_.steps,
+                                  step_request_.steps == 1 ? "" : "s", where()));
+}
+
+void Stepper::serve(const sim_request_t& req) {
+  const std::string who = req.client.empty() ? "" : fmt::format(" (from {})", clip(req.client));
+  auto reply = [&](bool ok, std::string message) {
+    if (ok && req.op != sim_request_t::STATUS) spdlog::info("{}{}", message, who);
+    io_.answer(response_to(req, ok, std::move(message)));
+  };
+  const int64_t now = monotonic_us();
+  switch (req.op) {
+    case sim_request_t::STATUS:
+      return reply(true, fmt::format("{} at {}, {}{}", paused_ ? "paused" : "running", where(),
+                                     opt_.lockstep ? "lockstep" : "real time",
+                                     resets_ ? fmt::format(", {} reset{}", resets_, resets_ == 1 ? "" : "s") : ""));
+    case sim_request_t::PAUSE:
+      if (holding()) return reply(true, "already paused at " + where());
+      finish_step_request(fmt::format("the step was cut short by a pause after {} of {} steps: paused at {}",
+                                      step_request_.steps - steps_left_, step_request_.steps, where()));
+      paused_ = true;
+      steps_left_ = 0;
+      return reply(true, "paused at " + where() + ": sim time holds; `cmctl resume` or `cmctl step N` go on");
+    case sim_request_t::RESUME:
+      if (!paused_) return reply(true, "already running at " + where());
+      finish_step_request("the step was cut short by a resume at " + where());
+      paused_ = false;
+      steps_left_ = 0;
+      rebase(now);
+      resumed_us_ = now;
+      return reply(true, "resumed at " + where());
+    case sim_request_t::STEP:
+      if (!paused_)
+        return reply(false, fmt::format("cannot step {}: the simulation is running at {}; pause it first (cmctl pause)",
+                                        req.steps, where()));
+      if (req.steps < 1) return reply(false, fmt::format("cannot step {}: give a number of steps >= 1", req.steps));
+      if (steps_left_ > 0)
+        return reply(false, fmt::format("cannot step {}: a step of {} is under way ({} left)", req.steps,
+                                        step_request_.steps, steps_left_));
+      steps_left_ = req.steps;
+      step_request_ = req;
+      rebase(now);
+      resumed_us_ = now;
+      return;  // answered by after_step() when the steps are done
+    case sim_request_t::RESET: {
+      InitialPositions changes;
+      const int n = std::min<int>(req.num_joints, int(std::min(req.joint.size(), req.position.size())));
+      for (int k = 0; k < n; ++k) changes[req.joint[k]] = req.position[k];
+      const int64_t previous = sim_.step_count();
+      std::vector<std::string> clamped;
+      try {
+        clamped = sim_.reset(changes);
+      } catch (const ModelError& e) {
+        return reply(false, fmt::format("cannot reset: {}; nothing was changed", e.what()));
+      }
+      finish_step_request("the step was cut short by a reset");
+      steps_left_ = 0;
+      ++resets_;
+      io_.after_reset(previous);
+      start_step_ -= previous;  // the real-time factors keep counting the steps taken before
+      w_.start_step -= previous;
+      rebase(now);
+      resumed_us_ = now;
+      watchdog_holding_ = sim_.actuators().hold_all();
+      publish(real_time_factor());
+      std::string pose;
+      for (const auto& [joint, q] : sim_.initial_positions()) pose += fmt::format("{}{}={:g}", pose.empty() ? "" : " ", joint, q);
+      std::string msg = fmt::format("reset at step {} (t={:.3f} s) to step 0: every joint at its start pose ({}){}",
+                                    previous, double(previous) * sim_.control_period(),
+                                    pose.empty() ? "0, or the nearest limit" : pose + ", the others at 0 or the nearest limit",
+                                    paused_ ? "; still paused" : "");
+      for (const std::string& c : clamped) msg += "; " + c;
+      return reply(true, msg);
+    }
+    default:
+      return reply(false, fmt::format("unknown op {} (sim_request_t: STATUS 0, PAUSE 1, RESUME 2, STEP 3, RESET 4)",
+                                      int(req.op)));
+  }
 }
 
 void Stepper::tick_statistics(int64_t now) {

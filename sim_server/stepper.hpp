@@ -1,7 +1,9 @@
 // Paces the simulation and runs the hardware loop around it: real time
 // (absolute deadlines on the monotonic clock, newest command, watchdog hold)
 // or lockstep (publish state k, wait for the command tagged k, step; time
-// stands still while nobody answers). Publishes 1 Hz statistics.
+// stands still while nobody answers). Serves sim_server/request between steps:
+// pause (sim time holds, the state is republished so that the controller
+// manager can still switch), resume, step N, reset. Publishes 1 Hz statistics.
 #pragma once
 
 #include <atomic>
@@ -17,6 +19,7 @@ struct StepperOptions {
   double lockstep_timeout_s = 1.0;  // lockstep: republish the state this often while waiting
   double watchdog_s = 0.1;          // real time: hold every actuator after this long without a command
   double duration_s = 0;            // sim seconds to run; 0 runs until stopped
+  bool start_paused = false;        // as Gazebo's paused:=true: nothing steps until a RESUME or STEP request
 };
 
 class Stepper {
@@ -29,6 +32,17 @@ class Stepper {
  private:
   bool run_lockstep(const std::atomic<bool>& stop);
   bool run_real_time(const std::atomic<bool>& stop);
+  // Paused with no steps to take: the state is republished, requests are served.
+  bool holding() const { return paused_ && steps_left_ == 0; }
+  bool wait_paused();
+  void publish(double real_time_factor, bool clock_again = false);
+  void serve_requests();
+  void serve(const sim_request_t& req);
+  sim_response_t response_to(const sim_request_t& req, bool ok, std::string message) const;
+  std::string where() const;  // "step k (t=... s)"
+  void finish_step_request(const std::string& how);
+  void after_step();
+  void rebase(int64_t now_us);  // real time: pace from now on, without catching up what lay before
   bool done() const;
   double real_time_factor() const;
   void step_timed(int64_t deadline_us);
@@ -41,7 +55,13 @@ class Stepper {
   double period_us_;
   int64_t start_us_ = 0, start_step_ = 0;
   bool watchdog_holding_ = false;
-  int64_t last_cycle_us_ = -1;
+  int64_t last_cycle_us_ = -1, last_publish_us_ = -1;
+  int64_t base_us_ = 0, base_step_ = 0;  // real time: step base_step_ + n is due at base_us_ + n periods
+  int64_t resumed_us_ = -1;              // the watchdog counts from here after a pause
+  bool paused_ = false;
+  int64_t steps_left_ = 0;               // paused: steps a STEP request still takes
+  sim_request_t step_request_;           // the STEP under way (request_id 0: none)
+  int64_t resets_ = 0;
 
   // The current statistics window (1 s of wall time).
   struct Window {

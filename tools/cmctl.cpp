@@ -1,9 +1,12 @@
 // cmctl: the controller_manager command line (list, list-types, load, unload,
-// start, stop, switch, reload) over controller_manager/request and /response.
+// start, stop, switch, reload) over controller_manager/request and /response,
+// and the simulation's (pause, resume, step, reset, sim-status) over
+// sim_server/request and /response.
 #include <fmt/ranges.h>
 
 #include "common/cli.hpp"
 #include "tools/cm_client.hpp"
+#include "tools/sim_client.hpp"
 #include "tools/support.hpp"
 
 int main(int argc, char** argv) {
@@ -16,7 +19,9 @@ int main(int argc, char** argv) {
       "  cmctl list\n"
       "  cmctl load j1_controller && cmctl start j1_controller\n"
       "  cmctl switch --start j2_effort_controller --stop j2_controller\n"
-      "  cmctl --namespace robot1 list-types",
+      "  cmctl --namespace robot1 list-types\n"
+      "  cmctl pause && cmctl step 100 && cmctl resume\n"
+      "  cmctl reset -J j1=0.5",
       "cmctl"};
   BusFlags bus_flags;
   double timeout = 3;
@@ -34,6 +39,30 @@ int main(int argc, char** argv) {
   auto* stop_cmd = app.add_subcommand("stop", "stop controllers (one strict switch)");
   auto* sw = app.add_subcommand("switch", "stop some and start others in one switch");
   auto* reload = app.add_subcommand("reload", "reload_controller_libraries: unload all and re-read the config");
+  auto* pause = app.add_subcommand("pause", "sim_server: hold sim time (Gazebo's pause_physics); switching still works");
+  auto* resume = app.add_subcommand("resume", "sim_server: run again from where it paused");
+  auto* step_cmd = app.add_subcommand("step", "sim_server, paused: advance exactly N control steps, then pause again");
+  auto* reset = app.add_subcommand(
+      "reset", "sim_server: every joint back to the start pose, sim time to 0; running controllers restart from there");
+  auto* sim_status = app.add_subcommand("sim-status", "sim_server: running or paused, step, sim time, resets");
+  int64_t steps = 0;
+  step_cmd->add_option("N", steps, "control steps (>= 1)")->required()->check([](const std::string& v) {
+    return v.find_first_not_of("0123456789") == std::string::npos && v.find_first_not_of('0') != std::string::npos
+               ? std::string()
+               : "N must be a whole number of control steps >= 1, not '" + v + "'";
+  });
+  std::vector<std::string> initial;
+  reset->add_option("-J,--initial-position", initial,
+                    "JOINT=VALUE: a new start position for that joint (rad or m; repeatable), kept for later resets; "
+                    "other joints go back to sim_server's -J (or 0)")
+      ->check([](const std::string& v) {
+        try {
+          parse_initial_position(v);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      });
   for (auto* sc : {load, unload, start_cmd, stop_cmd}) sc->add_option("NAME", names, "controller names")->required();
   sw->add_option("--start", start, "controllers to start");
   sw->add_option("--stop", stop, "controllers to stop");
@@ -42,6 +71,26 @@ int main(int argc, char** argv) {
   return run_program(app, argc, argv, [&] {
     install_stop_signals();
     Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    for (auto* sc : {pause, resume, step_cmd, reset, sim_status}) {
+      if (!sc->parsed()) continue;
+      SimClient sim(bus, "cmctl");
+      sim_response_t a;
+      if (pause->parsed()) a = sim.pause(timeout);
+      if (resume->parsed()) a = sim.resume(timeout);
+      if (step_cmd->parsed()) a = sim.step(steps, timeout);
+      if (sim_status->parsed()) a = sim.status(timeout);
+      if (reset->parsed()) {
+        InitialPositions start;
+        for (const auto& v : initial) {
+          const auto [joint, q] = parse_initial_position(v);
+          start[joint] = q;
+        }
+        a = sim.reset(start, timeout);
+      }
+      if (!a.ok) throw std::runtime_error(a.message.empty() ? "refused (no reason given)" : a.message);
+      fmt::print("{}\n", a.message);
+      return int(kExitOk);
+    }
     CmClient cm(bus, "cmctl");
     cm_response_t r;
     if (list->parsed()) {

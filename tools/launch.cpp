@@ -128,6 +128,10 @@ int main(int argc, char** argv) {
   app.add_option("FILE", file, "launch file: YAML (see config/turret_bot.launch.yaml) or ROS launch XML")->required();
   app.add_option("--mode", mode, "override the file's mode: realtime or lockstep")
       ->check(CLI::IsMember({"realtime", "lockstep"}));
+  bool paused = false;
+  app.add_flag("--paused", paused,
+               "start sim_server paused (Gazebo's paused:=true): controllers are spawned, nothing moves until "
+               "`cmctl resume`");
   app.add_option("--cpu", cpu,
                  "override the file's cpu: auto (lockstep: sim_server and controller_manager share the least busy "
                  "CPU), none, or a CPU number")
@@ -145,6 +149,7 @@ int main(int argc, char** argv) {
   return run_program(app, argc, argv, [&]() -> int {
     LaunchPlan plan = read_launch_file(file, package_path);
     if (!mode.empty()) plan.mode = mode;
+    if (paused) plan.paused = true;
     if (!cpu.empty()) plan.cpu = cpu;
     for (const auto& n : plan.notes) say("note: " + n);
 
@@ -156,6 +161,7 @@ int main(int argc, char** argv) {
     for (const auto& [joint, q] : plan.initial_positions)
       sim.insert(sim.end(), {"--initial-position", fmt::format("{}={}", joint, q)});
     if (plan.mode == "lockstep") sim.insert(sim.end(), {"--mode", "lockstep"});
+    if (plan.paused) sim.push_back("--paused");
     if (plan.physics_rate > 0) sim.insert(sim.end(), {"--physics-rate", fmt::format("{:g}", plan.physics_rate)});
     if (plan.control_rate > 0) sim.insert(sim.end(), {"--control-rate", fmt::format("{:g}", plan.control_rate)});
     sim.insert(sim.end(), plan.sim_args.begin(), plan.sim_args.end());

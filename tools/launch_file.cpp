@@ -119,7 +119,7 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
                                        "physics_rate", "control_rate",    "sim_server_args",
                                        "controller_manager_args", "controllers", "spawner_args",
                                        "state_publisher", "processes",  "commands", "namespace", "args",
-                                       "initial_positions"};
+                                       "initial_positions", "paused"};
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
     const YAML::Node& v = kv.second;
@@ -152,6 +152,8 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
         plan.spawner_args = list(v, key);
       } else if (key == "state_publisher") {
         plan.state_publisher = boolean(v, key);
+      } else if (key == "paused") {
+        plan.paused = boolean(v, key);
       } else if (key == "namespace") {
         plan.ns = normalize_namespace(str(v, key));
       } else if (key == "args") {
@@ -259,7 +261,7 @@ struct RosReader {
   LaunchPlan& plan;
   Args args;
   std::vector<std::pair<std::string, std::string>> textfile_params;  // name -> file
-  bool gazebo = false, spawn_model = false;
+  bool gazebo = false, spawn_model = false, unpause = false;
   std::string spawn_param;
   int rosparam_files = 0;
   std::vector<std::string> problems;
@@ -313,6 +315,7 @@ struct RosReader {
     } else if (pkg == "gazebo_ros" && type == "spawn_model") {
       spawn_model = true;
       for (size_t k = 0; k < words.size(); ++k) {
+        if (words[k] == "-unpause") unpause = true;
         if (words[k] == "-param" && k + 1 < words.size()) spawn_param = strip_slash(words[k + 1]);
         if (words[k] == "-file" && k + 1 < words.size()) plan.urdf = words[k + 1];
         if (words[k] == "-J" && k + 2 < words.size()) {
@@ -395,8 +398,11 @@ struct RosReader {
         gazebo = true;
         for (auto* a = e->FirstChildElement("arg"); a; a = a->NextSiblingElement("arg")) {
           const std::string n = attr(a, "name"), v = attr(a, "value");
-          if (n == "paused" && v == "true")
-            plan.notes.push_back(where(a) + ": paused=true: sim_server starts running (use mode lockstep to hold it)");
+          if (n == "paused" && v == "true") {
+            plan.paused = true;
+            plan.notes.push_back(where(a) + ": paused=true -> sim_server --paused (cmctl resume runs it), unless "
+                                 "spawn_model has -unpause");
+          }
         }
         plan.notes.push_back(where(e) + ": gazebo_ros world -> sim_server + controller_manager");
       } else {
@@ -431,7 +437,7 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
                                  doc.ErrorStr() ? trim(doc.ErrorStr()) : "parse error"));
   const tinyxml2::XMLElement* root = doc.FirstChildElement("launch");
   if (!root) throw ModelError(fmt::format("{}: no <launch> element; is this a ROS launch file?", path));
-  RosReader r{path, package_path, plan, {}, {}, false, false, "", 0, {}, ""};
+  RosReader r{path, package_path, plan, {}, {}, false, false, false, "", 0, {}, ""};
   for (auto* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
     try {
       r.element(e);
@@ -454,6 +460,10 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
     r.problems.push_back(fmt::format(
         "{}: nothing to simulate: no <include> of gazebo_ros's world launch file and no spawn_model node", path));
   plan.args = r.args;
+  if (plan.paused && r.unpause) {
+    plan.paused = false;  // as in Gazebo: spawn_model -unpause starts physics once the model is in
+    plan.notes.push_back(path + ": paused=true with spawn_model -unpause: sim_server runs from the start");
+  }
   if (!r.problems.empty()) throw ModelError(r.problems);
   const std::string dir = fs::absolute(path).parent_path().string();
   plan.urdf = absolute_from(plan.urdf, dir);

@@ -29,6 +29,7 @@ struct LaunchPlan {
   std::string file;
   std::string urdf, config;          // absolute paths
   std::string mode = "realtime";     // realtime | lockstep
+  bool paused = false;               // sim_server --paused (`paused:`, gazebo_ros's paused arg)
   double physics_rate = 0, control_rate = 0;  // 0: sim_server's defaults
   // CPU for sim_server and controller_manager: "auto" (lockstep: the least busy CPU for both; real time: any),
   // "none", or a CPU number.

@@ -53,5 +53,15 @@ TEST(HardwareStatus, EStopAndSilenceAreSaid) {
   EXPECT_NE(h.describe(4'000'000, 250'000, "hardware/state").find("1000 Hz (0.0 measured)"), std::string::npos);
 }
 
+TEST(HardwareStatus, AStepRepeatedLongerThanTheSilenceTimeoutIsSaidToBePaused) {
+  HardwareStatus h;
+  for (int k = 0; k <= 30; ++k) h.seen(state(42, true), int64_t(k) * 100'000);  // a paused sim_server: 10 Hz, one step
+  EXPECT_EQ(h.describe(3'050'000, 250'000, "hardware/state"),
+            "session 3fa9c2d1, lockstep, 1000 Hz, 18.25x real time, step 42, last state 0.050 s ago; step 42 repeated "
+            "for 3.0 s: the hardware is paused (cmctl resume) or waiting for a command");
+  h.seen(state(43, true), 3'100'000);
+  EXPECT_EQ(h.describe(3'100'000, 250'000, "hardware/state").find("repeated"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace lcm_control::cm

@@ -148,6 +148,31 @@ TEST(ControllerManagerLoop, RepeatedStepIsAnsweredWithoutUpdating) {
   EXPECT_EQ(rig.cm->last_command().step, rig.step - 1);
 }
 
+TEST(ControllerManagerLoop, ASwitchIsAppliedOnTheRepeatedStepOfAPausedHardware) {
+  // A paused sim_server republishes its step: the spawner's switch must not wait for an update that never comes.
+  Rig rig;
+  ASSERT_TRUE(rig.load("arm_position").ok);
+  rig.cycle(3);
+  const int64_t paused_at = rig.step - 1;
+  const auto before = rig.cm->loop().stats().cycles();
+  std::optional<Reply> got;
+  rig.cm->switch_controllers({"arm_position"}, {}, cm_request_t::STRICT, [&](const Reply& r) { got = r; });
+  ASSERT_FALSE(got);
+  fill_state(rig.state, rig.act, paused_at, rig.session, 1000, true);
+  rig.cm->on_hardware_state(rig.state);
+  ASSERT_TRUE(got);
+  EXPECT_TRUE(got->ok) << got->message;
+  EXPECT_TRUE(has(got->message, "at step " + std::to_string(paused_at))) << got->message;
+  EXPECT_EQ(rig.cm->loop().stats().cycles(), before);  // no update
+  const auto& c = rig.cm->last_command();
+  EXPECT_EQ(c.step, paused_at);
+  for (int a = 0; a < c.num_actuators; ++a)
+    EXPECT_EQ(c.mode[a] != hardware_command_t::MODE_NONE, c.name[a] == "arm_motor") << c.name[a];  // now commanded
+  // and the repeated step after that is plain again
+  rig.cm->on_hardware_state(rig.state);
+  EXPECT_EQ(rig.cm->loop().stats().cycles(), before);
+}
+
 TEST(ControllerManagerLoop, UnclaimedActuatorsGetModeNone) {
   Rig rig;
   ASSERT_TRUE(rig.load("wheel_velocity").ok);

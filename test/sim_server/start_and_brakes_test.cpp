@@ -23,14 +23,14 @@ TEST(sim_start, InitialPositionIsWhereTheJointStarts) {
   Simulation sim(pendulum(), {}, {{"swing", 1.0}});
   const int i = sim.actuators().find_joint("swing");
   EXPECT_DOUBLE_EQ(sim.actuators().joint_position(i), 1.0);
-  EXPECT_TRUE(sim.multibody().warnings().empty()) << joined(sim.multibody().warnings());
+  EXPECT_TRUE(sim.multibody().start_warnings().empty()) << joined(sim.multibody().start_warnings());
 }
 
 TEST(sim_start, AStartOutsideTheLimitsIsClampedWithOneWarning) {
   Simulation sim(pendulum(), {}, {{"swing", 3.0}});
   const int i = sim.actuators().find_joint("swing");
   EXPECT_DOUBLE_EQ(sim.actuators().joint_position(i), 2.5);
-  const std::string w = joined(sim.multibody().warnings());
+  const std::string w = joined(sim.multibody().start_warnings());
   EXPECT_NE(w.find("joint 'swing' would start at 3, outside its limits [-2.5, 2.5]"), std::string::npos) << w;
   EXPECT_NE(w.find("--initial-position swing=VALUE"), std::string::npos) << w;
 }
@@ -42,7 +42,7 @@ TEST(sim_start, ADefaultStartOutsideTheLimitsIsClampedToo) {
     if (j.name == "swing") j.lower = -2.0, j.upper = -0.5;
   Simulation sim(m, {});
   EXPECT_DOUBLE_EQ(sim.actuators().joint_position(sim.actuators().find_joint("swing")), -0.5);
-  EXPECT_NE(joined(sim.multibody().warnings()).find("(no initial position given)"), std::string::npos);
+  EXPECT_NE(joined(sim.multibody().start_warnings()).find("(no initial position given)"), std::string::npos);
 }
 
 TEST(sim_start, AnInitialPositionNamingNoMovingJointIsRefused) {

@@ -194,6 +194,29 @@ TEST(LaunchFile, YamlNamespaceArgsAndInitialPositions) {
   EXPECT_NE(p.find("bad.yaml:4: 'args' must be a map NAME: VALUE"), std::string::npos) << p;
 }
 
+TEST(LaunchFile, PausedFromYamlAndFromGazebosPausedArgUnlessSpawnModelUnpauses) {
+  const std::string dir = lt::temp_dir("launch_paused");
+  const std::string files = "urdf: " + lt::source("config/turret_bot.urdf") + "\nconfig: " +
+                            lt::source("config/turret_bot.yaml") + "\n";
+  EXPECT_TRUE(read_launch_file(write(dir, "p.launch.yaml", files + "paused: true\n"), {}).paused);
+  EXPECT_FALSE(read_launch_file(write(dir, "r.launch.yaml", files), {}).paused);
+  auto xml = [&](const std::string& spawn_args) {
+    return write(dir, "x.launch", R"L(<launch>
+  <param name="robot_description" textfile=")L" + lt::source("config/turret_bot.urdf") + R"L("/>
+  <rosparam command="load" file=")L" + lt::source("config/turret_bot.yaml") + R"L("/>
+  <include file="$(find gazebo_ros)/launch/empty_world.launch"><arg name="paused" value="true"/></include>
+  <node name="urdf_spawner" pkg="gazebo_ros" type="spawn_model" args=")L" + spawn_args + R"L("/>
+</launch>
+)L");
+  };
+  EXPECT_TRUE(read_launch_file(xml("-urdf -model turret_bot -param robot_description"), {}).paused);
+  const LaunchPlan unpaused = read_launch_file(xml("-unpause -urdf -model turret_bot -param robot_description"), {});
+  EXPECT_FALSE(unpaused.paused);
+  bool noted = false;
+  for (const auto& n : unpaused.notes) noted = noted || n.find("spawn_model -unpause") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
 TEST(LaunchFile, RosSpawnerNamespaceArgsAndSpawnModelJ) {
   const std::string dir = lt::temp_dir("launch_ros_ns");
   const std::string file = write(dir, "x.launch", R"L(<launch>

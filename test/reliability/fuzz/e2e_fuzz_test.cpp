@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <random>
+#include <set>
 #include <cmath>
 #include <thread>
 
@@ -20,6 +22,8 @@
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/link_poses_t.hpp"
 #include "lcm_control/pid_gains_t.hpp"
+#include "lcm_control/sim_request_t.hpp"
+#include "lcm_control/sim_response_t.hpp"
 #include "test/reliability/fuzz/payloads.hpp"
 #include "test/support/lcm_test.hpp"
 #include "test/support/process.hpp"
@@ -87,11 +91,13 @@ TEST(FuzzOverLcm, RunningProgramsSurviveHostilePayloadsOnEveryChannel) {
   send<joint_state_t>(lc, p, hints, "joint_states", n);
   send<e_stop_t>(lc, p, hints, "e_stop", n);
   send<pid_gains_t>(lc, p, hints, "sim_server/gains/set", n);
+  send<sim_request_t>(lc, p, hints, "sim_server/request", n);
   const double flood_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
   // Undo what a well-formed hostile message may legitimately have done (anyone on the bus may, as with ROS):
-  // release the e-stop and restore the gains, repeated until hardware/state and sim_server's answers show both
-  // took; a message sent into a subscription whose queue the flood still fills is dropped by LCM.
+  // release the e-stop, resume a paused simulation and restore the gains, repeated until hardware/state and
+  // sim_server's answers show all three took; a message sent into a subscription whose queue the flood still fills
+  // is dropped by LCM.
   sleep_ms(500);  // let the flood's backlog drain
   lt::Recorder<hardware_state_t> hw(lc, "hardware/state");
   e_stop_t release{};
@@ -101,8 +107,17 @@ TEST(FuzzOverLcm, RunningProgramsSurviveHostilePayloadsOnEveryChannel) {
     return a.p == b.p && a.i == b.i && a.d == b.d && a.i_clamp_min == b.i_clamp_min &&
            a.i_clamp_max == b.i_clamp_max && a.antiwindup == b.antiwindup;
   };
+  lt::Recorder<sim_response_t> sim_answers_seen(lc, "sim_server/response");
+  sim_request_t resume{};
+  resume.op = sim_request_t::RESUME;
+  resume.client = "fuzz test";
+  std::set<int64_t> resume_ids;
+  std::mt19937_64 ids(std::random_device{}());
   auto restored = [&] {
     if (hw.messages.empty() || hw.messages.back().e_stop) return false;
+    if (std::none_of(sim_answers_seen.messages.begin(), sim_answers_seen.messages.end(),
+                     [&](const sim_response_t& a) { return resume_ids.count(a.request_id) && !a.paused; }))
+      return false;
     for (const pid_gains_t& b : before) {
       auto it = std::find_if(gains.messages.rbegin(), gains.messages.rend(),
                              [&](const pid_gains_t& g) { return g.joint == b.joint; });
@@ -114,6 +129,9 @@ TEST(FuzzOverLcm, RunningProgramsSurviveHostilePayloadsOnEveryChannel) {
   for (int k = 0; k < 40 && !undone; ++k) {
     gains.messages.clear();
     lc.publish("e_stop", &release);
+    resume.request_id = int64_t(ids() >> 1) | 1;  // not one a hostile request may have used
+    resume_ids.insert(resume.request_id);
+    lc.publish("sim_server/request", &resume);
     for (pid_gains_t g : before) {
       g.query = false;
       lc.publish("sim_server/gains/set", &g);
@@ -158,9 +176,9 @@ TEST(FuzzOverLcm, RunningProgramsSurviveHostilePayloadsOnEveryChannel) {
   bool finite = true;
   for (size_t k = states.messages.size() > 20 ? states.messages.size() - 20 : 0; k < states.messages.size(); ++k)
     for (double x : states.messages[k].position) finite = finite && std::isfinite(x);
-  std::printf("RELIABILITY|fuzz|over LCM: sim_server, controller_manager, state-publisher, state-logger, 9 channels|"
+  std::printf("RELIABILITY|fuzz|over LCM: sim_server, controller_manager, state-publisher, state-logger, 10 channels|"
               "tried=%d|ok=%d|crashes=%d|hangs=%d|%d payloads in %.1f s; afterwards j1 %s 0.5, joint_states %s\n",
-              9 * n, alive == 4 && hung == 0 ? 9 * n : 0, 4 - alive, hung, 9 * n, flood_s, reached ? "reached" : "did NOT reach",
+              10 * n, alive == 4 && hung == 0 ? 10 * n : 0, 4 - alive, hung, 10 * n, flood_s, reached ? "reached" : "did NOT reach",
               finite ? "finite" : "NOT finite");
   EXPECT_EQ(alive, 4) << sim.output().substr(0, 2000) << cm.output().substr(0, 2000);
   EXPECT_EQ(hung, 0) << "sim answers " << sim_answers << ", controller_manager answers " << cm_answers

@@ -230,7 +230,8 @@ TEST(Fuzz, SimServerTakesHostilePayloadsOnEveryChannel) {
   ASSERT_EQ(gains.messages.size(), 2u);
   const std::vector<pid_gains_t> before = gains.messages;
   const std::vector<std::pair<std::string, std::string>> channels{
-      {"hardware/command", "hardware_command_t"}, {"e_stop", "e_stop_t"}, {"sim_server/gains/set", "pid_gains_t"}};
+      {"hardware/command", "hardware_command_t"}, {"e_stop", "e_stop_t"}, {"sim_server/gains/set", "pid_gains_t"},
+      {"sim_server/request", "sim_request_t"}};  // queued for the stepper, which this test does not run
   lt::Payloads payloads(1123);
   for (const auto& [channel, type] : channels) {
     const int64_t steps = sim.step_count();

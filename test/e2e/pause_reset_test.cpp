@@ -1,0 +1,187 @@
+// cmctl pause / resume / step / reset against the real sim_server and
+// controller_manager: controllers spawned while paused, exact steps, a reset
+// that restarts the controllers from the start pose without a jump, and in
+// lockstep a run after a reset repeating the one before bit for bit.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lcm_control/hardware_command_t.hpp"
+#include "lcm_control/hardware_state_t.hpp"
+#include "test/support/lcm_test.hpp"
+#include "test/support/process.hpp"
+
+namespace lcm_control::testing {
+namespace {
+
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+class Session {
+ public:
+  Session() : url_(unique_lcm_url() + "&recv_buf_size=4194304"), lc(url_) {}
+  ~Session() {
+    for (auto* p : {&spawner_, &cm_, &sim_})
+      if (*p) (*p)->stop(10);
+  }
+
+  void start(std::vector<std::string> sim_extra) {
+    cm_ = std::make_unique<ChildProcess>(std::vector<std::string>{bin("controller_manager"), "--urdf", urdf(),
+                                                                  "--config", yaml()},
+                                         env());
+    std::vector<std::string> sim{bin("sim_server"), "--urdf", urdf(), "--config", yaml()};
+    sim.insert(sim.end(), sim_extra.begin(), sim_extra.end());
+    sim_ = std::make_unique<ChildProcess>(sim, env());
+    ASSERT_TRUE(sim_->wait_for_output("ready", 30)) << sim_->output();
+    spawner_ = std::make_unique<ChildProcess>(
+        std::vector<std::string>{bin("spawner"), "joint_state_controller", "j1_controller", "j2_controller"}, env());
+    ASSERT_TRUE(spawner_->wait_for_output("spawner: ready", 30)) << spawner_->output() << cm_->output();
+  }
+
+  // Runs a tool to its end (at most 60 s): its exit code, its output in `out`.
+  int run(std::vector<std::string> argv, std::string* out = nullptr) {
+    argv[0] = bin(argv[0]);
+    ChildProcess p(argv, env());
+    const int rc = p.wait(60);
+    if (out) *out = p.output();
+    return rc;
+  }
+  int cmctl(std::vector<std::string> args, std::string* out = nullptr) {
+    args.insert(args.begin(), "cmctl");
+    return run(args, out);
+  }
+  std::unique_ptr<ChildProcess> background(std::vector<std::string> argv) {
+    argv[0] = bin(argv[0]);
+    return std::make_unique<ChildProcess>(argv, env());
+  }
+
+  std::string sim_output() const { return sim_->output(); }
+  std::string cm_output() const { return cm_->output(); }
+
+ private:
+  static std::string urdf() { return source("config/turret_bot.urdf"); }
+  static std::string yaml() { return source("config/turret_bot.yaml"); }
+  std::map<std::string, std::string> env() const { return {{"LCM_DEFAULT_URL", url_}}; }
+  std::string url_;
+  std::unique_ptr<ChildProcess> cm_, sim_, spawner_;
+
+ public:
+  lcm::LCM lc;
+};
+
+// Positions and velocities of every actuator by step, from the states recorded since `from`.
+std::map<int64_t, std::vector<double>> by_step(const std::vector<hardware_state_t>& states, size_t from) {
+  std::map<int64_t, std::vector<double>> out;
+  for (size_t k = from; k < states.size(); ++k) {
+    std::vector<double> v = states[k].position;
+    v.insert(v.end(), states[k].velocity.begin(), states[k].velocity.end());
+    out.emplace(states[k].step, std::move(v));
+  }
+  return out;
+}
+
+TEST(PauseStepReset, LockstepSpawnsWhilePausedStepsExactlyAndRepeatsARunAfterAResetBitForBit) {
+  Session s;
+  Recorder<hardware_state_t> states(s.lc, "hardware/state");
+  ASSERT_NO_FATAL_FAILURE(s.start({"--mode", "lockstep", "--paused"}));  // the spawner's switch answers while paused
+  auto j1 = s.background({"turret-cmd", "--sim-time", "j1_controller", "0.5", "--rate", "60"});
+  auto j2 = s.background({"turret-cmd", "--sim-time", "j2_controller", "3.14*sin(i/100)", "--rate", "60"});
+  ASSERT_TRUE(j1->wait_for_output("turret-cmd: ", 30)) << j1->output();
+  ASSERT_TRUE(j2->wait_for_output("turret-cmd: ", 30)) << j2->output();
+  pump_until(s.lc, [] { return false; }, 0.3);
+  ASSERT_FALSE(states.messages.empty());
+  EXPECT_EQ(states.messages.back().step, 0);  // nothing stepped while the controllers were spawned
+
+  std::string out;
+  ASSERT_EQ(s.cmctl({"step", "1000"}, &out), 0) << out << s.sim_output();
+  EXPECT_TRUE(has(out, "stepped 1000 control steps: paused at step 1000")) << out;
+  ASSERT_TRUE(pump_until(s.lc, [&] { return states.messages.back().step == 1000; }, 5));  // what came meanwhile
+  size_t mark = states.messages.size();
+  pump_until(s.lc, [] { return false; }, 0.4);
+  ASSERT_GT(states.messages.size(), mark + 2) << "a paused sim_server republishes its state";
+  for (size_t k = mark; k < states.messages.size(); ++k) EXPECT_EQ(states.messages[k].step, 1000);
+
+  std::vector<std::map<int64_t, std::vector<double>>> runs;
+  for (int run = 0; run < 2; ++run) {
+    ASSERT_EQ(s.cmctl({"reset"}, &out), 0) << out;
+    EXPECT_TRUE(has(out, "reset at step") && has(out, "to step 0")) << out;
+    ASSERT_TRUE(pump_until(s.lc, [&] { return states.messages.back().step == 0; }, 5));
+    mark = states.messages.size() - 1;
+    ASSERT_EQ(s.cmctl({"step", "1500"}, &out), 0) << out;
+    ASSERT_TRUE(pump_until(s.lc, [&] { return states.messages.back().step == 1500; }, 5));
+    runs.push_back(by_step(states.messages, mark));
+    ASSERT_EQ(runs.back().size(), 1501u) << "every step 0..1500 once (lost on the bus?)";
+    EXPECT_EQ(runs.back().at(0)[0], 0.0);  // the start pose
+    EXPECT_NEAR(runs.back().at(1500)[0], 0.5, 0.02);  // j1 went to 0.5 again
+  }
+  for (int64_t k = 0; k <= 1500; ++k) ASSERT_EQ(runs[0].at(k), runs[1].at(k)) << "step " << k;  // bit for bit
+  j1->stop(5);
+  j2->stop(5);
+  EXPECT_TRUE(has(s.cm_output(), "hardware step went back from 1500 to 0 (a reset)")) << s.cm_output();
+  EXPECT_FALSE(has(s.sim_output(), "dropped a hardware/command")) << s.sim_output();
+}
+
+TEST(PauseStepReset, RealTimePauseHoldsTimeSwitchesAndResetRestartsControllersWithoutAJump) {
+  Session s;
+  Recorder<hardware_state_t> states(s.lc, "hardware/state");
+  Recorder<hardware_command_t> commands(s.lc, "hardware/command");
+  ASSERT_NO_FATAL_FAILURE(s.start({}));
+  ASSERT_EQ(s.run({"turret-cmd", "j1_controller", "0.5"}), 0);
+  ASSERT_TRUE(pump_until(
+      s.lc, [&] { return !states.messages.empty() && std::abs(states.messages.back().position[0] - 0.5) < 0.01; }, 10));
+
+  std::string out;
+  ASSERT_EQ(s.cmctl({"pause"}, &out), 0) << out;
+  pump_until(s.lc, [] { return false; }, 0.3);  // what came while cmctl ran
+  size_t mark = states.messages.size();
+  pump_until(s.lc, [] { return false; }, 0.5);
+  ASSERT_GE(states.messages.size(), mark + 3) << "republished at 10 Hz";
+  const int64_t held = states.messages[mark].step;
+  EXPECT_TRUE(has(out, "paused at step " + std::to_string(held))) << out;
+  for (size_t k = mark; k < states.messages.size(); ++k) EXPECT_EQ(states.messages[k].step, held);
+
+  // Switching while paused: stop and start answer on the repeated state, at the paused step.
+  ASSERT_EQ(s.cmctl({"stop", "j1_controller"}, &out), 0) << out;
+  EXPECT_TRUE(has(out, "at step " + std::to_string(held))) << out;
+  ASSERT_EQ(s.cmctl({"start", "j1_controller"}, &out), 0) << out;
+  ASSERT_EQ(s.cmctl({"step", "5"}, &out), 0) << out;
+  EXPECT_TRUE(has(out, "paused at step " + std::to_string(held + 5))) << out;
+  EXPECT_EQ(s.cmctl({"step", "0"}, &out), 2) << out;  // a usage error
+  ASSERT_EQ(s.cmctl({"resume"}, &out), 0) << out;
+  mark = states.messages.size();
+  pump_until(s.lc, [] { return false; }, 0.5);
+  ASSERT_GT(states.messages.size(), mark);
+  EXPECT_GT(states.messages.back().step, held + 200) << "running again";
+  EXPECT_EQ(s.cmctl({"step", "5"}, &out), 1) << out;
+  EXPECT_TRUE(has(out, "pause it first")) << out;
+
+  // Reset to a new start pose: the position controller restarts holding it, not jumping back to its 0.5.
+  ASSERT_EQ(s.cmctl({"reset", "-J", "j1=0.3"}, &out), 0) << out;
+  EXPECT_TRUE(has(out, "j1=0.3")) << out;
+  pump_until(s.lc, [] { return false; }, 0.5);
+  const hardware_state_t* first = nullptr;
+  for (const auto& st : states.messages)
+    if (st.step == 0) first = &st;
+  ASSERT_NE(first, nullptr);
+  EXPECT_EQ(first->position[0], 0.3);
+  const hardware_command_t* answer = nullptr;
+  for (const auto& c : commands.messages)
+    if (c.step == 0 && c.session == first->session) answer = &c;
+  ASSERT_NE(answer, nullptr);
+  EXPECT_NEAR(answer->command[0], 0.3, 1e-9) << "the restarted j1_controller holds the measured position";
+  EXPECT_LT(states.messages.back().step, 1000);
+  EXPECT_NEAR(states.messages.back().position[0], 0.3, 0.01);
+
+  EXPECT_EQ(s.cmctl({"reset", "-J", "j3=1"}, &out), 1) << out;
+  EXPECT_TRUE(has(out, "did you mean 'j1'") && has(out, "nothing was changed")) << out;
+  EXPECT_EQ(s.cmctl({"sim-status"}, &out), 0) << out;
+  EXPECT_TRUE(has(out, "running at step") && has(out, "1 reset")) << out;
+  EXPECT_FALSE(has(s.sim_output(), "dropped a hardware/command")) << s.sim_output();
+  EXPECT_FALSE(has(s.sim_output(), "watchdog")) << s.sim_output();
+}
+
+}  // namespace
+}  // namespace lcm_control::testing
