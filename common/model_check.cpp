@@ -141,6 +141,34 @@ void check_model(RobotModel& model, std::vector<std::string>& problems) {
     if (j.damping < 0 || j.friction < 0)
       problems.push_back(fmt::format("{}: joint '{}': damping and friction must be >= 0", u, j.name));
   }
+  for (Joint& j : model.joints) {
+    if (!j.mimic) continue;
+    if (const TransmissionSpec* t = model.transmission_for_joint(j.name)) {
+      model.warnings.push_back(fmt::format(
+          "{}: joint '{}' mimics '{}' but transmission '{}' drives it: it is driven by its transmission, as in Gazebo, "
+          "and the <mimic> is ignored (remove the transmission to couple it to '{}')",
+          u, j.name, j.mimic->joint, t->name, j.mimic->joint));
+      j.mimic.reset();
+      continue;
+    }
+    const Joint* leader = model.joint(j.mimic->joint);
+    const std::string what = fmt::format("{}: joint '{}' <mimic joint=\"{}\">", u, j.name, j.mimic->joint);
+    if (j.type == JointType::Fixed)
+      problems.push_back(what + ": a fixed joint cannot mimic; remove the <mimic> or make it move");
+    else if (!leader)
+      problems.push_back(fmt::format("{}: there is no joint '{}' (moving joints: {})", what, j.mimic->joint,
+                                     names_of(model.joints, true)));
+    else if (leader == &j)
+      problems.push_back(what + ": a joint cannot mimic itself");
+    else if (leader->type == JointType::Fixed)
+      problems.push_back(what + ": that joint is fixed; mimic a moving joint");
+    else if (leader->mimic)
+      problems.push_back(fmt::format("{}: '{}' mimics '{}' itself; mimic '{}' directly (multiply the multipliers)",
+                                     what, leader->name, leader->mimic->joint, leader->mimic->joint));
+    else if ((leader->type == JointType::Prismatic) != (j.type == JointType::Prismatic))
+      problems.push_back(what + ": one is prismatic and the other is not; a mimic couples two revolute or two "
+                                "prismatic joints");
+  }
   for (const auto& l : model.links)
     if (l.inertial && l.inertial->mass < 0)
       problems.push_back(fmt::format("{}: link '{}': negative mass {}", u, l.name, l.inertial->mass));

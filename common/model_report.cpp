@@ -28,7 +28,7 @@ std::string describe(const RobotModel& m) {
     }
     fmt::format_to(out, ", {} collision, {} visual\n", l.collisions.size(), l.visuals.size());
   }
-  fmt::format_to(out, "\njoints ({}):\n", m.joints.size());
+  fmt::format_to(out, "\njoints ({}){}:\n", m.joints.size(), m.self_collide ? ", self_collide: links collide with each other" : "");
   for (const auto& j : m.joints) {
     const auto& o = j.origin.translation();
     fmt::format_to(out, "  {:<16} {:<10} {} -> {}, origin ({:g}, {:g}, {:g})", j.name, to_string(j.type), j.parent_link,
@@ -38,6 +38,9 @@ std::string describe(const RobotModel& m) {
       if (j.has_position_limits) fmt::format_to(out, ", limits [{:g}, {:g}]", j.lower, j.upper);
       fmt::format_to(out, ", effort {:g}, velocity {:g}, damping {:g}, friction {:g}", j.effort_limit, j.velocity_limit,
                      j.damping, j.friction);
+      if (j.mimic)
+        fmt::format_to(out, "; mimics {} (x {:g}, offset {:g}: a gear in the simulation)", j.mimic->joint,
+                       j.mimic->multiplier, j.mimic->offset);
     }
     fmt::format_to(out, "\n");
   }

@@ -63,6 +63,12 @@ struct Link {
   std::string parent_joint;  // "" for the root
 };
 
+// <mimic joint= multiplier= offset=>: position = multiplier * the other joint's position + offset.
+struct Mimic {
+  std::string joint;
+  double multiplier = 1, offset = 0;
+};
+
 struct Joint {
   std::string name;
   JointType type = JointType::Fixed;
@@ -74,6 +80,7 @@ struct Joint {
   double effort_limit = 0, velocity_limit = 0;  // 0 only for fixed joints (validated)
   double damping = 0, friction = 0;
   std::optional<SoftLimits> soft;  // <safety_controller>
+  std::optional<Mimic> mimic;      // driven by another joint through a gear in the simulation; takes no transmission
   JointLimits limits() const {     // as joint_limits_interface reads them from the URDF
     JointLimits l;
     l.has_position = has_position_limits;
@@ -120,6 +127,7 @@ struct RobotModel {
   std::vector<Link> links;                     // URDF order
   std::vector<Joint> joints;                   // URDF order
   std::vector<TransmissionSpec> transmissions;  // URDF order = actuator order on the wire
+  bool self_collide = false;  // <gazebo><self_collide>true: links collide with the robot's other links (not the adjacent ones)
   bool has_gazebo_ros_control_plugin = false;
   std::string gazebo_plugin_namespace;         // <robotNamespace>, if given
   // The robot's namespace ("" none, "rrbot", "lab/rrbot"): the channel prefix and where the YAML is read.

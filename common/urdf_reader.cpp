@@ -311,6 +311,8 @@ void parse_transmissions(RobotModel& model, const tinyxml2::XMLElement* robot, c
 
 void parse_gazebo_plugin(RobotModel& model, const tinyxml2::XMLElement* robot) {
   for (auto* g = robot->FirstChildElement("gazebo"); g; g = g->NextSiblingElement("gazebo")) {
+    if (const char* sc = child_text(g, "self_collide"); sc && !g->Attribute("reference"))
+      model.self_collide = trim(sc) == "true" || trim(sc) == "1";
     for (auto* p = g->FirstChildElement("plugin"); p; p = p->NextSiblingElement("plugin")) {
       const char* fn = p->Attribute("filename");
       if (fn && std::string(fn).find("gazebo_ros_control") != std::string::npos) {
@@ -333,6 +335,7 @@ void check_numeric_attributes(const tinyxml2::XMLElement* e, const std::string& 
       {"limit", {"lower", "upper", "effort", "velocity"}},
       {"dynamics", {"damping", "friction"}},
       {"safety_controller", {"soft_lower_limit", "soft_upper_limit", "k_position", "k_velocity"}},
+      {"mimic", {"multiplier", "offset"}},
       {"box", {"size"}},
       {"cylinder", {"radius", "length"}},
       {"sphere", {"radius"}},
@@ -382,6 +385,13 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
   console_bridge::useOutputHandler(&capture);
   urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(text);
   console_bridge::restorePreviousOutputHandler();
+  for (auto* le = robot->FirstChildElement("link"); le; le = le->NextSiblingElement("link"))
+    check_numeric_attributes(le, urdf_path, fmt::format("link '{}'", le->Attribute("name") ? le->Attribute("name") : ""),
+                             problems);
+  for (auto* je = robot->FirstChildElement("joint"); je; je = je->NextSiblingElement("joint"))
+    check_numeric_attributes(je, urdf_path, fmt::format("joint '{}'", je->Attribute("name") ? je->Attribute("name") : ""),
+                             problems);
+  if (!urdf && !problems.empty()) throw ModelError(problems);  // urdfdom's own words for those are vaguer
   if (!urdf) {
     std::string why = capture.messages.empty() ? "urdfdom could not parse it" : capture.messages.back();
     for (const auto& m : capture.messages)
@@ -392,12 +402,6 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
     throw ModelError(fmt::format("{}: invalid URDF: {}", urdf_path, why));
   }
 
-  for (auto* le = robot->FirstChildElement("link"); le; le = le->NextSiblingElement("link"))
-    check_numeric_attributes(le, urdf_path, fmt::format("link '{}'", le->Attribute("name") ? le->Attribute("name") : ""),
-                             problems);
-  for (auto* je = robot->FirstChildElement("joint"); je; je = je->NextSiblingElement("joint"))
-    check_numeric_attributes(je, urdf_path, fmt::format("joint '{}'", je->Attribute("name") ? je->Attribute("name") : ""),
-                             problems);
 
   model.name = urdf->getName();
   model.root_link = urdf->getRoot() ? urdf->getRoot()->name : "";
@@ -468,6 +472,7 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
     if (uj->safety)
       j.soft = SoftLimits{uj->safety->soft_lower_limit, uj->safety->soft_upper_limit, uj->safety->k_position,
                           uj->safety->k_velocity};
+    if (uj->mimic) j.mimic = Mimic{uj->mimic->joint_name, uj->mimic->multiplier, uj->mimic->offset};
     model.joints.push_back(std::move(j));
   }
   parse_transmissions(model, robot, urdf_path, problems);

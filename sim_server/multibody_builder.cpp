@@ -19,6 +19,8 @@ constexpr double kMasslessLinkInertia = 1e-6;
 // Limits must stop a 1000 N actuator and the momentum of a fast heavy arm within one step; the cap is
 // only a safety net against a runaway solve.
 constexpr double kLimitMaxImpulse = 1e6;
+// A mimic's gear corrects this fraction of its position error per step (on top of holding the velocities in ratio).
+constexpr double kGearErp = 0.5;
 constexpr double kTinyColliderRadius = 1e-3;
 
 struct LinkInertia {
@@ -131,6 +133,17 @@ void Multibody::set_initial_positions(const RobotModel& model, const InitialPosi
     body_->setJointPos(j.link, q);
     body_->setJointVel(j.link, 0);
   }
+  for (const MultibodyJoint& j : joints_) {  // a mimic starts where its joint puts it
+    if (!j.urdf->mimic || j.leader_link < 0) continue;
+    const double q = j.urdf->mimic->multiplier * body_->getJointPos(j.leader_link) + j.urdf->mimic->offset;
+    const auto it = initial.find(j.urdf->name);
+    if (it != initial.end() && it->second != q)
+      start_warnings_.push_back(fmt::format("joint '{}' mimics '{}': it starts at {:g} (multiplier {:g}, offset {:g}), "
+                                            "not the {:g} given; give '{}' its start instead",
+                                            j.urdf->name, j.urdf->mimic->joint, q, j.urdf->mimic->multiplier,
+                                            j.urdf->mimic->offset, it->second, j.urdf->mimic->joint));
+    body_->setJointPos(j.link, q);
+  }
   set_state_refresh();
 }
 
@@ -217,7 +230,7 @@ void Multibody::build(const RobotModel& model) {
   body_->setLinearDamping(0);
   body_->setAngularDamping(0);
   body_->setCanSleep(false);
-  body_->setHasSelfCollision(false);  // as Gazebo: links of one model do not collide unless asked
+  body_->setHasSelfCollision(model.self_collide);  // as Gazebo: links of one model collide only with <self_collide>
   body_->setMaxCoordinateVelocity(max_velocity > 0 ? max_velocity : 1e4);
   world_->addMultiBody(body_.get());
 
@@ -255,10 +268,34 @@ void Multibody::build(const RobotModel& model) {
     constraints_.push_back(std::move(limit));
   }
 
+  // Mimic: q = multiplier * q_leader + offset, i.e. the gear row q + ratio * q_leader = target.
+  for (MultibodyJoint& mj : joints_) {
+    if (!mj.urdf->mimic) continue;
+    const int leader = joint_index(mj.urdf->mimic->joint);
+    if (leader < 0) continue;  // validated: a moving joint
+    mj.leader_link = joints_[leader].link;
+    auto gear = std::make_unique<btMultiBodyGearConstraint>(body_.get(), mj.link, body_.get(), mj.leader_link,
+                                                            btVector3(0, 0, 0), btVector3(0, 0, 0),
+                                                            btMatrix3x3::getIdentity(), btMatrix3x3::getIdentity());
+    gear->setGearRatio(-mj.urdf->mimic->multiplier);
+    gear->setRelativePositionTarget(mj.urdf->mimic->offset);
+    gear->setErp(kGearErp);
+    gear->setMaxAppliedImpulse(kLimitMaxImpulse);
+    gear->finalizeMultiDof();
+    world_->addMultiBodyConstraint(gear.get());
+    mj.gear = gear.get();
+    constraints_.push_back(std::move(gear));
+  }
+
   btAlignedObjectArray<btQuaternion> world_to_local;
   btAlignedObjectArray<btVector3> local_origin;
   body_->forwardKinematics(world_to_local, local_origin);
   body_->updateCollisionObjectWorldTransforms(world_to_local, local_origin);
+}
+
+double Multibody::mimic_effort(int k) const {
+  const MultibodyJoint& j = joints_[k];
+  return j.gear ? j.gear->getAppliedImpulse(0) / dt_ : 0.0;
 }
 
 void Multibody::compute_effective_inertias() {

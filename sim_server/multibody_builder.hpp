@@ -1,7 +1,8 @@
 // The robot model as a fixed-base btMultiBody in its own btMultiBodyDynamicsWorld:
 // links in depth-first order with COM frames on the inertia's principal axes,
 // fixed joints as fixed links, a collider on every link, limits that do not
-// overshoot, each joint's own velocity limit, an initial pose inside the
+// overshoot, each joint's own velocity limit, mimic joints coupled to their
+// joint by a gear constraint (so they carry load), an initial pose inside the
 // limits, and none of Bullet's hidden defaults (damping, sleeping, motors, the
 // 100 rad/s velocity clamp).
 #pragma once
@@ -12,6 +13,7 @@
 
 #include <BulletDynamics/Featherstone/btMultiBody.h>
 #include <BulletDynamics/Featherstone/btMultiBodyConstraintSolver.h>
+#include <BulletDynamics/Featherstone/btMultiBodyGearConstraint.h>
 #include <BulletDynamics/Featherstone/btMultiBodyDynamicsWorld.h>
 #include <BulletDynamics/Featherstone/btMultiBodyJointMotor.h>
 #include <BulletDynamics/Featherstone/btMultiBodyLinkCollider.h>
@@ -37,6 +39,8 @@ struct MultibodyJoint {
   double effective_inertia = 0;        // 1 / (M^-1)_jj at the initial pose: kg m^2 or kg
   SpeculativeJointLimit* limit = nullptr;  // null for continuous joints
   double max_velocity = 0;             // URDF velocity limit, 0: none
+  btMultiBodyGearConstraint* gear = nullptr;  // a mimic joint's coupling to the joint it mimics
+  int leader_link = -1;                       // that joint's Bullet link
 };
 
 class Multibody {
@@ -58,6 +62,8 @@ class Multibody {
   int joint_index(const std::string& name) const;
 
   double position(int link) const { return body_->getJointPos(link); }
+  // The effort (N*m or N) the gear applied to a mimic joint in the last step; 0 for other joints.
+  double mimic_effort(int joint_index) const;
   double velocity(int link) const { return body_->getJointVel(link); }
   void add_torque(int link, double tau) { body_->addJointTorque(link, tau); }
   // Sets a joint's position and velocity (tests, initial poses) and refreshes the cached kinematics.

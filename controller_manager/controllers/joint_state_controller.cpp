@@ -1,6 +1,8 @@
 // joint_state_controller/JointStateController: publishes `joint_states` at
 // publish_rate on the hardware clock, first on its first cycle; `joints` picks
-// and orders (default: URDF transmission order); `extra_joints` appends fixed
+// and orders (default: URDF transmission order, then the mimic joints, whose
+// position and velocity follow their joint's by the URDF's <mimic> as ROS's
+// joint_state_publisher computes them; effort 0); `extra_joints` appends fixed
 // values. Unlike ROS it keeps its rate after a forward time jump and resumes
 // at once after a backward one (the loop restarts it).
 // franka_control/FrankaStateController is the same for what it shares with it:
@@ -30,8 +32,26 @@ class JointStateController : public Controller {
       if (p.has("arm_id")) p.node("arm_id");
       ctx.notes.push_back(p.where() + ": publishes joint_states only (franka_states has no equivalent here)");
     }
-    std::vector<std::string> names = p.has(joints_key) ? p.strings(joints_key) : ctx.actuated_joints();
-    for (const auto& n : names) joints_.push_back(ctx.read(n, joints_key));
+    const bool listed = p.has(joints_key);
+    std::vector<std::string> names = listed ? p.strings(joints_key) : ctx.actuated_joints();
+    std::vector<std::string> mimic_names;
+    for (const auto& n : names) {
+      const Joint* j = ctx.model().joint(n);
+      if (j && j->mimic)
+        mimic_names.push_back(n);
+      else
+        joints_.push_back(ctx.read(n, joints_key));
+    }
+    if (!listed)  // every mimic joint of an actuated joint, after the actuated ones
+      for (const Joint& j : ctx.model().joints)
+        if (j.mimic && ctx.model().transmission_for_joint(j.mimic->joint)) mimic_names.push_back(j.name);
+    names.clear();
+    for (const JointData* j : joints_) names.push_back(j->name);
+    for (const auto& n : mimic_names) {
+      const Mimic& m = *ctx.model().joint(n)->mimic;
+      mimics_.push_back(MimicJoint{ctx.read(m.joint, joints_key), m.multiplier, m.offset});
+      names.push_back(n);
+    }
     const YAML::Node extra = p.node("extra_joints");
     if (extra) {
       if (!extra.IsSequence()) throw p.error("extra_joints", "expected a list of {name, position, velocity, effort}");
@@ -81,6 +101,12 @@ class JointStateController : public Controller {
       msg_.effort[k] = j->effort;
       ++k;
     }
+    for (const MimicJoint& m : mimics_) {  // as joint_state_publisher does: from the joint it follows
+      msg_.position[k] = m.multiplier * m.leader->position + m.offset;
+      msg_.velocity[k] = m.multiplier * m.leader->velocity;
+      msg_.effort[k] = 0;  // not measured
+      ++k;
+    }
     for (const Extra& e : extra_) {
       msg_.position[k] = e.position;
       msg_.velocity[k] = e.velocity;
@@ -95,9 +121,14 @@ class JointStateController : public Controller {
     std::string name;
     double position, velocity, effort;
   };
+  struct MimicJoint {
+    const JointData* leader;
+    double multiplier, offset;
+  };
   bool franka_;
   double rate_ = 0, last_ = 0;
   std::vector<const JointData*> joints_;
+  std::vector<MimicJoint> mimics_;
   std::vector<Extra> extra_;
   joint_state_t msg_;
   Publisher<joint_state_t> pub_;

@@ -231,3 +231,55 @@ TEST(Validation, NonFiniteOrAbsurdNumbersAreRefused) {
     EXPECT_NE(e.find("robot.urdf"), std::string::npos) << e;
   }
 }
+
+namespace {
+std::string gripper_with(const std::string& from, const std::string& to) {
+  std::string s = slurp(lt::source("test/robots/gripper.urdf"));
+  const auto at = s.find(from);
+  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in gripper.urdf";
+  if (at != std::string::npos) s.replace(at, from.size(), to);
+  return s;
+}
+const std::string kGripperYaml = slurp(lt::source("test/robots/gripper.yaml"));
+}  // namespace
+
+TEST(Validation, MimicJointsAreReadAndTheirMistakesNamed) {
+  const RobotModel m = load_robot_model(lt::source("test/robots/gripper.urdf"), lt::source("test/robots/gripper.yaml"));
+  const Joint* right = m.joint("right_finger_joint");
+  ASSERT_TRUE(right && right->mimic);
+  EXPECT_EQ(right->mimic->joint, "left_finger_joint");
+  EXPECT_EQ(right->mimic->multiplier, 1.0);
+  EXPECT_TRUE(m.self_collide);
+
+  auto e = load_error(gripper_with(R"(<mimic joint="left_finger_joint")", R"(<mimic joint="left_fnger_joint")"),
+                      kGripperYaml);
+  EXPECT_NE(e.find("joint 'right_finger_joint' <mimic joint=\"left_fnger_joint\">: there is no joint 'left_fnger_joint'"),
+            std::string::npos)
+      << e;
+  e = load_error(gripper_with(R"(multiplier="1")", R"(multiplier="one")"), kGripperYaml);
+  EXPECT_NE(e.find("multiplier"), std::string::npos) << e;
+  e = load_error(gripper_with(R"(<mimic joint="left_finger_joint")", R"(<mimic joint="right_finger_joint")"),
+                 kGripperYaml);
+  EXPECT_NE(e.find("a joint cannot mimic itself"), std::string::npos) << e;
+  e = load_error(gripper_with(R"(<mimic joint="left_finger_joint")", R"(<mimic joint="box_mount")"), kGripperYaml);
+  EXPECT_NE(e.find("that joint is fixed; mimic a moving joint"), std::string::npos) << e;
+}
+
+TEST(Validation, AMimicJointWithATransmissionIsDrivenByItAsInGazebo) {
+  const std::string second = R"(<transmission name="right_transmission">
+    <type>transmission_interface/SimpleTransmission</type>
+    <joint name="right_finger_joint"><hardwareInterface>hardware_interface/PositionJointInterface</hardwareInterface></joint>
+    <actuator name="right_motor"><mechanicalReduction>1</mechanicalReduction></actuator>
+  </transmission>
+  <gazebo>)";
+  const std::string dir = lt::temp_dir("mimic_transmission");
+  const RobotModel m = load_robot_model(write(dir, "g.urdf", gripper_with("<gazebo>", second)),
+                                       write(dir, "g.yaml", kGripperYaml));
+  EXPECT_FALSE(m.joint("right_finger_joint")->mimic);
+  std::string w;
+  for (const auto& x : m.warnings) w += x + "\n";
+  EXPECT_NE(w.find("joint 'right_finger_joint' mimics 'left_finger_joint' but transmission 'right_transmission' drives "
+                   "it: it is driven by its transmission, as in Gazebo"),
+            std::string::npos)
+      << w;
+}
