@@ -29,6 +29,7 @@ inline constexpr const char* kSimResponse = "sim_server/response";
 inline constexpr const char* kEStop = "e_stop";
 inline constexpr const char* kClock = "clock";
 inline constexpr const char* kLinkPoses = "link_poses";
+inline constexpr const char* kBasePose = "sim_server/base_pose";
 }  // namespace channels
 
 // "<owner>/gains/set" and "<owner>/gains".

@@ -19,4 +19,13 @@ std::pair<std::string, double> parse_initial_position(const std::string& assignm
   return {name, value};
 }
 
+std::string initial_position_problem(const std::string& assignment) {
+  try {
+    parse_initial_position(assignment);
+    return "";
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+}
+
 }  // namespace lcm_control

@@ -13,5 +13,7 @@ using InitialPositions = std::map<std::string, double>;
 
 // "JOINT=VALUE" (or JOINT:=VALUE); throws std::invalid_argument naming what is wrong.
 std::pair<std::string, double> parse_initial_position(const std::string& assignment);
+// "" if parse_initial_position takes it, else its message (a CLI11 check).
+std::string initial_position_problem(const std::string& assignment);
 
 }  // namespace lcm_control

@@ -61,6 +61,7 @@ struct Link {
   std::vector<Geometry> collisions;
   std::vector<Geometry> visuals;
   std::string parent_joint;  // "" for the root
+  std::optional<double> friction;  // <gazebo reference="LINK"><mu1>: contact friction coefficient (default 1)
 };
 
 // <mimic joint= multiplier= offset=>: position = multiplier * the other joint's position + offset.

@@ -313,6 +313,13 @@ void parse_gazebo_plugin(RobotModel& model, const tinyxml2::XMLElement* robot) {
   for (auto* g = robot->FirstChildElement("gazebo"); g; g = g->NextSiblingElement("gazebo")) {
     if (const char* sc = child_text(g, "self_collide"); sc && !g->Attribute("reference"))
       model.self_collide = trim(sc) == "true" || trim(sc) == "1";
+    if (const char* ref = g->Attribute("reference"))
+      if (const char* mu = child_text(g, "mu1"))
+        for (Link& l : model.links)
+          if (l.name == ref) {
+            double v = 0;
+            if (parse_double(trim(mu), v) && v >= 0) l.friction = v;
+          }
     for (auto* p = g->FirstChildElement("plugin"); p; p = p->NextSiblingElement("plugin")) {
       const char* fn = p->Attribute("filename");
       if (fn && std::string(fn).find("gazebo_ros_control") != std::string::npos) {

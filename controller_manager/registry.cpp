@@ -26,6 +26,7 @@ void register_builtin(Registry& r) {
   r.add("effort_controllers/JointTrajectoryController", make_joint_trajectory_controller);
   r.add("velocity_controllers/JointTrajectoryController", make_joint_trajectory_controller);
   r.add("effort_controllers/JointGroupPositionController", make_pid_controller);
+  r.add("diff_drive_controller/DiffDriveController", make_diff_drive_controller);
 }
 
 const Registry& builtin_registry() {

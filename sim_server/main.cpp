@@ -58,17 +58,20 @@ int main(int argc, char** argv) {
   app.add_option("-J,--initial-position", initial,
                  "JOINT=VALUE: start that joint there (rad or m; repeatable), as spawn_model's -J; joints not given "
                  "start at 0, and a start outside the URDF limits is clamped into them")
-      ->check([](const std::string& v) {
-        try {
-          parse_initial_position(v);
-          return std::string();
-        } catch (const std::invalid_argument& e) {
-          return std::string(e.what());
-        }
-      });
+      ->check(initial_position_problem);
   app.add_flag("--paused", opt.start_paused,
                "start paused, as Gazebo's paused:=true: the state is published and controllers can be spawned, but "
                "nothing steps until `cmctl resume` (or `cmctl step N`)");
+  sim::WorldOptions world;
+  app.add_flag("--floating-base", world.floating_base,
+               "the root link is free (a mobile robot), as Gazebo leaves a model without a joint to `world`; its "
+               "ground truth goes on sim_server/base_pose. Default: welded where it is (an arm)");
+  bool ground = false, no_ground = false;
+  app.add_flag("--ground", ground, "a ground plane at z = 0 (default with --floating-base)");
+  app.add_flag("--no-ground", no_ground, "no ground plane, even with --floating-base")->excludes("--ground");
+  std::vector<double> base_pose;
+  app.add_option("--base-pose", base_pose, "X Y Z YAW: where the root link starts (m, rad; default 0 0 0 0)")
+      ->expected(4);
   bool no_brakes = false;
   app.add_flag("--no-brakes", no_brakes,
                "joints nobody commands, or held by the watchdog, are left to their PID (position) or limp (effort, "
@@ -94,7 +97,12 @@ int main(int argc, char** argv) {
       const auto [joint, q] = parse_initial_position(a);
       start[joint] = q;
     }
-    sim::Simulation sim(model, rates, start);
+    world.ground = !no_ground && (ground || world.floating_base);
+    if (base_pose.size() == 4) {
+      world.base_position = {base_pose[0], base_pose[1], base_pose[2]};
+      world.base_yaw = base_pose[3];
+    }
+    sim::Simulation sim(model, rates, start, world);
     sim.actuators().set_brakes(!no_brakes);
     for (const auto& w : sim.multibody().warnings()) spdlog::warn("{}", w);
     for (const auto& w : sim.multibody().start_warnings()) spdlog::warn("{}", w);
@@ -106,8 +114,11 @@ int main(int argc, char** argv) {
     sim::Stepper stepper(sim, io, opt);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
-    spdlog::info("ready ({}{}, {} actuators, physics {:g} Hz, control {:g} Hz, clock {:g} Hz, lcm {}{}, session {}{})",
-                 opt.lockstep ? "lockstep" : "real time", opt.start_paused ? ", paused" : "", sim.actuators().size(), rates.physics_hz, rates.control_hz,
+    spdlog::info("ready ({}{}{}, {} actuators, physics {:g} Hz, control {:g} Hz, clock {:g} Hz, lcm {}{}, session {}{})",
+                 opt.lockstep ? "lockstep" : "real time", opt.start_paused ? ", paused" : "",
+                 world.floating_base ? (world.ground ? ", floating base on the ground" : ", floating base") :
+                 (world.ground ? ", ground" : ""),
+                 sim.actuators().size(), rates.physics_hz, rates.control_hz,
                  rates.control_hz / clock_every,
                  bus.url(), bus.ns().empty() ? "" : ", namespace " + bus.ns(), io.session(),
                  scheduling.empty() ? "" : ", " + scheduling);

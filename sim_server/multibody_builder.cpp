@@ -22,6 +22,7 @@ constexpr double kLimitMaxImpulse = 1e6;
 // A mimic's gear corrects this fraction of its position error per step (on top of holding the velocities in ratio).
 constexpr double kGearErp = 0.5;
 constexpr double kTinyColliderRadius = 1e-3;
+constexpr double kDefaultFriction = 1.0;  // Gazebo's mu1 default
 
 struct LinkInertia {
   double mass = 0;
@@ -78,7 +79,8 @@ btQuaternion bt_rotation(const Eigen::Matrix3d& r) {
 
 }  // namespace
 
-Multibody::Multibody(const RobotModel& model, double dt, const InitialPositions& initial) : dt_(dt) {
+Multibody::Multibody(const RobotModel& model, double dt, const InitialPositions& initial, const WorldOptions& world)
+    : dt_(dt) {
   collision_config_ = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_config_.get());
   broadphase_ = std::make_unique<btDbvtBroadphase>();
@@ -87,7 +89,7 @@ Multibody::Multibody(const RobotModel& model, double dt, const InitialPositions&
                                                       collision_config_.get());
   world_->setGravity(btVector3(0, 0, -kGravity));
   world_->getSolverInfo().m_numIterations = 50;
-  build(model);
+  build(model, world);
   set_initial_positions(model, initial);
   compute_effective_inertias();
 }
@@ -148,12 +150,13 @@ void Multibody::set_initial_positions(const RobotModel& model, const InitialPosi
 }
 
 Multibody::~Multibody() {
+  if (ground_) world_->removeCollisionObject(ground_.get());
   for (auto& c : constraints_) world_->removeMultiBodyConstraint(c.get());
   for (auto& c : colliders_) world_->removeCollisionObject(c.get());
   if (body_) world_->removeMultiBody(body_.get());
 }
 
-void Multibody::build(const RobotModel& model) {
+void Multibody::build(const RobotModel& model, const WorldOptions& world) {
   const std::string& urdf = model.urdf_path;
   // Depth-first pre-order from the root, children in URDF order: a parent always precedes its children.
   std::vector<const Joint*> order;
@@ -167,7 +170,7 @@ void Multibody::build(const RobotModel& model) {
   visit(model.root_link);
 
   std::map<std::string, LinkInertia> inertia;
-  std::map<std::string, bool> welded_to_base{{model.root_link, true}};
+  std::map<std::string, bool> welded_to_base{{model.root_link, !world.floating_base}};  // welded to the world
   const Link* root = model.link(model.root_link);
   if (!root) throw ModelError(fmt::format("{}: root link '{}' not found", urdf, model.root_link));
   inertia[root->name] = principal_inertia(*root, false, urdf, warnings_);
@@ -178,10 +181,13 @@ void Multibody::build(const RobotModel& model) {
   }
 
   const LinkInertia& base = inertia[root->name];
-  body_ = std::make_unique<btMultiBody>(int(order.size()), base.mass, bt(base.principal), /*fixedBase=*/true,
-                                        /*canSleep=*/false);
-  body_->setBaseWorldTransform(to_bt(base.link_from_com));
+  body_ = std::make_unique<btMultiBody>(int(order.size()), base.mass, bt(base.principal),
+                                        /*fixedBase=*/!world.floating_base, /*canSleep=*/false);
+  const Eigen::Isometry3d world_from_root =
+      Eigen::Translation3d(world.base_position) * Eigen::AngleAxisd(world.base_yaw, Eigen::Vector3d::UnitZ());
+  body_->setBaseWorldTransform(to_bt(world_from_root * base.link_from_com));
   link_index_[root->name] = -1;
+  model_root_ = root->name;
   link_from_com_[root->name] = base.link_from_com;
 
   double max_velocity = 0;
@@ -242,6 +248,9 @@ void Multibody::build(const RobotModel& model) {
     btCollisionShape* shape = make_link_shape(link, link_from_com_.at(link.name).inverse(), shapes_, urdf);
     auto col = std::make_unique<btMultiBodyLinkCollider>(body_.get(), index);
     col->setCollisionShape(shape ? shape : tiny);
+    col->setFriction(link.friction.value_or(kDefaultFriction));  // Bullet multiplies the two bodies' coefficients
+    col->setRollingFriction(0);
+    col->setSpinningFriction(0);
     int group = btBroadphaseProxy::DefaultFilter, mask = btBroadphaseProxy::AllFilter;
     if (welded_to_base.at(link.name)) {
       col->setCollisionFlags(col->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
@@ -258,6 +267,15 @@ void Multibody::build(const RobotModel& model) {
   };
   add_collider(*root, -1);
   for (int i = 0; i < int(order.size()); ++i) add_collider(*model.link(order[i]->child_link), i);
+  if (world.ground) {
+    shapes_.push_back(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0));
+    ground_ = std::make_unique<btCollisionObject>();
+    ground_->setCollisionShape(shapes_.back().get());
+    ground_->setFriction(1.0);  // times the link's: the link's coefficient is the contact's
+    ground_->setCollisionFlags(ground_->getCollisionFlags() | btCollisionObject::CF_STATIC_OBJECT);
+    world_->addCollisionObject(ground_.get(), btBroadphaseProxy::StaticFilter,
+                               btBroadphaseProxy::AllFilter ^ btBroadphaseProxy::StaticFilter);
+  }
 
   for (MultibodyJoint& mj : joints_) {
     if (!mj.urdf->has_position_limits) continue;
@@ -293,6 +311,18 @@ void Multibody::build(const RobotModel& model) {
   body_->updateCollisionObjectWorldTransforms(world_to_local, local_origin);
 }
 
+Eigen::Isometry3d Multibody::base_pose() const { return link_pose(model_root_); }
+
+Eigen::Vector3d Multibody::base_linear_velocity() const {
+  const btVector3 v = body_->getBaseVel();
+  return {v.x(), v.y(), v.z()};
+}
+
+Eigen::Vector3d Multibody::base_angular_velocity() const {
+  const btVector3 w = body_->getBaseOmega();
+  return {w.x(), w.y(), w.z()};
+}
+
 double Multibody::mimic_effort(int k) const {
   const MultibodyJoint& j = joints_[k];
   return j.gear ? j.gear->getAppliedImpulse(0) / dt_ : 0.0;
@@ -326,7 +356,12 @@ void Multibody::size_solver_buffers() {
       j.limit->setUpperBound(state.back().first);
     }
   }
+  const btTransform base = body_->getBaseWorldTransform();  // a floating base moves in that step too
+  const btVector3 base_vel = body_->getBaseVel(), base_omega = body_->getBaseOmega();
   step();
+  body_->setBaseWorldTransform(base);
+  body_->setBaseVel(base_vel);
+  body_->setBaseOmega(base_omega);
   for (size_t k = 0; k < joints_.size(); ++k) {
     const MultibodyJoint& j = joints_[k];
     if (j.limit) {

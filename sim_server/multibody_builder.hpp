@@ -43,11 +43,20 @@ struct MultibodyJoint {
   int leader_link = -1;                       // that joint's Bullet link
 };
 
+// Where the robot lives: welded to the world at its root link (an arm; the default), or a free-floating base, as
+// Gazebo leaves a model that has no joint to `world` (a mobile robot), usually on a ground plane.
+struct WorldOptions {
+  bool floating_base = false;
+  bool ground = false;                // a plane at z = 0; contacts with friction 1, or a link's <mu1>
+  Eigen::Vector3d base_position = Eigen::Vector3d::Zero();  // the root link frame's start, world frame (m)
+  double base_yaw = 0;                                        // rad about z
+};
+
 class Multibody {
  public:
   // Throws ModelError for a robot Bullet cannot take or an initial position naming no moving joint. A joint that
   // would start outside its limits starts clamped into them (a warning says so).
-  Multibody(const RobotModel& model, double dt, const InitialPositions& initial = {});
+  Multibody(const RobotModel& model, double dt, const InitialPositions& initial = {}, const WorldOptions& world = {});
   ~Multibody();
   Multibody(const Multibody&) = delete;
   Multibody& operator=(const Multibody&) = delete;
@@ -75,6 +84,13 @@ class Multibody {
   // sizes its solver buffers to that high-water mark, so later steps do not allocate. Call after adding motors.
   void size_solver_buffers();
 
+  // Floating base: the root link frame in the world, and its velocity (world frame: linear m/s, angular rad/s).
+  bool floating_base() const { return !body_->hasFixedBase(); }
+  const std::string& root_link() const { return model_root_; }
+  Eigen::Isometry3d base_pose() const;
+  Eigen::Vector3d base_linear_velocity() const;
+  Eigen::Vector3d base_angular_velocity() const;
+
   // Pose of a URDF link frame and position of its centre of mass, in the world.
   Eigen::Isometry3d link_pose(const std::string& link) const;
   Eigen::Vector3d com_position(const std::string& link) const;
@@ -87,7 +103,7 @@ class Multibody {
   const std::vector<std::string>& start_warnings() const { return start_warnings_; }
 
  private:
-  void build(const RobotModel& model);
+  void build(const RobotModel& model, const WorldOptions& world);
   void set_initial_positions(const RobotModel& model, const InitialPositions& initial);
   void compute_effective_inertias();
   void set_state_refresh();  // forward kinematics and collider transforms after a state change
@@ -101,6 +117,8 @@ class Multibody {
   std::unique_ptr<btMultiBody> body_;
   ShapeStore shapes_;
   std::vector<std::unique_ptr<btMultiBodyLinkCollider>> colliders_;
+  std::unique_ptr<btCollisionObject> ground_;
+  std::string model_root_;
   std::vector<std::unique_ptr<btMultiBodyConstraint>> constraints_;
   std::vector<MultibodyJoint> joints_;
   std::map<std::string, int> link_index_;               // URDF link -> Bullet link (-1: base)

@@ -59,6 +59,13 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
   state_.period_us = int32_t(std::llround(sim.control_period() * 1e6));
   state_buf_.resize(state_.getEncodedSize());
   clock_buf_.resize(clock_.getEncodedSize());
+  if (sim.multibody().floating_base()) {
+    base_ = odometry_t{};
+    base_.frame_id = "world";
+    base_.child_frame_id = sim.multibody().root_link();
+    base_buf_.resize(base_.getEncodedSize());
+    base_channel_ = bus.channel(channels::kBasePose);
+  }
   resize(cmd_, n);
   pending_mode_.assign(n, hardware_command_t::MODE_NONE);
   pending_value_.assign(n, 0.0);
@@ -96,6 +103,23 @@ void SimIo::publish_state(double real_time_factor, bool clock_again) {
   clock_.real_time_factor = real_time_factor;
   const int m = clock_.encode(clock_buf_.data(), 0, int(clock_buf_.size()));
   if (m > 0) bus_.lcm().publish(clock_channel_, clock_buf_.data(), unsigned(m));
+  if (!base_buf_.empty()) publish_base_pose();
+}
+
+void SimIo::publish_base_pose() {
+  const Multibody& mb = sim_.multibody();
+  const Eigen::Isometry3d pose = mb.base_pose();
+  const Eigen::Quaterniond q(pose.linear());
+  const Eigen::Vector3d v = pose.linear().transpose() * mb.base_linear_velocity();
+  const Eigen::Vector3d w = pose.linear().transpose() * mb.base_angular_velocity();
+  base_.utime = state_.utime;
+  base_.position = {pose.translation().x(), pose.translation().y(), pose.translation().z()};
+  base_.orientation = {q.w(), q.x(), q.y(), q.z()};
+  base_.linear = {v.x(), v.y(), v.z()};
+  base_.angular = {w.x(), w.y(), w.z()};
+  base_.yaw = std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
+  const int n = base_.encode(base_buf_.data(), 0, int(base_buf_.size()));
+  if (n > 0) bus_.lcm().publish(base_channel_, base_buf_.data(), unsigned(n));
 }
 
 void SimIo::publish_statistics(const loop_stats_t& stats) { bus_.lcm().publish(stats_channel_, &stats); }

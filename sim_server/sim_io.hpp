@@ -1,6 +1,7 @@
 // sim_server's side of the LCM hardware loop (docs/hardware-protocol.md):
-// publishes hardware/state (every control step) and clock (at its own
-// rate) from preallocated buffers; takes
+// publishes hardware/state (every control step), and clock and a floating
+// base's ground truth (sim_server/base_pose) at the clock's rate, from
+// preallocated buffers; takes
 // hardware/command (checked, and dropped and counted when malformed, NaN,
 // wrong-size, from another session or in the wrong mode), e_stop,
 // sim_server/gains/set and sim_server/request (queued for the stepper, a
@@ -20,6 +21,7 @@
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "lcm_control/loop_stats_t.hpp"
+#include "lcm_control/odometry_t.hpp"
 #include "lcm_control/pid_gains_t.hpp"
 #include "lcm_control/sim_clock_t.hpp"
 #include "lcm_control/sim_request_t.hpp"
@@ -82,6 +84,7 @@ class SimIo {
   std::string why_rejected();
   void drop(const std::string& why);
   void answer_gains(pid_gains_t answer);
+  void publish_base_pose();
 
   Bus& bus_;
   Simulation& sim_;
@@ -94,7 +97,9 @@ class SimIo {
 
   hardware_state_t state_;
   sim_clock_t clock_;
-  std::vector<uint8_t> state_buf_, clock_buf_;
+  odometry_t base_;
+  std::vector<uint8_t> state_buf_, clock_buf_, base_buf_;
+  std::string base_channel_;
 
   hardware_command_t cmd_;  // decoded in place: its arrays keep their capacity
   std::vector<int8_t> pending_mode_;

@@ -29,13 +29,15 @@ int clock_every_for(double control_hz, double clock_hz) {
   return int(std::max(1L, std::lround(control_hz / clock_hz)));
 }
 
-Simulation::Simulation(const RobotModel& model, const SimulationRates& rates, const InitialPositions& initial)
+Simulation::Simulation(const RobotModel& model, const SimulationRates& rates, const InitialPositions& initial,
+                       const WorldOptions& world)
     : model_(model),
       initial_(initial),
+      world_(world),
       control_period_(1.0 / rates.control_hz),
       control_hz_(rates.control_hz),
       substeps_(substeps_for(rates)) {
-  multibody_ = std::make_unique<Multibody>(model_, 1.0 / rates.physics_hz, initial_);
+  multibody_ = std::make_unique<Multibody>(model_, 1.0 / rates.physics_hz, initial_, world_);
   actuators_ = std::make_unique<Actuators>(model_, *multibody_);
   multibody_->size_solver_buffers();
   actuators_->read(multibody_->dt());
@@ -44,7 +46,7 @@ Simulation::Simulation(const RobotModel& model, const SimulationRates& rates, co
 std::vector<std::string> Simulation::reset(const InitialPositions& changes) {
   InitialPositions initial = initial_;
   for (const auto& [joint, q] : changes) initial[joint] = q;
-  auto multibody = std::make_unique<Multibody>(model_, multibody_->dt(), initial);
+  auto multibody = std::make_unique<Multibody>(model_, multibody_->dt(), initial, world_);
   auto actuators = std::make_unique<Actuators>(model_, *multibody);
   for (int i = 0; i < actuators->size(); ++i)
     if (actuators->has_pid(i)) actuators->set_gains(i, actuators_->gains(i));

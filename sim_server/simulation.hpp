@@ -32,12 +32,14 @@ class Simulation {
  public:
   // Throws ModelError for a robot Bullet cannot take or a bad initial position, std::invalid_argument for bad
   // rates.
-  Simulation(const RobotModel& model, const SimulationRates& rates, const InitialPositions& initial = {});
+  Simulation(const RobotModel& model, const SimulationRates& rates, const InitialPositions& initial = {},
+             const WorldOptions& world = {});
 
   // One control period: substeps() times (actuators -> physics step -> read back).
   void step();
 
-  // Back to the state the constructor made: the multibody and its actuators are built afresh from the model (so a
+  // Back to the state the constructor made (a floating base too): the multibody and its actuators are built afresh
+  // from the model (so a
   // run after a reset repeats the first one bit for bit), at the initial positions with `changes` merged into them
   // (kept for later resets); step and sim time 0. What the user set since the start carries over: PID gains, brakes,
   // e-stop (still latched: it holds the new pose). Returns the start positions clamped into the limits (one line
@@ -60,6 +62,7 @@ class Simulation {
  private:
   RobotModel model_;  // the multibody points into it
   InitialPositions initial_;
+  WorldOptions world_;
   std::unique_ptr<Multibody> multibody_;
   std::unique_ptr<Actuators> actuators_;
   double control_period_;

@@ -68,12 +68,12 @@ bool Stepper::run_lockstep(const std::atomic<bool>& stop) {
   const int64_t timeout_us = std::max<int64_t>(1000, std::llround(opt_.lockstep_timeout_s * 1e6));
   publish(real_time_factor());
   while (!stop && !done()) {
+    io_.expect_step(sim_.step_count());  // before a pause too: the answer to this state is kept while paused
     serve_requests();
     if (holding()) {
       if (!wait_paused()) return false;
       continue;
     }
-    io_.expect_step(sim_.step_count());
     int64_t published = monotonic_us();
     bool said = false;
     while (!io_.has_command() && !io_.has_request()) {

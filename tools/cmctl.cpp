@@ -55,14 +55,7 @@ int main(int argc, char** argv) {
   reset->add_option("-J,--initial-position", initial,
                     "JOINT=VALUE: a new start position for that joint (rad or m; repeatable), kept for later resets; "
                     "other joints go back to sim_server's -J (or 0)")
-      ->check([](const std::string& v) {
-        try {
-          parse_initial_position(v);
-          return std::string();
-        } catch (const std::invalid_argument& e) {
-          return std::string(e.what());
-        }
-      });
+      ->check(initial_position_problem);
   for (auto* sc : {load, unload, start_cmd, stop_cmd}) sc->add_option("NAME", names, "controller names")->required();
   sw->add_option("--start", start, "controllers to start");
   sw->add_option("--stop", stop, "controllers to stop");

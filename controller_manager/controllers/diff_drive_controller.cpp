@@ -1,0 +1,268 @@
+// diff_drive_controller/DiffDriveController, as ros_controllers' (ROS 1): takes
+// a twist_t on `<controller>/cmd_vel`, limits it (linear/x and angular/z:
+// velocity and acceleration), turns it into wheel velocities on
+// VelocityJointInterface, stops the wheels when no command came for
+// cmd_vel_timeout, and dead-reckons the base from the wheel positions (exact
+// arcs), publishing odometry_t on `<controller>/odom` at publish_rate.
+// wheel_radius and wheel_separation default to the URDF's (the wheel link's
+// collision cylinder or sphere, and the wheel joints' distance apart).
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "controller_manager/controllers/factories.hpp"
+#include "lcm_control/odometry_t.hpp"
+#include "lcm_control/twist_t.hpp"
+
+namespace lcm_control::cm {
+
+namespace {
+
+// linear/x or angular/z of ros_controllers' SpeedLimiter (jerk limits are not supported).
+struct SpeedLimits {
+  bool has_velocity = false, has_acceleration = false;
+  double min_velocity = 0, max_velocity = 0, min_acceleration = 0, max_acceleration = 0;
+
+  // v_prev: the limited command of the previous cycle.
+  double limit(double v, double v_prev, double dt) const {
+    if (has_acceleration && dt > 0) v = std::clamp(v, v_prev + min_acceleration * dt, v_prev + max_acceleration * dt);
+    if (has_velocity) v = std::clamp(v, min_velocity, max_velocity);
+    return v;
+  }
+};
+
+SpeedLimits read_limits(const Params& p, const char* group, const char* axis) {
+  SpeedLimits l;
+  const YAML::Node n = p.node(group);
+  if (!n) return l;
+  const std::string where = fmt::format("{}/{}/{}", p.where(), group, axis);
+  const YAML::Node a = n.IsMap() ? n[axis] : YAML::Node();
+  if (!a) return l;
+  if (!a.IsMap()) throw ControllerError(where + ": expected a map (has_velocity_limits, max_velocity, ...)");
+  auto num = [&](const char* key, double fallback) {
+    if (!a[key]) return fallback;
+    try {
+      const double v = a[key].as<double>();
+      if (!std::isfinite(v)) throw YAML::Exception({}, "");
+      return v;
+    } catch (const YAML::Exception&) {
+      throw ControllerError(fmt::format("{}/{}: '{}' is not a number", where, key, a[key].Scalar()));
+    }
+  };
+  auto flag = [&](const char* key) {
+    try {
+      return a[key] && a[key].as<bool>();
+    } catch (const YAML::Exception&) {
+      throw ControllerError(fmt::format("{}/{}: '{}' is not true or false", where, key, a[key].Scalar()));
+    }
+  };
+  l.has_velocity = flag("has_velocity_limits");
+  l.has_acceleration = flag("has_acceleration_limits");
+  l.max_velocity = num("max_velocity", 0);
+  l.min_velocity = num("min_velocity", -l.max_velocity);
+  l.max_acceleration = num("max_acceleration", 0);
+  l.min_acceleration = num("min_acceleration", -l.max_acceleration);
+  if (l.has_velocity && !(l.min_velocity <= l.max_velocity))
+    throw ControllerError(where + ": min_velocity must be <= max_velocity");
+  if (l.has_acceleration && !(l.min_acceleration <= 0 && l.max_acceleration >= 0))
+    throw ControllerError(where + ": max_acceleration must be >= 0 and min_acceleration <= 0");
+  return l;
+}
+
+// The radius of a wheel link's collision cylinder or sphere, 0 if it has neither.
+double wheel_radius_of(const RobotModel& model, const std::string& joint) {
+  const Joint* j = model.joint(joint);
+  const Link* l = j ? model.link(j->child_link) : nullptr;
+  if (!l) return 0;
+  for (const Geometry& g : l->collisions)
+    if (g.type == Geometry::Type::Cylinder || g.type == Geometry::Type::Sphere) return g.radius;
+  return 0;
+}
+
+class DiffDriveController : public Controller {
+ public:
+  void init(ControllerContext& ctx) override {
+    Params& p = ctx.params();
+    auto wheels = [&](const char* key) {
+      const YAML::Node n = p.node(key);
+      if (n && n.IsScalar()) return std::vector<std::string>{p.string(key)};
+      return p.strings(key);
+    };
+    for (const auto& n : wheels("left_wheel")) left_.push_back(ctx.claim(n, Interface::Velocity));
+    for (const auto& n : wheels("right_wheel")) right_.push_back(ctx.claim(n, Interface::Velocity));
+    const RobotModel& m = ctx.model();
+    double radius = p.has("wheel_radius") ? p.number("wheel_radius") : wheel_radius_of(m, left_[0]->name);
+    double separation = 0;
+    if (p.has("wheel_separation")) {
+      separation = p.number("wheel_separation");
+    } else {
+      const Joint* l = m.joint(left_[0]->name);
+      const Joint* r = m.joint(right_[0]->name);
+      separation = (l->origin.translation() - r->origin.translation()).norm();
+      ctx.notes.push_back(fmt::format("{}: wheel_separation {:g} m from the URDF ('{}' to '{}')", p.where(), separation,
+                                      l->name, r->name));
+    }
+    if (!(radius > 0))
+      throw p.error("wheel_radius", fmt::format("give it: '{}' has no collision cylinder or sphere to take it from",
+                                                left_[0]->name));
+    if (!(separation > 0)) throw p.error("wheel_separation", fmt::format("{} m: must be > 0", separation));
+    separation *= p.number("wheel_separation_multiplier", 1.0);
+    radius *= p.number("wheel_radius_multiplier", 1.0);
+    left_radius_ = radius * p.number("left_wheel_radius_multiplier", 1.0);
+    right_radius_ = radius * p.number("right_wheel_radius_multiplier", 1.0);
+    separation_ = separation;
+    rate_ = p.number("publish_rate", 50.0);
+    if (!(rate_ > 0)) throw p.error("publish_rate", fmt::format("{} Hz: must be > 0", rate_));
+    timeout_ = p.number("cmd_vel_timeout", 0.5);
+    open_loop_ = p.boolean("open_loop", false);
+    speeds_.assign(static_cast<size_t>(std::max(1.0, p.number("velocity_rolling_window_size", 10))), {0.0, 0.0});
+    linear_ = read_limits(p, "linear", "x");
+    angular_ = read_limits(p, "angular", "z");
+    odom_.frame_id = p.has("odom_frame_id") ? p.string("odom_frame_id") : "odom";
+    odom_.child_frame_id = p.has("base_frame_id") ? p.string("base_frame_id") : "base_link";
+    for (const char* ignored : {"enable_odom_tf", "pose_covariance_diagonal", "twist_covariance_diagonal",
+                                "allow_multiple_cmd_vel_publishers", "publish_cmd",
+                                "publish_wheel_joint_controller_state"})
+      if (p.has(ignored)) p.node(ignored);
+    const std::string name = ctx.name();
+    auto bad = [this, name](const std::string& why) {
+      if (dropped_++ % 100 == 0) spdlog::warn("{}: dropped a cmd_vel: {} ({} dropped so far)", name, why, dropped_);
+    };
+    ctx.port().subscribe<twist_t>(
+        ctx.channel("cmd_vel"),
+        [this, bad](const twist_t& t) {
+          if (!std::isfinite(t.linear.x) || !std::isfinite(t.angular.z)) return bad("NaN or Inf");
+          if (!running_) return;
+          cmd_v_ = t.linear.x;
+          cmd_w_ = t.angular.z;
+          cmd_new_ = true;
+        },
+        bad);
+    odom_pub_ = ctx.port().publisher<odometry_t>(ctx.channel("odom"));
+    claim_.interface = Interface::Velocity;
+  }
+
+  void starting(const Time& now) override {
+    cmd_v_ = cmd_w_ = last_v_ = last_w_ = 0;
+    cmd_new_ = false;
+    cmd_time_ = now.seconds();
+    brake();
+    seed_wheels();
+    last_publish_ = now.seconds() - 1.001 / rate_;
+    last_update_ = now.seconds();
+  }
+
+  void restart(const Time& now) override {
+    if (now.seconds() < last_update_) x_ = y_ = heading_ = 0;  // time went back: a reset; the odometry starts again
+    starting(now);
+  }
+
+  void update(const Time& now, double period) override {
+    const double t = now.seconds();
+    last_update_ = t;
+    if (cmd_new_) {
+      cmd_new_ = false;
+      cmd_time_ = t;
+    }
+    double v = cmd_v_, w = cmd_w_;
+    if (t - cmd_time_ > timeout_) v = w = 0;
+    v = linear_.limit(v, last_v_, period);
+    w = angular_.limit(w, last_w_, period);
+    last_v_ = v;
+    last_w_ = w;
+    integrate(v, w, period);
+    const double left = (v - w * separation_ / 2) / left_radius_, right = (v + w * separation_ / 2) / right_radius_;
+    for (JointData* j : left_) j->command = left;
+    for (JointData* j : right_) j->command = right;
+    publish(now);
+  }
+
+  void stopping(const Time&) override { brake(); }
+
+ private:
+  static double mean_position(const std::vector<JointData*>& js) {
+    double s = 0;
+    for (const JointData* j : js) s += j->position;
+    return s / static_cast<double>(js.size());
+  }
+  void brake() {
+    for (JointData* j : left_) j->command = 0;
+    for (JointData* j : right_) j->command = 0;
+  }
+  void seed_wheels() {
+    left_prev_ = mean_position(left_);
+    right_prev_ = mean_position(right_);
+    std::fill(speeds_.begin(), speeds_.end(), std::pair{0.0, 0.0});
+    filled_ = next_ = 0;
+  }
+
+  // Dead reckoning over one period: from the wheels (or, open_loop, from the command).
+  void integrate(double v_cmd, double w_cmd, double period) {
+    double ds = v_cmd * period, dth = w_cmd * period;
+    if (!open_loop_) {
+      const double l = mean_position(left_), r = mean_position(right_);
+      const double dl = (l - left_prev_) * left_radius_, dr = (r - right_prev_) * right_radius_;
+      left_prev_ = l;
+      right_prev_ = r;
+      ds = (dl + dr) / 2;
+      dth = (dr - dl) / separation_;
+    }
+    if (std::abs(dth) < 1e-6) {  // second-order Runge-Kutta
+      x_ += ds * std::cos(heading_ + dth / 2);
+      y_ += ds * std::sin(heading_ + dth / 2);
+    } else {  // the exact arc
+      const double radius = ds / dth, h = heading_ + dth;
+      x_ += radius * (std::sin(h) - std::sin(heading_));
+      y_ -= radius * (std::cos(h) - std::cos(heading_));
+    }
+    heading_ = std::remainder(heading_ + dth, 2 * M_PI);
+    if (period > 0) {
+      speeds_[next_] = {ds / period, dth / period};
+      next_ = (next_ + 1) % speeds_.size();
+      filled_ = std::min(filled_ + 1, speeds_.size());
+    }
+  }
+
+  void publish(const Time& now) {
+    const double t = now.seconds(), dt = 1.0 / rate_;
+    if (t < last_publish_) last_publish_ = t - 1.001 * dt;
+    if (!(last_publish_ + dt < t)) return;
+    last_publish_ += dt;
+    if (t - last_publish_ > dt) last_publish_ = t;
+    double v = 0, w = 0;
+    for (size_t k = 0; k < filled_; ++k) v += speeds_[k].first, w += speeds_[k].second;
+    const double n = filled_ == 0 ? 1.0 : static_cast<double>(filled_);
+    odom_.utime = now.utime;
+    odom_.position = {x_, y_, 0};
+    odom_.orientation = {std::cos(heading_ / 2), 0, 0, std::sin(heading_ / 2)};
+    odom_.yaw = heading_;
+    odom_.linear = {v / n, 0, 0};
+    odom_.angular = {0, 0, w / n};
+    odom_pub_.publish(odom_);
+  }
+
+  std::vector<JointData*> left_, right_;
+  double left_radius_ = 0, right_radius_ = 0, separation_ = 0, rate_ = 50, timeout_ = 0.5;
+  bool open_loop_ = false;
+  SpeedLimits linear_, angular_;
+  double cmd_v_ = 0, cmd_w_ = 0, cmd_time_ = 0, last_v_ = 0, last_w_ = 0;
+  bool cmd_new_ = false;
+  double left_prev_ = 0, right_prev_ = 0, x_ = 0, y_ = 0, heading_ = 0;
+  double last_publish_ = 0, last_update_ = 0;
+  std::vector<std::pair<double, double>> speeds_;  // (v, w) of the last velocity_rolling_window_size periods, a ring
+  size_t filled_ = 0, next_ = 0;
+  odometry_t odom_{};
+  Publisher<odometry_t> odom_pub_;
+};
+
+}  // namespace
+
+std::unique_ptr<Controller> make_diff_drive_controller(const std::string&) {
+  return std::make_unique<DiffDriveController>();
+}
+
+}  // namespace lcm_control::cm
