@@ -7,6 +7,10 @@
 
 namespace lcm_control {
 
+namespace {
+double floored_mod(double a, double b) { return a - b * std::floor(a / b); }  // mod(-1, 3) = 2, as a period wants
+}  // namespace
+
 Expressions::Expressions(const std::vector<std::string>& texts) : texts_(texts) {
   if (texts.empty()) throw ExpressionError("no expression given");
   for (const auto& text : texts) {
@@ -15,11 +19,12 @@ Expressions::Expressions(const std::vector<std::string>& texts) : texts_(texts) 
       p->DefineVar("i", &i_);
       p->DefineVar("t", &t_);
       p->DefineConst("pi", M_PI);
+      p->DefineFun("mod", floored_mod);
       p->SetExpr(text);
       p->Eval();
     } catch (const mu::Parser::exception_type& e) {
       throw ExpressionError(
-          fmt::format("expression '{}': {} (variables: i, t; constants: pi, _pi, _e)", text, e.GetMsg()));
+          fmt::format("expression '{}': {} (variables: i, t; constants: pi, _pi, _e; functions: muparser's and mod(a, b))", text, e.GetMsg()));
     }
     parsers_.push_back(std::move(p));
   }

@@ -21,4 +21,4 @@ _lcm_control() {
   fi
 }
 complete -F _lcm_control sim_server controller_manager launch spawner cmctl turret-cmd send-trajectory \
-  state-logger state-publisher log2csv plotter tune doctor tracking-summary bus
+  state-logger state-publisher log2csv plotter tune doctor tracking-summary bus drive

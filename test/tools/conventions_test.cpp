@@ -13,7 +13,7 @@ namespace {
 const std::vector<std::string> kPrograms = {
     "sim_server", "controller_manager", "launch",  "spawner",          "cmctl",           "turret-cmd",
     "send-trajectory", "state-logger", "state-publisher", "log2csv", "plotter", "tune", "doctor",
-    "tracking-summary", "bus"};
+    "tracking-summary", "bus", "drive"};
 
 struct Outcome {
   int rc;
