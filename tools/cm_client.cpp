@@ -15,6 +15,8 @@ CmClient::CmClient(Bus& bus, std::string client) : bus_(bus), client_(std::move(
   sub_->setQueueCapacity(100);
 }
 
+CmClient::~CmClient() { bus_.lcm().unsubscribe(sub_); }
+
 std::string CmClient::request_channel() const { return bus_.channel(channels::kCmRequest); }
 std::string CmClient::response_channel() const { return bus_.channel(channels::kCmResponse); }
 

@@ -26,6 +26,7 @@ class CmTimeout : public BusError {
 class CmClient {
  public:
   CmClient(Bus& bus, std::string client);
+  ~CmClient();  // unsubscribes: an answer that comes later (a command source ending) must not reach a dead client
   CmClient(const CmClient&) = delete;
   CmClient& operator=(const CmClient&) = delete;
 

@@ -171,6 +171,21 @@ void write_data(const std::string& file, const std::vector<Series>& series, int6
   if (!out.flush()) throw std::runtime_error("cannot write " + file);
 }
 
+// --xy: one block per pair ("x y" lines), the y sample taken at the x sample's time (fields of one message
+// share it); x samples without a y at their time are left out.
+void write_xy_data(const std::string& file, const std::vector<Series>& series) {
+  std::ofstream out(file);
+  if (!out) throw std::runtime_error("cannot write " + file);
+  for (size_t k = 0; k + 1 < series.size(); k += 2) {
+    if (k) out << "\n\n";
+    out << "# " << series[k + 1].path << " against " << series[k].path << "\n";
+    std::map<int64_t, double> y(series[k + 1].points.begin(), series[k + 1].points.end());
+    for (const auto& [t, x] : series[k].points)
+      if (const auto it = y.find(t); it != y.end()) out << fmt::format("{} {}\n", x, it->second);
+  }
+  if (!out.flush()) throw std::runtime_error("cannot write " + file);
+}
+
 // The y axis: the one unit all series share, else a pointer to the legend, which gives each series' unit.
 std::string ylabel(const std::vector<Series>& series) {
   std::set<std::string> units;
@@ -196,6 +211,21 @@ std::string gnuplot_script(const std::string& terminal, const std::string& outpu
     s += fmt::format("{}{} index {} using 1:2 with {} title {}", k ? ", \\\n     " : "", quoted(data), k,
                      series[k].points.size() < 2 ? "points pt 7" : "lines lw 1.5",
                      quoted((text ? " " : "") + legend(series[k])));
+  return s + "\n";
+}
+
+// --xy: each pair a curve, y against x, on equal axes (a path in the plane).
+std::string xy_script(const std::string& terminal, const std::string& output, const std::string& data,
+                      const std::vector<Series>& series, const std::string& title) {
+  std::string s = fmt::format("set terminal {}\n", terminal);
+  s += output.empty() ? std::string("set output\n") : fmt::format("set output {}\n", quoted(output));
+  s += "set termoption noenhanced\nset grid\nset size ratio -1\nset key below vertical\n";
+  s += fmt::format("set xlabel {}\nset ylabel {}\n", quoted(legend(series[0])), quoted(legend(series[1])));
+  if (!title.empty()) s += fmt::format("set title {}\n", quoted(title));
+  s += "plot ";
+  for (size_t k = 0; k + 1 < series.size(); k += 2)
+    s += fmt::format("{}{} index {} using 1:2 with lines lw 1.5 title {}", k ? ", \\\n     " : "", quoted(data),
+                     k / 2, quoted(fmt::format("{} against {}", series[k + 1].path, series[k].path)));
   return s + "\n";
 }
 
@@ -243,6 +273,8 @@ int main(int argc, char** argv) {
       "  plotter j2_controller/command.data joint_states.velocity[1] --log run.lcmlog --output run.png\n"
       "  plotter /j2_controller/command /joint_states/velocity[1] --duration 10 --output live.svg\n"
       "  plotter joint_states.position[0] --duration 5 --output - --terminal   # ASCII plot in the terminal\n"
+      "  plotter --xy diff_drive_controller/odom.position.x diff_drive_controller/odom.position.y \\\n"
+      "      sim_server/base_pose.position.x sim_server/base_pose.position.y --log run.lcmlog -o path.png\n"
       "  plotter joint_states.velocity[1] --duration 60 --live --output run.png # live text view, PNG at the end",
       "plotter"};
   std::vector<std::string> paths;
@@ -262,6 +294,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"receive", "utime"}));
   app.add_option("--width", width, "image width in pixels")->check(CLI::Range(100, 10000));
   app.add_option("--height", height, "image height in pixels")->check(CLI::Range(100, 10000));
+  bool xy = false;
+  app.add_flag("--xy", xy,
+               "PATHs in pairs X Y: each pair is one curve of Y against X (the values of one message time), on equal "
+               "axes: a path in the plane, e.g. odometry against ground truth");
   app.add_flag("--terminal", terminal, "also draw the plot as text in the terminal");
   app.add_flag("--live", live, "with --duration: redraw a text plot in the terminal every second");
   add_bus_flags(app, bus_flags);
@@ -276,6 +312,8 @@ int main(int argc, char** argv) {
     else if (!(output == "-" && terminal))
       throw std::runtime_error(fmt::format("--output '{}': the name must end in .png or .svg", output));
 
+    if (xy && paths.size() % 2 != 0)
+      throw std::runtime_error(fmt::format("--xy takes the PATHs in pairs X Y; {} given", paths.size()));
     std::vector<Series> series;
     for (const auto& p : paths) series.push_back(Series{p, "", "", "", false, {}});
     Collector collector(series, time_source == "utime");
@@ -288,13 +326,20 @@ int main(int argc, char** argv) {
     // Writes the data and runs gnuplot: the image (with_image) and/or a text plot it returns.
     auto render = [&](bool with_image, bool with_text) {
       std::vector<Series> have;
-      for (const auto& s : series)
-        if (!s.points.empty()) have.push_back(s);
+      for (size_t k = 0; k < series.size(); k += xy ? 2 : 1)
+        if (!series[k].points.empty() && (!xy || !series[k + 1].points.empty()))
+          have.insert(have.end(), series.begin() + long(k), series.begin() + long(k + (xy ? 2 : 1)));
       if (have.empty()) return std::string("(no data yet)\n");
+      if (xy) {
+        write_xy_data(data_file, have);
+        std::ofstream sc(script_file);
+        if (with_image) sc << xy_script(term, output, data_file, have, title);
+        if (with_text) sc << xy_script("dumb size 100,30", "", data_file, have, title);
+      }
       int64_t t0 = have[0].points.front().first;
       for (const auto& s : have) t0 = std::min(t0, s.points.front().first);
-      write_data(data_file, have, t0);
-      {
+      if (!xy) {
+        write_data(data_file, have, t0);
         std::ofstream sc(script_file);
         if (with_image) sc << gnuplot_script(term, output, data_file, have, title, xlabel);
         if (with_text) sc << gnuplot_script("dumb size 100,30", "", data_file, have, title, xlabel, true);
