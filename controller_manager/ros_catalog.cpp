@@ -81,7 +81,7 @@ const std::vector<std::string> kDiffDriveParams = {
     "wheel_radius_multiplier", "left_wheel_radius_multiplier", "right_wheel_radius_multiplier", "publish_rate",
     "cmd_vel_timeout", "base_frame_id", "odom_frame_id", "enable_odom_tf", "open_loop", "velocity_rolling_window_size",
     "linear", "angular", "pose_covariance_diagonal", "twist_covariance_diagonal", "allow_multiple_cmd_vel_publishers",
-    "publish_cmd", "publish_wheel_joint_controller_state", "odom_frame_id", "estimate_velocity_from_position"};
+    "publish_cmd", "publish_wheel_joint_controller_state", "estimate_velocity_from_position"};
 const std::vector<std::string> kTrajectoryParams = {
     "joints", "gains", "velocity_ff", "constraints", "state_publish_rate", "action_monitor_rate",
     "stop_trajectory_duration", "allow_partial_joints_goal", "hold_trajectory_duration",

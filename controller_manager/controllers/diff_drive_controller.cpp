@@ -143,7 +143,6 @@ class DiffDriveController : public Controller {
         },
         bad);
     odom_pub_ = ctx.port().publisher<odometry_t>(ctx.channel("odom"));
-    claim_.interface = Interface::Velocity;
   }
 
   void starting(const Time& now) override {

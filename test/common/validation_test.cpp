@@ -25,13 +25,16 @@ std::string write(const std::string& dir, const std::string& name, const std::st
   return p;
 }
 
-// turret_bot's URDF with `from` replaced by `to` (exactly once).
-std::string turret_urdf_with(const std::string& from, const std::string& to) {
-  std::string s = slurp(lt::source("config/turret_bot.urdf"));
+// A URDF of the source tree with `from` replaced by `to` (exactly once).
+std::string urdf_with(const std::string& file, const std::string& from, const std::string& to) {
+  std::string s = slurp(lt::source(file));
   const auto at = s.find(from);
-  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in turret_bot.urdf";
+  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in " << file;
   if (at != std::string::npos) s.replace(at, from.size(), to);
   return s;
+}
+std::string turret_urdf_with(const std::string& from, const std::string& to) {
+  return urdf_with("config/turret_bot.urdf", from, to);
 }
 
 // Loads and returns the error text ("" if it loaded).
@@ -234,11 +237,7 @@ TEST(Validation, NonFiniteOrAbsurdNumbersAreRefused) {
 
 namespace {
 std::string gripper_with(const std::string& from, const std::string& to) {
-  std::string s = slurp(lt::source("test/robots/gripper.urdf"));
-  const auto at = s.find(from);
-  EXPECT_NE(at, std::string::npos) << "test bug: '" << from << "' not in gripper.urdf";
-  if (at != std::string::npos) s.replace(at, from.size(), to);
-  return s;
+  return urdf_with("test/robots/gripper.urdf", from, to);
 }
 const std::string kGripperYaml = slurp(lt::source("test/robots/gripper.yaml"));
 }  // namespace
