@@ -2,6 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <poll.h>
+
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
 
@@ -10,22 +13,75 @@ namespace lcm_control {
 std::string gains_set_channel(const std::string& owner) { return owner + "/gains/set"; }
 std::string gains_channel(const std::string& owner) { return owner + "/gains"; }
 
-Bus::Bus(const std::string& url, const std::string& ns) : ns_(ns) {
-  const char* env = std::getenv("LCM_DEFAULT_URL");
-  url_ = !url.empty() ? url : (env && *env ? env : "udpm://239.255.76.67:7667?ttl=0");
-  while (!ns_.empty() && ns_.back() == '/') ns_.pop_back();
-  while (!ns_.empty() && ns_.front() == '/') ns_.erase(0, 1);
-  prefix_ = ns_.empty() ? "" : ns_ + "/";
-  lcm_ = std::make_unique<lcm::LCM>(url);  // "" lets LCM read LCM_DEFAULT_URL itself
-  if (!lcm_->good())
-    throw BusError(fmt::format(
-        "LCM could not start on '{}': check the URL (--lcm-url or LCM_DEFAULT_URL); for udpm:// on this host, loopback "
-        "needs a multicast route: run as root `ip link set lo multicast on; ip route add 224.0.0.0/4 dev lo` "
-        "(scripts/setup does this)",
-        url_));
+namespace {
+std::string trim_slashes(std::string ns) {
+  while (!ns.empty() && ns.back() == '/') ns.pop_back();
+  while (!ns.empty() && ns.front() == '/') ns.erase(0, 1);
+  return ns;
 }
 
-bool Bus::handle(int timeout_ms) { return lcm_->handleTimeout(timeout_ms) >= 0; }
+std::unique_ptr<lcm::LCM> open_lcm(const std::string& url, const std::string& shown, const char* flag) {
+  auto lc = std::make_unique<lcm::LCM>(url);  // "" lets LCM read LCM_DEFAULT_URL itself
+  if (!lc->good())
+    throw BusError(fmt::format(
+        "LCM could not start on '{}': check the URL ({}); for udpm:// on this host, loopback needs a multicast "
+        "route: run as root `ip link set lo multicast on; ip route add 224.0.0.0/4 dev lo` (scripts/setup does this)",
+        shown, flag));
+  return lc;
+}
+}  // namespace
+
+std::string effective_url(const std::string& url) {
+  const char* env = std::getenv("LCM_DEFAULT_URL");
+  return !url.empty() ? url : (env && *env ? env : "udpm://239.255.76.67:7667?ttl=0");
+}
+
+std::string hardware_url_for(const std::string& value, const std::string& shared_url, const std::string& ns) {
+  if (value.empty() || value == "shared") return shared_url;
+  if (value != "auto") return value;
+  // udpm://GROUP[:PORT][?OPTIONS]
+  const std::string scheme = "udpm://";
+  if (shared_url.rfind(scheme, 0) != 0)
+    throw BusError(fmt::format("--hardware-lcm-url auto derives a port from the shared bus's udpm:// URL, and that "
+                               "is '{}': give the hardware loop's URL itself",
+                               shared_url));
+  const size_t query = shared_url.find('?');
+  const std::string host_port = shared_url.substr(scheme.size(), query == std::string::npos ? std::string::npos
+                                                                                            : query - scheme.size());
+  const std::string options = query == std::string::npos ? "" : shared_url.substr(query);
+  const std::string group = host_port.substr(0, host_port.find(':'));
+  uint32_t h = 2166136261u;  // FNV-1a: the same namespace gives the same port on every host
+  for (const char c : trim_slashes(ns)) h = (h ^ uint8_t(c)) * 16777619u;
+  return fmt::format("{}{}:{}{}", scheme, group.empty() ? "239.255.76.67" : group,
+                     kHardwarePortBase + int(h % kHardwarePorts), options);
+}
+
+Bus::Bus(const std::string& url, const std::string& ns, const std::string& hardware_url)
+    : url_(effective_url(url)), ns_(trim_slashes(ns)) {
+  prefix_ = ns_.empty() ? "" : ns_ + "/";
+  lcm_ = open_lcm(url, url_, "--lcm-url or LCM_DEFAULT_URL");
+  const std::string hw = hardware_url_for(hardware_url, url_, ns_);
+  if (hw != url_) {
+    hw_url_ = hw;
+    hw_ = open_lcm(hw, hw, "--hardware-lcm-url");
+  }
+}
+
+std::vector<int> Bus::fds() {
+  std::vector<int> v{lcm_->getFileno()};
+  if (hw_) v.push_back(hw_->getFileno());
+  return v;
+}
+
+bool Bus::handle(int timeout_ms) {
+  if (!hw_) return lcm_->handleTimeout(timeout_ms) >= 0;
+  pollfd p[2] = {{lcm_->getFileno(), POLLIN, 0}, {hw_->getFileno(), POLLIN, 0}};
+  const int r = poll(p, 2, timeout_ms);
+  if (r < 0) return errno == EINTR;
+  if ((p[1].revents & POLLIN) && hw_->handle() < 0) return false;
+  if ((p[0].revents & POLLIN) && lcm_->handle() < 0) return false;
+  return true;
+}
 
 int64_t monotonic_us() {
   return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now().time_since_epoch())

@@ -1,5 +1,6 @@
 // LCM plumbing both processes and the tools share: the URL (flag, else
-// LCM_DEFAULT_URL), namespaced channel names, and a checked LCM instance.
+// LCM_DEFAULT_URL), namespaced channel names, and checked LCM instances: the
+// shared bus, and the hardware loop's own when it is given one.
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
@@ -10,6 +11,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace lcm_control {
 
@@ -41,14 +43,31 @@ class BusError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// The URL of a robot's hardware loop (hardware/state, hardware/command) for `--hardware-lcm-url VALUE`:
+// "" or "shared" = the shared bus itself; "auto" = the shared udpm URL with its port moved to one the namespace picks
+// (kHardwarePortBase + FNV-1a(ns) % kHardwarePorts), so that every robot's loop has its own socket and the
+// processes on the shared bus do not wake for it; anything else is used as given. Throws BusError when auto meets
+// a URL that is not udpm://.
+inline constexpr int kHardwarePortBase = 7700, kHardwarePorts = 2000;
+std::string hardware_url_for(const std::string& value, const std::string& shared_url, const std::string& ns);
+
+// The URL in effect for `url` "" (LCM_DEFAULT_URL, else LCM's default).
+std::string effective_url(const std::string& url);
+
 // A namespace prefix "NS/" (empty for none) applied to every channel name.
 class Bus {
  public:
-  // url "" means LCM_DEFAULT_URL, else LCM's default. Throws BusError with the
-  // URL and the multicast-route fix when LCM cannot start.
-  Bus(const std::string& url, const std::string& ns);
+  // url "" means LCM_DEFAULT_URL, else LCM's default; hardware_url as hardware_url_for() takes it. Throws BusError
+  // with the URL and the multicast-route fix when LCM cannot start.
+  Bus(const std::string& url, const std::string& ns, const std::string& hardware_url = "");
 
   lcm::LCM& lcm() { return *lcm_; }
+  // Where hardware/state and hardware/command travel: lcm() unless the hardware loop has its own URL.
+  lcm::LCM& hardware() { return hw_ ? *hw_ : *lcm_; }
+  bool hardware_apart() const { return hw_ != nullptr; }
+  const std::string& hardware_url() const { return hw_ ? hw_url_ : url_; }
+  // The file descriptors to wait on (one, or two with a hardware URL of its own).
+  std::vector<int> fds();
   const std::string& url() const { return url_; }
   const std::string& ns() const { return ns_; }
   std::string channel(const std::string& name) const { return prefix_ + name; }
@@ -58,12 +77,12 @@ class Bus {
     return lcm_->publish(channel(name), &msg);
   }
 
-  // Waits up to timeout_ms for messages; returns false on an LCM error.
+  // Waits up to timeout_ms for messages on either instance and handles what came; false on an LCM error.
   bool handle(int timeout_ms);
 
  private:
-  std::unique_ptr<lcm::LCM> lcm_;
-  std::string url_, ns_, prefix_;
+  std::unique_ptr<lcm::LCM> lcm_, hw_;
+  std::string url_, ns_, prefix_, hw_url_;
 };
 
 // lcm-gen's decode of bytes the schema walk (wire_fits or wire_problem) has accepted; false if it still fails or

@@ -19,11 +19,20 @@ namespace lcm_control {
 struct BusFlags {
   std::string lcm_url;  // "" = LCM_DEFAULT_URL
   std::string ns;
+  std::string hardware_lcm_url;  // "" = lcm_url; "auto" or a URL (hardware_url_for)
 };
 
 inline void add_bus_flags(CLI::App& app, BusFlags& f) {
   app.add_option("--lcm-url", f.lcm_url, "LCM URL (default: $LCM_DEFAULT_URL, else LCM's default)");
   app.add_option("--namespace", f.ns, "prefix every channel with NS/ (one robot per namespace)");
+}
+
+// For the programs on the hardware loop (sim_server, controller_manager, launch, turret-cmd --sim-time).
+inline void add_hardware_url_flag(CLI::App& app, BusFlags& f) {
+  app.add_option("--hardware-lcm-url", f.hardware_lcm_url,
+                 "LCM URL of this robot's hardware loop (hardware/state, hardware/command) when it is not the "
+                 "--lcm-url: `auto` moves it to a port of the shared group picked by the namespace, so that N robots "
+                 "on one bus cost each process O(1) (default: the --lcm-url)");
 }
 
 inline void add_package_path_flag(CLI::App& app, std::vector<std::string>& dirs) {

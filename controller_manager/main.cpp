@@ -1,6 +1,9 @@
 // controller_manager: flags and wiring only. Loads the URDF and YAML, answers
 // requests, runs the loop on hardware/state, stops and unloads everything on
 // SIGINT/SIGTERM. Exit codes: 0 clean stop, 2 usage, 3 bad URDF/YAML, 4 LCM.
+#include <poll.h>
+
+#include <cerrno>
 #include <csignal>
 
 #include "common/cli.hpp"
@@ -13,6 +16,26 @@
 namespace {
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
+
+// Waits up to timeout_ms for the hardware loop or the shared bus, then handles what is queued on each (the
+// hardware first; bounded, so that a flood cannot starve the housekeeping). Messages handled, or -1 on an error.
+int wait_and_handle(lcm_control::Bus& bus, const std::vector<int>& fds, int timeout_ms) {
+  pollfd p[2] = {{fds[0], POLLIN, 0}, {fds.size() > 1 ? fds[1] : -1, POLLIN, 0}};
+  const int r = poll(p, nfds_t(fds.size()), timeout_ms);
+  if (r < 0) return errno == EINTR ? 0 : -1;
+  int handled = 0;
+  for (size_t i = fds.size(); i-- > 0;) {
+    if (!(p[i].revents & POLLIN)) continue;
+    lcm::LCM& lc = i == 0 ? bus.lcm() : bus.hardware();
+    if (lc.handle() < 0) return -1;
+    for (++handled; handled < 1000; ++handled) {
+      const int n = lc.handleTimeout(0);
+      if (n < 0) return -1;
+      if (n == 0) break;
+    }
+  }
+  return handled;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -33,6 +56,7 @@ int main(int argc, char** argv) {
   app.add_option("--urdf", urdf, "robot URDF with <transmission> tags")->required();
   app.add_option("--config", config, "ros_control YAML (controllers as top-level keys)")->required();
   add_bus_flags(app, bus_flags);
+  add_hardware_url_flag(app, bus_flags);
   add_package_path_flag(app, package_path);
   std::vector<std::string> args;
   add_arg_flag(app, args);
@@ -48,7 +72,7 @@ int main(int argc, char** argv) {
     RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
     for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
-    Bus bus(bus_flags.lcm_url, model.ns);
+    Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url);
     cm::ManagerOptions options;
     options.silence_us = static_cast<int64_t>(silence_s * 1e6);
     const size_t configured = model.controllers.size();
@@ -68,19 +92,18 @@ int main(int argc, char** argv) {
     sigaction(SIGINT, &sa, nullptr);
     sigaction(SIGTERM, &sa, nullptr);
 
-    spdlog::info("ready ({} controllers configured, {} actuated joints, lcm {}{}{}{})", configured, actuated,
-                 bus.url(), bus.ns().empty() ? "" : ", namespace ", bus.ns(), scheduling.empty() ? "" : ", " + scheduling);
+    spdlog::info("ready ({} controllers configured, {} actuated joints, lcm {}{}{}{}{})", configured, actuated,
+                 bus.url(), bus.hardware_apart() ? ", hardware loop on " + bus.hardware_url() : "",
+                 bus.ns().empty() ? "" : ", namespace ", bus.ns(), scheduling.empty() ? "" : ", " + scheduling);
     int errors = 0;
+    const std::vector<int> fds = bus.fds();
     while (!g_stop) {
-      const int r = bus.lcm().handleTimeout(20);
+      const int r = wait_and_handle(bus, fds, 20);
       if (r < 0 && !g_stop) {
         if (++errors > 100) throw std::runtime_error("LCM keeps failing to receive; giving up");
         continue;
       }
       errors = 0;
-      // What is already queued first (bounded, so that a flood cannot starve the housekeeping), then silence.
-      for (int k = 0; r > 0 && k < 1000 && bus.lcm().handleTimeout(0) > 0; ++k) {
-      }
       manager.poll(monotonic_us());
     }
     spdlog::info("shutting down: {}", manager.shutdown());

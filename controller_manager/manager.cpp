@@ -30,11 +30,12 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       hw_(model_),
       loop_(hw_),
       port_(bus.lcm()),
+      hw_port_(bus.hardware()),
       sources_(loop_, bus),
-      command_pub_(port_.publisher<hardware_command_t>(bus.channel(channels::kHardwareCommand))),
+      command_pub_(hw_port_.publisher<hardware_command_t>(bus.channel(channels::kHardwareCommand))),
       stats_pub_(port_.publisher<loop_stats_t>(bus.channel(channels::kCmStatistics))) {
   loop_.set_command_sources(&sources_);
-  port_.subscribe<hardware_state_t>(
+  hw_port_.subscribe<hardware_state_t>(
       bus.channel(channels::kHardwareState),
       [this](const hardware_state_t& m) {
         const std::string why = check(m);

@@ -108,6 +108,7 @@ class ControllerManager {
   Hardware hw_;
   Loop loop_;
   Port port_;
+  Port hw_port_;  // hardware/state and hardware/command: the bus's hardware loop
   CommandSources sources_;
   hardware_command_t command_{};
   Publisher<hardware_command_t> command_pub_;

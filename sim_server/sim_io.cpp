@@ -71,15 +71,20 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
   pending_value_.assign(n, 0.0);
 
   auto& lc = bus.lcm();
-  subs_.push_back(lc.subscribe(bus.channel(channels::kHardwareCommand), &SimIo::on_command, this));
+  auto& hw = bus.hardware();
+  hw_subs_.push_back(hw.subscribe(bus.channel(channels::kHardwareCommand), &SimIo::on_command, this));
+  hw_subs_.push_back(hw.subscribe(state_channel_, &SimIo::on_state, this));
   subs_.push_back(lc.subscribe(bus.channel(channels::kEStop), &SimIo::on_e_stop, this));
   subs_.push_back(lc.subscribe(bus.channel(gains_set_channel(channels::kSimGainsOwner)), &SimIo::on_gains, this));
-  subs_.push_back(lc.subscribe(state_channel_, &SimIo::on_state, this));
   subs_.push_back(lc.subscribe(bus.channel(channels::kSimRequest), &SimIo::on_request, this));
+  const std::vector<int> fds = bus.fds();
+  for (size_t i = 0; i < fds.size(); ++i) pollfds_[i] = {fds[i], POLLIN, 0};
+  n_pollfds_ = int(fds.size());
 }
 
 SimIo::~SimIo() {
   for (auto* s : subs_) bus_.lcm().unsubscribe(s);
+  for (auto* s : hw_subs_) bus_.hardware().unsubscribe(s);
 }
 
 void SimIo::publish_state(double real_time_factor, bool clock_again) {
@@ -94,7 +99,7 @@ void SimIo::publish_state(double real_time_factor, bool clock_again) {
     state_.effort[i] = act.effort(i);
   }
   const int n = state_.encode(state_buf_.data(), 0, int(state_buf_.size()));
-  if (n > 0) bus_.lcm().publish(state_channel_, state_buf_.data(), unsigned(n));
+  if (n > 0) bus_.hardware().publish(state_channel_, state_buf_.data(), unsigned(n));
   const bool due = clock_step_ < 0 || (state_.step != clock_step_ && state_.step % clock_every_ == 0);
   if (!due && !clock_again) return;
   clock_step_ = state_.step;
@@ -125,15 +130,15 @@ void SimIo::publish_base_pose() {
 void SimIo::publish_statistics(const loop_stats_t& stats) { bus_.lcm().publish(stats_channel_, &stats); }
 
 bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_request) {
-  pollfd p{bus_.lcm().getFileno(), POLLIN, 0};
   for (int late = 0; late < kMaxMessagesPastDeadline;) {
     const int64_t left = std::max<int64_t>(0, deadline_us - monotonic_us());
     if (left == 0) ++late;
     const timespec ts{time_t(left / 1000000), long(left % 1000000) * 1000};
-    const int r = ppoll(&p, 1, &ts, nullptr);
+    const int r = ppoll(pollfds_, nfds_t(n_pollfds_), &ts, nullptr);
     if (r < 0) return errno == EINTR;
     if (r == 0) return true;
-    if (bus_.lcm().handle() < 0) return false;
+    if ((pollfds_[0].revents & POLLIN) && bus_.lcm().handle() < 0) return false;
+    if (n_pollfds_ > 1 && (pollfds_[1].revents & POLLIN) && bus_.hardware().handle() < 0) return false;
     if ((until_command && has_pending_) || (until_request && has_request())) return true;
   }
   return true;

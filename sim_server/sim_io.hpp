@@ -1,5 +1,5 @@
 // sim_server's side of the LCM hardware loop (docs/hardware-protocol.md):
-// publishes hardware/state (every control step), and clock and a floating
+// publishes hardware/state (every control step, on the bus's hardware loop), and clock and a floating
 // base's ground truth (sim_server/base_pose) at the clock's rate, from
 // preallocated buffers; takes
 // hardware/command (checked, and dropped and counted when malformed, NaN,
@@ -9,6 +9,8 @@
 // force, the answers and the statistics.
 // Handlers run inside poll_until(), i.e. between control steps.
 #pragma once
+
+#include <poll.h>
 
 #include <cstdint>
 #include <deque>
@@ -93,7 +95,9 @@ class SimIo {
   int64_t clock_step_ = -1;  // step of the last `clock` sent
   const int64_t session_;
   const std::string state_channel_, clock_channel_, gains_channel_, stats_channel_, response_channel_;
-  std::vector<lcm::Subscription*> subs_;
+  std::vector<lcm::Subscription*> subs_, hw_subs_;  // on the shared bus, on the hardware loop
+  pollfd pollfds_[2] = {};  // the shared bus's, and the hardware loop's when it has its own
+  int n_pollfds_ = 1;
 
   hardware_state_t state_;
   sim_clock_t clock_;

@@ -7,6 +7,7 @@
 // step 0 in every run.
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 
@@ -34,15 +35,16 @@ void say(const std::string& line) {
 class ReadinessProbe {
  public:
   explicit ReadinessProbe(Bus& bus) : bus_(bus) {
-    state_sub_ = bus_.lcm().subscribe(bus_.channel(channels::kHardwareState), &ReadinessProbe::on_state, this);
+    state_sub_ = bus_.hardware().subscribe(bus_.channel(channels::kHardwareState), &ReadinessProbe::on_state, this);
     bus_.lcm().subscribe(bus_.channel(channels::kCmResponse), &ReadinessProbe::on_cm, this);
   }
-  int fd() { return bus_.lcm().getFileno(); }
+  std::vector<int> fds() { return bus_.fds(); }
   void handle() {
-    for (int n = 0; n < 100 && bus_.lcm().handleTimeout(0) > 0; ++n) {
-    }
+    for (lcm::LCM* lc : {&bus_.lcm(), &bus_.hardware()})
+      for (int n = 0; n < 100 && lc->handleTimeout(0) > 0; ++n) {
+      }
     if (state_seen_ && state_sub_) {  // one is enough: stop queueing them
-      bus_.lcm().unsubscribe(state_sub_);
+      bus_.hardware().unsubscribe(state_sub_);
       state_sub_ = nullptr;
     }
   }
@@ -100,6 +102,74 @@ std::vector<std::string> with_ns(std::vector<std::string> argv, const std::strin
   return argv;
 }
 
+struct RobotsOptions {
+  std::string file;
+  std::vector<std::string> robots;  // namespaces
+  std::vector<std::string> args;    // for every robot's launch
+  double ready_timeout = 20, stop_timeout = 5;
+  bool dry_run = false;
+};
+
+// launch --robots / `robots:`: one launch of the file per robot, in its namespace, supervised as one: up when all
+// are, stopped together when one fails or on Ctrl-C.
+int run_robots(const RobotsOptions& o, const std::string& url, const std::vector<std::string>& package_path) {
+  std::vector<std::vector<std::string>> argvs;
+  for (const auto& r : o.robots) {
+    std::vector<std::string> argv{"launch", o.file, "--namespace", r};
+    argv.insert(argv.end(), o.args.begin(), o.args.end());
+    argvs.push_back(argv);
+  }
+  if (o.dry_run) {
+    for (size_t i = 0; i < o.robots.size(); ++i) fmt::print("{}: {}\n", o.robots[i], fmt::join(argvs[i], " "));
+    return int(kExitOk);
+  }
+  install_stop_signals();
+  std::vector<std::pair<std::string, std::string>> env{{"LCM_DEFAULT_URL", url}};
+  if (!package_path.empty()) env.emplace_back("LCM_CONTROL_PACKAGE_PATH", fmt::format("{}", fmt::join(package_path, ":")));
+  Supervisor sup(env);
+  std::vector<Child*> children;
+  for (size_t i = 0; i < o.robots.size(); ++i)
+    children.push_back(&sup.start(o.robots[i], argvs[i], true, "[launch] up: "));
+  // A robot whose launch ends by itself with 0 (its --duration) is done; one that fails stops the others.
+  auto failed = [&] {
+    for (const Child* c : children)
+      if (c->exited && !c->signalled && c->code != 0) return Supervisor::exit_text(*c);
+    return std::string();
+  };
+  auto broken = [&] { return stop_requested() || !failed().empty(); };
+  auto all = [&](bool Child::*flag) {
+    return std::all_of(children.begin(), children.end(), [&](const Child* c) { return c->*flag; });
+  };
+  const bool up = sup.wait_until([&] { return broken() || all(&Child::ready) || all(&Child::exited); },
+                                 o.ready_timeout + 5);
+  std::string failure;
+  if (!up) {
+    std::vector<std::string> waiting;
+    for (const Child* c : children)
+      if (!c->ready) waiting.push_back(c->name);
+    failure = fmt::format("not up within {}: {}", seconds_text(o.ready_timeout + 5), fmt::join(waiting, ", "));
+  }
+  if (failure.empty() && !broken()) {
+    say(fmt::format("up: {} robots ({}) (Ctrl-C to stop)", o.robots.size(), fmt::join(o.robots, ", ")));
+    sup.wait_until([&] { return broken() || all(&Child::exited); }, 1e12);
+  }
+  std::string why = failure;
+  if (why.empty()) why = failed();
+  if (why.empty() && all(&Child::exited)) why = "every robot's launch ended";
+  if (why.empty() && stop_requested()) why = fmt::format("got {}", strsignal(stop_signal()));
+  clear_stop();
+  say(fmt::format("stopping ({})", why));
+  const int64_t t0 = monotonic_us();
+  sup.stop(children, t0 + int64_t((o.stop_timeout + 2) * 1e6));
+  std::vector<std::string> unclean;
+  for (const auto& c : sup.children())
+    if (!c->clean()) unclean.push_back(Supervisor::exit_text(*c));
+  say(fmt::format("all {} robots stopped in {:.2f} s", children.size(), double(monotonic_us() - t0) / 1e6));
+  if (!failure.empty()) throw std::runtime_error(failure);
+  if (!unclean.empty()) throw std::runtime_error(fmt::format("{}", fmt::join(unclean, "; ")));
+  return int(kExitOk);
+}
+
 }  // namespace
 }  // namespace lcm_control::tools
 
@@ -146,6 +216,13 @@ int main(int argc, char** argv) {
   app.add_flag("--dry-run", dry_run, "print what would be started and exit");
   add_package_path_flag(app, package_path);
   add_bus_flags(app, bus_flags);
+  add_hardware_url_flag(app, bus_flags);
+  int robots = 0;
+  app.add_option("--robots", robots,
+                 "start this many copies of the robot, in namespaces r0, r1, ..., each with its hardware loop on its "
+                 "own port (--hardware-lcm-url auto unless given; `shared` keeps them on the --lcm-url); overrides "
+                 "the file's `robots:`")
+      ->check(CLI::Range(1, kMaxRobots));
   return run_program(app, argc, argv, [&]() -> int {
     LaunchPlan plan = read_launch_file(file, package_path);
     if (!mode.empty()) plan.mode = mode;
@@ -153,7 +230,33 @@ int main(int argc, char** argv) {
     if (!cpu.empty()) plan.cpu = cpu;
     for (const auto& n : plan.notes) say("note: " + n);
 
+    if (robots > 0) plan.robots = robot_names(robots);
+    if (!plan.robots.empty()) {
+      RobotsOptions ro{file, plan.robots, {}, ready_timeout, stop_timeout, dry_run};
+      auto pass = [&](const char* flag, const std::string& value) {
+        if (!value.empty()) ro.args.insert(ro.args.end(), {flag, value});
+      };
+      pass("--mode", mode);
+      if (paused) ro.args.push_back("--paused");
+      pass("--cpu", cpu);
+      pass("--ready-timeout", fmt::format("{:g}", ready_timeout));
+      pass("--stop-timeout", fmt::format("{:g}", stop_timeout));
+      if (duration > 0) pass("--duration", fmt::format("{:g}", duration));
+      if (!package_path.empty()) pass("--package-path", fmt::format("{}", fmt::join(package_path, ":")));
+      pass("--lcm-url", bus_flags.lcm_url);
+      const std::string hw = !bus_flags.hardware_lcm_url.empty() ? bus_flags.hardware_lcm_url
+                             : !plan.hardware_lcm_url.empty()   ? plan.hardware_lcm_url
+                                                                : "auto";
+      pass("--hardware-lcm-url", hw);
+      if (!plan.ns.empty() || !bus_flags.ns.empty())
+        say(fmt::format("note: the robots' namespaces ({}) replace namespace '{}'", fmt::join(plan.robots, ", "),
+                        bus_flags.ns.empty() ? plan.ns : bus_flags.ns));
+      return run_robots(ro, effective_url(bus_flags.lcm_url), package_path);
+    }
     const std::string ns = robot_namespace_of(plan, bus_flags.ns, package_path);
+    const std::string hw_flag = !bus_flags.hardware_lcm_url.empty() ? bus_flags.hardware_lcm_url : plan.hardware_lcm_url;
+    const std::string hw_url = hardware_url_for(hw_flag, effective_url(bus_flags.lcm_url), ns);
+    const bool hw_apart = hw_url != effective_url(bus_flags.lcm_url);
     std::vector<std::string> yaml_args;
     for (const auto& [name, value] : plan.args) yaml_args.insert(yaml_args.end(), {"--arg", name + "=" + value});
     std::vector<std::string> sim{"sim_server", "--urdf", plan.urdf, "--config", plan.config};
@@ -173,8 +276,10 @@ int main(int argc, char** argv) {
     int pin = -1;
     if (plan.cpu == "auto" && plan.mode == "lockstep") pin = least_busy_cpu();
     if (plan.cpu != "auto" && plan.cpu != "none") pin = std::stoi(plan.cpu);
-    for (auto* argv : {&sim, &cm})
+    for (auto* argv : {&sim, &cm}) {
       if (pin >= 0) argv->insert(argv->end(), {"--cpu", std::to_string(pin)});
+      if (hw_apart) argv->insert(argv->end(), {"--hardware-lcm-url", hw_url});
+    }
     std::vector<std::string> spawner{"spawner"};
     spawner.insert(spawner.end(), plan.controllers.begin(), plan.controllers.end());
     spawner.insert(spawner.end(), {"--shutdown-timeout", fmt::format("{:g}", stop_timeout * 0.3)});
@@ -197,12 +302,12 @@ int main(int argc, char** argv) {
     }
 
     install_stop_signals();
-    auto bus = std::make_unique<Bus>(bus_flags.lcm_url, ns);
+    auto bus = std::make_unique<Bus>(bus_flags.lcm_url, ns, hw_url);
     std::vector<std::pair<std::string, std::string>> env{{"LCM_DEFAULT_URL", bus->url()}};
     if (!package_path.empty()) env.emplace_back("LCM_CONTROL_PACKAGE_PATH", fmt::format("{}", fmt::join(package_path, ":")));
     Supervisor sup(env);
     auto probe = std::make_unique<ReadinessProbe>(*bus);
-    sup.watch(probe->fd(), [&] { probe->handle(); });
+    sup.watch(probe->fds(), [&] { probe->handle(); });
     // A robot already up on this namespace would fight the one started here: its simulator takes the commands of
     // one manager and drops the other's, and each manager follows one of two simulators.
     sup.wait_until(
@@ -254,7 +359,7 @@ int main(int argc, char** argv) {
     // From here launch needs no bus; a udpm socket receives every message on
     // it, which costs CPU the simulation could use.
     auto drop_bus = [&] {
-      sup.watch(-1, {});
+      sup.watch({}, {});
       probe.reset();
       bus.reset();
     };

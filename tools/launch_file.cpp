@@ -46,6 +46,12 @@ constexpr const char* kLaunchArgFix = "add <arg name=\"{0}\" default=\"...\"/> o
 
 }  // namespace
 
+std::vector<std::string> robot_names(int n) {
+  std::vector<std::string> v;
+  for (int i = 0; i < n; ++i) v.push_back("r" + std::to_string(i));
+  return v;
+}
+
 std::string check_cpu(const std::string& cpu) {
   if (cpu == "auto" || cpu == "none") return "";
   if (!cpu.empty() && cpu.size() < 5 && cpu.find_first_not_of("0123456789") == std::string::npos) return "";
@@ -119,7 +125,7 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
                                        "physics_rate", "control_rate",    "sim_server_args",
                                        "controller_manager_args", "controllers", "spawner_args",
                                        "state_publisher", "processes",  "commands", "namespace", "args",
-                                       "initial_positions", "paused"};
+                                       "initial_positions", "paused", "robots", "hardware_lcm_url"};
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
     const YAML::Node& v = kv.second;
@@ -156,6 +162,25 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
         plan.paused = boolean(v, key);
       } else if (key == "namespace") {
         plan.ns = normalize_namespace(str(v, key));
+      } else if (key == "hardware_lcm_url") {
+        plan.hardware_lcm_url = str(v, key);
+      } else if (key == "robots") {
+        if (v.IsSequence()) {
+          for (const auto& r : list(v, key)) plan.robots.push_back(normalize_namespace(r));
+        } else {
+          const double n = number(v, key);
+          if (n < 1 || n > kMaxRobots || n != double(int(n)))
+            problems.push_back(fmt::format("{} must be a whole number of robots from 1 to {} (namespaces r0, r1, "
+                                           "...), or a list of namespaces",
+                                           where(v, key), kMaxRobots));
+          else
+            plan.robots = robot_names(int(n));
+        }
+        for (size_t i = 0; i < plan.robots.size(); ++i)
+          for (size_t j = 0; j < i; ++j)
+            if (plan.robots[i] == plan.robots[j] || plan.robots[i].empty())
+              problems.push_back(fmt::format("{}: namespace '{}' is empty or given twice: each robot needs its own",
+                                             where(v, key), plan.robots[i]));
       } else if (key == "args") {
         if (!v.IsMap()) {
           problems.push_back(where(v, key) + " must be a map NAME: VALUE (the $(arg NAME) values of the YAML)");

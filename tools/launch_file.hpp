@@ -47,6 +47,10 @@ struct LaunchPlan {
   // Robot namespace (`namespace:`, or the spawner's / its group's ns); "": launch --namespace, else the URDF's
   // gazebo_ros_control <robotNamespace>.
   std::string ns;
+  // Several copies of the robot (`robots:`), one per namespace, each with its hardware loop on its own URL; empty:
+  // one robot.
+  std::vector<std::string> robots;
+  std::string hardware_lcm_url;  // `hardware_lcm_url:` (hardware_url_for); "": the shared bus
   std::vector<std::pair<std::string, std::string>> args;         // $(arg) values for the YAML (`args:`, <arg>)
   std::vector<std::pair<std::string, double>> initial_positions;  // `initial_positions:`, spawn_model's -J
 };
@@ -56,6 +60,10 @@ struct LaunchPlan {
 LaunchPlan read_launch_file(const std::string& path, const std::vector<std::string>& package_path);
 LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::string>& package_path);
 LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::string>& package_path);
+
+// "r0" .. "r{n-1}": the namespaces of `robots: n` and `launch --robots n`.
+inline constexpr int kMaxRobots = 64;
+std::vector<std::string> robot_names(int n);
 
 // "" if `cpu` is auto, none or a CPU number; else what is wrong with it.
 std::string check_cpu(const std::string& cpu);

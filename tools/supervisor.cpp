@@ -71,10 +71,12 @@ Supervisor::~Supervisor() {
     }
 }
 
-Child& Supervisor::start(const std::string& name, std::vector<std::string> argv, bool required) {
+Child& Supervisor::start(const std::string& name, std::vector<std::string> argv, bool required,
+                         const std::string& ready_text) {
   auto c = std::make_unique<Child>();
   c->name = name;
   c->required = required;
+  c->ready_text = ready_text;
   argv[0] = resolve_program(argv[0], exe_dir_);
   c->argv = argv;
   // Everything the child needs is built before fork: between fork and exec a
@@ -113,8 +115,8 @@ Child& Supervisor::start(const std::string& name, std::vector<std::string> argv,
   return *children_.back();
 }
 
-void Supervisor::watch(int fd, std::function<void()> on_readable) {
-  watch_fd_ = fd;
+void Supervisor::watch(std::vector<int> fds, std::function<void()> on_readable) {
+  watch_fds_ = std::move(fds);
   on_watch_ = std::move(on_readable);
 }
 
@@ -126,11 +128,13 @@ void Supervisor::pump(int timeout_ms) {
       pfds.push_back({c->fd, POLLIN, 0});
       owners.push_back(c.get());
     }
-  if (watch_fd_ >= 0) pfds.push_back({watch_fd_, POLLIN, 0});
+  for (const int fd : watch_fds_) pfds.push_back({fd, POLLIN, 0});
   poll(pfds.data(), pfds.size(), timeout_ms);
   for (size_t k = 0; k < owners.size(); ++k)
     if (pfds[k].revents) read_output(*owners[k]);
-  if (watch_fd_ >= 0 && (pfds.back().revents & POLLIN) && on_watch_) on_watch_();
+  bool watched = false;
+  for (size_t k = owners.size(); k < pfds.size(); ++k) watched = watched || (pfds[k].revents & POLLIN);
+  if (watched && on_watch_) on_watch_();
   for (auto& c : children_) reap(*c, false);
 }
 
@@ -194,7 +198,8 @@ void Supervisor::read_output(Child& c) {
 
 // "[name] line", without repeating a "[name]" or "program: " the line already starts with.
 void Supervisor::print_line(Child& c, std::string line) {
-  if (line.find(" ready") != std::string::npos || line.rfind("ready", 0) == 0) c.ready = true;
+  if (line.find(c.ready_text) != std::string::npos || (c.ready_text == " ready" && line.rfind("ready", 0) == 0))
+    c.ready = true;
   const std::string prefix = "[" + c.name + "]";
   const std::string program = std::filesystem::path(c.argv[0]).filename().string() + ": ";
   if (line.rfind(program, 0) == 0) line.erase(0, program.size());

@@ -22,7 +22,8 @@ struct Child {
   pid_t pid = -1;
   int fd = -1;             // its stdout + stderr
   std::string partial;     // output after the last newline
-  bool ready = false;      // it printed a line containing " ready"
+  std::string ready_text = " ready";  // the line that says it is up
+  bool ready = false;      // it printed a line containing ready_text
   bool exited = false;
   bool signalled = false;  // we asked it to stop
   bool killed = false;     // we had to SIGKILL it
@@ -39,10 +40,11 @@ class Supervisor {
   Supervisor& operator=(const Supervisor&) = delete;
 
   // argv[0]: a program next to launch, else on PATH, or a path. Throws if it cannot fork.
-  Child& start(const std::string& name, std::vector<std::string> argv, bool required);
+  Child& start(const std::string& name, std::vector<std::string> argv, bool required,
+               const std::string& ready_text = " ready");
 
-  // Also wait on fd (-1: none) and call on_readable when it has data.
-  void watch(int fd, std::function<void()> on_readable);
+  // Also wait on fds (none: stop watching) and call on_readable when one has data.
+  void watch(std::vector<int> fds, std::function<void()> on_readable);
 
   // Prints output and reaps exits for up to timeout_ms.
   void pump(int timeout_ms);
@@ -69,7 +71,7 @@ class Supervisor {
   std::vector<std::string> env_strings_;
   std::string exe_dir_;
   std::vector<std::unique_ptr<Child>> children_;
-  int watch_fd_ = -1;
+  std::vector<int> watch_fds_;
   std::function<void()> on_watch_;
 };
 

@@ -169,7 +169,7 @@ int run_wall(Bus& bus, Publisher& pub, const Options& o, const CommandClock& clo
 class SimTimePacer {
  public:
   SimTimePacer(Bus& bus, Publisher& pub, const Options& o) : pub_(pub), o_(o) {
-    subscribe_guarded<&SimTimePacer::on_state>(bus.lcm(), bus.channel(channels::kHardwareState), this);
+    subscribe_guarded<&SimTimePacer::on_state>(bus.hardware(), bus.channel(channels::kHardwareState), this);
   }
   bool done() const { return done_; }
   bool started() const { return started_; }
@@ -235,8 +235,9 @@ int run_sim_time(Bus& bus, Publisher& pub, const Options& o) {
     if (since > timeout_us) {
       if (!pacer.started())
         throw std::runtime_error(fmt::format(
-            "no hardware_state_t on '{}' for {}: is sim_server running on this --lcm-url/--namespace?",
-            bus.channel(channels::kHardwareState), seconds_text(o.timeout)));
+            "no hardware_state_t on '{}' ({}) for {}: is sim_server running on this --lcm-url/--namespace, with this "
+            "--hardware-lcm-url?",
+            bus.channel(channels::kHardwareState), bus.hardware_url(), seconds_text(o.timeout)));
       throw std::runtime_error(fmt::format(
           "sim time on '{}' stopped at {:.6f} s for {} after {} messages (sim_server paused or gone?)",
           bus.channel(channels::kHardwareState), double(pacer.sim_us()) * 1e-6, seconds_text(o.timeout), pub.sent()));
@@ -355,12 +356,13 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--print", o.print, "print `i t value...` for every message sent");
   add_bus_flags(app, bus_flags);
+  add_hardware_url_flag(app, bus_flags);
   return run_program(app, argc, argv, [&] {
     if (o.count > 1 && o.rate <= 0 && !o.sim_time) throw std::runtime_error("--count needs --rate (or --sim-time)");
     if (o.duration > 0 && o.rate <= 0 && !o.sim_time)
       throw std::runtime_error("--duration needs --rate (or --sim-time)");
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    Bus bus(bus_flags.lcm_url, bus_flags.ns, bus_flags.hardware_lcm_url);
     if (o.sim_time && !is_channel(o)) {
       if (o.array) throw std::runtime_error("--array does not apply with --sim-time and a controller TARGET (the "
                                             "controller manager sends what the controller takes)");

@@ -194,6 +194,25 @@ TEST(LaunchFile, YamlNamespaceArgsAndInitialPositions) {
   EXPECT_NE(p.find("bad.yaml:4: 'args' must be a map NAME: VALUE"), std::string::npos) << p;
 }
 
+TEST(LaunchFile, RobotsAsACountOrNamespacesAndTheHardwareUrl) {
+  const std::string dir = lt::temp_dir("launch_robots");
+  const std::string head = "urdf: " + lt::source("config/turret_bot.urdf") + "\nconfig: " +
+                           lt::source("config/turret_bot.yaml") + "\n";
+  const LaunchPlan three = read_launch_file(write(dir, "three.yaml", head + "robots: 3\n"), {});
+  EXPECT_EQ(three.robots, (std::vector<std::string>{"r0", "r1", "r2"}));
+  EXPECT_EQ(three.hardware_lcm_url, "");
+  const LaunchPlan named =
+      read_launch_file(write(dir, "named.yaml", head + "robots: [/left/, right]\nhardware_lcm_url: auto\n"), {});
+  EXPECT_EQ(named.robots, (std::vector<std::string>{"left", "right"}));
+  EXPECT_EQ(named.hardware_lcm_url, "auto");
+  EXPECT_TRUE(read_launch_file(lt::source("config/turret_bot.launch.yaml"), {}).robots.empty());
+
+  std::string p = problems_of([&] { read_launch_file(write(dir, "zero.yaml", head + "robots: 0\n"), {}); });
+  EXPECT_NE(p.find("zero.yaml:3: 'robots' must be a whole number of robots from 1 to 64"), std::string::npos) << p;
+  p = problems_of([&] { read_launch_file(write(dir, "twice.yaml", head + "robots: [a, b, a]\n"), {}); });
+  EXPECT_NE(p.find("namespace 'a' is empty or given twice"), std::string::npos) << p;
+}
+
 TEST(LaunchFile, PausedFromYamlAndFromGazebosPausedArgUnlessSpawnModelUnpauses) {
   const std::string dir = lt::temp_dir("launch_paused");
   const std::string files = "urdf: " + lt::source("config/turret_bot.urdf") + "\nconfig: " +
