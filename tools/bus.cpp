@@ -31,9 +31,14 @@ std::string bytes_text(double b) {
 }
 
 [[noreturn]] void nothing_on(const std::string& channel, const Bus& bus, const Census& census) {
+  const bool hardware = channel.find(channels::kHardwareState) != std::string::npos ||
+                        channel.find(channels::kHardwareCommand) != std::string::npos;
   throw BusError(fmt::format("no message on '{}' ({}); channels seen: {}. Check the channel name, --namespace and "
-                             "--lcm-url (or LCM_DEFAULT_URL)",
-                             channel, bus.url(), census.names()));
+                             "--lcm-url (or LCM_DEFAULT_URL){}",
+                             channel, bus.url(), census.names(),
+                             hardware ? "; a robot's hardware loop may have a URL of its own: add --hardware-lcm-url "
+                                        "auto (or the URL sim_server's ready line gives)"
+                                      : ""));
 }
 
 // Runs the bus until stop(), Ctrl-C or `duration` seconds (0: no limit); every 5 s without a message on
@@ -292,6 +297,7 @@ int main(int argc, char** argv) {
       "  bus list                                      # what is on the bus (2 s)\n"
       "  bus netcheck --lcm-url 'udpm://239.255.76.67:7667?ttl=1'   # on two computers at once: can they hear each other?\n"
       "  bus hz hardware/state\n"
+      "  bus hz hardware/state --namespace r0 --hardware-lcm-url auto   # a robot of `launch --robots`\n"
       "  bus echo joint_states --count 1\n"
       "  bus echo /j2_controller/command --csv --duration 5\n"
       "  bus pub j1_controller/command float64_t data=0.5\n"
@@ -305,6 +311,9 @@ int main(int argc, char** argv) {
   app.fallthrough();
   BusFlags bus_flags;
   add_bus_flags(app, bus_flags);
+  app.add_option("--hardware-lcm-url", bus_flags.hardware_lcm_url,
+                 "listen and publish on a robot's hardware loop instead of the --lcm-url: `auto` for the one "
+                 "--hardware-lcm-url auto gives the --namespace (as launch --robots does), or its URL");
 
   double list_duration = 2;
   auto* list = app.add_subcommand("list", "channels seen on the bus: type, messages, rate, bandwidth (like lcm-spy)");
@@ -357,7 +366,11 @@ int main(int argc, char** argv) {
     if (info->parsed()) return cmd_info(log_path);
     if (types->parsed()) return cmd_types(type);
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    const std::string url = bus_flags.hardware_lcm_url.empty()
+                                ? bus_flags.lcm_url
+                                : hardware_url_for(bus_flags.hardware_lcm_url, effective_url(bus_flags.lcm_url),
+                                                   bus_flags.ns);
+    Bus bus(url, bus_flags.ns);
     if (list->parsed()) return cmd_list(bus, list_duration);
     if (netcheck->parsed())
       return cmd_netcheck(bus, answer_only && netcheck->count("--duration") == 0 ? 0.0 : net_duration, answer_only);

@@ -62,7 +62,7 @@ TEST(MultiRobot, TwoTurretBotsShareTheBusAndKeepTheirLoopsApart) {
   // Lockstep: the tutorial's commands on both robots from one file; each ends at --duration, and the two
   // trajectories are the same bit for bit.
   {
-    const std::string url = lt::unique_lcm_url() + "&recv_buf_size=4194304";
+    const std::string url = lt::unique_lcm_url();
     lcm::LCM shared(url);
     lt::Recorder<joint_state_t> js0(shared, "r0/joint_states"), js1(shared, "r1/joint_states");
     lt::ChildProcess launch({lt::bin("launch"), lt::source("config/turret_bot_demo.launch.yaml"), "--robots", "2",

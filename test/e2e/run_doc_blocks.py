@@ -11,7 +11,7 @@ Conventions in the guide (a block's leading `#` lines are its directives):
     run after a few seconds, and is then stopped with SIGINT (as Ctrl-C would);
   * `# exit N`: the block must exit with N (default 0);
   * a block that starts a whole robot (`build/bin/launch FILE` without
-    --dry-run) runs on a bus of its own, not next to the running turret_bot
+    --dry-run; with --robots N, the robots r0 .. rN-1) runs on a bus of its own, not next to the running turret_bot
     (one robot per bus). Started with `# runs until Ctrl-C`, that robot stays
     up for the rest of its section (up to the next heading): the runner waits
     until `cmctl list` shows its controllers running, the section's next
@@ -69,16 +69,20 @@ def without_numbers(text):
     return re.sub(r"-?\d+(\.\d+)?([eE][-+]?\d+)?", "0", text)
 
 
-def wait_controllers_running(root, env, timeout_s=40):
-    """True once `cmctl list` on env's bus shows controllers, all running."""
+def wait_controllers_running(root, env, timeout_s=40, namespaces=("",)):
+    """True once `cmctl list` on env's bus shows controllers, all running, in each namespace."""
     deadline = time.time() + timeout_s
-    while time.time() < deadline:
-        r = subprocess.run(["build/bin/cmctl", "list"], cwd=root, env=env, capture_output=True, text=True)
+    left = list(namespaces)
+    while left and time.time() < deadline:
+        ns = left[0]
+        r = subprocess.run(["build/bin/cmctl", "list"] + (["--namespace", ns] if ns else []), cwd=root, env=env,
+                           capture_output=True, text=True)
         states = [l.split()[2] for l in r.stdout.splitlines()[1:] if len(l.split()) >= 3 and not l.startswith("hardware:")]
         if r.returncode == 0 and states and all(st == "running" for st in states):
-            return True
-        time.sleep(0.5)
-    return False
+            left.pop(0)
+        else:
+            time.sleep(0.5)
+    return not left
 
 
 def free_url():
@@ -176,7 +180,9 @@ def main():
                 alive = p.poll() is None
                 ok = alive
                 if alive and starts_robot and section_robot is None:
-                    ok = wait_controllers_running(root, block_env)
+                    m = re.search(r"--robots (\d+)", text)  # launch --robots N: namespaces r0 .. rN-1
+                    ok = wait_controllers_running(root, block_env,
+                                                  namespaces=["r%d" % k for k in range(int(m.group(1)))] if m else [""])
                     end = min([h for h in headings if h > line] or [len(markdown.splitlines()) + 1])
                     section_robot = (p, block_env, end)
                     what = "robot up%s, kept for its section (to line %d)" % (
