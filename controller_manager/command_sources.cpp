@@ -42,7 +42,15 @@ CommandSources::CommandSources(Loop& loop, Bus& bus)
       response_pub_(port_.publisher<cm_response_t>(bus.channel(channels::kCmResponse))) {
   const std::string channel = bus.channel(channels::kCmCommandSource);
   port_.subscribe<command_source_t>(
-      channel, [this](const command_source_t& r) { answer(r.request_id, handle(r)); },
+      channel,
+      [this](const command_source_t& r) {
+        const cm_response_t* given = nullptr;
+        if (ledger_.seen(r.request_id, &given) == AnswerLedger<cm_response_t>::Seen::Answered) {
+          response_pub_.publish(*given);
+          return;
+        }
+        answer(r.request_id, handle(r));
+      },
       [this](const std::string& why) {
         const Reply reply{false, "malformed command source request: " + why + "; dropped (answered as -1)"};
         log_.warn(reply.message);
@@ -63,6 +71,7 @@ void CommandSources::answer(int64_t request_id, const Reply& reply) {
   m.num_types = 0;
   m.hardware_age_us = -1;
   response_pub_.publish(m);
+  ledger_.answered(m);
 }
 
 Reply CommandSources::handle(const command_source_t& r) {

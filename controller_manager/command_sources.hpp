@@ -4,7 +4,9 @@
 // cycle in which the controller runs; its values are delivered through the
 // controller's own `<controller>/command` handler before that cycle's update
 // (so lockstep runs repeat exactly) and published on that channel after the
-// cycle. before_update() and after_cycle() neither allocate nor log.
+// cycle. before_update() and after_cycle() neither allocate nor log. A
+// request sent again under its request_id (its answer was lost) gets the same
+// answer and changes nothing.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "common/answer_ledger.hpp"
 #include "common/bus.hpp"
 #include "common/log.hpp"
 #include "common/expression.hpp"
@@ -61,6 +64,7 @@ class CommandSources {
   Port port_;
   Publisher<cm_response_t> response_pub_;
   std::vector<std::unique_ptr<Source>> sources_;
+  AnswerLedger<cm_response_t> ledger_;  // a resent request is answered again, not registered twice
   BusLog log_;
 };
 

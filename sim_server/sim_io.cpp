@@ -17,7 +17,6 @@ namespace lcm_control::sim {
 namespace {
 constexpr int kMaxMessagesPastDeadline = 100;
 constexpr size_t kMaxQueuedRequests = 16;
-constexpr size_t kRememberedAnswers = 16;
 
 int64_t random_session() {
   std::random_device rd;
@@ -292,11 +291,12 @@ void SimIo::answer_gains(pid_gains_t answer) { bus_.lcm().publish(gains_channel_
 void SimIo::on_request(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   sim_request_t req;
   if (!decode_guarded(req, rbuf->data, rbuf->data_size)) return drop("sim_server/request: not a sim_request_t");
-  for (const sim_response_t& a : answered_)
-    if (a.request_id == req.request_id) return answer(a);
-  if (req.request_id == in_progress_) return;  // a STEP under way: answered when its steps are done
-  for (const sim_request_t& q : requests_)
-    if (q.request_id == req.request_id) return;
+  const sim_response_t* given = nullptr;
+  switch (ledger_.seen(req.request_id, &given)) {
+    case AnswerLedger<sim_response_t>::Seen::Answered: return answer(*given);
+    case AnswerLedger<sim_response_t>::Seen::Working: return;  // queued, or a STEP under way: answered when done
+    case AnswerLedger<sim_response_t>::Seen::New: break;
+  }
   if (requests_.size() >= kMaxQueuedRequests) {
     sim_response_t busy{};
     busy.utime = sim_.time_us();
@@ -308,23 +308,19 @@ void SimIo::on_request(const lcm::ReceiveBuffer* rbuf, const std::string&) {
     busy.period_us = int32_t(std::llround(sim_.control_period() * 1e6));
     return answer(busy);
   }
+  ledger_.working(req.request_id);
   requests_.push_back(std::move(req));
 }
 
 sim_request_t SimIo::take_request() {
   sim_request_t r = std::move(requests_.front());
   requests_.pop_front();
-  in_progress_ = r.request_id;
   return r;
 }
 
 void SimIo::answer(const sim_response_t& a) {
   bus_.lcm().publish(response_channel_, &a);
-  if (a.request_id == in_progress_) in_progress_ = 0;
-  for (const sim_response_t& k : answered_)
-    if (k.request_id == a.request_id) return;
-  answered_.push_back(a);
-  if (answered_.size() > kRememberedAnswers) answered_.pop_front();
+  ledger_.answered(a);
 }
 
 void SimIo::after_reset(int64_t previous_step) {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "common/answer_ledger.hpp"
 #include "common/bus.hpp"
 #include "common/log.hpp"
 #include "lcm_control/e_stop_t.hpp"
@@ -115,8 +116,7 @@ class SimIo {
   int64_t pre_reset_step_ = -1;  // commands up to this step answer states from before the last reset
   e_stop_t e_stop_msg_;
   std::deque<sim_request_t> requests_;
-  int64_t in_progress_ = 0;  // request_id taken and not answered yet
-  std::deque<sim_response_t> answered_;  // the latest answers, for repeated request ids
+  AnswerLedger<sim_response_t> ledger_;  // a repeated request_id is answered again, not done twice
   BusLog log_;  // e-stop and gains lines: anyone can send those
 };
 

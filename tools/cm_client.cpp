@@ -21,6 +21,8 @@ std::string CmClient::request_channel() const { return bus_.channel(channels::kC
 std::string CmClient::response_channel() const { return bus_.channel(channels::kCmResponse); }
 
 void CmClient::on_response(const lcm::ReceiveBuffer*, const std::string&, const cm_response_t* m) {
+  const auto first = registered_.find(m->request_id);
+  if (first != registered_.end() && first->second == m->utime) return;  // the registration's answer, repeated
   const auto it = answers_.find(m->request_id);
   if (it != answers_.end()) it->second = *m;
 }
@@ -68,8 +70,13 @@ cm_response_t CmClient::command_source(command_source_t req, double timeout_s) {
   req.client = client_;
   req.num_expressions = int32_t(req.expressions.size());
   answers_[req.request_id].request_id = 0;
-  bus_.publish(channels::kCmCommandSource, req);
-  const auto got = wait_answer({req.request_id}, timeout_s);
+  const int64_t end = monotonic_us() + int64_t(timeout_s * 1e6);
+  std::optional<cm_response_t> got;
+  for (double left = timeout_s; !got && left > 0 && !stop_requested();
+       left = double(end - monotonic_us()) / 1e6) {
+    bus_.publish(channels::kCmCommandSource, req);  // again under the same id: the manager registers it once
+    got = wait_answer({req.request_id}, std::min(kResendS, left));
+  }
   if (!got) {
     throw CmTimeout(fmt::format(
         "no answer from the controller manager within {} to the command source for '{}' (sent on '{}', nothing came "
@@ -78,12 +85,16 @@ cm_response_t CmClient::command_source(command_source_t req, double timeout_s) {
         bus_.url(), bus_.ns().empty() ? " without a namespace" : " with namespace '" + bus_.ns() + "'"));
   }
   answers_[req.request_id].request_id = 0;  // the next answer with this id says it ended
+  registered_[req.request_id] = got->utime;
   return *got;
 }
 
 std::optional<cm_response_t> CmClient::source_ended(int64_t request_id, double timeout_s) {
   auto got = wait_answer({request_id}, timeout_s);
-  if (got) answers_.erase(request_id);
+  if (got) {
+    answers_.erase(request_id);
+    registered_.erase(request_id);
+  }
   return got;
 }
 

@@ -48,10 +48,11 @@ class CmClient {
   cm_response_t reload(bool force, double timeout_s);
 
   // Registers (or with remove ends) a controller's command source on
-  // `controller_manager/command_source`; returns the manager's answer (not
-  // resent: a second registration would restart the ticks). Throws CmTimeout.
+  // `controller_manager/command_source`; returns the manager's answer. Sent
+  // again every kResendS under the same request_id until answered: the
+  // manager registers it once and repeats its answer. Throws CmTimeout.
   // The manager answers again with the same request_id when the source ends:
-  // source_ended() polls for that answer.
+  // source_ended() polls for that answer (a repeat of the first is not it).
   cm_response_t command_source(command_source_t req, double timeout_s);
   std::optional<cm_response_t> source_ended(int64_t request_id, double timeout_s);
 
@@ -74,6 +75,8 @@ class CmClient {
   std::string client_;
   lcm::Subscription* sub_ = nullptr;
   std::map<int64_t, cm_response_t> answers_;
+  std::map<int64_t, int64_t> registered_;  // command source request_id -> utime of its registration's answer
+  static constexpr double kResendS = 0.5;
 };
 
 // "name  type  state  joints  interface" as an aligned table, one controller a line.

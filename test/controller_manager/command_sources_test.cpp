@@ -209,3 +209,32 @@ TEST(CommandSources, OverLcmAndWithoutAllocationOnTheLoopPath) {
   EXPECT_EQ(lcm_control::testing::allocations(), 0);
   EXPECT_EQ(rig.cm->command_sources().ticks("pos_group"), 550);
 }
+
+// A client whose answer was lost sends the request again under the same request_id: it gets the same answer, and
+// the source is registered once (its ticks go on rather than starting again).
+TEST(CommandSources, ARequestSentAgainIsAnsweredAgainAndRegisteredOnce) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
+  Recorder<cm_response_t> answers(rig.bus.lcm(), "controller_manager/response");
+  const command_source_t req = source("slide_position", {"i"});
+  rig.publish("controller_manager/command_source", req);
+  rig.cycle(5);
+  const int64_t ticks = rig.cm->command_sources().ticks("slide_position");
+  rig.publish("controller_manager/command_source", req);
+  rig.cycle(5);
+  ASSERT_EQ(answers.messages.size(), 2u);
+  EXPECT_EQ(answers.messages[1].request_id, req.request_id);
+  EXPECT_EQ(answers.messages[1].utime, answers.messages[0].utime);
+  EXPECT_EQ(answers.messages[1].message, answers.messages[0].message);
+  EXPECT_FALSE(has(answers.messages[1].message, "replaced")) << answers.messages[1].message;
+  EXPECT_EQ(rig.cm->command_sources().ticks("slide_position"), ticks + 5);
+  const auto v = commanded(rig, "slide_motor");
+  EXPECT_DOUBLE_EQ(v.back(), double(ticks + 4));
+
+  command_source_t other = req;  // a new request_id is a new registration
+  other.request_id = 8;
+  rig.publish("controller_manager/command_source", other);
+  ASSERT_EQ(answers.messages.size(), 3u);
+  EXPECT_TRUE(has(answers.messages[2].message, "replaced")) << answers.messages[2].message;
+}

@@ -23,7 +23,8 @@ Checks:
    the steps it missed, and after the partition heals the loop resumes from the
    measured state, without a jump.
 4. Lockstep on one host, across the three hosts, and across them with 5 % loss
-   (lost messages recovered by the sim's republish): no deadlock, and every
+   from the start (the spawner's requests and the command sources resent, the
+   sim's republish recovering a lost state or command): no deadlock, and every
    joint_states row that arrives is the same bit for bit in all three.
 
 Needs root and ip (iproute2); exits 77 (skipped) without them. Every process is
@@ -425,6 +426,9 @@ def lockstep_run(hosts, b, src, logdir, name, relay=None, loss=0):
     """The tutorial in lockstep for 3 s of sim time: cm, spawner, two command sources (sim time), state-logger,
     then sim_server. hosts maps role -> namespace. Returns (joint_states rows, wall seconds, sim output)."""
     csv_path = os.path.join(logdir, name + "_joint_states.csv")
+    if relay:
+        relay.counts()
+        relay.say("loss", loss)  # from the start: the spawner's requests and the command sources cross it too
     cm = Proc(hosts["cm"], [b("controller_manager")] + model_args(src) + ["--hardware-lcm-url", HW_URL], logdir,
               name + "_cm")
     spawner = Proc(hosts["tool"], [b("spawner"), "joint_state_controller", "j1_controller", "j2_controller",
@@ -440,9 +444,6 @@ def lockstep_run(hosts, b, src, logdir, name, relay=None, loss=0):
             raise RuntimeError(f"{name}: command source not registered:\n{s.output()}")
     logger = Proc(hosts["tool"], [b("state-logger"), "joint_states", "--output", csv_path], logdir, name + "_logger")
     time.sleep(0.5)
-    if relay:
-        relay.counts()
-        relay.say("loss", loss)
     t0 = time.monotonic()
     sim = Proc(hosts["sim"], [b("sim_server")] + model_args(src) +
                ["--hardware-lcm-url", HW_URL, "--mode", "lockstep", "--duration", "3", "--lockstep-timeout", "0.02"],
