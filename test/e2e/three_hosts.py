@@ -45,7 +45,9 @@ import sys
 import tempfile
 import time
 
-SKIP = 77
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from netns import run, skip  # noqa: E402
+
 GROUP = "239.255.76.67"
 PORT, HW_PORT = 7667, 7668  # each namespace has its own ports: nothing else on the machine sees them
 URL = f"udpm://{GROUP}:{PORT}?ttl=1"
@@ -53,14 +55,6 @@ HW_URL = f"udpm://{GROUP}:{HW_PORT}?ttl=1"
 HOSTS = ["sim", "cm", "tool"]
 IP_PKTINFO = getattr(socket, "IP_PKTINFO", 8)  # Linux's value; Python 3.11's socket module leaves it out
 
-
-def skip(why):
-    print(f"SKIPPED: {why}")
-    sys.exit(SKIP)
-
-
-def run(*argv, check=True):
-    return subprocess.run(argv, check=check, capture_output=True, text=True, timeout=30)
 
 
 # ------------------------------------------------------------------ the relay (runs in the switch namespace)

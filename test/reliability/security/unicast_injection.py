@@ -22,17 +22,11 @@ import sys
 import tempfile
 import time
 
-SKIP = 77
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "support"))
+from netns import run, skip  # noqa: E402
+
 GROUP = "239.255.76.67"
 
-
-def skip(why):
-    print(f"SKIPPED: {why}")
-    sys.exit(SKIP)
-
-
-def run(*argv, check=True):
-    return subprocess.run(argv, check=check, capture_output=True, text=True, timeout=20)
 
 
 def lcm_packet(seq, channel, payload):
