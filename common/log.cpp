@@ -25,6 +25,7 @@ std::string clip(const std::string& s, size_t max_chars) {
 }
 
 void BusLog::write(spdlog::level::level_enum level, const std::string& line) {
+  if (!spdlog::should_log(level)) return;  // a line not shown does not use up the second's budget
   const int64_t now = monotonic_us();
   if (window_us_ < 0 || now - window_us_ >= 1000000) {
     window_us_ = now;

@@ -21,6 +21,7 @@ std::string clip(const std::string& s, size_t max_chars = 80);
 class BusLog {
  public:
   explicit BusLog(int per_second = 20, size_t max_chars = 400) : per_second_(per_second), max_chars_(max_chars) {}
+  void debug(const std::string& line) { write(spdlog::level::debug, line); }
   void info(const std::string& line) { write(spdlog::level::info, line); }
   void warn(const std::string& line) { write(spdlog::level::warn, line); }
   int64_t suppressed() const { return suppressed_total_; }

@@ -74,9 +74,14 @@ void Services::answer(const cm_request_t& req, const Reply& reply, bool with_typ
   m.hardware = with_hardware ? cm_.hardware_summary(now) : "";
   m.hardware_age_us = with_hardware ? cm_.hardware_age_us(now) : -1;
   pub_.publish(m);
-  if (req.request_id >= 0)
-    log_.info(fmt::format("request {}{}: {} -> {}: {}", req.request_id, req.client.empty() ? "" : " from " + clip(req.client),
-                 describe(req), reply.ok ? "ok" : "refused", reply.message));
+  if (req.request_id < 0) return;
+  const std::string line = fmt::format("request {}{}: {} -> {}: {}", req.request_id,
+                                       req.client.empty() ? "" : " from " + clip(req.client), describe(req),
+                                       reply.ok ? "ok" : "refused", reply.message);
+  // A list changes nothing and dashboards ask for it every second: only --log-level debug shows it.
+  const bool query = req.op == cm_request_t::LIST || req.op == cm_request_t::LIST_TYPES;
+  if (query && reply.ok) log_.debug(line);
+  else log_.info(line);
 }
 
 void Services::drain() {

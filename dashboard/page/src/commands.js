@@ -1,0 +1,123 @@
+import { el } from './dom.js';
+
+// Command channels of the running controllers (rqt's message publisher): a slider per joint within its URDF limits,
+// and an expression in i and t streamed by the server at a rate, like turret-cmd.
+const SINGLE = /^(position|velocity|effort)_controllers\/Joint(Position|Velocity|Effort)Controller$/;
+const GROUP = /^(position|velocity|effort)_controllers\/JointGroup(Position|Velocity|Effort)Controller$/;
+
+function kindOf(type) {
+  const m = type.match(SINGLE) || type.match(GROUP);
+  return m ? m[2].toLowerCase() : null;
+}
+
+function range(kind, j) {
+  if (kind === 'position') {
+    if (!j || j.type === 'continuous' || !(j.upper > j.lower)) return [-Math.PI, Math.PI];
+    return [j.lower, j.upper];
+  }
+  const limit = kind === 'velocity' ? j?.velocity : j?.effort;
+  return limit > 0 ? [-limit, limit] : [-10, 10];
+}
+
+export class Commands {
+  constructor(conn, el) {
+    this.conn = conn;
+    this.el = el;
+    this.joints = {};
+    this.key = '';
+    this.values = {}; // controller -> values
+    this.lastSend = {};
+  }
+
+  setJoints(joints) {
+    this.joints = joints;
+    this.key = '';
+    if (this.controllers) this.update(this.controllers);
+  }
+
+  update(controllers) {
+    this.controllers = controllers;
+    const commandable = controllers.filter((c) => c.state === 'running' && kindOf(c.type));
+    const key = JSON.stringify(commandable.map((c) => [c.name, c.type, c.joints])) + Object.keys(this.joints).join();
+    if (key === this.key) return;
+    this.key = key;
+    this.el.replaceChildren(...(commandable.length ? [] : [el('p', { class: 'hint' }, 'no running position, velocity or effort controller')]));
+    for (const c of commandable) this.el.appendChild(this.block(c));
+  }
+
+  block(c) {
+    const kind = kindOf(c.type);
+    const group = GROUP.test(c.type);
+    const channel = `${c.name}/command`;
+    const div = document.createElement('div');
+    div.className = 'command';
+    div.append(el('h3', {}, c.name, ' ', el('small', {}, `${kind} → ${channel}`)));
+    const values = (this.values[c.name] ||= c.joints.map(() => 0));
+    c.joints.forEach((joint, k) => {
+      const [lo, hi] = range(kind, this.joints[joint]);
+      const row = document.createElement('label');
+      row.className = 'slider';
+      const slider = document.createElement('input');
+      slider.type = 'range';
+      slider.id = `slider-${c.name}-${joint}`;
+      slider.min = lo;
+      slider.max = hi;
+      slider.step = (hi - lo) / 1000;
+      slider.value = Math.min(hi, Math.max(lo, values[k]));
+      const out = document.createElement('output');
+      out.textContent = Number(slider.value).toFixed(3);
+      slider.oninput = () => {
+        values[k] = Number(slider.value);
+        out.textContent = values[k].toFixed(3);
+        this.send(c.name, channel, group, values, false);
+      };
+      slider.onchange = () => this.send(c.name, channel, group, values, true);
+      row.append(`${joint} `, slider, out);
+      div.appendChild(row);
+    });
+    const expr = document.createElement('div');
+    expr.className = 'expression';
+    const text = document.createElement('input');
+    text.placeholder = group ? c.joints.map(() => '0').join('; ') : '3.14*sin(i/100)';
+    text.title = 'muparser expressions in i (tick) and t (seconds); several separated by ; for a group';
+    text.id = `expr-${c.name}`;
+    const rate = document.createElement('input');
+    rate.type = 'number';
+    rate.value = 60;
+    rate.min = 1;
+    rate.max = 1000;
+    rate.title = 'Hz';
+    const start = document.createElement('button');
+    start.textContent = 'Run';
+    const stop = document.createElement('button');
+    stop.textContent = 'Stop';
+    const msg = document.createElement('span');
+    msg.className = 'message';
+    start.onclick = async () => {
+      const expressions = text.value.split(';').map((s) => s.trim()).filter(Boolean);
+      const r = await this.conn.request({ op: 'expr', channel, expressions, rate: Number(rate.value) });
+      msg.textContent = r.message;
+      msg.className = r.ok ? 'message' : 'message error';
+    };
+    stop.onclick = async () => {
+      const r = await this.conn.request({ op: 'expr_stop', channel });
+      msg.textContent = r.message;
+    };
+    expr.append(text, ' at ', rate, ' Hz ', start, stop, msg);
+    div.appendChild(expr);
+    return div;
+  }
+
+  // Slider moves at most 30 a second per controller; the final value (change) always goes.
+  send(name, channel, group, values, final) {
+    const now = performance.now();
+    if (!final && now - (this.lastSend[name] || 0) < 33) {
+      clearTimeout(this.timer?.[name]);
+      (this.timer ||= {})[name] = setTimeout(() => this.send(name, channel, group, values, true), 40);
+      return;
+    }
+    this.lastSend[name] = now;
+    if (group) this.conn.send({ op: 'publish', channel, type: 'float64_array_t', msg: { data: values } });
+    else this.conn.send({ op: 'publish', channel, type: 'float64_t', msg: { data: values[0] } });
+  }
+}

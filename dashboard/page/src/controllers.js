@@ -1,0 +1,60 @@
+// The controller manager's controllers (rqt_controller_manager): state, claimed joints, start/stop, a switch.
+export class Controllers {
+  constructor(conn, table, switchButton, message) {
+    this.conn = conn;
+    this.body = table.querySelector('tbody');
+    this.message = message;
+    this.list = [];
+    this.ok = null;
+    this.onChange = [];
+    switchButton.onclick = () => {
+      const checked = [...this.body.querySelectorAll('input[type=checkbox]:checked')].map((c) => c.dataset.name);
+      const running = new Set(this.list.filter((c) => c.state === 'running').map((c) => c.name));
+      const stop = checked.filter((n) => running.has(n));
+      const start = checked.filter((n) => !running.has(n));
+      if (start.length || stop.length) this.call({ call: 'switch', start, stop, strict: true });
+    };
+  }
+
+  async call(body) {
+    this.message.textContent = `${body.call} ${[...(body.start || []), ...(body.stop || []), ...(body.names || [])].join(', ')} ...`;
+    const r = await this.conn.request({ op: 'cm', ...body });
+    this.message.textContent = r.message;
+    this.message.className = r.ok ? 'message' : 'message error';
+  }
+
+  update(frame) {
+    this.ok = frame.ok;
+    if (!frame.ok) return;
+    const key = JSON.stringify(frame.controllers);
+    if (key === this.key) return;
+    this.key = key;
+    this.list = frame.controllers;
+    this.body.innerHTML = '';
+    for (const c of this.list) {
+      const tr = document.createElement('tr');
+      tr.dataset.controller = c.name;
+      tr.className = c.state;
+      const box = document.createElement('input');
+      box.type = 'checkbox';
+      box.dataset.name = c.name;
+      const action = document.createElement('button');
+      const running = c.state === 'running';
+      action.textContent = running ? 'Stop' : 'Start';
+      action.className = running ? 'stop' : 'start';
+      action.onclick = () => this.call(running ? { call: 'switch', stop: [c.name] } : { call: 'switch', start: [c.name] });
+      const type = document.createElement('span');
+      type.textContent = c.type.split('/').pop();
+      const cells = [box, c.name, type, c.state, c.joints.join(' '), action];
+      for (const cell of cells) {
+        const td = document.createElement('td');
+        if (typeof cell === 'string') td.textContent = cell;
+        else td.appendChild(cell);
+        td.title = cell === type ? c.type : td.textContent;
+        tr.appendChild(td);
+      }
+      this.body.appendChild(tr);
+    }
+    for (const fn of this.onChange) fn(this.list);
+  }
+}

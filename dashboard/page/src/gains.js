@@ -1,0 +1,90 @@
+import { options } from './dom.js';
+
+// PID gains of a joint while it runs (rqt_reconfigure, the tune tool): read from the owner, edit, apply; the owner
+// (sim_server for gazebo_ros_control/pid_gains, or a controller with its own PID) confirms on <owner>/gains.
+const FIELDS = ['p', 'i', 'd', 'i_clamp_min', 'i_clamp_max'];
+
+export class Gains {
+  constructor(conn, el) {
+    this.conn = conn;
+    this.el = el;
+    this.owners = {}; // owner -> joints
+    this.waiting = null;
+    el.innerHTML = `
+      <div class="gains-row"><select id="gains-owner"></select><select id="gains-joint"></select>
+      <button id="gains-read">Read</button><button id="gains-apply">Apply</button></div>
+      <div class="gains-fields">${FIELDS.map((f) => `<label>${f} <input id="gains-${f}" type="number" step="any"></label>`).join('')}
+      <label>antiwindup <input id="gains-antiwindup" type="checkbox"></label></div>
+      <div id="gains-message" class="message"></div>`;
+    this.owner = el.querySelector('#gains-owner');
+    this.joint = el.querySelector('#gains-joint');
+    this.message = el.querySelector('#gains-message');
+    this.owner.onchange = () => this.fillJoints();
+    this.joint.onchange = () => this.fillJoints();
+    el.querySelector('#gains-read').onclick = () => this.ask(true);
+    el.querySelector('#gains-apply').onclick = () => this.ask(false);
+  }
+
+  // Owners: sim_server with every joint, and each running controller that publishes a controller_state_t.
+  update(controllers, joints, channelTypes) {
+    const owners = { sim_server: Object.keys(joints) };
+    for (const c of controllers)
+      if (c.state === 'running' && channelTypes[`${c.name}/state`] === 'controller_state_t') owners[c.name] = c.joints;
+    const key = JSON.stringify(owners);
+    if (key === this.key) return;
+    this.key = key;
+    this.owners = owners;
+    const keep = this.owner.value;
+    options(this.owner, Object.keys(owners));
+    if (keep in owners) this.owner.value = keep;
+    this.fillJoints();
+  }
+
+  fillJoints() {
+    const keep = this.joint.value;
+    const joints = this.owners[this.owner.value] || [];
+    options(this.joint, joints);
+    if (joints.includes(keep)) this.joint.value = keep;
+    const shown = `${this.owner.value}/${this.joint.value}`;
+    if (this.joint.value && shown !== this.shown) {
+      this.shown = shown;
+      this.ask(true);  // the gains in force, without a click
+    }
+  }
+
+  ask(query) {
+    const owner = this.owner.value;
+    const joint = this.joint.value;
+    if (!owner || !joint) return;
+    const msg = { request_id: Math.floor(Math.random() * 1e9), owner, joint, query: query ? 1 : 0 };
+    if (!query) {
+      for (const f of FIELDS) msg[f] = Number(this.el.querySelector(`#gains-${f}`).value);
+      msg.antiwindup = this.el.querySelector('#gains-antiwindup').checked ? 1 : 0;
+    }
+    this.waiting = { id: msg.request_id, channel: `${owner}/gains`, since: performance.now() };
+    this.message.textContent = `asking ${owner} ...`;
+    this.message.className = 'message';
+    this.conn.publish(`${owner}/gains/set`, 'pid_gains_t', msg).then((r) => {
+      if (!r.ok) this.show(false, r.message);
+    });
+    setTimeout(() => {
+      if (this.waiting && this.waiting.id === msg.request_id) {
+        this.show(false, `no answer from ${owner} on ${owner}/gains: it has no PID for ${joint}, or is not running`);
+        this.waiting = null;
+      }
+    }, 3000);
+  }
+
+  onMessage(channel, msg) {
+    if (!this.waiting || channel !== this.waiting.channel || msg.request_id !== this.waiting.id) return;
+    this.waiting = null;
+    for (const f of FIELDS) this.el.querySelector(`#gains-${f}`).value = msg[f];
+    this.el.querySelector('#gains-antiwindup').checked = !!msg.antiwindup;
+    this.show(msg.ok, msg.message || (msg.ok ? 'gains in force' : 'refused'));
+  }
+
+  show(ok, text) {
+    this.message.textContent = text;
+    this.message.className = ok ? 'message' : 'message error';
+  }
+}

@@ -1,0 +1,166 @@
+#include "dashboard/web_server.hpp"
+
+#include <civetweb.h>
+#include <fmt/format.h>
+
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <vector>
+
+namespace lcm_control::dashboard {
+namespace {
+
+// civetweb is started once per process (mg_init_library); several servers share it.
+struct Library {
+  Library() { mg_init_library(0); }
+  ~Library() { mg_exit_library(); }
+};
+
+}  // namespace
+
+WebServer::WebServer(const std::string& bind, int port, const std::string& web_root, Handlers handlers)
+    : handlers_(std::move(handlers)) {
+  static Library library;
+  const std::string listen = fmt::format("{}:{}", bind, port);
+  const char* options[] = {"listening_ports", listen.c_str(), "document_root", web_root.c_str(),
+                           "num_threads", "16", "enable_directory_listing", "no",
+                           // a browser that stops reading is dropped after this long instead of stalling the sender
+                           "request_timeout_ms", "10000", "websocket_timeout_ms", "3600000", nullptr};
+  mg_callbacks callbacks{};
+  callbacks.log_message = [](const mg_connection*, const char*) { return 1; };  // errors are reported below
+  ctx_ = mg_start(&callbacks, this, options);
+  if (!ctx_)
+    throw std::runtime_error(fmt::format(
+        "cannot serve on {}: the port is in use or {} is not an address of this computer; pick another with "
+        "--port (0 lets the system choose) or --bind",
+        listen, bind));
+  mg_server_port ports[4]{};
+  const int n = mg_get_server_ports(ctx_, 4, ports);
+  port_ = n > 0 ? ports[0].port : port;
+  mg_set_websocket_handler(ctx_, "/ws", &WebServer::on_connect, &WebServer::on_ready, &WebServer::on_data,
+                           &WebServer::on_close, this);
+}
+
+WebServer::~WebServer() {
+  if (ctx_) mg_stop(ctx_);
+}
+
+void WebServer::route(const std::string& prefix, Route route) {
+  auto& entry = routes_[prefix];
+  entry = RouteEntry{this, prefix, std::move(route)};
+  mg_set_request_handler(ctx_, prefix.c_str(), &WebServer::on_route, &entry);
+}
+
+int WebServer::on_route(mg_connection* conn, void* cbdata) {
+  const auto* entry = static_cast<const RouteEntry*>(cbdata);
+  const mg_request_info* info = mg_get_request_info(conn);
+  if (std::strcmp(info->request_method, "GET") != 0) {
+    mg_send_http_error(conn, 405, "%s", "only GET");
+    return 405;
+  }
+  const std::string uri = info->local_uri ? info->local_uri : "";
+  const std::string rest = uri.size() >= entry->prefix.size() ? uri.substr(entry->prefix.size()) : "";
+  std::optional<Reply> reply;
+  try {
+    reply = entry->route(rest);
+  } catch (const std::exception& e) {
+    mg_send_http_error(conn, 500, "%s", e.what());
+    return 500;
+  }
+  if (!reply) {
+    mg_send_http_error(conn, 404, "%s", "not found");
+    return 404;
+  }
+  if (!reply->file.empty()) {
+    mg_send_file(conn, reply->file.c_str());
+    return 200;
+  }
+  mg_send_http_ok(conn, reply->mime.c_str(), static_cast<long long>(reply->body.size()));
+  mg_write(conn, reply->body.data(), reply->body.size());
+  return 200;
+}
+
+std::string WebServer::file_under(const std::string& root, const std::string& rest) {
+  namespace fs = std::filesystem;
+  if (root.empty() || rest.empty() || rest.front() == '/') return "";
+  std::error_code ec;
+  const fs::path r = fs::canonical(root, ec);
+  if (ec) return "";
+  const fs::path p = fs::weakly_canonical(r / rest, ec);  // resolves "..", and links that lead out of root
+  if (ec || p.string().rfind(r.string() + "/", 0) != 0) return "";
+  return fs::is_regular_file(p, ec) ? p.string() : "";
+}
+
+int WebServer::on_connect(const mg_connection*, void*) { return 0; }
+
+void WebServer::on_ready(mg_connection* conn, void* cbdata) {
+  auto* self = static_cast<WebServer*>(cbdata);
+  int id = 0;
+  {
+    std::lock_guard<std::mutex> lock(self->mutex_);
+    id = self->next_id_++;
+    self->conns_[id] = conn;
+    self->ids_[conn] = id;
+  }
+  if (self->handlers_.opened) self->handlers_.opened(id);
+}
+
+int WebServer::on_data(mg_connection* conn, int bits, char* data, size_t len, void* cbdata) {
+  auto* self = static_cast<WebServer*>(cbdata);
+  const int opcode = bits & 0x0f;
+  const bool fin = (bits & 0x80) != 0;
+  if (opcode == MG_WEBSOCKET_OPCODE_CONNECTION_CLOSE) return 0;
+  if (opcode == MG_WEBSOCKET_OPCODE_PING || opcode == MG_WEBSOCKET_OPCODE_PONG) return 1;
+  int id = 0;
+  std::string text;
+  {
+    std::lock_guard<std::mutex> lock(self->mutex_);
+    const auto it = self->ids_.find(conn);
+    if (it == self->ids_.end()) return 0;
+    id = it->second;
+    std::string& partial = self->partial_[id];
+    if (opcode != MG_WEBSOCKET_OPCODE_CONTINUATION) partial.clear();
+    if (partial.size() + len > kMaxIncoming) return 0;
+    partial.append(data, len);
+    if (!fin) return 1;
+    text.swap(partial);
+  }
+  if (opcode == MG_WEBSOCKET_OPCODE_BINARY) return 1;  // the page sends text only
+  if (self->handlers_.text) self->handlers_.text(id, text);
+  return 1;
+}
+
+void WebServer::on_close(const mg_connection* conn, void* cbdata) {
+  auto* self = static_cast<WebServer*>(cbdata);
+  int id = 0;
+  {
+    std::lock_guard<std::mutex> lock(self->mutex_);
+    const auto it = self->ids_.find(conn);
+    if (it == self->ids_.end()) return;
+    id = it->second;
+    self->ids_.erase(it);
+    self->conns_.erase(id);
+    self->partial_.erase(id);
+  }
+  if (self->handlers_.closed) self->handlers_.closed(id);
+}
+
+bool WebServer::send(int id, const std::string& text) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = conns_.find(id);
+  if (it == conns_.end()) return false;
+  return mg_websocket_write(it->second, MG_WEBSOCKET_OPCODE_TEXT, text.data(), text.size()) > 0;
+}
+
+void WebServer::broadcast(const std::string& text) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (auto& [id, conn] : conns_) mg_websocket_write(conn, MG_WEBSOCKET_OPCODE_TEXT, text.data(), text.size());
+}
+
+size_t WebServer::connections() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return conns_.size();
+}
+
+}  // namespace lcm_control::dashboard

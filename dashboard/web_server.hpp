@@ -1,0 +1,77 @@
+// The dashboard's HTTP and WebSocket server (civetweb): the page's files from a folder, a few routes the program
+// adds (the URDF, the robot's meshes), and the browsers' WebSocket connections on /ws, each with a number.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <string>
+
+struct mg_context;
+struct mg_connection;
+
+namespace lcm_control::dashboard {
+
+class WebServer {
+ public:
+  struct Handlers {
+    std::function<void(int id)> opened;                           // a browser connected (send it a hello)
+    std::function<void(int id, const std::string& text)> text;    // one text message from browser id
+    std::function<void(int id)> closed;
+  };
+  // A route's answer: a file to send, or text with its MIME type; nullopt is 404.
+  struct Reply {
+    std::string file;  // sent as a file when not empty
+    std::string body, mime;
+  };
+  using Route = std::function<std::optional<Reply>(const std::string& rest)>;
+
+  // Serves `web_root` and /ws on bind:port (port 0: one the system picks). Throws std::runtime_error naming the
+  // address and what to do when it cannot listen (in use, not an address of this computer).
+  WebServer(const std::string& bind, int port, const std::string& web_root, Handlers handlers);
+  ~WebServer();
+  WebServer(const WebServer&) = delete;
+  WebServer& operator=(const WebServer&) = delete;
+
+  // GET PREFIX<rest> answered by route(rest); add before browsers connect.
+  void route(const std::string& prefix, Route route);
+
+  int port() const { return port_; }
+  // Text to one browser / to all; false (one) when it is gone. A browser that does not read within the socket
+  // timeout is dropped rather than let it stall the sender.
+  bool send(int id, const std::string& text);
+  void broadcast(const std::string& text);
+  size_t connections();
+
+  // root/rest when that names a regular file inside root ("" for "..", an absolute path, a link out of root, a
+  // folder or nothing): what a route may send for a path a browser gave.
+  static std::string file_under(const std::string& root, const std::string& rest);
+
+  // Incoming WebSocket messages larger than this are refused (the connection is closed).
+  static constexpr size_t kMaxIncoming = 64 * 1024;
+
+ private:
+  static int on_connect(const mg_connection*, void*);
+  static void on_ready(mg_connection*, void*);
+  static int on_data(mg_connection*, int bits, char* data, size_t len, void*);
+  static void on_close(const mg_connection*, void*);
+  static int on_route(mg_connection*, void*);
+
+  mg_context* ctx_ = nullptr;
+  Handlers handlers_;
+  int port_ = 0;
+  std::mutex mutex_;
+  std::map<int, mg_connection*> conns_;
+  std::map<const mg_connection*, int> ids_;
+  std::map<int, std::string> partial_;  // a fragmented message until its last frame
+  int next_id_ = 1;
+  struct RouteEntry {
+    WebServer* server;
+    std::string prefix;
+    Route route;
+  };
+  std::map<std::string, RouteEntry> routes_;
+};
+
+}  // namespace lcm_control::dashboard

@@ -1,0 +1,294 @@
+#!/usr/bin/env python3
+"""The dashboard in a real browser: turret_bot under launch (real time), the dashboard server, and headless
+Chromium driven through chromedriver's WebDriver protocol (HTTP + JSON, the standard library only).
+
+Checks that the page lists the controllers, that moving j1's slider to 0.5 brings j1 there on joint_states
+(read back with `bus echo`, not through the page), that a clicked field's plot grows, that a bad expression is
+refused with the reason, that the banner says the bus is silent once the robot stops, and saves a screenshot.
+Exits 77 (skipped) where Chromium or chromedriver is not installed (scripts/setup installs both).
+"""
+import argparse
+import base64
+import json
+import os
+import re
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+
+SKIP = 77
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+class WebDriver:
+    """The few WebDriver commands the test needs."""
+
+    def __init__(self, port):
+        self.base = f"http://127.0.0.1:{port}"
+        self.session = None
+
+    def call(self, method, path, body=None, timeout=30):
+        data = None if body is None else json.dumps(body).encode()
+        req = urllib.request.Request(self.base + path, data=data, method=method,
+                                     headers={"Content-Type": "application/json"})
+        try:
+            with urllib.request.urlopen(req, timeout=timeout) as r:
+                return json.loads(r.read() or b"{}").get("value")
+        except urllib.error.HTTPError as e:
+            raise RuntimeError(f"WebDriver {method} {path}: {e.code} {e.read()[:400]!r}") from None
+
+    def start(self, chromium, profile):
+        # The background-networking flags keep Chromium off the (closed) network: only the page on loopback.
+        args = ["--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--window-size=1500,950",
+                "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--no-first-run", "--disable-quic",
+                "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                f"--user-data-dir={profile}"]
+        caps = {"capabilities": {"alwaysMatch": {"browserName": "chrome", "goog:chromeOptions": {
+            "binary": chromium, "args": args}}}}
+        self.session = self.call("POST", "/session", caps, timeout=60)["sessionId"]
+
+    def s(self, path):
+        return f"/session/{self.session}{path}"
+
+    def go(self, url):
+        self.call("POST", self.s("/url"), {"url": url})
+
+    def js(self, script, *args):
+        return self.call("POST", self.s("/execute/sync"), {"script": script, "args": list(args)})
+
+    def screenshot(self, path):
+        with open(path, "wb") as f:
+            f.write(base64.b64decode(self.call("GET", self.s("/screenshot"))))
+
+    def quit(self):
+        if self.session:
+            try:
+                self.call("DELETE", self.s(""), timeout=10)
+            except Exception:
+                pass
+
+
+def wait_for(what, fn, timeout_s):
+    end = time.monotonic() + timeout_s
+    last = None
+    while time.monotonic() < end:
+        last = fn()
+        if last:
+            return last
+        time.sleep(0.1)
+    raise AssertionError(f"timed out after {timeout_s} s waiting for {what} (last: {last!r})")
+
+
+def j1_position(bin_dir, url):
+    out = subprocess.run([os.path.join(bin_dir, "bus"), "echo", "joint_states", "--count", "1", "--duration", "3",
+                          "--lcm-url", url], capture_output=True, text=True, timeout=15).stdout
+    names = re.search(r"^name: \[(.*)\]", out, re.M)
+    pos = re.search(r"^position: \[(.*)\]", out, re.M)
+    if not names or not pos:
+        return None
+    return dict(zip([n.strip() for n in names.group(1).split(",")], [float(x) for x in pos.group(1).split(",")]))
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bin-dir", required=True)
+    ap.add_argument("--source-dir", required=True)
+    ap.add_argument("--screenshot", help="where to save the page (default: the test's temporary folder)")
+    a = ap.parse_args()
+
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser") or shutil.which("google-chrome")
+    driver = shutil.which("chromedriver")
+    if not chromium or not driver:
+        print("SKIPPED: no Chromium and chromedriver on this computer (Debian: apt-get install chromium "
+              "chromium-driver; scripts/setup installs them)")
+        return SKIP
+
+    work = tempfile.mkdtemp(prefix="lcm_control_dashboard_")
+    url = f"udpm://239.255.76.67:{free_port()}?ttl=0"
+    env = dict(os.environ, LCM_DEFAULT_URL=url)
+    procs = []
+
+    def start(argv, log):
+        p = subprocess.Popen(argv, stdout=open(os.path.join(work, log), "w"), stderr=subprocess.STDOUT, env=env,
+                             start_new_session=True)
+        procs.append(p)
+        return p
+
+    def log(name):
+        with open(os.path.join(work, name)) as f:
+            return f.read()
+
+    wd = None
+    try:
+        launch = start([os.path.join(a.bin_dir, "launch"), os.path.join(a.source_dir, "config/turret_bot.launch.yaml"),
+                        "--lcm-url", url], "launch.log")
+        wait_for("launch up", lambda: "[launch] up:" in log("launch.log") or launch.poll() is not None, 60)
+        assert launch.poll() is None, "launch ended:\n" + log("launch.log")
+        dash = start([os.path.join(a.bin_dir, "dashboard"), "--lcm-url", url, "--port", "0",
+                      "--urdf", os.path.join(a.source_dir, "config/turret_bot.urdf")], "dashboard.log")
+        page = wait_for("the dashboard's URL", lambda: re.search(r"http://127\.0\.0\.1:\d+/", log("dashboard.log"))
+                        or dash.poll() is not None, 20)
+        assert dash.poll() is None, "dashboard ended:\n" + log("dashboard.log")
+        page = page.group(0)
+        print(f"dashboard at {page}")
+
+        driver_port = free_port()
+        start([driver, f"--port={driver_port}"], "chromedriver.log")
+        wd = WebDriver(driver_port)
+        wait_for("chromedriver", lambda: _ready(wd), 20)
+        wd.start(chromium, os.path.join(work, "profile"))
+        wd.go(page)
+
+        rows = wait_for("the controllers table", lambda: wd.js(
+            "return [...document.querySelectorAll('#controllers tbody tr')].map(r => r.dataset.controller + ':' + "
+            "r.children[3].textContent)"), 20)
+        print("controllers:", rows)
+        assert set(rows) == {"joint_state_controller:running", "j1_controller:running", "j2_controller:running"}, rows
+        note = wait_for("the robot model", lambda: wd.js(
+            "return window.dashboard && document.getElementById('view-note').textContent"), 20)
+        assert "turret_bot" in note, note
+
+        # Gains as rqt_reconfigure shows them: sim_server's j1 (turret_bot.yaml: p 150, d 50), then a new p applied
+        # and read back from the owner with `tune`.
+        p = wait_for("sim_server's j1 gains in the page", lambda: (lambda v: v.endswith("=150") and v)(wd.js(
+            "return document.getElementById('gains-owner').value + '/' + document.getElementById('gains-joint').value"
+            " + '=' + document.getElementById('gains-p').value")), 10)
+        print("gains shown:", p)
+        wd.js("document.getElementById('gains-p').value = 160; document.getElementById('gains-apply').click()")
+        msg = wait_for("the owner's confirmation", lambda: wd.js(
+            "const m = document.getElementById('gains-message'); return !m.textContent.startsWith('asking') && "
+            "m.textContent + (m.classList.contains('error') ? ' (error)' : '')"), 10)
+        print("gains applied:", msg)
+        tune = subprocess.run([os.path.join(a.bin_dir, "tune"), "j1", "--lcm-url", url], capture_output=True,
+                              text=True, timeout=20)
+        print("tune j1:", tune.stdout.strip())
+        assert "(error)" not in msg and re.search(r"\bp[ =:]+160\b", tune.stdout), (msg, tune.stdout, tune.stderr)
+
+        # The user's slider: j1 to 0.5.
+        wait_for("j1's slider", lambda: wd.js("return !!document.getElementById('slider-j1_controller-j1')"), 20)
+        limits = wd.js("const s = document.getElementById('slider-j1_controller-j1'); return [s.min, s.max];")
+        print("j1 slider range:", limits)
+        wd.js("const s = document.getElementById('slider-j1_controller-j1'); s.value = 0.5;"
+              "s.dispatchEvent(new Event('input')); s.dispatchEvent(new Event('change'));")
+        t0 = time.monotonic()
+        reached = wait_for("j1 at 0.5 on joint_states", lambda: (lambda p: p and abs(p.get("j1", 9) - 0.5) < 0.01
+                                                                 and p)(j1_position(a.bin_dir, url)), 15)
+        print(f"j1 reached {reached['j1']:.4f} on joint_states {time.monotonic() - t0:.1f} s after the slider moved")
+
+        # A plot: open joint_states and click position[j2] as a user would.
+        wd.js("document.querySelector('.channel[data-channel=\"joint_states\"] .channel-head').click()")
+        wait_for("joint_states' fields", lambda: wd.js(
+            "return !!document.querySelector('.channel[data-channel=\"joint_states\"] .field[data-path=\"position[0]\"]')"), 10)
+        wd.js("document.querySelector('.channel[data-channel=\"joint_states\"] .field[data-path=\"position[0]\"]').click()")
+        n1 = wait_for("the first points", lambda: wd.js("return window.dashboard.plots.points()"), 5)
+        time.sleep(1.0)
+        n2 = wd.js("return window.dashboard.plots.points()")
+        print(f"plot points: {n1} then {n2} one second later")
+        assert n2 >= n1 + 10, f"the plot did not grow at the display rate: {n1} -> {n2}"
+
+        # An expression the server refuses names it; a good one runs on j2.
+        bad = _async(wd, "window.dashboard.conn.request({op: 'expr', channel: 'j2_controller/command', "
+                         "expressions: ['sin('], rate: 60})")
+        print("bad expression:", bad["message"])
+        assert not bad["ok"] and "sin(" in bad["message"], bad
+
+        # A good expression runs on j2 (turret-cmd's job, done by the server at 60 Hz).
+        good = _async(wd, "window.dashboard.conn.request({op: 'expr', channel: 'j2_controller/command', "
+                          "expressions: ['0.3 + 0*t'], rate: 60})")
+        assert good["ok"], good
+        reached = wait_for("j2 at 0.3 from the expression", lambda: (lambda p: p and abs(p.get("j2", 9) - 0.3) < 0.02
+                                                                     and p)(j1_position(a.bin_dir, url)), 15)
+        print(f"expression: j2 reached {reached['j2']:.4f}")
+
+        # The controllers table: Stop j2_controller, then Start it again, checked with cmctl.
+        def cm_state(name):
+            out = subprocess.run([os.path.join(a.bin_dir, "cmctl"), "list", "--lcm-url", url], capture_output=True,
+                                 text=True, timeout=20).stdout
+            m = re.search(rf"^{name}\s+\S+\s+(\w+)", out, re.M)
+            return m and m.group(1)
+
+        for button, want in (("Stop", "stopped"), ("Start", "running")):
+            wait_for(f"a {button} button for j2_controller", lambda: wd.js(
+                "const b = document.querySelector('tr[data-controller=\"j2_controller\"] button');"
+                f"return b && b.textContent === '{button}' && (b.click(), true)"), 10)
+            wait_for(f"j2_controller {want} (cmctl list)", lambda: cm_state("j2_controller") == want, 10)
+            print(f"controllers: {button} -> j2_controller {want}")
+
+        # E-stop from the page reaches the bus; release it again.
+        echo = subprocess.Popen([os.path.join(a.bin_dir, "bus"), "echo", "e_stop", "--count", "1", "--duration", "10",
+                                 "--lcm-url", url], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        procs.append(echo)
+        time.sleep(0.5)
+        wd.js("document.getElementById('estop').click()")
+        out = echo.communicate(timeout=15)[0]
+        print("e-stop:", " ".join(out.split()))
+        assert "engaged: 1" in out and "source: dashboard" in out, out
+        wait_for("the button to offer release", lambda: wd.js("return document.getElementById('estop').textContent")
+                 == "RELEASE E-STOP", 5)
+        wd.js("document.getElementById('estop').click()")
+
+        shot = a.screenshot or os.path.join(work, "dashboard.png")
+        wd.screenshot(shot)
+        size = os.path.getsize(shot)
+        print(f"screenshot: {shot} ({size} bytes)")
+        assert size > 20000, "the screenshot is too small to show the page"
+
+        # The robot goes: the page says the bus is silent.
+        os.killpg(launch.pid, signal.SIGINT)
+        launch.wait(timeout=20)
+        # (the controller manager's silence shows first; the bus's, which says more, replaces it after 2 s)
+        text = wait_for("the silent-bus banner", lambda: (lambda t: t and "bus is silent" in t and t)(wd.js(
+            "const b = document.getElementById('banner'); return !b.hidden && b.textContent")), 10)
+        print("banner:", text)
+        assert "bus is silent" in text, text
+        print("dashboard_browser: ok")
+        return 0
+    except Exception as e:
+        print(f"FAILED: {e}")
+        for name in ("launch.log", "dashboard.log", "chromedriver.log"):
+            path = os.path.join(work, name)
+            if os.path.exists(path):
+                print(f"--- {name} (last lines)\n" + "".join(open(path).readlines()[-20:]))
+        return 1
+    finally:
+        if wd:
+            wd.quit()
+        for p in reversed(procs):
+            if p.poll() is None:
+                try:
+                    os.killpg(p.pid, signal.SIGTERM)
+                except ProcessLookupError:
+                    pass
+        for p in procs:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                os.killpg(p.pid, signal.SIGKILL)
+                p.wait()
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def _ready(wd):
+    try:
+        return wd.call("GET", "/status", timeout=2).get("ready")
+    except Exception:
+        return False
+
+
+def _async(wd, promise):
+    return wd.call("POST", wd.s("/execute/async"),
+                   {"script": f"const done = arguments[arguments.length - 1]; ({promise}).then(done);", "args": []})
+
+
+if __name__ == "__main__":
+    sys.exit(main())
