@@ -112,6 +112,13 @@ std::string apply_scheduling(const SchedulingFlags& f) {
   return s;
 }
 
+void lower_priority(int nice) {
+  if (nice < 0 || nice > 19) throw std::runtime_error(fmt::format("--nice {}: give 0 (unchanged) to 19", nice));
+  // On Linux the nice value is per thread, and a thread starts with its creator's: call this before any thread.
+  if (nice > 0 && setpriority(PRIO_PROCESS, 0, nice) != 0)
+    throw std::runtime_error(fmt::format("--nice {}: setpriority failed ({})", nice, std::strerror(errno)));
+}
+
 int least_busy_cpu(int sample_ms) {
   const std::vector<int> cpus = allowed_cpus();
   if (cpus.empty()) return -1;

@@ -22,6 +22,10 @@ void add_scheduling_flags(CLI::App& app, SchedulingFlags& f);
 // use, SCHED_FIFO or mlockall not permitted).
 std::string apply_scheduling(const SchedulingFlags& f);
 
+// Lowers the calling process's priority to `nice` (0..19) for it and the threads it starts afterwards: for tools
+// that watch the loop (the dashboard) and must not take its CPU. Throws std::runtime_error naming the value.
+void lower_priority(int nice);
+
 // The CPU, among those this process may use, with the most idle time over `sample_ms`; -1 if it cannot tell.
 int least_busy_cpu(int sample_ms = 100);
 

@@ -17,6 +17,7 @@
 #include "common/cli.hpp"
 #include "common/expression.hpp"
 #include "common/packages.hpp"
+#include "common/scheduling.hpp"
 #include "dashboard/requests.hpp"
 #include "dashboard/throttle.hpp"
 #include "dashboard/web_server.hpp"
@@ -182,7 +183,7 @@ struct Options {
   BusFlags bus;
   std::string bind = "127.0.0.1", web_root, urdf;
   std::vector<std::string> package_path;
-  int port = 8080;
+  int port = 8080, nice = 10;
   double rate_hz = 30, duration_s = 0, timeout_s = 5;
   bool read_only = false;
 };
@@ -190,7 +191,7 @@ struct Options {
 class Dashboard {
  public:
   Dashboard(const Options& o, Bus& bus, WebServer& web)
-      : o_(o), bus_(bus), web_(web), throttle_(int64_t(1e6 / o.rate_hz)), clock_(bus, 0.0) {
+      : o_(o), bus_(bus), web_(web), period_us_(int64_t(1e6 / o.rate_hz)), throttle_(period_us_), clock_(bus, 0.0) {
     prefix_ = bus.channel("");
     own_.insert(bus.channel(channels::kCmRequest));
     const std::string pattern = prefix_.empty() ? ".*" : tools::regex_escape(prefix_) + ".*";
@@ -209,19 +210,22 @@ class Dashboard {
   void closed(int conn) { closed_.push(conn, ""); }
   Inbox& inbox() { return inbox_; }
 
-  // One pass of the bus thread: browsers' requests, due messages, expression streams, the status each second.
+  // One pass of the bus thread: it sleeps until the next display period or expression tick, then takes everything
+  // the bus queued meanwhile in one go (one wake-up per period instead of one per message: the loop it watches
+  // keeps its CPU), then browsers' requests, due messages, expression streams, the status each second.
   void run_once() {
-    const int64_t now = monotonic_us();
-    int64_t wait_us = std::min<int64_t>(10000, next_flush_ - now);
-    for (const auto& [channel, s] : streams_) wait_us = std::min(wait_us, s.next_us - now);
-    tools::handle_bus(bus_, int(std::max<int64_t>(0, wait_us) / 1000));
+    int64_t until = next_flush_;
+    for (const auto& [channel, s] : streams_) until = std::min(until, s.next_us);
+    tools::sleep_until_us(until);
+    for (int n = 0; n < kMaxDrain && bus_.lcm().handleTimeout(0) > 0; ++n) {
+    }
     for (auto& [conn, text] : closed_.take()) stop_streams_of(conn);
     for (auto& [conn, text] : inbox_.take()) serve(conn, text);
     tick_streams();
     const int64_t t = monotonic_us();
     if (t >= next_flush_) {
       flush(t);
-      next_flush_ = t + 5000;  // the throttle keeps each channel's period; this is only how often it is asked
+      next_flush_ = std::max(next_flush_ + period_us_, t + period_us_ / 2);
     }
     if (t >= next_status_) {
       status(t);
@@ -382,9 +386,11 @@ class Dashboard {
   }
 
   static constexpr size_t kMaxStreams = 64;
+  static constexpr int kMaxDrain = 100000;  // messages taken in one pass at most (a flood cannot hold the page up)
   const Options& o_;
   Bus& bus_;
   WebServer& web_;
+  int64_t period_us_;
   Throttle throttle_;
   tools::CommandClock clock_;
   CmWorker* cm_ = nullptr;
@@ -422,6 +428,7 @@ int run(Options& o) {
                  "dashboard: warning: serving on %s: the dashboard has no authentication, so anyone who can reach "
                  "this port can command the robot (--read-only refuses commands)\n",
                  o.bind.c_str());
+  lower_priority(o.nice);  // before any thread: LCM's and civetweb's threads inherit it
   tools::install_stop_signals();
   Bus bus(o.bus.lcm_url, o.bus.ns);
   Dashboard* dash = nullptr;
@@ -484,6 +491,10 @@ int main(int argc, char** argv) {
   app.add_flag("--read-only", o.read_only, "show the robot, refuse every command from the page");
   app.add_option("--web-root", o.web_root, "folder of the built page (default: ../share/lcm_control/dashboard "
                                            "beside this program)");
+  app.add_option("--nice", o.nice,
+                 "run at this nice value (0 to 19; default 10), so that a busy page never takes the CPU of the loop "
+                 "it shows")
+      ->check(CLI::Range(0, 19));
   app.add_option("--timeout", o.timeout_s, "seconds to wait for the controller manager's answers")
       ->check(CLI::PositiveNumber);
   app.add_option("--duration", o.duration_s, "stop after S seconds (default: until Ctrl-C)")

@@ -25,7 +25,8 @@ class Throttle {
     int64_t received_us = 0;
     int64_t skipped = 0;  // payloads replaced by a newer one since the last hand-out
   };
-  // The channels with a payload not yet handed out whose last hand-out was at least a period before now_us.
+  // The channels with a payload not yet handed out whose last hand-out was at least a period before now_us (less a
+  // tenth: a caller that asks once a period must not skip every other period for a late tick).
   std::vector<Due> take_due(int64_t now_us);
 
   // A channel's messages per second over the last whole second (lcm-spy's Hz).

@@ -223,8 +223,18 @@ int main(int argc, char** argv) {
                  "own port (--hardware-lcm-url auto unless given; `shared` keeps them on the --lcm-url); overrides "
                  "the file's `robots:`")
       ->check(CLI::Range(1, kMaxRobots));
+  bool dashboard = false;
+  int dashboard_port = 8080;
+  app.add_flag("--dashboard", dashboard,
+               "also start the dashboard (the robot in a browser: plots, sliders, gains, controllers) once the "
+               "servers are up, and print its URL");
+  app.add_option("--dashboard-port", dashboard_port, "the dashboard's port (default 8080; 0: one the system picks)")
+      ->check(CLI::Range(0, 65535));
   return run_program(app, argc, argv, [&]() -> int {
     LaunchPlan plan = read_launch_file(file, package_path);
+    if (dashboard && (robots > 0 || !plan.robots.empty()))
+      throw CLI::ValidationError("--dashboard", "one dashboard shows one robot: with several, start one per robot "
+                                                "(dashboard --namespace r0 --port 8080 --urdf FILE, r1 on 8081, ...)");
     if (!mode.empty()) plan.mode = mode;
     if (paused) plan.paused = true;
     if (!cpu.empty()) plan.cpu = cpu;
@@ -287,11 +297,13 @@ int main(int argc, char** argv) {
     spawner.insert(spawner.end(), plan.spawner_args.begin(), plan.spawner_args.end());
     std::vector<std::string> rsp{"state-publisher", "--urdf", plan.urdf, "--config", plan.config};
     rsp.insert(rsp.end(), yaml_args.begin(), yaml_args.end());
+    const std::vector<std::string> dash{"dashboard", "--urdf", plan.urdf, "--port", std::to_string(dashboard_port)};
 
     if (dry_run) {
       if (plan.sim) fmt::print("{}: {}\n", plan.sim_name, fmt::join(with_ns(sim, ns), " "));
       if (plan.controller_manager) fmt::print("{}: {}\n", plan.cm_name, fmt::join(with_ns(cm, ns), " "));
       if (plan.state_publisher) fmt::print("{}: {}\n", plan.state_publisher_name, fmt::join(with_ns(rsp, ns), " "));
+      if (dashboard) fmt::print("dashboard: {}\n", fmt::join(with_ns(dash, ns), " "));
       for (const auto& p : plan.processes)
         fmt::print("{}: {}{}\n", p.name, fmt::join(p.argv, " "), p.required ? " (required)" : "");
       if (!plan.controllers.empty()) fmt::print("{}: {}\n", plan.spawner_name, fmt::join(with_ns(spawner, ns), " "));
@@ -367,6 +379,7 @@ int main(int argc, char** argv) {
       if (!sim_last && plan.commands.empty()) drop_bus();
       if (plan.state_publisher) others.push_back(&sup.start(plan.state_publisher_name, with_ns(rsp, ns), true));
       for (const auto& p : plan.processes) others.push_back(&sup.start(p.name, p.argv, p.required));
+      if (dashboard) others.push_back(&sup.start("dashboard", with_ns(dash, ns), false));
       if (!plan.controllers.empty()) {
         spawner_c = &sup.start(plan.spawner_name, with_ns(spawner, ns), true);
         if (!sup.wait_until([&] { return broken() || spawner_c->ready; }, std::max(left(), 12.0)))

@@ -217,12 +217,20 @@ def main():
             m = re.search(rf"^{name}\s+\S+\s+(\w+)", out, re.M)
             return m and m.group(1)
 
-        for button, want in (("Stop", "stopped"), ("Start", "running")):
+        def press(button, want):
             wait_for(f"a {button} button for j2_controller", lambda: wd.js(
-                "const b = document.querySelector('tr[data-controller=\"j2_controller\"] button');"
-                f"return b && b.textContent === '{button}' && (b.click(), true)"), 10)
+                "const b = [...document.querySelectorAll('tr[data-controller=\"j2_controller\"] button')]"
+                f".find(b => b.textContent === '{button}'); return !!b && (b.click(), true)"), 10)
             wait_for(f"j2_controller {want} (cmctl list)", lambda: cm_state("j2_controller") == want, 10)
             print(f"controllers: {button} -> j2_controller {want}")
+
+        press("Stop", "stopped")
+        press("✕", None)  # unloaded
+        wd.js("document.getElementById('load-name').value = 'j2_controller';"
+              "document.getElementById('load-button').click()")
+        wait_for("j2_controller loaded again (cmctl list)", lambda: cm_state("j2_controller") == "initialized", 10)
+        print("controllers: Load -> j2_controller initialized")
+        press("Start", "running")
 
         # E-stop from the page reaches the bus; release it again.
         echo = subprocess.Popen([os.path.join(a.bin_dir, "bus"), "echo", "e_stop", "--count", "1", "--duration", "10",
@@ -237,6 +245,11 @@ def main():
                  == "RELEASE E-STOP", 5)
         wd.js("document.getElementById('estop').click()")
 
+        # For the picture: j2 on a sine from the page's expression box, both joints plotted.
+        wd.js("document.querySelector('.channel[data-channel=\"joint_states\"] .field[data-path=\"position[1]\"]').click();"
+              "const e = document.getElementById('expr-j2_controller'); e.value = '0.8*sin(2*t)';"
+              "e.parentElement.querySelector('button').click();")
+        time.sleep(3)
         shot = a.screenshot or os.path.join(work, "dashboard.png")
         wd.screenshot(shot)
         size = os.path.getsize(shot)

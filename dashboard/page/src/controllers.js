@@ -1,12 +1,16 @@
 // The controller manager's controllers (rqt_controller_manager): state, claimed joints, start/stop, a switch.
 export class Controllers {
-  constructor(conn, table, switchButton, message) {
+  constructor(conn, table, switchButton, message, loadName, loadButton) {
     this.conn = conn;
     this.body = table.querySelector('tbody');
     this.message = message;
     this.list = [];
     this.ok = null;
     this.onChange = [];
+    loadButton.onclick = () => {
+      const name = loadName.value.trim();
+      if (name) this.call({ call: 'load', names: [name] });
+    };
     switchButton.onclick = () => {
       const checked = [...this.body.querySelectorAll('input[type=checkbox]:checked')].map((c) => c.dataset.name);
       const running = new Set(this.list.filter((c) => c.state === 'running').map((c) => c.name));
@@ -43,9 +47,18 @@ export class Controllers {
       action.textContent = running ? 'Stop' : 'Start';
       action.className = running ? 'stop' : 'start';
       action.onclick = () => this.call(running ? { call: 'switch', stop: [c.name] } : { call: 'switch', start: [c.name] });
+      const actions = document.createElement('span');
+      actions.append(action);
+      if (!running) {
+        const unload = document.createElement('button');
+        unload.textContent = '✕';
+        unload.title = `unload ${c.name}`;
+        unload.onclick = () => this.call({ call: 'unload', names: [c.name] });
+        actions.append(unload);
+      }
       const type = document.createElement('span');
       type.textContent = c.type.split('/').pop();
-      const cells = [box, c.name, type, c.state, c.joints.join(' '), action];
+      const cells = [box, c.name, type, c.state, c.joints.join(' '), actions];
       for (const cell of cells) {
         const td = document.createElement('td');
         if (typeof cell === 'string') td.textContent = cell;

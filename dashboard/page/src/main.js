@@ -15,7 +15,7 @@ const conn = new Connection(`${location.protocol === 'https:' ? 'wss' : 'ws'}://
 const view = new RobotView($('view'), $('view-note'));
 const plots = new Plots($('plot'), { window: $('plot-window'), pause: $('plot-pause'), clear: $('plot-clear'), series: $('plot-series') });
 const channels = new Channels($('channels'), $('channel-filter'), plots);
-const controllers = new Controllers(conn, $('controllers'), $('switch-selected'), $('cm-message'));
+const controllers = new Controllers(conn, $('controllers'), $('switch-selected'), $('cm-message'), $('load-name'), $('load-button'));
 const commands = new Commands(conn, $('commands'));
 const gains = new Gains(conn, $('gains'));
 

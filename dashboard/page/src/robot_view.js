@@ -30,14 +30,19 @@ export class RobotView {
     el.appendChild(this.renderer.domElement);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.target.set(0, 0.4, 0);
+    this.controls.addEventListener('change', () => this.invalidate());
     new ResizeObserver(() => this.resize()).observe(el);
     this.resize();
-    const frame = () => {
-      this.controls.update();
+  }
+
+  // Draws on the next animation frame, once however often it is asked: a still robot costs the browser nothing.
+  invalidate() {
+    if (this.pending || !this.renderer) return;
+    this.pending = true;
+    requestAnimationFrame(() => {
+      this.pending = false;
       this.renderer.render(this.scene, this.camera);
-      requestAnimationFrame(frame);
-    };
-    requestAnimationFrame(frame);
+    });
   }
 
   resize() {
@@ -48,6 +53,7 @@ export class RobotView {
     this.renderer.setSize(w, h);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
+    this.invalidate();
   }
 
   load(url) {
@@ -55,7 +61,11 @@ export class RobotView {
       this.note.textContent = 'no URDF: start the dashboard with --urdf FILE to see the robot';
       return;
     }
-    const loader = new URDFLoader();
+    // Meshes arrive after the URDF: draw again as each one loads.
+    const manager = new THREE.LoadingManager();
+    manager.onProgress = () => this.invalidate();
+    manager.onLoad = () => this.invalidate();
+    const loader = new URDFLoader(manager);
     loader.packages = (pkg) => `/package/${pkg}`;
     loader.load(
       url,
@@ -76,6 +86,8 @@ export class RobotView {
           };
         }
         this.note.textContent = `${robot.robotName || 'robot'} from ${url}`;
+        this.invalidate();
+
         for (const fn of this.onLoad) fn(this.joints);
       },
       undefined,
@@ -87,8 +99,10 @@ export class RobotView {
 
   setJoints(names, positions) {
     if (!this.robot) return;
+    let moved = false;
     names.forEach((n, k) => {
-      if (this.robot.joints[n] && Number.isFinite(positions[k])) this.robot.joints[n].setJointValue(positions[k]);
+      if (this.robot.joints[n] && Number.isFinite(positions[k])) moved = this.robot.joints[n].setJointValue(positions[k]) || moved;
     });
+    if (moved) this.invalidate();
   }
 }
