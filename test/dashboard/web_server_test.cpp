@@ -1,13 +1,11 @@
 #include "dashboard/web_server.hpp"
 
-#include <arpa/inet.h>
 #include <gtest/gtest.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 
+#include "test/dashboard/http_get.hpp"
 #include "test/support/process.hpp"
 
 namespace lcm_control::dashboard {
@@ -15,25 +13,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// One HTTP/1.0 GET on 127.0.0.1:port; the status line's code, or -1.
-int get_status(int port, const std::string& path) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(uint16_t(port));
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
-    ::close(fd);
-    return -1;
-  }
-  const std::string req = "GET " + path + " HTTP/1.0\r\n\r\n";
-  (void)!::write(fd, req.data(), req.size());
-  char buf[64] = {};
-  const ssize_t n = ::read(fd, buf, sizeof buf - 1);
-  ::close(fd);
-  if (n < 12) return -1;
-  return std::atoi(buf + 9);
-}
+int get_status(int port, const std::string& path) { return http_get(port, path).status; }
 
 TEST(DashboardWebServer, FilesUnderARootOnly) {
   const fs::path root = fs::path(testing::temp_dir("dashboard_root")) / "robot";

@@ -25,11 +25,11 @@ export class Gains {
     el.querySelector('#gains-apply').onclick = () => this.ask(false);
   }
 
-  // Owners: sim_server with every joint, and each running controller that publishes a controller_state_t.
-  update(controllers, joints, channelTypes) {
+  // Owners: sim_server with every joint, and each running controller that commands joints (its answer says when it
+  // has no PID of its own, as a position_controllers/ one does not).
+  update(controllers, joints) {
     const owners = { sim_server: Object.keys(joints) };
-    for (const c of controllers)
-      if (c.state === 'running' && channelTypes[`${c.name}/state`] === 'controller_state_t') owners[c.name] = c.joints;
+    for (const c of controllers) if (c.state === 'running' && c.interface && c.joints.length) owners[c.name] = c.joints;
     const key = JSON.stringify(owners);
     if (key === this.key) return;
     this.key = key;

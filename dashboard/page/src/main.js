@@ -24,11 +24,11 @@ window.dashboard = { conn, plots, channels, controllers, state };
 
 view.onLoad.push((joints) => {
   commands.setJoints(joints);
-  gains.update(controllers.list, joints, channels.types());
+  gains.update(controllers.list, joints);
 });
 controllers.onChange.push((list) => {
   commands.update(list);
-  gains.update(list, view.joints, channels.types());
+  gains.update(list, view.joints);
 });
 
 conn.on('hello', (h) => {
