@@ -27,8 +27,10 @@ WebServer::WebServer(const std::string& bind, int port, const std::string& web_r
                            "num_threads", "16", "enable_directory_listing", "no",
                            // a browser that stops reading is dropped after this long instead of stalling the sender
                            "request_timeout_ms", "10000", "websocket_timeout_ms", "3600000", nullptr};
+  loopback_only_ = bind == "127.0.0.1" || bind == "localhost" || bind == "::1";
   mg_callbacks callbacks{};
   callbacks.log_message = [](const mg_connection*, const char*) { return 1; };  // errors are reported below
+  callbacks.begin_request = &WebServer::on_request;
   ctx_ = mg_start(&callbacks, this, options);
   if (!ctx_)
     throw std::runtime_error(fmt::format(
@@ -50,6 +52,35 @@ void WebServer::route(const std::string& prefix, Route route) {
   auto& entry = routes_[prefix];
   entry = RouteEntry{this, prefix, std::move(route)};
   mg_set_request_handler(ctx_, prefix.c_str(), &WebServer::on_route, &entry);
+}
+
+std::string WebServer::refuse_reason(const std::string& host, const std::string& origin, bool loopback_only) {
+  if (host.empty()) return "no Host header";
+  if (loopback_only) {
+    std::string name = host;
+    if (name.front() == '[') {
+      name = name.substr(0, name.find(']') + 1);
+    } else if (const size_t colon = name.rfind(':'); colon != std::string::npos) {
+      name.resize(colon);
+    }
+    if (name != "127.0.0.1" && name != "localhost" && name != "[::1]")
+      return fmt::format("the dashboard serves this computer only: open it as http://127.0.0.1:PORT/, not through the "
+                         "name '{}'",
+                         name);
+  }
+  if (!origin.empty() && origin != "http://" + host && origin != "https://" + host)
+    return fmt::format("a page from {} may not use the dashboard at {}: only its own page may", origin, host);
+  return "";
+}
+
+int WebServer::on_request(mg_connection* conn) {
+  const auto* self = static_cast<const WebServer*>(mg_get_user_data(mg_get_context(conn)));
+  const char* host = mg_get_header(conn, "Host");
+  const char* origin = mg_get_header(conn, "Origin");
+  const std::string why = refuse_reason(host ? host : "", origin ? origin : "", self->loopback_only_);
+  if (why.empty()) return 0;
+  mg_send_http_error(conn, 403, "%s", why.c_str());
+  return 403;
 }
 
 int WebServer::on_route(mg_connection* conn, void* cbdata) {

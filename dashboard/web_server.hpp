@@ -48,6 +48,12 @@ class WebServer {
   // folder or nothing): what a route may send for a path a browser gave.
   static std::string file_under(const std::string& root, const std::string& rest);
 
+  // Why a request with these Host and Origin headers is refused, "" to serve it. Any web page the user's browser
+  // opens could otherwise command the robot: a WebSocket may connect across origins, and a name the attacker
+  // controls may resolve to 127.0.0.1 (DNS rebinding). So a request that comes with an Origin must come from a page
+  // this server served (Origin = http://Host), and a server on loopback answers only to its loopback names.
+  static std::string refuse_reason(const std::string& host, const std::string& origin, bool loopback_only);
+
   // Incoming WebSocket messages larger than this are refused (the connection is closed).
   static constexpr size_t kMaxIncoming = 64 * 1024;
 
@@ -57,10 +63,12 @@ class WebServer {
   static int on_data(mg_connection*, int bits, char* data, size_t len, void*);
   static void on_close(const mg_connection*, void*);
   static int on_route(mg_connection*, void*);
+  static int on_request(mg_connection*);
 
   mg_context* ctx_ = nullptr;
   Handlers handlers_;
   int port_ = 0;
+  bool loopback_only_ = true;
   std::mutex mutex_;
   std::map<int, mg_connection*> conns_;
   std::map<const mg_connection*, int> ids_;

@@ -1,4 +1,5 @@
-// One HTTP/1.0 GET on 127.0.0.1 for the dashboard's tests: the status code and the body.
+// One HTTP/1.0 GET on 127.0.0.1 for the dashboard's tests (Host 127.0.0.1:PORT unless `headers` has one, then `headers`, each ending
+// in \r\n): the status code and the body.
 #pragma once
 
 #include <arpa/inet.h>
@@ -15,7 +16,7 @@ struct HttpReply {
   std::string body;
 };
 
-inline HttpReply http_get(int port, const std::string& path) {
+inline HttpReply http_get(int port, const std::string& path, const std::string& headers = "") {
   HttpReply r;
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
   sockaddr_in a{};
@@ -28,7 +29,10 @@ inline HttpReply http_get(int port, const std::string& path) {
     ::close(fd);
     return r;
   }
-  const std::string req = "GET " + path + " HTTP/1.0\r\n\r\n";
+  const std::string host = headers.find("Host:") == std::string::npos
+                               ? "Host: 127.0.0.1:" + std::to_string(port) + "\r\n"
+                               : "";
+  const std::string req = "GET " + path + " HTTP/1.0\r\n" + host + headers + "\r\n";
   (void)!::write(fd, req.data(), req.size());
   std::string all;
   char buf[4096];

@@ -42,6 +42,9 @@ TEST(DashboardProgram, ServesTheUrdfItsMeshesAndPackagesButNothingOutside) {
                               "/package/my_robot/../secret.txt", "/package/my_robot/%2e%2e/secret.txt",
                               "/package/no_such_pkg/meshes/cube.stl", "/package/my_robot", "/robot/"})
     EXPECT_EQ(http_get(port, outside).status, 404) << outside;
+  // Another site's page, and a name that is not this computer's (DNS rebinding), are refused.
+  EXPECT_EQ(http_get(port, "/ws", "Origin: https://evil.example\r\nUpgrade: websocket\r\n").status, 403);
+  EXPECT_EQ(http_get(port, "/robot/modes_bot.urdf", "Host: evil.example\r\n").status, 403);
   dash.stop();
 }
 

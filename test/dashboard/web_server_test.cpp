@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <utility>
+#include <vector>
 
 #include "test/dashboard/http_get.hpp"
 #include "test/support/process.hpp"
@@ -28,6 +30,24 @@ TEST(DashboardWebServer, FilesUnderARootOnly) {
                           "nothing.stl"})
     EXPECT_EQ(WebServer::file_under(root.string(), bad), "") << bad;
   EXPECT_EQ(WebServer::file_under("", "meshes/base.stl"), "");
+}
+
+TEST(DashboardWebServer, OnlyItsOwnPageOnItsOwnNames) {
+  // Loopback: the page itself, and tools without an Origin (curl, the bench's client).
+  for (const auto& [host, origin] : std::vector<std::pair<std::string, std::string>>{
+           {"127.0.0.1:8080", ""}, {"127.0.0.1:8080", "http://127.0.0.1:8080"}, {"localhost:8080", ""},
+           {"localhost:8080", "http://localhost:8080"}, {"[::1]:8080", "http://[::1]:8080"}, {"127.0.0.1", ""}})
+    EXPECT_EQ(WebServer::refuse_reason(host, origin, true), "") << host << " " << origin;
+  // Another site's page connecting to the robot, and DNS rebinding (a name of the attacker's on 127.0.0.1).
+  EXPECT_NE(WebServer::refuse_reason("127.0.0.1:8080", "https://evil.example", true).find("evil.example"),
+            std::string::npos);
+  EXPECT_NE(WebServer::refuse_reason("127.0.0.1:8080", "http://127.0.0.1:9999", true), "");
+  EXPECT_NE(WebServer::refuse_reason("evil.example:8080", "http://evil.example:8080", true).find("127.0.0.1"),
+            std::string::npos);
+  EXPECT_NE(WebServer::refuse_reason("", "", true), "");
+  // Served to the network (--bind): any name of the machine, still only its own page.
+  EXPECT_EQ(WebServer::refuse_reason("robot-pc:8080", "http://robot-pc:8080", false), "");
+  EXPECT_NE(WebServer::refuse_reason("robot-pc:8080", "http://evil.example", false), "");
 }
 
 TEST(DashboardWebServer, ServesThePageAndRoutesOnAPortItPicks) {

@@ -20,7 +20,7 @@ const commands = new Commands(conn, $('commands'));
 const gains = new Gains(conn, $('gains'));
 
 const state = { hello: null, status: null, controllersOk: null, cmMessage: '', estop: false, stats: {} };
-window.dashboard = { conn, plots, channels, controllers, state };
+window.dashboard = { conn, view, plots, channels, controllers, state };
 
 view.onLoad.push((joints) => {
   commands.setJoints(joints);
@@ -43,6 +43,7 @@ conn.on('msg', (f) => {
   channels.message(f.channel, f.type, f.msg);
   plots.add(f.channel, f.msg, f.received_s);
   if (f.type === 'joint_state_t' && f.channel.endsWith('joint_states')) view.setJoints(f.msg.name, f.msg.position);
+  if (f.type === 'odometry_t' && f.channel.endsWith('sim_server/base_pose')) view.setBase(f.msg.position, f.msg.orientation);
   if (f.type === 'loop_stats_t') {
     state.stats[f.msg.process || f.channel] = f.msg;
     stats();

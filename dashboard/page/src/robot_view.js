@@ -70,10 +70,12 @@ export class RobotView {
     loader.load(
       url,
       (robot) => {
-        if (this.robot) this.scene.remove(this.robot);
-        robot.rotation.x = -Math.PI / 2; // URDF is z-up, three.js y-up
+        if (this.world) this.scene.remove(this.world);
+        this.world = new THREE.Group();
+        this.world.rotation.x = -Math.PI / 2; // URDF and the base pose are z-up, three.js is y-up
+        this.world.add(robot);
         this.robot = robot;
-        if (this.scene) this.scene.add(robot);
+        if (this.scene) this.scene.add(this.world);
         this.joints = {};
         for (const [name, j] of Object.entries(robot.joints)) {
           if (j.jointType === 'fixed') continue;
@@ -95,6 +97,14 @@ export class RobotView {
         this.note.textContent = `could not load ${url}: ${err?.message || err}`;
       },
     );
+  }
+
+  // A mobile robot's base in the world (sim_server/base_pose, z-up).
+  setBase(position, orientation) {
+    if (!this.robot || !position || !orientation) return;
+    this.robot.position.set(position.x, position.y, position.z);
+    this.robot.quaternion.set(orientation.x, orientation.y, orientation.z, orientation.w);
+    this.invalidate();
   }
 
   setJoints(names, positions) {
