@@ -26,7 +26,7 @@ WebServer::WebServer(const std::string& bind, int port, const std::string& web_r
   const char* options[] = {"listening_ports", listen.c_str(), "document_root", web_root.c_str(),
                            "num_threads", "16", "enable_directory_listing", "no",
                            // a browser that stops reading is dropped after this long instead of stalling the sender
-                           "request_timeout_ms", "10000", "websocket_timeout_ms", "3600000", nullptr};
+                           "request_timeout_ms", "5000", "websocket_timeout_ms", "3600000", nullptr};
   loopback_only_ = bind == "127.0.0.1" || bind == "localhost" || bind == "::1";
   mg_callbacks callbacks{};
   callbacks.log_message = [](const mg_connection*, const char*) { return 1; };  // errors are reported below
@@ -131,10 +131,38 @@ void WebServer::on_ready(mg_connection* conn, void* cbdata) {
   {
     std::lock_guard<std::mutex> lock(self->mutex_);
     id = self->next_id_++;
-    self->conns_[id] = conn;
+    auto b = std::make_unique<Browser>();
+    b->conn = conn;
+    b->writer = std::thread(&WebServer::write_loop, self, b.get());
+    self->conns_[id] = std::move(b);
     self->ids_[conn] = id;
   }
   if (self->handlers_.opened) self->handlers_.opened(id);
+}
+
+void WebServer::write_loop(Browser* b) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (true) {
+    b->cv.wait(lock, [&] { return b->closing || !b->queue.empty(); });
+    if (b->closing) return;
+    std::string text = std::move(b->queue.front());
+    b->queue.pop_front();
+    lock.unlock();
+    // Blocks while the browser does not read; only this browser's thread waits.
+    mg_websocket_write(b->conn, MG_WEBSOCKET_OPCODE_TEXT, text.data(), text.size());
+    lock.lock();
+  }
+}
+
+bool WebServer::enqueue(Browser& b, const std::string& text) {
+  if (b.closing) return false;
+  if (b.queue.size() >= kMaxQueued) {
+    b.queue.pop_front();
+    ++dropped_;
+  }
+  b.queue.push_back(text);
+  b.cv.notify_one();
+  return true;
 }
 
 int WebServer::on_data(mg_connection* conn, int bits, char* data, size_t len, void* cbdata) {
@@ -165,33 +193,43 @@ int WebServer::on_data(mg_connection* conn, int bits, char* data, size_t len, vo
 void WebServer::on_close(const mg_connection* conn, void* cbdata) {
   auto* self = static_cast<WebServer*>(cbdata);
   int id = 0;
+  std::unique_ptr<Browser> gone;
   {
     std::lock_guard<std::mutex> lock(self->mutex_);
     const auto it = self->ids_.find(conn);
     if (it == self->ids_.end()) return;
     id = it->second;
     self->ids_.erase(it);
+    gone = std::move(self->conns_[id]);
     self->conns_.erase(id);
     self->partial_.erase(id);
+    gone->closing = true;
+    gone->cv.notify_one();
   }
+  // civetweb frees the connection after this returns: its writer must be done with it first.
+  gone->writer.join();
   if (self->handlers_.closed) self->handlers_.closed(id);
 }
 
 bool WebServer::send(int id, const std::string& text) {
   std::lock_guard<std::mutex> lock(mutex_);
   const auto it = conns_.find(id);
-  if (it == conns_.end()) return false;
-  return mg_websocket_write(it->second, MG_WEBSOCKET_OPCODE_TEXT, text.data(), text.size()) > 0;
+  return it != conns_.end() && enqueue(*it->second, text);
 }
 
 void WebServer::broadcast(const std::string& text) {
   std::lock_guard<std::mutex> lock(mutex_);
-  for (auto& [id, conn] : conns_) mg_websocket_write(conn, MG_WEBSOCKET_OPCODE_TEXT, text.data(), text.size());
+  for (auto& [id, b] : conns_) enqueue(*b, text);
 }
 
 size_t WebServer::connections() {
   std::lock_guard<std::mutex> lock(mutex_);
   return conns_.size();
+}
+
+int64_t WebServer::dropped() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return dropped_;
 }
 
 }  // namespace lcm_control::dashboard

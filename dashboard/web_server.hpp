@@ -2,11 +2,16 @@
 // adds (the URDF, the robot's meshes), and the browsers' WebSocket connections on /ws, each with a number.
 #pragma once
 
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
 #include <functional>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
+#include <thread>
 
 struct mg_context;
 struct mg_connection;
@@ -38,11 +43,15 @@ class WebServer {
   void route(const std::string& prefix, Route route);
 
   int port() const { return port_; }
-  // Text to one browser / to all; false (one) when it is gone. A browser that does not read within the socket
-  // timeout is dropped rather than let it stall the sender.
+  // Text to one browser / to all, queued: each browser has a writer thread of its own, so one that stops reading
+  // holds up neither the caller nor the other browsers. A browser more than kMaxQueued frames behind loses its
+  // oldest (counted in dropped()). send() is false when the browser is gone.
   bool send(int id, const std::string& text);
   void broadcast(const std::string& text);
   size_t connections();
+  int64_t dropped();
+
+  static constexpr size_t kMaxQueued = 1000;
 
   // root/rest when that names a regular file inside root ("" for "..", an absolute path, a link out of root, a
   // folder or nothing): what a route may send for a path a browser gave.
@@ -69,8 +78,20 @@ class WebServer {
   Handlers handlers_;
   int port_ = 0;
   bool loopback_only_ = true;
+  // One browser: its connection, what waits to be written, and the thread that writes it.
+  struct Browser {
+    mg_connection* conn = nullptr;
+    std::deque<std::string> queue;
+    std::condition_variable cv;
+    bool closing = false;
+    std::thread writer;
+  };
+  void write_loop(Browser* b);
+  bool enqueue(Browser& b, const std::string& text);  // with mutex_ held
+
   std::mutex mutex_;
-  std::map<int, mg_connection*> conns_;
+  std::map<int, std::unique_ptr<Browser>> conns_;
+  int64_t dropped_ = 0;
   std::map<const mg_connection*, int> ids_;
   std::map<int, std::string> partial_;  // a fragmented message until its last frame
   int next_id_ = 1;

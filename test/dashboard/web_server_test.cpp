@@ -2,8 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <arpa/inet.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -48,6 +55,66 @@ TEST(DashboardWebServer, OnlyItsOwnPageOnItsOwnNames) {
   // Served to the network (--bind): any name of the machine, still only its own page.
   EXPECT_EQ(WebServer::refuse_reason("robot-pc:8080", "http://robot-pc:8080", false), "");
   EXPECT_NE(WebServer::refuse_reason("robot-pc:8080", "http://evil.example", false), "");
+}
+
+// A WebSocket client socket after the handshake (-1 if refused); it reads only when the test reads.
+int ws_connect(int port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  int small = 4096;  // a small receive buffer, so that a client that does not read fills up at once
+  setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
+  sockaddr_in a{};
+  a.sin_family = AF_INET;
+  a.sin_port = htons(uint16_t(port));
+  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  timeval tv{5, 0};
+  setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
+  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) return ::close(fd), -1;
+  const std::string req = "GET /ws HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) +
+                          "\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+                          "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n";
+  (void)!::write(fd, req.data(), req.size());
+  std::string head;
+  char c;
+  while (head.find("\r\n\r\n") == std::string::npos && ::read(fd, &c, 1) == 1) head += c;
+  if (head.find(" 101 ") == std::string::npos) return ::close(fd), -1;
+  return fd;
+}
+
+TEST(DashboardWebServer, ABrowserThatStopsReadingHoldsUpNobody) {
+  const fs::path root = testing::temp_dir("dashboard_stall");
+  std::ofstream(root / "index.html") << "<html></html>";
+  std::atomic<int> opened{0};
+  WebServer web("127.0.0.1", 0, root.string(), {[&](int) { ++opened; }, {}, {}});
+  const int stalled = ws_connect(web.port());
+  const int reader = ws_connect(web.port());
+  ASSERT_GE(stalled, 0);
+  ASSERT_GE(reader, 0);
+  for (int k = 0; k < 100 && opened < 2; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  ASSERT_EQ(web.connections(), 2u);
+
+  // Two rounds of 900 frames of 64 KB (under the queue's bound each): the reader gets all of them while the stalled
+  // browser's queue fills and then loses its oldest.
+  const std::string frame(64 * 1024, 'x');
+  const int64_t round_bytes = 900 * int64_t(frame.size());
+  std::atomic<int64_t> got{0};
+  std::thread read_all([&] {
+    char buf[65536];
+    ssize_t n;
+    while (got < 2 * round_bytes && (n = ::read(reader, buf, sizeof buf)) > 0) got += n;
+  });
+  for (int round = 1; round <= 2; ++round) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < 900; ++k) web.broadcast(frame);
+    const double broadcast_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_LT(broadcast_s, 1.0) << "round " << round << ": the sender waited for a browser";
+    for (int k = 0; k < 1000 && got < round * round_bytes; ++k)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    EXPECT_GE(got.load(), round * round_bytes) << "round " << round << ": the reading browser lost frames";
+  }
+  read_all.join();
+  EXPECT_GT(web.dropped(), 500) << "the stalled browser's queue is not bounded";
+  ::close(stalled);
+  ::close(reader);
 }
 
 TEST(DashboardWebServer, ServesThePageAndRoutesOnAPortItPicks) {
