@@ -129,7 +129,9 @@ TEST(Replay, LogplayerReproducesTheLiveCsvAndPlot) {
                               dir + "/live_plot.svg"},
                              replay_env);
   ASSERT_TRUE(live_plot.wait_for_output("plotter: listening", 15)) << live_plot.output();
-  lt::ChildProcess player({"/usr/bin/lcm-logplayer", "-s", "0", "-l", replay_url, log});
+  // Only joint_states, which both readers take: at full speed, the log's 1 kHz hardware loop on the same bus once made
+  // the reader lose 2 of 361 datagrams under a loaded CI run.
+  lt::ChildProcess player({"/usr/bin/lcm-logplayer", "-s", "0", "-e", "^joint_states$", "-l", replay_url, log});
   ASSERT_EQ(player.wait(30), 0) << player.output();
   lt::ChildProcess settle({"/bin/sleep", "0.5"});
   settle.wait(5);
