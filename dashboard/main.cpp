@@ -11,6 +11,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <thread>
 
@@ -41,7 +42,7 @@ std::string dump(const nlohmann::ordered_json& j) {
   return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 
-// What browsers sent, waiting for the bus thread.
+// What the server's threads hand the bus thread: browsers that came or went, and what they sent.
 class Inbox {
  public:
   void push(int conn, std::string text) {
@@ -69,7 +70,7 @@ json controller_list_json(const cm_response_t& r) {
 }
 
 // The controller manager's services on a thread and an LCM instance of their own, so that a manager that does not
-// answer never holds up the stream: the list every second for every browser, and the calls browsers make.
+// answer never holds up the stream: the list every second while a browser looks, and the calls browsers make.
 class CmWorker {
  public:
   CmWorker(const BusFlags& flags, WebServer& web, double timeout_s)
@@ -121,7 +122,7 @@ class CmWorker {
         continue;
       }
       next_list = monotonic_us() + 1000000;
-      publish_list(cm);
+      if (web_.connections() > 0) publish_list(cm);  // nobody looking: no request on the robot's bus
     }
   }
   void publish_list(CmClient& cm) {
@@ -190,14 +191,17 @@ struct Options {
 
 class Dashboard {
  public:
-  Dashboard(const Options& o, Bus& bus, WebServer& web)
-      : o_(o), bus_(bus), web_(web), period_us_(int64_t(1e6 / o.rate_hz)), throttle_(period_us_), clock_(bus, 0.0) {
+  // opened, sent, closed: filled by the web server's threads, which touch nothing else of the dashboard.
+  Dashboard(const Options& o, Bus& bus, WebServer& web, Inbox& opened, Inbox& sent, Inbox& closed)
+      : o_(o), bus_(bus), web_(web), opened_(opened), inbox_(sent), closed_(closed),
+        period_us_(int64_t(1e6 / o.rate_hz)), throttle_(period_us_), clock_(bus, 0.0) {
     prefix_ = bus.channel("");
     own_.insert(bus.channel(channels::kCmRequest));
     const std::string pattern = prefix_.empty() ? ".*" : tools::regex_escape(prefix_) + ".*";
     bus_.lcm().subscribe(pattern, &Dashboard::on_any, this)->setQueueCapacity(10000);
   }
 
+  // What a browser gets first: the bus it looks at, its URDF, and the controllers as last listed.
   void hello(int conn) {
     json h = {{"kind", "hello"}, {"namespace", bus_.ns()}, {"lcm_url", bus_.url()}, {"read_only", o_.read_only},
               {"rate_hz", o_.rate_hz}, {"urdf", nullptr}};
@@ -207,8 +211,6 @@ class Dashboard {
     if (!list.empty()) web_.send(conn, list);
   }
   void set_cm(CmWorker* cm) { cm_ = cm; }
-  void closed(int conn) { closed_.push(conn, ""); }
-  Inbox& inbox() { return inbox_; }
 
   // One pass of the bus thread: it sleeps until the next display period or expression tick, then takes everything
   // the bus queued meanwhile in one go (one wake-up per period instead of one per message: the loop it watches
@@ -219,6 +221,7 @@ class Dashboard {
     tools::sleep_until_us(until);
     for (int n = 0; n < kMaxDrain && bus_.lcm().handleTimeout(0) > 0; ++n) {
     }
+    for (auto& [conn, text] : opened_.take()) hello(conn);
     for (auto& [conn, text] : closed_.take()) stop_streams_of(conn);
     for (auto& [conn, text] : inbox_.take()) serve(conn, text);
     tick_streams();
@@ -250,9 +253,7 @@ class Dashboard {
       frame["received_s"] = double(wall_us() - (now - d.received_us)) * 1e-6;
       frame["skipped"] = d.skipped;
       try {
-        std::string type = tools::type_of_payload(d.bytes.data(), d.bytes.size());
-        if (type.rfind("lcm_control.", 0) == 0) type.erase(0, 12);
-        frame["type"] = type;
+        frame["type"] = tools::short_type_name(tools::type_of_payload(d.bytes.data(), d.bytes.size()));
         frame["msg"] = tools::message_to_json(d.bytes.data(), d.bytes.size());
       } catch (const std::exception& e) {
         frame["type"] = "";
@@ -272,6 +273,7 @@ class Dashboard {
     web_.broadcast(dump(json{{"kind", "status"},
                              {"bus_silent_s", last < 0 ? -1.0 : double(now - last) * 1e-6},
                              {"channels", channels},
+                             {"channels_ignored", throttle_.ignored()},
                              {"streams", streams},
                              {"browsers", web_.connections()},
                              {"sim_time", clock_.on_sim()}}));
@@ -390,11 +392,11 @@ class Dashboard {
   const Options& o_;
   Bus& bus_;
   WebServer& web_;
+  Inbox &opened_, &inbox_, &closed_;
   int64_t period_us_;
   Throttle throttle_;
   tools::CommandClock clock_;
   CmWorker* cm_ = nullptr;
-  Inbox inbox_, closed_;
   std::string prefix_;
   std::map<std::string, ExprStream> streams_;
   std::set<std::string> own_;  // channels this dashboard publishes on: its echo is not a sign of life
@@ -405,8 +407,6 @@ std::string default_web_root() {
   const fs::path exe_dir = fs::read_symlink("/proc/self/exe").parent_path();
   return (exe_dir.parent_path() / "share" / "lcm_control" / "dashboard").string();
 }
-
-bool loopback(const std::string& bind) { return bind == "127.0.0.1" || bind == "localhost" || bind == "::1"; }
 
 }  // namespace
 
@@ -423,7 +423,7 @@ int run(Options& o) {
       throw std::runtime_error(fmt::format("--urdf {}: no such file", o.urdf));
     urdf_dir = fs::absolute(o.urdf).parent_path().string();
   }
-  if (!loopback(o.bind))
+  if (!WebServer::loopback(o.bind))
     std::fprintf(stderr,
                  "dashboard: warning: serving on %s: the dashboard has no authentication, so anyone who can reach "
                  "this port can command the robot (--read-only refuses commands)\n",
@@ -431,40 +431,25 @@ int run(Options& o) {
   lower_priority(o.nice);  // before any thread: LCM's and civetweb's threads inherit it
   tools::install_stop_signals();
   Bus bus(o.bus.lcm_url, o.bus.ns);
-  Dashboard* dash = nullptr;
-  WebServer web(o.bind, o.port, o.web_root,
-                {[&](int id) {
-                   if (dash) dash->hello(id);
-                 },
-                 [&](int id, const std::string& text) {
-                   if (dash) dash->inbox().push(id, text);
-                 },
-                 [&](int id) {
-                   if (dash) dash->closed(id);
-                 }});
   const auto package_path = o.package_path.empty() ? default_package_path() : o.package_path;
-  web.route("/robot/", [&](const std::string& rest) -> std::optional<WebServer::Reply> {
-    const std::string f = WebServer::file_under(urdf_dir, rest);
-    if (f.empty()) return std::nullopt;
-    return WebServer::Reply{f, "", ""};
-  });
-  web.route("/package/", [&](const std::string& rest) -> std::optional<WebServer::Reply> {
+  Inbox opened, sent, closed;  // outlive the server, whose threads fill them
+  WebServer web(o.bind, o.port, o.web_root,
+                {[&](int id) { opened.push(id, ""); }, [&](int id, const std::string& text) { sent.push(id, text); },
+                 [&](int id) { closed.push(id, ""); }});
+  web.route("/robot/", [&](const std::string& rest) { return WebServer::file_under(urdf_dir, rest); });
+  web.route("/package/", [&](const std::string& rest) {
     const size_t slash = rest.find('/');
-    if (slash == std::string::npos) return std::nullopt;
-    const std::string f = WebServer::file_under(find_package_dir(rest.substr(0, slash), package_path), rest.substr(slash + 1));
-    if (f.empty()) return std::nullopt;
-    return WebServer::Reply{f, "", ""};
+    if (slash == std::string::npos) return std::string();
+    return WebServer::file_under(find_package_dir(rest.substr(0, slash), package_path), rest.substr(slash + 1));
   });
-  Dashboard d(o, bus, web);
+  Dashboard d(o, bus, web, opened, sent, closed);
   CmWorker cm(o.bus, web, o.timeout_s);
   d.set_cm(&cm);
-  dash = &d;
-  std::printf("dashboard: http://%s:%d/ (bus %s%s%s)\n", loopback(o.bind) ? "127.0.0.1" : o.bind.c_str(), web.port(),
+  std::printf("dashboard: http://%s:%d/ (bus %s%s%s)\n", WebServer::loopback(o.bind) ? "127.0.0.1" : o.bind.c_str(), web.port(),
               bus.url().c_str(), bus.ns().empty() ? "" : ", namespace ", bus.ns().c_str());
   std::fflush(stdout);
   const int64_t end = o.duration_s > 0 ? monotonic_us() + int64_t(o.duration_s * 1e6) : INT64_MAX;
   while (!tools::stop_requested() && monotonic_us() < end) d.run_once();
-  dash = nullptr;
   return kExitOk;
 }
 

@@ -12,6 +12,11 @@ void Throttle::roll(Channel& c, int64_t now_us) {
 }
 
 void Throttle::offer(const std::string& channel, const void* data, size_t size, int64_t now_us, bool from_others) {
+  if (from_others) last_us_ = now_us;
+  if (channels_.size() >= kMaxChannels && !channels_.count(channel)) {
+    ++ignored_;
+    return;
+  }
   auto [it, added] = channels_.try_emplace(channel);
   Channel& c = it->second;
   if (added) c.window_start_us = now_us;
@@ -23,7 +28,6 @@ void Throttle::offer(const std::string& channel, const void* data, size_t size, 
   c.received_us = now_us;
   ++c.total;
   ++c.window_count;
-  if (from_others) last_us_ = now_us;
 }
 
 std::vector<Throttle::Due> Throttle::take_due(int64_t now_us) {

@@ -16,7 +16,8 @@ class Throttle {
   explicit Throttle(int64_t period_us) : period_us_(period_us) {}
 
   // Keeps the newest payload of channel, received at now_us (monotonic). from_others false: a message the
-  // dashboard sent itself, which does not make the bus count as alive.
+  // dashboard sent itself, which does not make the bus count as alive. Past kMaxChannels channels (anyone on the bus
+  // can invent names), messages on new ones are only counted in ignored().
   void offer(const std::string& channel, const void* data, size_t size, int64_t now_us, bool from_others = true);
 
   struct Due {
@@ -40,6 +41,9 @@ class Throttle {
 
   // The newest receive time of a message from others; -1 before the first.
   int64_t last_message_us() const { return last_us_; }
+  int64_t ignored() const { return ignored_; }
+
+  static constexpr size_t kMaxChannels = 1000;
 
  private:
   struct Channel {
@@ -51,7 +55,7 @@ class Throttle {
   };
   void roll(Channel& c, int64_t now_us);
   int64_t period_us_;
-  int64_t last_us_ = -1;
+  int64_t last_us_ = -1, ignored_ = 0;
   std::map<std::string, Channel> channels_;
 };
 

@@ -25,9 +25,10 @@ WebServer::WebServer(const std::string& bind, int port, const std::string& web_r
   const std::string listen = fmt::format("{}:{}", bind, port);
   const char* options[] = {"listening_ports", listen.c_str(), "document_root", web_root.c_str(),
                            "num_threads", "16", "enable_directory_listing", "no",
-                           // a browser that stops reading is dropped after this long instead of stalling the sender
+                           // a write to a browser that stops reading gives up after this long (only its own writer
+                           // thread waits)
                            "request_timeout_ms", "5000", "websocket_timeout_ms", "3600000", nullptr};
-  loopback_only_ = bind == "127.0.0.1" || bind == "localhost" || bind == "::1";
+  loopback_only_ = loopback(bind);
   mg_callbacks callbacks{};
   callbacks.log_message = [](const mg_connection*, const char*) { return 1; };  // errors are reported below
   callbacks.begin_request = &WebServer::on_request;
@@ -40,7 +41,7 @@ WebServer::WebServer(const std::string& bind, int port, const std::string& web_r
   mg_server_port ports[4]{};
   const int n = mg_get_server_ports(ctx_, 4, ports);
   port_ = n > 0 ? ports[0].port : port;
-  mg_set_websocket_handler(ctx_, "/ws", &WebServer::on_connect, &WebServer::on_ready, &WebServer::on_data,
+  mg_set_websocket_handler(ctx_, "/ws", nullptr, &WebServer::on_ready, &WebServer::on_data,
                            &WebServer::on_close, this);
 }
 
@@ -50,7 +51,7 @@ WebServer::~WebServer() {
 
 void WebServer::route(const std::string& prefix, Route route) {
   auto& entry = routes_[prefix];
-  entry = RouteEntry{this, prefix, std::move(route)};
+  entry = RouteEntry{prefix, std::move(route)};
   mg_set_request_handler(ctx_, prefix.c_str(), &WebServer::on_route, &entry);
 }
 
@@ -92,25 +93,22 @@ int WebServer::on_route(mg_connection* conn, void* cbdata) {
   }
   const std::string uri = info->local_uri ? info->local_uri : "";
   const std::string rest = uri.size() >= entry->prefix.size() ? uri.substr(entry->prefix.size()) : "";
-  std::optional<Reply> reply;
+  std::string file;
   try {
-    reply = entry->route(rest);
+    file = entry->route(rest);
   } catch (const std::exception& e) {
     mg_send_http_error(conn, 500, "%s", e.what());
     return 500;
   }
-  if (!reply) {
+  if (file.empty()) {
     mg_send_http_error(conn, 404, "%s", "not found");
     return 404;
   }
-  if (!reply->file.empty()) {
-    mg_send_file(conn, reply->file.c_str());
-    return 200;
-  }
-  mg_send_http_ok(conn, reply->mime.c_str(), static_cast<long long>(reply->body.size()));
-  mg_write(conn, reply->body.data(), reply->body.size());
+  mg_send_file(conn, file.c_str());
   return 200;
 }
+
+bool WebServer::loopback(const std::string& bind) { return bind == "127.0.0.1" || bind == "localhost" || bind == "::1"; }
 
 std::string WebServer::file_under(const std::string& root, const std::string& rest) {
   namespace fs = std::filesystem;
@@ -122,8 +120,6 @@ std::string WebServer::file_under(const std::string& root, const std::string& re
   if (ec || p.string().rfind(r.string() + "/", 0) != 0) return "";
   return fs::is_regular_file(p, ec) ? p.string() : "";
 }
-
-int WebServer::on_connect(const mg_connection*, void*) { return 0; }
 
 void WebServer::on_ready(mg_connection* conn, void* cbdata) {
   auto* self = static_cast<WebServer*>(cbdata);

@@ -9,7 +9,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <optional>
 #include <string>
 #include <thread>
 
@@ -25,12 +24,8 @@ class WebServer {
     std::function<void(int id, const std::string& text)> text;    // one text message from browser id
     std::function<void(int id)> closed;
   };
-  // A route's answer: a file to send, or text with its MIME type; nullopt is 404.
-  struct Reply {
-    std::string file;  // sent as a file when not empty
-    std::string body, mime;
-  };
-  using Route = std::function<std::optional<Reply>(const std::string& rest)>;
+  // A route's answer for the rest of the path after its prefix: the file to send, "" for 404.
+  using Route = std::function<std::string(const std::string& rest)>;
 
   // Serves `web_root` and /ws on bind:port (port 0: one the system picks). Throws std::runtime_error naming the
   // address and what to do when it cannot listen (in use, not an address of this computer).
@@ -53,6 +48,9 @@ class WebServer {
 
   static constexpr size_t kMaxQueued = 1000;
 
+  // Whether `bind` is this computer's loopback (then only the loopback names are answered, see refuse_reason).
+  static bool loopback(const std::string& bind);
+
   // root/rest when that names a regular file inside root ("" for "..", an absolute path, a link out of root, a
   // folder or nothing): what a route may send for a path a browser gave.
   static std::string file_under(const std::string& root, const std::string& rest);
@@ -67,7 +65,6 @@ class WebServer {
   static constexpr size_t kMaxIncoming = 64 * 1024;
 
  private:
-  static int on_connect(const mg_connection*, void*);
   static void on_ready(mg_connection*, void*);
   static int on_data(mg_connection*, int bits, char* data, size_t len, void*);
   static void on_close(const mg_connection*, void*);
@@ -96,7 +93,6 @@ class WebServer {
   std::map<int, std::string> partial_;  // a fragmented message until its last frame
   int next_id_ = 1;
   struct RouteEntry {
-    WebServer* server;
     std::string prefix;
     Route route;
   };

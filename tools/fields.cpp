@@ -1,4 +1,5 @@
 #include "tools/fields.hpp"
+#include "tools/message_text.hpp"
 
 #include <fmt/format.h>
 
@@ -182,7 +183,7 @@ std::string csv_file_name(const std::string& channel) {
 }
 
 std::string field_unit(const std::string& type, const std::string& path) {
-  std::string t = type.rfind("lcm_control.", 0) == 0 ? type.substr(12) : type;
+  std::string t = short_type_name(type);
   size_t at = 0;
   while (at < path.size()) {
     const size_t end = path.find_first_of(".[", at);

@@ -43,11 +43,6 @@ bool with_type_hash(int64_t hash, F&& f) {
   return found;
 }
 
-std::string short_type_name(std::string type) {
-  if (type.rfind("lcm_control.", 0) == 0) type.erase(0, 12);
-  if (type.size() < 2 || type.compare(type.size() - 2, 2, "_t") != 0) type += "_t";
-  return type;
-}
 
 // --- text ----------------------------------------------------------------------------------------------------
 
@@ -427,6 +422,12 @@ std::string list_text(const std::vector<std::string>& xs) {
 }
 
 }  // namespace
+
+std::string short_type_name(std::string type) {
+  if (type.rfind("lcm_control.", 0) == 0) type.erase(0, 12);
+  if (type.size() < 2 || type.compare(type.size() - 2, 2, "_t") != 0) type += "_t";
+  return type;
+}
 
 std::string type_of_payload(const void* data, size_t size) {
   std::string out;

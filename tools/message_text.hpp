@@ -13,6 +13,9 @@ namespace lcm_control::tools {
 // "lcm_control.joint_state_t" for a payload's fingerprint, "" if it is not one of ours.
 std::string type_of_payload(const void* data, size_t size);
 
+// "lcm_control.joint_state_t", "joint_state_t" or "joint_state" -> "joint_state_t": the names the tools show and take.
+std::string short_type_name(std::string type);
+
 // Every message type, short names ("joint_state_t"), sorted.
 std::vector<std::string> message_type_names();
 

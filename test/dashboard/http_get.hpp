@@ -1,5 +1,5 @@
-// One HTTP/1.0 GET on 127.0.0.1 for the dashboard's tests (Host 127.0.0.1:PORT unless `headers` has one, then `headers`, each ending
-// in \r\n): the status code and the body.
+// Plain sockets to the dashboard for its tests: a loopback connection, and one HTTP/1.0 GET (Host 127.0.0.1:PORT
+// unless `headers`, each ending in \r\n, has one) giving the status code and the body.
 #pragma once
 
 #include <arpa/inet.h>
@@ -16,9 +16,10 @@ struct HttpReply {
   std::string body;
 };
 
-inline HttpReply http_get(int port, const std::string& path, const std::string& headers = "") {
-  HttpReply r;
+// A TCP socket connected to 127.0.0.1:port with a 5 s read timeout (and SO_RCVBUF rcvbuf, if > 0); -1 if refused.
+inline int connect_loopback(int port, int rcvbuf = 0) {
   const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  if (rcvbuf > 0) setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &rcvbuf, sizeof rcvbuf);
   sockaddr_in a{};
   a.sin_family = AF_INET;
   a.sin_port = htons(uint16_t(port));
@@ -27,8 +28,15 @@ inline HttpReply http_get(int port, const std::string& path, const std::string& 
   setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
   if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) {
     ::close(fd);
-    return r;
+    return -1;
   }
+  return fd;
+}
+
+inline HttpReply http_get(int port, const std::string& path, const std::string& headers = "") {
+  HttpReply r;
+  const int fd = connect_loopback(port);
+  if (fd < 0) return r;
   const std::string host = headers.find("Host:") == std::string::npos
                                ? "Host: 127.0.0.1:" + std::to_string(port) + "\r\n"
                                : "";

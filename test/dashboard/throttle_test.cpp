@@ -46,5 +46,15 @@ TEST(Throttle, RatesOverTheLastSecondAndSilenceCountsOnlyOthers) {
   EXPECT_EQ(rates[1].hz, 0);
 }
 
+TEST(Throttle, AFloodOfInventedChannelNamesIsCountedNotKept) {
+  Throttle t(1000);
+  for (size_t k = 0; k < Throttle::kMaxChannels + 500; ++k) offer(t, "junk/" + std::to_string(k), 1, int64_t(k));
+  EXPECT_EQ(t.rates(2000).size(), Throttle::kMaxChannels);
+  EXPECT_EQ(t.ignored(), 500);
+  EXPECT_EQ(t.last_message_us(), int64_t(Throttle::kMaxChannels + 499));  // still a sign of life
+  offer(t, "junk/0", 2, 5000);  // a channel already kept goes on
+  EXPECT_EQ(t.take_due(6000).size(), Throttle::kMaxChannels);
+}
+
 }  // namespace
 }  // namespace lcm_control::dashboard

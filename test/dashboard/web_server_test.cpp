@@ -2,8 +2,6 @@
 
 #include <gtest/gtest.h>
 
-#include <arpa/inet.h>
-#include <sys/socket.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -59,16 +57,8 @@ TEST(DashboardWebServer, OnlyItsOwnPageOnItsOwnNames) {
 
 // A WebSocket client socket after the handshake (-1 if refused); it reads only when the test reads.
 int ws_connect(int port) {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  int small = 4096;  // a small receive buffer, so that a client that does not read fills up at once
-  setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_port = htons(uint16_t(port));
-  a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  timeval tv{5, 0};
-  setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-  if (::connect(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0) return ::close(fd), -1;
+  const int fd = connect_loopback(port, 4096);  // a small receive buffer fills at once when the client does not read
+  if (fd < 0) return -1;
   const std::string req = "GET /ws HTTP/1.1\r\nHost: 127.0.0.1:" + std::to_string(port) +
                           "\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
                           "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==\r\nSec-WebSocket-Version: 13\r\n\r\n";
@@ -122,9 +112,8 @@ TEST(DashboardWebServer, ServesThePageAndRoutesOnAPortItPicks) {
   std::ofstream(root / "index.html") << "<html></html>";
   WebServer web("127.0.0.1", 0, root.string(), {});
   ASSERT_GT(web.port(), 0);
-  web.route("/robot/", [&](const std::string& rest) -> std::optional<WebServer::Reply> {
-    if (rest != "r.urdf") return std::nullopt;
-    return WebServer::Reply{"", "<robot/>", "application/xml"};
+  web.route("/robot/", [&](const std::string& rest) {
+    return rest == "r.urdf" ? (root / "index.html").string() : std::string();
   });
   EXPECT_EQ(get_status(web.port(), "/"), 200);
   EXPECT_EQ(get_status(web.port(), "/robot/r.urdf"), 200);

@@ -89,7 +89,7 @@ def wait_for(what, fn, timeout_s):
     raise AssertionError(f"timed out after {timeout_s} s waiting for {what} (last: {last!r})")
 
 
-def j1_position(bin_dir, url):
+def joint_positions(bin_dir, url):
     out = subprocess.run([os.path.join(bin_dir, "bus"), "echo", "joint_states", "--count", "1", "--duration", "3",
                           "--lcm-url", url], capture_output=True, text=True, timeout=15).stdout
     names = re.search(r"^name: \[(.*)\]", out, re.M)
@@ -182,7 +182,7 @@ def main():
               "s.dispatchEvent(new Event('input')); s.dispatchEvent(new Event('change'));")
         t0 = time.monotonic()
         reached = wait_for("j1 at 0.5 on joint_states", lambda: (lambda p: p and abs(p.get("j1", 9) - 0.5) < 0.01
-                                                                 and p)(j1_position(a.bin_dir, url)), 15)
+                                                                 and p)(joint_positions(a.bin_dir, url)), 15)
         print(f"j1 reached {reached['j1']:.4f} on joint_states {time.monotonic() - t0:.1f} s after the slider moved")
 
         # A plot: open joint_states and click position[j2] as a user would.
@@ -207,7 +207,7 @@ def main():
                           "expressions: ['0.3 + 0*t'], rate: 60})")
         assert good["ok"], good
         reached = wait_for("j2 at 0.3 from the expression", lambda: (lambda p: p and abs(p.get("j2", 9) - 0.3) < 0.02
-                                                                     and p)(j1_position(a.bin_dir, url)), 15)
+                                                                     and p)(joint_positions(a.bin_dir, url)), 15)
         print(f"expression: j2 reached {reached['j2']:.4f}")
 
         # The controllers table: Stop j2_controller, then Start it again, checked with cmctl.

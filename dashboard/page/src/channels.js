@@ -102,10 +102,4 @@ export class Channels {
     const q = this.filter.value.trim();
     for (const [channel, r] of this.rows) r.div.hidden = q !== '' && !channel.includes(q);
   }
-
-  types() {
-    const out = {};
-    for (const [channel, r] of this.rows) out[channel] = r.type;
-    return out;
-  }
 }
