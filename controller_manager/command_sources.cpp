@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <array>
 #include <cmath>
 
 #include "controller_manager/loop.hpp"
@@ -11,8 +12,41 @@
 
 namespace lcm_control::cm {
 
+namespace {
+uint64_t fnv1a(const void* data, size_t size) {
+  uint64_t h = 14695981039346656037ull;
+  for (size_t k = 0; k < size; ++k) h = (h ^ static_cast<const uint8_t*>(data)[k]) * 1099511628211ull;
+  return h;
+}
+}  // namespace
+
+// The ticks published on the channel and not yet received back from the bus, by the hash of their bytes (a tick
+// is published once; the oldest are forgotten when more than kSize wait, as when their echoes were lost).
+struct CommandSources::Echoes {
+  static constexpr int kSize = 1024;  // a second of ticks at 1 kHz: more than the shared bus ever lags the loop
+  std::array<uint64_t, kSize> hash{};
+  int first = 0, count = 0;
+  void sent(uint64_t h) {
+    if (count == kSize) first = (first + 1) % kSize, --count;
+    hash[static_cast<size_t>((first + count++) % kSize)] = h;
+  }
+  // True when `h` is one of ours: it and any older ones (lost on the way) are taken off.
+  bool received(uint64_t h) {
+    for (int k = 0; k < count; ++k)
+      if (hash[static_cast<size_t>((first + k) % kSize)] == h) {
+        first = (first + k + 1) % kSize;
+        count -= k + 1;
+        return true;
+      }
+    return false;
+  }
+};
+
 struct CommandSources::Source {
-  std::string controller, client, summary;
+  std::string controller, client, summary, channel;
+  Port* port = nullptr;  // the controller's, whose channel this source owns (diverted); null once given back
+  Echoes echoes;
+  int64_t ignored = 0;  // messages from the bus on the channel that were not this source's echoes
   int64_t request_id = 0;
   ControllerSlot* slot = nullptr;  // null once ended
   std::unique_ptr<Expressions> exprs;
@@ -84,6 +118,7 @@ Reply CommandSources::handle(const command_source_t& r) {
   if (r.remove) {
     for (auto& s : sources_)
       if (s->controller == r.controller && !s->end) {
+        give_back(*s);
         s->end = "removed";
         s->slot = nullptr;
         const Reply reply{true, fmt::format("command source for '{}' removed after {} tick(s)", r.controller,
@@ -120,6 +155,7 @@ Reply CommandSources::handle(const command_source_t& r) {
   if (!group && r.expressions.size() != 1)
     return refuse(fmt::format("{} expressions, but {} takes one value (float64_t)", r.expressions.size(), slot->type));
   auto src = std::make_unique<Source>();
+  src->channel = command_channel;
   try {
     src->exprs = std::make_unique<Expressions>(r.expressions);
   } catch (const ExpressionError& e) {
@@ -148,8 +184,13 @@ Reply CommandSources::handle(const command_source_t& r) {
     if (s->controller == r.controller && !s->end) {
       s->end = "replaced";
       s->slot = nullptr;
+      s->port = nullptr;  // the new source takes the channel over, with the echoes still on their way
+      src->echoes = s->echoes;
       replaced = fmt::format("; replaced the previous one (request {}, {} tick(s))", s->request_id, s->ticks);
     }
+  Source* owner = src.get();
+  src->port = slot->port.get();
+  src->port->divert(command_channel, [this, owner](const lcm::ReceiveBuffer& rb) { from_bus(*owner, rb); });
   std::vector<std::string> limits;
   if (r.count > 0) limits.push_back(fmt::format("{} tick(s)", r.count));
   if (r.duration_s > 0) limits.push_back(fmt::format("{:g} s", r.duration_s));
@@ -207,6 +248,7 @@ void CommandSources::before_update(const Time& now) {
       n = s.one.encode(s.bytes.data(), 0, static_cast<int>(s.bytes.size()));
     }
     if (n <= 0) continue;
+    s.echoes.sent(fnv1a(s.bytes.data(), static_cast<size_t>(n)));
     lcm::ReceiveBuffer rb{s.bytes.data(), static_cast<uint32_t>(n), now.utime};
     for (const auto* h : s.handlers) (*h)(rb);
     s.fresh = true;
@@ -243,9 +285,14 @@ void CommandSources::poll() {
     if (s.bad_expr >= 0)
       why = fmt::format("expression '{}' is {} at i={} t={:g}", s.exprs->texts()[static_cast<size_t>(s.bad_expr)],
                         s.values[static_cast<size_t>(s.bad_expr)], s.end_i, s.end_t);
-    const Reply reply{s.bad_expr < 0, fmt::format("command source for '{}' ended ({}) after {} tick(s){}",
-                                                  s.controller, why, s.ticks,
-                                                  s.started ? fmt::format(", last at {:.6f} s", s.last_us * 1e-6) : "")};
+    const Reply reply{
+        s.bad_expr < 0,
+        fmt::format("command source for '{}' ended ({}) after {} tick(s){}{}", s.controller, why, s.ticks,
+                    s.started ? fmt::format(", last at {:.6f} s", s.last_us * 1e-6) : "",
+                    s.ignored ? fmt::format("; {} message(s) from the bus on '{}' were ignored while it ran",
+                                            s.ignored, s.channel)
+                              : "")};
+    give_back(s);
     if (reply.ok)
       log_.info(reply.message);
     else
@@ -255,9 +302,23 @@ void CommandSources::poll() {
   }
 }
 
+void CommandSources::from_bus(Source& s, const lcm::ReceiveBuffer& rb) {
+  if (s.echoes.received(fnv1a(rb.data, rb.data_size))) return;
+  if (s.ignored++ == 0)
+    log_.warn(fmt::format("'{}': a message from the bus was ignored: the command source of '{}' ({}) owns this "
+                          "channel until it ends; further ones are counted in its end (turret-cmd's Ctrl-C removes it)",
+                          s.channel, s.controller, s.summary));
+}
+
+void CommandSources::give_back(Source& s) {
+  if (s.port) s.port->divert(s.channel, {});
+  s.port = nullptr;
+}
+
 void CommandSources::end_for(const std::string& controller, const char* why) {
   for (auto& s : sources_)
     if (s->controller == controller && !s->end) {
+      give_back(*s);
       s->end = why;
       s->slot = nullptr;
       s->fresh = false;
@@ -267,6 +328,7 @@ void CommandSources::end_for(const std::string& controller, const char* why) {
 void CommandSources::end_all(const char* why) {
   for (auto& s : sources_)
     if (!s->end) {
+      give_back(*s);
       s->end = why;
       s->slot = nullptr;
       s->fresh = false;

@@ -4,7 +4,10 @@
 // cycle in which the controller runs; its values are delivered through the
 // controller's own `<controller>/command` handler before that cycle's update
 // (so lockstep runs repeat exactly) and published on that channel after the
-// cycle. before_update() and after_cycle() neither allocate nor log. A
+// cycle. While a source runs it owns that channel: its own messages coming
+// back from the bus are not delivered again (they may come after a newer
+// tick), and another publisher's are ignored and counted in its end.
+// before_update() and after_cycle() neither allocate nor log. A
 // request sent again under its request_id (its answer was lost) gets the same
 // answer and changes nothing.
 #pragma once
@@ -57,6 +60,11 @@ class CommandSources {
 
  private:
   struct Source;
+  struct Echoes;
+  // A message from the bus on a channel a source owns: its own echo, or another publisher's (ignored, counted).
+  void from_bus(Source& s, const lcm::ReceiveBuffer& rb);
+  // The channel goes back to the controller's handlers.
+  void give_back(Source& s);
   void answer(int64_t request_id, const Reply& reply);
 
   Loop& loop_;

@@ -7,7 +7,7 @@ Port::~Port() {
 }
 
 void Port::subscribe_raw(const std::string& channel, std::function<void(const lcm::ReceiveBuffer&)> handler) {
-  handlers_.push_back(std::make_unique<Handler>(Handler{std::move(handler), channel}));
+  handlers_.push_back(std::make_unique<Handler>(Handler{std::move(handler), channel, {}, false}));
   lcm::Subscription* s = lc_.subscribe(channel, &Handler::on, handlers_.back().get());
   s->setQueueCapacity(100);
   subs_.push_back(s);
@@ -18,6 +18,16 @@ std::vector<const Port::RawHandler*> Port::handlers_for(const std::string& chann
   for (const auto& h : handlers_)
     if (h->channel == channel) out.push_back(&h->fn);
   return out;
+}
+
+void Port::divert(const std::string& channel, RawHandler to) {
+  bool first = true;
+  for (auto& h : handlers_) {
+    if (h->channel != channel) continue;
+    h->muted = to && !first;
+    h->diverted = first ? to : RawHandler{};
+    first = false;
+  }
 }
 
 std::vector<std::string> Port::channels() const {

@@ -74,6 +74,9 @@ class Port {
   // in-process exactly as a received message (command sources).
   using RawHandler = std::function<void(const lcm::ReceiveBuffer&)>;
   std::vector<const RawHandler*> handlers_for(const std::string& channel) const;
+  // While diverted, what arrives from the bus on `channel` goes to `to` (once) instead of its handlers: a command
+  // source owns the channel. handlers_for() still reaches them. An empty `to` gives the channel back.
+  void divert(const std::string& channel, RawHandler to);
   // Every channel subscribed, in subscription order (tests send to each).
   std::vector<std::string> channels() const;
 
@@ -107,7 +110,14 @@ class Port {
   struct Handler {
     RawHandler fn;
     std::string channel;
-    void on(const lcm::ReceiveBuffer* rb, const std::string&) { fn(*rb); }
+    RawHandler diverted;
+    bool muted = false;  // diverted through another handler of the same channel
+    void on(const lcm::ReceiveBuffer* rb, const std::string&) {
+      if (diverted)
+        diverted(*rb);
+      else if (!muted)
+        fn(*rb);
+    }
   };
   lcm::LCM& lc_;
   std::vector<std::unique_ptr<Handler>> handlers_;

@@ -331,7 +331,7 @@ int main(int argc, char** argv) {
       "With --sim-time and a controller TARGET, the controller manager generates the commands itself (a command "
       "source): message i is due at sim time i/rate after the first control step it sees, is delivered before that "
       "step's update and published on TARGET/command, so every step gets its own command and lockstep runs repeat "
-      "exactly. turret-cmd waits for the source to end (--count, --duration) or for Ctrl-C, which removes it. With "
+      "exactly; while it runs, other messages on TARGET/command are ignored (counted in its end). turret-cmd waits for the source to end (--count, --duration) or for Ctrl-C, which removes it. With "
       "--sim-time and a channel TARGET, turret-cmd paces itself by hardware/state (every control step): best effort, a message can "
       "reach the controller a step late.",
       "turret-cmd"};

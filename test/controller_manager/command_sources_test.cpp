@@ -238,3 +238,48 @@ TEST(CommandSources, ARequestSentAgainIsAnsweredAgainAndRegisteredOnce) {
   ASSERT_EQ(answers.messages.size(), 3u);
   EXPECT_TRUE(has(answers.messages[2].message, "replaced")) << answers.messages[2].message;
 }
+
+// The source publishes each tick on <controller>/command after the cycle, and the controller manager receives its
+// own message back from the bus. That echo comes on the shared bus while the cycles come on the hardware loop's
+// socket, so under load it can arrive after the next tick: it must not put the older value back (in lockstep that
+// made one run of three differ from the others). Other messages on the channel are ignored while the source owns
+// it, counted in its end; once it has ended the channel is the bus's again.
+TEST(CommandSources, ALateEchoOrAnotherPublisherCannotOverrideTheSource) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
+  rig.cycle(2);
+  Recorder<float64_t> echo(rig.bus.lcm(), "slide_position/command");
+  Recorder<cm_response_t> answers(rig.bus.lcm(), "controller_manager/response");
+  ASSERT_TRUE(rig.cm->command_sources().handle(source("slide_position", {"10 + i"}, 100, 4)).ok);
+  rig.cycle(25);  // ticks 0, 1 and 2 (every 10 steps)
+  ASSERT_EQ(echo.messages.size(), 3u);
+  EXPECT_EQ(commanded(rig, "slide_motor").back(), 12);
+
+  // Tick 0 again, as a late echo would bring it (memq:// delivered the real echo at once, so this copy counts as
+  // another publisher's below; the four real echoes count as nothing).
+  rig.publish("slide_position/command", echo.messages[0]);
+  rig.cycle();
+  EXPECT_EQ(commanded(rig, "slide_motor").back(), 12) << "a late echo put tick 0 back";
+
+  float64_t other{};
+  other.utime = 123;
+  other.data = 42;
+  rig.publish("slide_position/command", other);
+  rig.publish("slide_position/command", other);
+  rig.cycle();
+  EXPECT_EQ(commanded(rig, "slide_motor").back(), 12) << "another publisher took over a running source";
+
+  rig.cycle(10);  // tick 3, then the count ends it
+  EXPECT_EQ(commanded(rig, "slide_motor").back(), 13);
+  rig.cm->poll(monotonic_us());
+  rig.pump();
+  ASSERT_EQ(answers.messages.size(), 1u);
+  EXPECT_TRUE(has(answers.messages[0].message, "ended (count reached) after 4 tick(s)")) << answers.messages[0].message;
+  EXPECT_TRUE(has(answers.messages[0].message, "3 message(s) from the bus on 'slide_position/command' were ignored"))
+      << answers.messages[0].message;
+
+  rig.publish("slide_position/command", other);  // the channel is the bus's again
+  rig.cycle();
+  EXPECT_EQ(commanded(rig, "slide_motor").back(), 42);
+}
