@@ -3,7 +3,12 @@
 // 0.5, j2 = 3.14*sin(i/100) at 60 Hz of sim time) and state-logger on the bus.
 // Every joint_states message is accounted for by its sim-time stamp, and each
 // process's memory, file descriptors and threads are sampled once a second:
-// after warm-up they must not grow.
+// after warm-up they must not grow. Memory may rise once by a bounded amount
+// (allocator and LCM buffers reaching their high-water mark when a loaded
+// machine lets messages queue up: up to 72 kB in state-logger, at random
+// points of 30 s and 150 s runs alike), so the allowance is 1 % or 128 kB,
+// whichever is more: a leak of 72 bytes a joint_states message shows in the
+// 30 s run, of 4 bytes in the 10-minute one.
 #include <dirent.h>
 #include <gtest/gtest.h>
 
@@ -120,6 +125,7 @@ TEST(Soak, LockstepRunsWithoutLosingStatesOrGrowing) {
   const double covered_s = double(stamps.back() - stamps.front()) * 1e-6;
 
   // Growth after warm-up: the first fifth of the samples (at least 3 s) is warm-up.
+  constexpr long kHighWaterKb = 128;
   const size_t n = watched[0].samples.size();
   const size_t warm = std::max<size_t>(std::min<size_t>(3, n - 1), n / 5);
   std::ostringstream figures;
@@ -130,12 +136,16 @@ TEST(Soak, LockstepRunsWithoutLosingStatesOrGrowing) {
     long peak = 0;
     for (size_t k = warm; k < w.samples.size(); ++k) peak = std::max(peak, w.samples[k].rss_kb);
     const double growth = a.rss_kb > 0 ? 100.0 * double(peak - a.rss_kb) / double(a.rss_kb) : 0;
+    const bool grew = growth >= 1.0 && peak - a.rss_kb > kHighWaterKb;
     figures << w.name << " RSS " << a.rss_kb << "->" << b.rss_kb << " kB (peak +" << growth << " %), fds " << a.fds
             << "->" << b.fds << ", threads " << a.threads << "->" << b.threads << "; ";
-    EXPECT_LT(growth, 1.0) << w.name << " grew after warm-up: " << a.rss_kb << " kB -> peak " << peak << " kB";
+    std::string series;
+    for (const auto& x : w.samples) series += " " + std::to_string(x.rss_kb);
+    EXPECT_FALSE(grew) << w.name << " grew after warm-up by more than 1 % and " << kHighWaterKb << " kB: "
+                       << a.rss_kb << " kB -> peak " << peak << " kB; RSS (kB) each second:" << series;
     EXPECT_LE(b.fds, a.fds) << w.name << " file descriptors grew";
     EXPECT_LE(b.threads, a.threads) << w.name << " threads grew";
-    flat = flat && growth < 1.0 && b.fds <= a.fds && b.threads <= a.threads;
+    flat = flat && !grew && b.fds <= a.fds && b.threads <= a.threads;
   }
   std::printf("soak: %.0f s of sim time in %.1f s wall (%.1fx real time), %zu samples\n", sim_seconds, wall,
               sim_seconds / wall, n);
