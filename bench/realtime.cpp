@@ -1,22 +1,27 @@
 // bench_realtime: listens to a real-time sim_server run and reports its pacing:
-// the period between hardware/state messages as the controller side receives
-// them (error |period - nominal|: p50, p99, max), and what sim_server's and
+// the period between consecutive hardware/state messages as the controller side
+// receives them (error |period - nominal|: p50, p99, max; a step jump, as after
+// a skip, counts as one long period), and what sim_server's and
 // controller_manager's 1 Hz statistics say (missed cycles, overruns, the sim's
 // own worst period, its real-time factor). The first `--skip` seconds are
 // start-up and not counted. Exits after `--seconds` or 2 s without a state.
 //   bench_realtime --lcm-url URL [--seconds S] [--skip S]
-//   bench_realtime --timer-floor S [--period-us P] [--timer-slack-ns N]
+//   bench_realtime --timer-floor S [--period-us P] [--timer-slack-ns N] [--overrun catch-up|skip]
 // The second form is the floor: a bare loop sleeping to absolute 1 kHz deadlines
 // (clock_nanosleep on CLOCK_MONOTONIC, what sim_server's pacing comes down to),
-// printing "timer N P50_ERR P99_ERR MAX_ERR MISSED SHORT" (MISSED: periods > 2x nominal; SHORT: periods
-// under half of it, the loop catching up after a stall, as sim_server does).
+// printing "timer N P50_ERR P99_ERR MAX_ERR MISSED SHORT" (MISSED: deadlines woken for a period or more
+// late, the steps a loop that skips would drop; SHORT: periods
+// under half of it, the loop catching up after a stall, as sim_server's --overrun catch-up does; with
+// --overrun skip the deadlines a stall passed are dropped, as sim_server's --overrun skip does).
 // --timer-slack-ns sets the thread's timer slack first (Linux default 50000 ns
 // for normal threads, which every sleep and ppoll timeout may be late by).
 // Prints one line:
 //   realtime N LOST P50_ERR P99_ERR MAX_ERR SIM_MAX_ERR MISSED OVERRUNS CM_MISSED RTF SIM_JITTER SHORT
+//            ARRIVAL_P50_ERR ARRIVAL_P99_ERR ARRIVAL_SHORT
 // (errors in microseconds; LOST: states that never arrived here; SIM_JITTER: median over the 1 s windows of
 // the standard deviation of sim_server's own period; SHORT: periods under half the nominal one, i.e. states
-// that came back to back, as sim_server catches up after a stall)
+// that came back to back, as sim_server catches up after a stall; ARRIVAL_*: the same from LCM's recv_utime, when
+// its receive thread read the datagram, before the hand-off to the thread that handles it)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -40,28 +45,29 @@ using lcm_control::bench::quantile;
 
 struct Listener {
   int64_t skip_until_ns = 0;
-  std::vector<double> period_err_us;
-  int64_t last_ns = -1, last_step = -1;
+  std::vector<double> period_err_us, arrival_err_us;
+  int64_t last_ns = -1, last_step = -1, last_arrival_us = -1, short_arrivals = 0;
   double nominal_us = 1000, rtf = std::nan("");
   int64_t states = 0, lost = 0, short_periods = 0, missed = 0, overruns = 0, cm_missed = 0;
   double sim_max_err = 0;
   std::vector<double> sim_jitter;  // per 1 s window: the standard deviation of sim_server's own period
 
-  void on_state(const lcm::ReceiveBuffer*, const std::string&, const hardware_state_t* s) {
+  void on_state(const lcm::ReceiveBuffer* rb, const std::string&, const hardware_state_t* s) {
     const int64_t now = now_ns();  // when the controller side gets it (recv_utime is the wall clock, not monotonic)
     ++states;
     nominal_us = s->period_us;
     rtf = s->real_time_factor;
-    if (now >= skip_until_ns && last_ns >= 0) {
-      if (s->step == last_step + 1) {
-        const double period = double(now - last_ns) / 1e3;
-        period_err_us.push_back(std::abs(period - nominal_us));
-        if (period < 0.5 * nominal_us) ++short_periods;
-      }
-      else if (s->step > last_step + 1)
-        lost += s->step - last_step - 1;
+    if (now >= skip_until_ns && last_ns >= 0 && s->step > last_step) {
+      const double period = double(now - last_ns) / 1e3;
+      period_err_us.push_back(std::abs(period - nominal_us));
+      if (period < 0.5 * nominal_us) ++short_periods;
+      lost += s->step - last_step - 1;
+      const double arrival = double(rb->recv_utime - last_arrival_us);
+      arrival_err_us.push_back(std::abs(arrival - nominal_us));
+      if (arrival < 0.5 * nominal_us) ++short_arrivals;
     }
     last_ns = now;
+    last_arrival_us = rb->recv_utime;
     last_step = s->step;
   }
   void on_sim_stats(const lcm::ReceiveBuffer*, const std::string&, const loop_stats_t* s) {
@@ -77,7 +83,7 @@ struct Listener {
   }
 };
 
-int timer_floor(double seconds, double period_us) {
+int timer_floor(double seconds, double period_us, bool skip) {
   const int64_t period_ns = int64_t(period_us * 1e3);
   timespec next{};
   clock_gettime(CLOCK_MONOTONIC, &next);
@@ -93,10 +99,16 @@ int timer_floor(double seconds, double period_us) {
     }
     clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
     const int64_t t = now_ns();
+    const int64_t due = int64_t(next.tv_sec) * 1000000000LL + next.tv_nsec;
+    if (t - due >= period_ns) missed += skip ? (t - due) / period_ns : 1;
+    if (skip && t - due >= period_ns) {  // go on from the newest deadline passed
+      const int64_t newest = due + (t - due) / period_ns * period_ns;
+      next.tv_sec = time_t(newest / 1000000000LL);
+      next.tv_nsec = long(newest % 1000000000LL);
+    }
     if (last >= 0) {
       const double period = double(t - last) / 1e3;
       err.push_back(std::abs(period - period_us));
-      if (period > 2 * period_us) ++missed;
       if (period < 0.5 * period_us) ++short_periods;
     }
     last = t;
@@ -112,6 +124,7 @@ int timer_floor(double seconds, double period_us) {
 int main(int argc, char** argv) {
   std::string url;
   double seconds = 70, skip = 1, timer = 0, period_us = 1000, slack_ns = -1;
+  bool skip_overruns = false;
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string a = argv[k];
     if (a == "--lcm-url") url = argv[k + 1];
@@ -120,13 +133,14 @@ int main(int argc, char** argv) {
     else if (a == "--timer-slack-ns") slack_ns = std::atof(argv[k + 1]);
     else if (a == "--seconds") seconds = std::atof(argv[k + 1]);
     else if (a == "--skip") skip = std::atof(argv[k + 1]);
+    else if (a == "--overrun") skip_overruns = std::string(argv[k + 1]) == "skip";
     else {
       std::fprintf(stderr, "usage: bench_realtime --lcm-url URL [--seconds S] [--skip S] | --timer-floor S\n");
       return 2;
     }
   }
   if (slack_ns >= 0) prctl(PR_SET_TIMERSLACK, (unsigned long)std::max(1.0, slack_ns), 0, 0, 0);
-  if (timer > 0) return timer_floor(timer, period_us);
+  if (timer > 0) return timer_floor(timer, period_us, skip_overruns);
   lcm::LCM lc(url);
   if (!lc.good()) {
     std::fprintf(stderr, "bench_realtime: LCM cannot start on %s\n", url.c_str());
@@ -148,10 +162,12 @@ int main(int argc, char** argv) {
     }
     if (started && now_ns() - l.last_ns > 2000000000LL) break;  // the run is over
   }
-  std::printf("realtime %zu %lld %.2f %.2f %.2f %.2f %lld %lld %lld %.4f %.2f %lld\n", l.period_err_us.size(), (long long)l.lost,
+  std::printf("realtime %zu %lld %.2f %.2f %.2f %.2f %lld %lld %lld %.4f %.2f %lld %.2f %.2f %lld\n",
+              l.period_err_us.size(), (long long)l.lost,
               quantile(l.period_err_us, 0.5), quantile(l.period_err_us, 0.99),
               l.period_err_us.empty() ? std::nan("") : *std::max_element(l.period_err_us.begin(), l.period_err_us.end()),
               l.sim_max_err, (long long)l.missed, (long long)l.overruns, (long long)l.cm_missed, l.rtf,
-              quantile(l.sim_jitter, 0.5), (long long)l.short_periods);
+              quantile(l.sim_jitter, 0.5), (long long)l.short_periods, quantile(l.arrival_err_us, 0.5),
+              quantile(l.arrival_err_us, 0.99), (long long)l.short_arrivals);
   return 0;
 }

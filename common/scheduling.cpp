@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <sched.h>
 #include <sys/mman.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -117,6 +118,12 @@ void lower_priority(int nice) {
   // On Linux the nice value is per thread, and a thread starts with its creator's: call this before any thread.
   if (nice > 0 && setpriority(PRIO_PROCESS, 0, nice) != 0)
     throw std::runtime_error(fmt::format("--nice {}: setpriority failed ({})", nice, std::strerror(errno)));
+}
+
+void set_timer_slack(long ns) {
+  if (ns < 1 || prctl(PR_SET_TIMERSLACK, static_cast<unsigned long>(ns), 0, 0, 0) != 0)
+    throw std::runtime_error(fmt::format("--timer-slack-ns {}: give a number of nanoseconds >= 1{}", ns,
+                                         ns < 1 ? "" : fmt::format(" (prctl failed: {})", std::strerror(errno))));
 }
 
 int least_busy_cpu(int sample_ms) {

@@ -26,6 +26,10 @@ std::string apply_scheduling(const SchedulingFlags& f);
 // that watch the loop (the dashboard) and must not take its CPU. Throws std::runtime_error naming the value.
 void lower_priority(int nice);
 
+// How late a timed sleep or poll of the calling thread (and of threads it starts afterwards) may wake, in
+// nanoseconds (>= 1); Linux gives normal threads 50,000 ns, SCHED_FIFO ones none. Throws naming the value.
+void set_timer_slack(long ns);
+
 // The CPU, among those this process may use, with the most idle time over `sample_ms`; -1 if it cannot tell.
 int least_busy_cpu(int sample_ms = 100);
 

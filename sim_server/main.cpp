@@ -54,6 +54,23 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--watchdog", opt.watchdog_s, "real time: hold every actuator after this long (s) without a command")
       ->capture_default_str();
+  std::string overrun = "catch-up";
+  app.add_option("--overrun", overrun,
+                 "real time, a cycle a period or more late: catch-up runs the steps due back to back, each published "
+                 "(the controller gets a burst); skip takes them without publishing and goes on from the newest (the "
+                 "controller sees the step jump, counted as missed). Sim time keeps up with the wall clock either way")
+      ->check(CLI::IsMember({"catch-up", "skip"}))
+      ->capture_default_str();
+  app.add_option("--spin-us", opt.spin_us,
+                 "real time: sleep until this many microseconds before each deadline, then poll without sleeping "
+                 "(a timer wakes late by tens of microseconds; spinning costs this much CPU per period)")
+      ->check(CLI::Range(int64_t{0}, int64_t{100000}))
+      ->capture_default_str();
+  long timer_slack_ns = 50000;
+  app.add_option("--timer-slack-ns", timer_slack_ns,
+                 "real time: how late the pacing timer may wake (Linux's default for a normal thread: 50000)")
+      ->check(CLI::Range(1L, 10000000L))
+      ->capture_default_str();
   std::vector<std::string> initial;
   app.add_option("-J,--initial-position", initial,
                  "JOINT=VALUE: start that joint there (rad or m; repeatable), as spawn_model's -J; joints not given "
@@ -86,9 +103,11 @@ int main(int argc, char** argv) {
 
   return run_program(app, argc, argv, [&] {
     opt.lockstep = mode == "lockstep";
+    opt.overrun = overrun == "skip" ? sim::Overrun::Skip : sim::Overrun::CatchUp;
     sim::substeps_for(rates);  // bad rates fail before anything else is said
     const int clock_every = sim::clock_every_for(rates.control_hz, clock_hz);
     const std::string scheduling = apply_scheduling(sched);
+    if (!opt.lockstep) set_timer_slack(timer_slack_ns);
     setup_logging("sim_server", log_level);
     const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
     for (const auto& n : model.notes) spdlog::info("{}", n);

@@ -127,26 +127,54 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
       if (!wait_paused()) return false;
       continue;
     }
-    const int64_t deadline = base_us_ + std::llround(double(sim_.step_count() + 1 - base_step_) * period_us_);
+    auto due = [&] { return base_us_ + std::llround(double(sim_.step_count() + 1 - base_step_) * period_us_); };
+    int64_t deadline = due();
+    const int64_t wake = deadline - opt_.spin_us;
     int64_t now = monotonic_us();
     do {  // at least one pass, so messages are handled even while catching up
       if (stop) return true;
       tick_statistics(now);
-      if (!io_.poll_until(std::min({deadline, now + kMaxWaitSliceUs, w_.start_us + kStatsPeriodUs}))) return false;
+      if (!io_.poll_until(std::min({wake, now + kMaxWaitSliceUs, w_.start_us + kStatsPeriodUs}))) return false;
       now = monotonic_us();
-    } while (now < deadline);
+    } while (now < wake);
+    while (now < deadline) {  // --spin-us: the tail without sleeping, still taking messages
+      if (!io_.poll_until(now)) return false;
+      now = monotonic_us();
+    }
     const int64_t late = now - deadline;
+    bool answered = false;
     if (late > std::max<int64_t>(kMaxCatchUpUs, std::llround(10 * period_us_))) {
       w_.missed += std::llround(double(late) / period_us_);
       rebase(now);
+    } else if (opt_.overrun == Overrun::Skip && late >= period_us_) {
+      answered = io_.take_command();  // the newest command holds through the skipped steps
+      w_.missed += skip_to(now);
+      deadline = due();
     }
-    if (!io_.take_command() && io_.last_command_us() >= 0) ++w_.missed;  // the controller did not answer in time
+    answered = io_.take_command() || answered;
+    if (!answered && io_.last_command_us() >= 0) ++w_.missed;  // the controller did not answer in time
     watchdog(now);
     step_timed(deadline + std::llround(period_us_));
     after_step();
     tick_statistics(monotonic_us());
   }
   return true;
+}
+
+int64_t Stepper::skip_to(int64_t now) {
+  int64_t skipped = 0;
+  // The last step of a --duration or of a STEP request is always published.
+  auto last_left = [&] {
+    return steps_left_ == 1 ||
+           (opt_.duration_s > 0 && sim_.time() + sim_.control_period() >= opt_.duration_s - 1e-9);
+  };
+  while (!holding() && !last_left() &&
+         base_us_ + std::llround(double(sim_.step_count() + 2 - base_step_) * period_us_) <= now) {
+    sim_.step();
+    after_step();
+    ++skipped;
+  }
+  return skipped;
 }
 
 void Stepper::rebase(int64_t now) {

@@ -14,12 +14,19 @@
 
 namespace lcm_control::sim {
 
+// Real time, a cycle that starts a period or more late: run the steps due back to back, publishing each (the
+// controller gets a burst), or take them without publishing and go on from the newest (the controller sees the
+// step jump, counted as missed). Either way sim time keeps up with the wall clock.
+enum class Overrun { CatchUp, Skip };
+
 struct StepperOptions {
   bool lockstep = false;
   double lockstep_timeout_s = 1.0;  // lockstep: republish the state this often while waiting
   double watchdog_s = 0.1;          // real time: hold every actuator after this long without a command
   double duration_s = 0;            // sim seconds to run; 0 runs until stopped
   bool start_paused = false;        // as Gazebo's paused:=true: nothing steps until a RESUME or STEP request
+  Overrun overrun = Overrun::CatchUp;  // real time
+  int64_t spin_us = 0;  // real time: sleep to this long before each deadline, then poll without sleeping up to it
 };
 
 class Stepper {
@@ -43,6 +50,8 @@ class Stepper {
   void finish_step_request(const std::string& how);
   void after_step();
   void rebase(int64_t now_us);  // real time: pace from now on, without catching up what lay before
+  // Real time, Overrun::Skip: the steps due by `now_us` but the last, taken without publishing; how many.
+  int64_t skip_to(int64_t now_us);
   bool done() const;
   double real_time_factor() const;
   void step_timed(int64_t deadline_us);

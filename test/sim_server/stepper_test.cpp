@@ -1,12 +1,15 @@
 // sim_server in real time: pacing against the wall clock, the sim clock and
-// statistics channels, the watchdog hold when commands stop, namespaces.
+// statistics channels, the watchdog hold when commands stop, namespaces, and
+// what a stall does under each --overrun policy.
 #include <gtest/gtest.h>
 
+#include <signal.h>
 #include <stdlib.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "lcm_control/loop_stats_t.hpp"
 #include "lcm_control/sim_clock_t.hpp"
@@ -94,6 +97,53 @@ TEST(sim_realtime, WatchdogHoldsEveryActuatorWhenCommandsStopAndSaysSoOnce) {
   cm.pump_for(1.0);
   EXPECT_NE(server.output().find("commands apply again"), std::string::npos);
   EXPECT_GT(cm.states.back().position[0], last.position[0] + 0.05);
+}
+
+// The process is stopped for 80 ms (SIGSTOP: a stall nothing else can cause on purpose). catch-up publishes every
+// step it owes back to back; skip takes them without publishing, so the controller sees one step jump and no
+// burst, and the statistics count them missed. Either way sim time is back with the wall clock right after.
+TEST(sim_realtime, AStallIsCaughtUpInABurstOrSkippedAsAskedAndSimTimeKeepsUp) {
+  if (std::string why; overloaded(why)) GTEST_SKIP() << why;
+  for (const std::string policy : {"catch-up", "skip"}) {
+    SCOPED_TRACE("--overrun " + policy);
+    SimServerProcess server;
+    Recorder<hardware_state_t> states(server.lc, "hardware/state");
+    Recorder<loop_stats_t> stats(server.lc, "sim_server/statistics");
+    std::string why;
+    ASSERT_TRUE(server.start({"--overrun", policy, "--timer-slack-ns", "1"}, source("config/turret_bot.urdf"),
+                             source("config/turret_bot.yaml"), &why))
+        << why;
+    FakeController cm(server.lc);
+    ASSERT_TRUE(cm.run_until_step(300, 10.0)) << server.output();
+    const size_t before = states.messages.size();
+    ASSERT_EQ(kill(server.process->pid(), SIGSTOP), 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(80));
+    ASSERT_EQ(kill(server.process->pid(), SIGCONT), 0);
+    cm.pump_for(1.2);
+    int64_t jump = 0, burst = 0;
+    for (size_t k = before; k < states.messages.size(); ++k) {
+      jump = std::max<int64_t>(jump, states.messages[k].step - states.messages[k - 1].step - 1);
+      if (states.receive_us[k] - states.receive_us[k - 1] < 100) ++burst;
+    }
+    // Sim time against the wall clock since the first state, at the last state.
+    const double lag_ms = double(states.receive_us.back() - states.receive_us.front()) * 1e-3 -
+                          double(states.messages.back().utime - states.messages.front().utime) * 1e-3;
+    int64_t missed = 0;
+    for (const auto& m : stats.messages) missed += m.missed;
+    std::printf("--overrun %s: largest step jump %lld, %lld states back to back, wall time minus sim time %.1f ms "
+                "since the first state, %lld missed\n",
+                policy.c_str(), static_cast<long long>(jump), static_cast<long long>(burst), lag_ms,
+                static_cast<long long>(missed));
+    EXPECT_LT(std::abs(lag_ms), 20);
+    if (policy == "skip") {
+      EXPECT_GE(jump, 60);
+      EXPECT_LT(burst, 10);
+      EXPECT_GE(missed, 60);
+    } else {
+      EXPECT_EQ(jump, 0);
+      EXPECT_GE(burst, 60);
+    }
+  }
 }
 
 }  // namespace
