@@ -4,8 +4,8 @@
 // a skip, counts as one long period), and what sim_server's and
 // controller_manager's 1 Hz statistics say (missed cycles, overruns, the sim's
 // own worst period, its real-time factor). The first `--skip` seconds are
-// start-up and not counted. Exits after `--seconds` or 2 s without a state.
-//   bench_realtime --lcm-url URL [--seconds S] [--skip S]
+// start-up and not counted. Exits after `--seconds` or `--idle` s (default 2) without a state.
+//   bench_realtime --lcm-url URL [--seconds S] [--skip S] [--idle S]
 //   bench_realtime --timer-floor S [--period-us P] [--timer-slack-ns N] [--overrun catch-up|skip]
 // The second form is the floor: a bare loop sleeping to absolute 1 kHz deadlines
 // (clock_nanosleep on CLOCK_MONOTONIC, what sim_server's pacing comes down to),
@@ -123,7 +123,7 @@ int timer_floor(double seconds, double period_us, bool skip) {
 
 int main(int argc, char** argv) {
   std::string url;
-  double seconds = 70, skip = 1, timer = 0, period_us = 1000, slack_ns = -1;
+  double seconds = 70, skip = 1, timer = 0, period_us = 1000, slack_ns = -1, idle = 2;
   bool skip_overruns = false;
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string a = argv[k];
@@ -133,6 +133,7 @@ int main(int argc, char** argv) {
     else if (a == "--timer-slack-ns") slack_ns = std::atof(argv[k + 1]);
     else if (a == "--seconds") seconds = std::atof(argv[k + 1]);
     else if (a == "--skip") skip = std::atof(argv[k + 1]);
+    else if (a == "--idle") idle = std::atof(argv[k + 1]);
     else if (a == "--overrun") skip_overruns = std::string(argv[k + 1]) == "skip";
     else {
       std::fprintf(stderr, "usage: bench_realtime --lcm-url URL [--seconds S] [--skip S] | --timer-floor S\n");
@@ -160,7 +161,7 @@ int main(int argc, char** argv) {
       started = true;
       l.skip_until_ns = now_ns() + int64_t(skip * 1e9);
     }
-    if (started && now_ns() - l.last_ns > 2000000000LL) break;  // the run is over
+    if (started && now_ns() - l.last_ns > int64_t(idle * 1e9)) break;  // the run is over
   }
   std::printf("realtime %zu %lld %.2f %.2f %.2f %.2f %lld %lld %lld %.4f %.2f %lld %.2f %.2f %lld\n",
               l.period_err_us.size(), (long long)l.lost,
