@@ -2,6 +2,8 @@
 // echo servers bench/run starts for bench_loop.
 //   bench_pingpong udp-echo PORT  | bench_pingpong udp-ping PORT N WARMUP PING_BYTES PONG_BYTES
 //   bench_pingpong lcm-echo URL   | bench_pingpong lcm-ping URL N WARMUP PING_BYTES PONG_BYTES
+//   bench_pingpong lcm-direct-echo URL | bench_pingpong lcm-direct-ping URL N WARMUP PING_BYTES PONG_BYTES
+//     (LCM packets, read from the socket on the calling thread: LcmDirectReader)
 // The ping side prints "min_us p50_us p99_us max_us lost".
 #include <cstdio>
 #include <cstdlib>
@@ -29,6 +31,15 @@ int main(int argc, char** argv) {
   try {
     if (mode == "udp-echo" && argc == 3) return udp_echo(arg(2));
     if (mode == "lcm-echo" && argc == 3) return lcm_echo(argv[2]);
+    if (mode == "lcm-direct-echo" && argc == 3) return lcm_direct_echo(argv[2]);
+    if (mode == "lcm-direct-ping" && argc == 7) {
+      LcmDirectPinger p(argv[2], arg(5), arg(6));
+      if (!p.good() || !p.wait_for_echo(5)) {
+        std::fprintf(stderr, "bench_pingpong: no lcm-direct-echo answers on %s\n", argv[2]);
+        return 1;
+      }
+      return ping(p, arg(3), arg(4));
+    }
     if (mode == "udp-ping" && argc == 7) {
       UdpPinger p(arg(2), arg(5), arg(6));
       return ping(p, arg(3), arg(4));
@@ -47,6 +58,7 @@ int main(int argc, char** argv) {
   }
   std::fprintf(stderr,
                "usage: bench_pingpong udp-echo PORT | udp-ping PORT N WARMUP PING_BYTES PONG_BYTES |\n"
-               "       lcm-echo URL | lcm-ping URL N WARMUP PING_BYTES PONG_BYTES\n");
+               "       lcm-echo URL | lcm-ping URL N WARMUP PING_BYTES PONG_BYTES |\n"
+               "       lcm-direct-echo URL | lcm-direct-ping URL N WARMUP PING_BYTES PONG_BYTES\n");
   return 2;
 }

@@ -73,8 +73,40 @@ class LcmPinger {
   bool got_ = false;
 };
 
+// LCM's wire format without LCM's receive thread: publishes with lcm::LCM (which opens no receive socket while
+// nothing is subscribed) and reads the udpm group's datagrams on the calling thread from a socket of its own,
+// taking the channel and payload out of LCM's short-message header ("LC02", sequence number, channel, NUL).
+// What a loop would gain by reading the hardware socket itself; every LCM tool still sees the same packets.
+class LcmDirectReader {
+ public:
+  explicit LcmDirectReader(const std::string& url);  // udpm://GROUP:PORT[?...]
+  ~LcmDirectReader();
+  LcmDirectReader(const LcmDirectReader&) = delete;
+  LcmDirectReader& operator=(const LcmDirectReader&) = delete;
+  // Waits up to timeout_ms for a datagram on `channel`; its payload size, or -1 on timeout.
+  int wait_for(const char* channel, int timeout_ms, const uint8_t** payload = nullptr);
+
+ private:
+  int fd_ = -1;
+  std::vector<uint8_t> buf_ = std::vector<uint8_t>(65536);
+};
+
+class LcmDirectPinger {
+ public:
+  LcmDirectPinger(const std::string& url, int ping_bytes, int pong_bytes);
+  bool good() const { return lc_.good(); }
+  bool wait_for_echo(double timeout_s);
+  double round_trip_us(int timeout_ms = 1000);
+
+ private:
+  lcm::LCM lc_;
+  LcmDirectReader reader_;
+  std::vector<uint8_t> ping_;
+};
+
 // Echo servers; they run until killed.
 int udp_echo(int port);
 int lcm_echo(const std::string& url);
+int lcm_direct_echo(const std::string& url);
 
 }  // namespace lcm_control::bench
