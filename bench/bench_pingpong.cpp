@@ -23,6 +23,17 @@ int ping(Pinger& p, int n, int warmup) {
   return 0;
 }
 
+// An LCM pinger once its echo answers: `argv` is MODE URL N WARMUP PING_BYTES PONG_BYTES.
+template <class Pinger>
+int ping_lcm(char** argv, const char* echo) {
+  Pinger p(argv[2], std::atoi(argv[5]), std::atoi(argv[6]));
+  if (!p.good() || !p.wait_for_echo(5)) {
+    std::fprintf(stderr, "bench_pingpong: no %s answers on %s\n", echo, argv[2]);
+    return 1;
+  }
+  return ping(p, std::atoi(argv[3]), std::atoi(argv[4]));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -32,26 +43,12 @@ int main(int argc, char** argv) {
     if (mode == "udp-echo" && argc == 3) return udp_echo(arg(2));
     if (mode == "lcm-echo" && argc == 3) return lcm_echo(argv[2]);
     if (mode == "lcm-direct-echo" && argc == 3) return lcm_direct_echo(argv[2]);
-    if (mode == "lcm-direct-ping" && argc == 7) {
-      LcmDirectPinger p(argv[2], arg(5), arg(6));
-      if (!p.good() || !p.wait_for_echo(5)) {
-        std::fprintf(stderr, "bench_pingpong: no lcm-direct-echo answers on %s\n", argv[2]);
-        return 1;
-      }
-      return ping(p, arg(3), arg(4));
-    }
+    if (mode == "lcm-direct-ping" && argc == 7) return ping_lcm<LcmDirectPinger>(argv, "lcm-direct-echo");
     if (mode == "udp-ping" && argc == 7) {
       UdpPinger p(arg(2), arg(5), arg(6));
       return ping(p, arg(3), arg(4));
     }
-    if (mode == "lcm-ping" && argc == 7) {
-      LcmPinger p(argv[2], arg(5), arg(6));
-      if (!p.good() || !p.wait_for_echo(5)) {
-        std::fprintf(stderr, "bench_pingpong: no lcm-echo answers on %s\n", argv[2]);
-        return 1;
-      }
-      return ping(p, arg(3), arg(4));
-    }
+    if (mode == "lcm-ping" && argc == 7) return ping_lcm<LcmPinger>(argv, "lcm-echo");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_pingpong: %s\n", e.what());
     return 1;

@@ -180,14 +180,18 @@ Reply CommandSources::handle(const command_source_t& r) {
   src->duration = r.duration_s;
 
   std::string replaced;
-  for (auto& s : sources_)
-    if (s->controller == r.controller && !s->end) {
+  for (auto& s : sources_) {
+    if (s->controller != r.controller) continue;
+    if (s->port) {  // the new source takes the channel over, with the echoes still on their way
+      src->echoes = s->echoes;
+      s->port = nullptr;
+    }
+    if (!s->end) {
       s->end = "replaced";
       s->slot = nullptr;
-      s->port = nullptr;  // the new source takes the channel over, with the echoes still on their way
-      src->echoes = s->echoes;
       replaced = fmt::format("; replaced the previous one (request {}, {} tick(s))", s->request_id, s->ticks);
     }
+  }
   Source* owner = src.get();
   src->port = slot->port.get();
   src->port->divert(command_channel, [this, owner](const lcm::ReceiveBuffer& rb) { from_bus(*owner, rb); });

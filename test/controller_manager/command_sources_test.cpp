@@ -283,3 +283,24 @@ TEST(CommandSources, ALateEchoOrAnotherPublisherCannotOverrideTheSource) {
   rig.cycle();
   EXPECT_EQ(commanded(rig, "slide_motor").back(), 42);
 }
+
+// A source that has ended but not yet been answered (poll() has not run) must not give the channel back from under
+// the source registered after it.
+TEST(CommandSources, ANewSourceKeepsTheChannelWhenTheOneBeforeItIsAnswered) {
+  Rig rig;
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
+  ASSERT_TRUE(rig.cm->command_sources().handle(source("slide_position", {"1"}, 0, 1)).ok);
+  rig.cycle(2);  // ended (count reached), not yet answered
+  command_source_t next = source("slide_position", {"5"}, 100);  // a tick every 10 steps
+  next.request_id = 8;
+  ASSERT_TRUE(rig.cm->command_sources().handle(next).ok);
+  rig.cm->poll(monotonic_us());  // answers the first
+  rig.cycle(2);
+  float64_t other{};
+  other.utime = 123;
+  other.data = 42;
+  rig.publish("slide_position/command", other);
+  rig.cycle();
+  EXPECT_EQ(commanded(rig, "slide_motor").back(), 5) << "the second source lost its channel";
+}
