@@ -100,11 +100,13 @@ int timer_floor(double seconds, double period_us, bool skip) {
     clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
     const int64_t t = now_ns();
     const int64_t due = int64_t(next.tv_sec) * 1000000000LL + next.tv_nsec;
-    if (t - due >= period_ns) missed += skip ? (t - due) / period_ns : 1;
-    if (skip && t - due >= period_ns) {  // go on from the newest deadline passed
-      const int64_t newest = due + (t - due) / period_ns * period_ns;
-      next.tv_sec = time_t(newest / 1000000000LL);
-      next.tv_nsec = long(newest % 1000000000LL);
+    if (const int64_t passed = (t - due) / period_ns; passed > 0) {
+      missed += skip ? passed : 1;
+      if (skip) {  // go on from the newest deadline passed
+        const int64_t newest = due + passed * period_ns;
+        next.tv_sec = time_t(newest / 1000000000LL);
+        next.tv_nsec = long(newest % 1000000000LL);
+      }
     }
     if (last >= 0) {
       const double period = double(t - last) / 1e3;

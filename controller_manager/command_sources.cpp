@@ -6,6 +6,8 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
+#include <string_view>
 
 #include "controller_manager/loop.hpp"
 #include "controller_manager/manager.hpp"
@@ -13,10 +15,8 @@
 namespace lcm_control::cm {
 
 namespace {
-uint64_t fnv1a(const void* data, size_t size) {
-  uint64_t h = 14695981039346656037ull;
-  for (size_t k = 0; k < size; ++k) h = (h ^ static_cast<const uint8_t*>(data)[k]) * 1099511628211ull;
-  return h;
+size_t hash_of(const void* data, size_t size) {
+  return std::hash<std::string_view>{}(std::string_view(static_cast<const char*>(data), size));
 }
 }  // namespace
 
@@ -24,14 +24,14 @@ uint64_t fnv1a(const void* data, size_t size) {
 // is published once; the oldest are forgotten when more than kSize wait, as when their echoes were lost).
 struct CommandSources::Echoes {
   static constexpr int kSize = 1024;  // a second of ticks at 1 kHz: more than the shared bus ever lags the loop
-  std::array<uint64_t, kSize> hash{};
+  std::array<size_t, kSize> hash{};
   int first = 0, count = 0;
-  void sent(uint64_t h) {
+  void sent(size_t h) {
     if (count == kSize) first = (first + 1) % kSize, --count;
     hash[static_cast<size_t>((first + count++) % kSize)] = h;
   }
   // True when `h` is one of ours: it and any older ones (lost on the way) are taken off.
-  bool received(uint64_t h) {
+  bool received(size_t h) {
     for (int k = 0; k < count; ++k)
       if (hash[static_cast<size_t>((first + k) % kSize)] == h) {
         first = (first + k + 1) % kSize;
@@ -252,7 +252,7 @@ void CommandSources::before_update(const Time& now) {
       n = s.one.encode(s.bytes.data(), 0, static_cast<int>(s.bytes.size()));
     }
     if (n <= 0) continue;
-    s.echoes.sent(fnv1a(s.bytes.data(), static_cast<size_t>(n)));
+    s.echoes.sent(hash_of(s.bytes.data(), static_cast<size_t>(n)));
     lcm::ReceiveBuffer rb{s.bytes.data(), static_cast<uint32_t>(n), now.utime};
     for (const auto* h : s.handlers) (*h)(rb);
     s.fresh = true;
@@ -307,7 +307,7 @@ void CommandSources::poll() {
 }
 
 void CommandSources::from_bus(Source& s, const lcm::ReceiveBuffer& rb) {
-  if (s.echoes.received(fnv1a(rb.data, rb.data_size))) return;
+  if (s.echoes.received(hash_of(rb.data, rb.data_size))) return;
   if (s.ignored++ == 0)
     log_.warn(fmt::format("'{}': a message from the bus was ignored: the command source of '{}' ({}) owns this "
                           "channel until it ends; further ones are counted in its end (turret-cmd's Ctrl-C removes it)",
