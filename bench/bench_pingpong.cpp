@@ -3,7 +3,7 @@
 //   bench_pingpong udp-echo PORT  | bench_pingpong udp-ping PORT N WARMUP PING_BYTES PONG_BYTES
 //   bench_pingpong lcm-echo URL   | bench_pingpong lcm-ping URL N WARMUP PING_BYTES PONG_BYTES
 //   bench_pingpong lcm-direct-echo URL | bench_pingpong lcm-direct-ping URL N WARMUP PING_BYTES PONG_BYTES
-//     (LCM packets, read from the socket on the calling thread: LcmDirectReader)
+//     (LCM packets, read from the socket on the calling thread: common/lcm_socket)
 // The ping side prints "min_us p50_us p99_us max_us lost".
 #include <cstdio>
 #include <cstdlib>

@@ -159,50 +159,6 @@ int lcm_echo(const std::string& url) {
   for (;;) lc.handle();
 }
 
-LcmDirectReader::LcmDirectReader(const std::string& url) {
-  const auto colon = url.rfind(':');
-  if (url.rfind("udpm://", 0) != 0 || colon == std::string::npos || colon < 7)
-    throw std::runtime_error("not a udpm://GROUP:PORT URL: " + url);
-  const std::string group = url.substr(7, colon - 7);
-  const int port = std::atoi(url.c_str() + colon + 1);
-  fd_ = socket(AF_INET, SOCK_DGRAM, 0);
-  const int one = 1;
-  setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one));
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_ANY);
-  a.sin_port = htons(uint16_t(port));
-  ip_mreq m{};
-  inet_pton(AF_INET, group.c_str(), &m.imr_multiaddr);
-  m.imr_interface.s_addr = htonl(INADDR_ANY);
-  if (fd_ < 0 || bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0 ||
-      setsockopt(fd_, IPPROTO_IP, IP_ADD_MEMBERSHIP, &m, sizeof(m)) != 0)
-    throw std::runtime_error("cannot join " + url + ": " + std::strerror(errno));
-}
-
-LcmDirectReader::~LcmDirectReader() {
-  if (fd_ >= 0) close(fd_);
-}
-
-int LcmDirectReader::wait_for(const char* channel, int timeout_ms, const uint8_t** payload) {
-  const int64_t end = now_ns() + int64_t(timeout_ms) * 1000000;
-  for (;;) {
-    const int left = int(std::max<int64_t>(0, (end - now_ns()) / 1000000));
-    pollfd p{fd_, POLLIN, 0};
-    if (poll(&p, 1, left) <= 0) return -1;
-    const ssize_t n = recv(fd_, buf_.data(), buf_.size(), 0);
-    constexpr uint8_t kShort[4] = {0x4c, 0x43, 0x30, 0x32};  // "LC02", big endian
-    if (n < 9 || std::memcmp(buf_.data(), kShort, 4) != 0) continue;  // a fragment or not LCM: not ours here
-    const auto* name = reinterpret_cast<const char*>(buf_.data() + 8);
-    const void* nul = std::memchr(name, 0, size_t(n - 8));
-    if (!nul) continue;
-    if (std::strcmp(name, channel) != 0) continue;
-    const uint8_t* data = static_cast<const uint8_t*>(nul) + 1;
-    if (payload) *payload = data;
-    return int(buf_.data() + n - data);
-  }
-}
-
 LcmDirectPinger::LcmDirectPinger(const std::string& url, int ping_bytes, int pong_bytes)
     : lc_(url), reader_(url), ping_(size_t(std::max<int>(ping_bytes, sizeof(int))), 3) {
   std::memcpy(ping_.data(), &pong_bytes, sizeof(int));
@@ -212,8 +168,8 @@ bool LcmDirectPinger::wait_for_echo(double timeout_s) {
   const int64_t end = now_ns() + int64_t(timeout_s * 1e9);
   while (now_ns() < end) {
     lc_.publish("PING", ping_.data(), unsigned(ping_.size()));
-    if (reader_.wait_for("PONG", 20) >= 0) {
-      while (reader_.wait_for("PONG", 5) >= 0) {  // drain late answers
+    if (reader_.wait_for("PONG", 20)) {
+      while (reader_.wait_for("PONG", 5)) {  // drain late answers
       }
       return true;
     }
@@ -224,7 +180,7 @@ bool LcmDirectPinger::wait_for_echo(double timeout_s) {
 double LcmDirectPinger::round_trip_us(int timeout_ms) {
   const int64_t t0 = now_ns();
   lc_.publish("PING", ping_.data(), unsigned(ping_.size()));
-  if (reader_.wait_for("PONG", timeout_ms) < 0) return -1;
+  if (!reader_.wait_for("PONG", timeout_ms)) return -1;
   return double(now_ns() - t0) / 1e3;
 }
 
@@ -234,12 +190,12 @@ int lcm_direct_echo(const std::string& url) {
     std::fprintf(stderr, "bench: LCM cannot start on %s\n", url.c_str());
     return 1;
   }
-  LcmDirectReader reader(url);
+  LcmSocket reader(url);
   std::vector<uint8_t> pong(65536, 7);
   for (;;) {
-    const uint8_t* ping = nullptr;
-    const int n = reader.wait_for("PING", 1000, &ping);
-    if (n < int(sizeof(int))) continue;
+    int n = 0;
+    const uint8_t* ping = reader.wait_for("PING", 1000, &n);
+    if (!ping || n < int(sizeof(int))) continue;
     int size = 0;
     std::memcpy(&size, ping, sizeof(int));
     size = std::clamp<int>(size, sizeof(int), int(pong.size()));

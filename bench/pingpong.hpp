@@ -6,6 +6,8 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "common/lcm_socket.hpp"
+
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -74,23 +76,8 @@ class LcmPinger {
 };
 
 // LCM's wire format without LCM's receive thread: publishes with lcm::LCM (which opens no receive socket while
-// nothing is subscribed) and reads the udpm group's datagrams on the calling thread from a socket of its own,
-// taking the channel and payload out of LCM's short-message header ("LC02", sequence number, channel, NUL).
-// What a loop would gain by reading the hardware socket itself; every LCM tool still sees the same packets.
-class LcmDirectReader {
- public:
-  explicit LcmDirectReader(const std::string& url);  // udpm://GROUP:PORT[?...]
-  ~LcmDirectReader();
-  LcmDirectReader(const LcmDirectReader&) = delete;
-  LcmDirectReader& operator=(const LcmDirectReader&) = delete;
-  // Waits up to timeout_ms for a datagram on `channel`; its payload size, or -1 on timeout.
-  int wait_for(const char* channel, int timeout_ms, const uint8_t** payload = nullptr);
-
- private:
-  int fd_ = -1;
-  std::vector<uint8_t> buf_ = std::vector<uint8_t>(65536);
-};
-
+// nothing is subscribed) and reads the group's datagrams on the calling thread (common/lcm_socket, the loops'
+// --hardware-reader direct).
 class LcmDirectPinger {
  public:
   LcmDirectPinger(const std::string& url, int ping_bytes, int pong_bytes);
@@ -100,7 +87,7 @@ class LcmDirectPinger {
 
  private:
   lcm::LCM lc_;
-  LcmDirectReader reader_;
+  LcmSocket reader_;
   std::vector<uint8_t> ping_;
 };
 

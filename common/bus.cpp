@@ -56,7 +56,31 @@ std::string hardware_url_for(const std::string& value, const std::string& shared
                      kHardwarePortBase + int(h % kHardwarePorts), options);
 }
 
-Bus::Bus(const std::string& url, const std::string& ns, const std::string& hardware_url)
+HardwareReader hardware_reader_named(const std::string& name) {
+  if (name == "direct") return HardwareReader::Direct;
+  if (name == "lcm") return HardwareReader::Lcm;
+  throw BusError(fmt::format("--hardware-reader '{}': expected direct or lcm", name));
+}
+
+namespace {
+// The direct reader's start-up check, as LCM's own self-test: a datagram published on the URL must come back.
+void self_test(lcm::LCM& publisher, LcmSocket& socket) {
+  const char* channel = "LCM_SELF_TEST";
+  const std::string text = "lcm_control hardware reader self-test";
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    publisher.publish(channel, text.data(), unsigned(text.size()));
+    if (socket.wait_for(channel, 50)) return;
+  }
+  throw BusError(fmt::format(
+      "the hardware loop reads {} on its own socket, and its test datagram did not come back within 0.2 s: for "
+      "udpm:// on this host, loopback needs a multicast route: run as root `ip link set lo multicast on; ip route add "
+      "224.0.0.0/4 dev lo` (scripts/setup does this); a firewall may also drop it (docs/security.md), or give "
+      "--hardware-reader lcm",
+      socket.url()));
+}
+}  // namespace
+
+Bus::Bus(const std::string& url, const std::string& ns, const std::string& hardware_url, HardwareReader reader)
     : url_(effective_url(url)), ns_(trim_slashes(ns)) {
   prefix_ = ns_.empty() ? "" : ns_ + "/";
   lcm_ = open_lcm(url, url_, "--lcm-url or LCM_DEFAULT_URL");
@@ -65,21 +89,49 @@ Bus::Bus(const std::string& url, const std::string& ns, const std::string& hardw
     hw_url_ = hw;
     hw_ = open_lcm(hw, hw, "--hardware-lcm-url");
   }
+  if (reader != HardwareReader::Direct) return;
+  const auto udpm = [](const std::string& u) { return u.rfind("udpm://", 0) == 0; };
+  if (hw_ && udpm(hw_url_)) {
+    hw_socket_ = std::make_unique<LcmSocket>(hw_url_);
+    self_test(*hw_, *hw_socket_);
+  } else if (!hw_ && udpm(url_)) {
+    shared_socket_ = std::make_unique<LcmSocket>(url_);
+    self_test(*lcm_, *shared_socket_);
+  }
 }
 
 std::vector<int> Bus::fds() {
-  std::vector<int> v{lcm_->getFileno()};
-  if (hw_) v.push_back(hw_->getFileno());
+  // lcm::LCM's getFileno() on udpm:// starts its receive thread: only for an instance that is read through LCM.
+  std::vector<int> v{shared_socket_ ? shared_socket_->fd() : lcm_->getFileno()};
+  if (hw_) v.push_back(hw_socket_ ? hw_socket_->fd() : hw_->getFileno());
   return v;
 }
 
+namespace {
+int handle_queued(lcm::LCM& lc, LcmSocket* socket, int max) {
+  if (socket) return socket->handle_queued(max);
+  int handled = 0;
+  for (; handled < max; ++handled) {
+    const int n = lc.handleTimeout(0);
+    if (n < 0) return -1;
+    if (n == 0) break;
+  }
+  return handled;
+}
+}  // namespace
+
+int Bus::handle_shared(int max) { return handle_queued(*lcm_, shared_socket_.get(), max); }
+
+int Bus::handle_hardware(int max) { return hw_ ? handle_queued(*hw_, hw_socket_.get(), max) : handle_shared(max); }
+
 bool Bus::handle(int timeout_ms) {
-  if (!hw_) return lcm_->handleTimeout(timeout_ms) >= 0;
-  pollfd p[2] = {{lcm_->getFileno(), POLLIN, 0}, {hw_->getFileno(), POLLIN, 0}};
-  const int r = poll(p, 2, timeout_ms);
+  if (!hw_ && !shared_socket_) return lcm_->handleTimeout(timeout_ms) >= 0;
+  const std::vector<int> f = fds();
+  pollfd p[2] = {{f[0], POLLIN, 0}, {f.size() > 1 ? f[1] : -1, POLLIN, 0}};
+  const int r = poll(p, nfds_t(f.size()), timeout_ms);
   if (r < 0) return errno == EINTR;
-  if ((p[1].revents & POLLIN) && hw_->handle() < 0) return false;
-  if ((p[0].revents & POLLIN) && lcm_->handle() < 0) return false;
+  if (f.size() > 1 && (p[1].revents & POLLIN) && handle_hardware() < 0) return false;
+  if ((p[0].revents & POLLIN) && handle_shared() < 0) return false;
   return true;
 }
 

@@ -5,6 +5,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "common/lcm_socket.hpp"
 #include "common/wire_check.hpp"
 
 #include <cstdint>
@@ -54,20 +55,37 @@ std::string hardware_url_for(const std::string& value, const std::string& shared
 // The URL in effect for `url` "" (LCM_DEFAULT_URL, else LCM's default).
 std::string effective_url(const std::string& url);
 
+// How sim_server and controller_manager receive. Lcm: LCM's receive thread hands each message over through its
+// pipe (what every tool does). Direct (on udpm:// URLs; Lcm elsewhere): LcmSocket, read on the loop's own thread,
+// for the hardware loop, and for the shared bus too when the hardware loop travels on it, so that one socket keeps
+// the order in which everything was sent (an e-stop or gains published before a command act before it).
+// Publishing goes through lcm::LCM either way.
+enum class HardwareReader { Lcm, Direct };
+HardwareReader hardware_reader_named(const std::string& name);
+
 // A namespace prefix "NS/" (empty for none) applied to every channel name.
 class Bus {
  public:
   // url "" means LCM_DEFAULT_URL, else LCM's default; hardware_url as hardware_url_for() takes it. Throws BusError
-  // with the URL and the multicast-route fix when LCM cannot start.
-  Bus(const std::string& url, const std::string& ns, const std::string& hardware_url = "");
+  // with the URL and the multicast-route fix when LCM cannot start, or when a Direct reader's own test datagram
+  // does not come back.
+  Bus(const std::string& url, const std::string& ns, const std::string& hardware_url = "",
+      HardwareReader reader = HardwareReader::Lcm);
 
   lcm::LCM& lcm() { return *lcm_; }
   // Where hardware/state and hardware/command travel: lcm() unless the hardware loop has its own URL.
   lcm::LCM& hardware() { return hw_ ? *hw_ : *lcm_; }
   bool hardware_apart() const { return hw_ != nullptr; }
   const std::string& hardware_url() const { return hw_ ? hw_url_ : url_; }
-  // The file descriptors to wait on (one, or two with a hardware URL of its own).
+  // The sockets read directly (HardwareReader::Direct on udpm://), else null: subscribe there instead of on lcm()
+  // or hardware(). The same socket when the hardware loop travels on the shared bus.
+  LcmSocket* shared_socket() { return shared_socket_.get(); }
+  LcmSocket* hardware_socket() { return hw_ ? hw_socket_.get() : shared_socket_.get(); }
+  // The file descriptors to wait on: the shared bus's, then the hardware loop's when it has a URL of its own.
   std::vector<int> fds();
+  // Handle what is queued (at most `max` messages) without blocking: how many, -1 on an error.
+  int handle_shared(int max = 1000);
+  int handle_hardware(int max = 1000);
   const std::string& url() const { return url_; }
   const std::string& ns() const { return ns_; }
   std::string channel(const std::string& name) const { return prefix_ + name; }
@@ -82,6 +100,7 @@ class Bus {
 
  private:
   std::unique_ptr<lcm::LCM> lcm_, hw_;
+  std::unique_ptr<LcmSocket> shared_socket_, hw_socket_;
   std::string url_, ns_, prefix_, hw_url_;
 };
 

@@ -20,6 +20,7 @@ struct BusFlags {
   std::string lcm_url;  // "" = LCM_DEFAULT_URL
   std::string ns;
   std::string hardware_lcm_url;  // "" = lcm_url; "auto" or a URL (hardware_url_for)
+  std::string hardware_reader = "direct";  // hardware_reader_named()
 };
 
 inline void add_bus_flags(CLI::App& app, BusFlags& f) {
@@ -33,6 +34,21 @@ inline void add_hardware_url_flag(CLI::App& app, BusFlags& f) {
                  "LCM URL of this robot's hardware loop (hardware/state, hardware/command) when it is not the "
                  "--lcm-url: `auto` moves it to a port of the shared group picked by the namespace, so that N robots "
                  "on one bus cost each process O(1) (default: the --lcm-url)");
+}
+
+// For the two loop processes (sim_server, controller_manager).
+inline void add_hardware_reader_flag(CLI::App& app, BusFlags& f) {
+  app.add_option("--hardware-reader", f.hardware_reader,
+                 "how this process receives on udpm:// URLs: `direct` reads LCM's datagrams on the loop's own "
+                 "thread (the hardware loop, and the shared bus too when the loop travels on it: no receive thread, "
+                 "a faster hand-off, the order sent kept); `lcm` through LCM's receive thread (default: direct)")
+      ->check(CLI::IsMember({"direct", "lcm"}));
+}
+
+// ", hardware loop on URL", ", read directly" or "" for a program's ready line.
+inline std::string hardware_note(Bus& bus) {
+  std::string note = bus.hardware_apart() ? ", hardware loop on " + bus.hardware_url() : "";
+  return note + (bus.hardware_socket() ? ", hardware read directly" : "");
 }
 
 inline void add_package_path_flag(CLI::App& app, std::vector<std::string>& dirs) {

@@ -72,7 +72,7 @@ struct CommandSources::Source {
 CommandSources::CommandSources(Loop& loop, Bus& bus)
     : loop_(loop),
       bus_(bus),
-      port_(bus.lcm()),
+      port_(bus.lcm(), bus.shared_socket()),
       response_pub_(port_.publisher<cm_response_t>(bus.channel(channels::kCmResponse))) {
   const std::string channel = bus.channel(channels::kCmCommandSource);
   port_.subscribe<command_source_t>(

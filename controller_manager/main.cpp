@@ -23,18 +23,9 @@ int wait_and_handle(lcm_control::Bus& bus, const std::vector<int>& fds, int time
   pollfd p[2] = {{fds[0], POLLIN, 0}, {fds.size() > 1 ? fds[1] : -1, POLLIN, 0}};
   const int r = poll(p, nfds_t(fds.size()), timeout_ms);
   if (r < 0) return errno == EINTR ? 0 : -1;
-  int handled = 0;
-  for (size_t i = fds.size(); i-- > 0;) {
-    if (!(p[i].revents & POLLIN)) continue;
-    lcm::LCM& lc = i == 0 ? bus.lcm() : bus.hardware();
-    if (lc.handle() < 0) return -1;
-    for (++handled; handled < 1000; ++handled) {
-      const int n = lc.handleTimeout(0);
-      if (n < 0) return -1;
-      if (n == 0) break;
-    }
-  }
-  return handled;
+  const int hardware = fds.size() > 1 && (p[1].revents & POLLIN) ? bus.handle_hardware(1000) : 0;
+  const int shared = hardware >= 0 && (p[0].revents & POLLIN) ? bus.handle_shared(1000) : 0;
+  return hardware < 0 || shared < 0 ? -1 : hardware + shared;
 }
 }  // namespace
 
@@ -57,6 +48,7 @@ int main(int argc, char** argv) {
   app.add_option("--config", config, "ros_control YAML (controllers as top-level keys)")->required();
   add_bus_flags(app, bus_flags);
   add_hardware_url_flag(app, bus_flags);
+  add_hardware_reader_flag(app, bus_flags);
   add_package_path_flag(app, package_path);
   std::vector<std::string> args;
   add_arg_flag(app, args);
@@ -72,7 +64,7 @@ int main(int argc, char** argv) {
     RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
     for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
-    Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url);
+    Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url, hardware_reader_named(bus_flags.hardware_reader));
     cm::ManagerOptions options;
     options.silence_us = static_cast<int64_t>(silence_s * 1e6);
     const size_t configured = model.controllers.size();
@@ -93,7 +85,7 @@ int main(int argc, char** argv) {
     sigaction(SIGTERM, &sa, nullptr);
 
     spdlog::info("ready ({} controllers configured, {} actuated joints, lcm {}{}{}{}{})", configured, actuated,
-                 bus.url(), bus.hardware_apart() ? ", hardware loop on " + bus.hardware_url() : "",
+                 bus.url(), hardware_note(bus),
                  bus.ns().empty() ? "" : ", namespace ", bus.ns(), scheduling.empty() ? "" : ", " + scheduling);
     int errors = 0;
     const std::vector<int> fds = bus.fds();

@@ -29,8 +29,8 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       options_(options),
       hw_(model_),
       loop_(hw_),
-      port_(bus.lcm()),
-      hw_port_(bus.hardware()),
+      port_(bus.lcm(), bus.shared_socket()),
+      hw_port_(bus.hardware(), bus.hardware_socket()),
       sources_(loop_, bus),
       command_pub_(hw_port_.publisher<hardware_command_t>(bus.channel(channels::kHardwareCommand))),
       stats_pub_(port_.publisher<loop_stats_t>(bus.channel(channels::kCmStatistics))) {
@@ -131,7 +131,7 @@ Reply ControllerManager::load(const std::string& name) {
   auto slot = std::make_unique<ControllerSlot>();
   slot->name = name;
   slot->type = spec->type;
-  slot->port = std::make_unique<Port>(bus_.lcm());
+  slot->port = std::make_unique<Port>(bus_.lcm(), bus_.shared_socket());
   const ControllerCheck c = instantiate(*spec, *slot->port, &slot->controller);
   if (c.outcome != ControllerCheck::Loads)
     return {false, c.outcome == ControllerCheck::NotImplemented || c.message.rfind(model_.config_path, 0) == 0
@@ -151,7 +151,7 @@ Reply ControllerManager::load(const std::string& name) {
 std::vector<ControllerCheck> ControllerManager::check_configured() {
   std::vector<ControllerCheck> out;
   for (const auto& spec : model_.controllers) {
-    Port scratch(bus_.lcm());  // unsubscribes whatever init() subscribed
+    Port scratch(bus_.lcm(), bus_.shared_socket());  // unsubscribes whatever init() subscribed
     out.push_back(instantiate(spec, scratch, nullptr));
   }
   return out;

@@ -4,10 +4,16 @@ namespace lcm_control::cm {
 
 Port::~Port() {
   for (auto* s : subs_) lc_.unsubscribe(s);
+  for (const int id : socket_subs_) socket_->unsubscribe(id);
 }
 
 void Port::subscribe_raw(const std::string& channel, std::function<void(const lcm::ReceiveBuffer&)> handler) {
   handlers_.push_back(std::make_unique<Handler>(Handler{std::move(handler), channel, {}, false}));
+  if (socket_) {
+    Handler* h = handlers_.back().get();
+    socket_subs_.push_back(socket_->subscribe(channel, [h](const lcm::ReceiveBuffer& rb) { h->on(&rb, ""); }));
+    return;
+  }
   lcm::Subscription* s = lc_.subscribe(channel, &Handler::on, handlers_.back().get());
   s->setQueueCapacity(100);
   subs_.push_back(s);

@@ -39,6 +39,8 @@ class Publisher {
 class Port {
  public:
   explicit Port(lcm::LCM& lc) : lc_(lc) {}
+  // Publishes on lc and subscribes on `socket` when it is not null (the hardware loop read directly).
+  Port(lcm::LCM& lc, LcmSocket* socket) : lc_(lc), socket_(socket) {}
   ~Port();
   Port(const Port&) = delete;
   Port& operator=(const Port&) = delete;
@@ -120,8 +122,10 @@ class Port {
     }
   };
   lcm::LCM& lc_;
+  LcmSocket* socket_ = nullptr;
   std::vector<std::unique_ptr<Handler>> handlers_;
   std::vector<lcm::Subscription*> subs_;
+  std::vector<int> socket_subs_;
 };
 
 }  // namespace lcm_control::cm

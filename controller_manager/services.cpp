@@ -43,7 +43,7 @@ std::string describe(const cm_request_t& r) {
 }
 
 Services::Services(ControllerManager& cm, Bus& bus)
-    : cm_(cm), port_(bus.lcm()), pub_(port_.publisher<cm_response_t>(bus.channel(channels::kCmResponse))) {
+    : cm_(cm), port_(bus.lcm(), bus.shared_socket()), pub_(port_.publisher<cm_response_t>(bus.channel(channels::kCmResponse))) {
   const std::string channel = bus.channel(channels::kCmRequest);
   port_.subscribe<cm_request_t>(
       channel, [this](const cm_request_t& r) { handle(r); },

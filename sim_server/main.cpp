@@ -96,6 +96,7 @@ int main(int argc, char** argv) {
   app.add_option("--log-level", log_level, "debug, info, warn or error");
   add_bus_flags(app, bus_flags);
   add_hardware_url_flag(app, bus_flags);
+  add_hardware_reader_flag(app, bus_flags);
   add_package_path_flag(app, package_path);
   std::vector<std::string> args;
   add_arg_flag(app, args);
@@ -128,7 +129,7 @@ int main(int argc, char** argv) {
     for (const auto& w : sim.multibody().start_warnings()) spdlog::warn("{}", w);
     for (const auto& w : sim.actuators().warnings()) spdlog::warn("{}", w);
     for (int i = 0; i < sim.actuators().size(); ++i) spdlog::info("{}", sim.actuators().describe(i));
-    Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url);
+    Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url, hardware_reader_named(bus_flags.hardware_reader));
     sim::SimIo io(bus, sim, opt.lockstep, clock_every);
     io.set_max_command_age(std::max<int64_t>(1, std::llround(opt.watchdog_s * rates.control_hz)));
     sim::Stepper stepper(sim, io, opt);
@@ -140,7 +141,7 @@ int main(int argc, char** argv) {
                  (world.ground ? ", ground" : ""),
                  sim.actuators().size(), rates.physics_hz, rates.control_hz,
                  rates.control_hz / clock_every,
-                 bus.url(), bus.hardware_apart() ? ", hardware loop on " + bus.hardware_url() : "",
+                 bus.url(), hardware_note(bus),
                  bus.ns().empty() ? "" : ", namespace " + bus.ns(), io.session(),
                  scheduling.empty() ? "" : ", " + scheduling);
     if (!stepper.run(g_stop)) throw BusError("LCM stopped working (handle failed); is the multicast route still there?");

@@ -16,6 +16,7 @@ namespace lcm_control::sim {
 
 namespace {
 constexpr int kMaxMessagesPastDeadline = 100;
+constexpr int kMessagesPerWake = 64;
 constexpr size_t kMaxQueuedRequests = 16;
 
 int64_t random_session() {
@@ -69,13 +70,20 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
   pending_mode_.assign(n, hardware_command_t::MODE_NONE);
   pending_value_.assign(n, 0.0);
 
-  auto& lc = bus.lcm();
-  auto& hw = bus.hardware();
-  hw_subs_.push_back(hw.subscribe(bus.channel(channels::kHardwareCommand), &SimIo::on_command, this));
-  hw_subs_.push_back(hw.subscribe(state_channel_, &SimIo::on_state, this));
-  subs_.push_back(lc.subscribe(bus.channel(channels::kEStop), &SimIo::on_e_stop, this));
-  subs_.push_back(lc.subscribe(bus.channel(gains_set_channel(channels::kSimGainsOwner)), &SimIo::on_gains, this));
-  subs_.push_back(lc.subscribe(bus.channel(channels::kSimRequest), &SimIo::on_request, this));
+  using Handler = void (SimIo::*)(const lcm::ReceiveBuffer*, const std::string&);
+  auto on = [this](lcm::LCM& lc, LcmSocket* socket, std::vector<lcm::Subscription*>& subs, const std::string& channel,
+                   Handler handler) {
+    if (socket)
+      socket_subs_.push_back(
+          socket->subscribe(channel, [this, handler](const lcm::ReceiveBuffer& rb) { (this->*handler)(&rb, ""); }));
+    else
+      subs.push_back(lc.subscribe(channel, handler, this));
+  };
+  on(bus.hardware(), bus.hardware_socket(), hw_subs_, bus.channel(channels::kHardwareCommand), &SimIo::on_command);
+  on(bus.hardware(), bus.hardware_socket(), hw_subs_, state_channel_, &SimIo::on_state);
+  on(bus.lcm(), bus.shared_socket(), subs_, bus.channel(channels::kEStop), &SimIo::on_e_stop);
+  on(bus.lcm(), bus.shared_socket(), subs_, bus.channel(gains_set_channel(channels::kSimGainsOwner)), &SimIo::on_gains);
+  on(bus.lcm(), bus.shared_socket(), subs_, bus.channel(channels::kSimRequest), &SimIo::on_request);
   const std::vector<int> fds = bus.fds();
   for (size_t i = 0; i < fds.size(); ++i) pollfds_[i] = {fds[i], POLLIN, 0};
   n_pollfds_ = int(fds.size());
@@ -84,6 +92,9 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
 SimIo::~SimIo() {
   for (auto* s : subs_) bus_.lcm().unsubscribe(s);
   for (auto* s : hw_subs_) bus_.hardware().unsubscribe(s);
+  for (const int id : socket_subs_)
+    for (LcmSocket* s : {bus_.shared_socket(), bus_.hardware_socket()})
+      if (s) s->unsubscribe(id);  // ids are unique: a socket without it keeps everything
 }
 
 void SimIo::publish_state(double real_time_factor, bool clock_again) {
@@ -136,8 +147,16 @@ bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_reque
     const int r = ppoll(pollfds_, nfds_t(n_pollfds_), &ts, nullptr);
     if (r < 0) return errno == EINTR;
     if (r == 0) return true;
-    if ((pollfds_[0].revents & POLLIN) && bus_.lcm().handle() < 0) return false;
-    if (n_pollfds_ > 1 && (pollfds_[1].revents & POLLIN) && bus_.hardware().handle() < 0) return false;
+    // One message at a time, so that what was sent after the awaited command waits for the next step.
+    for (int i = 0; i < n_pollfds_; ++i) {
+      if (!(pollfds_[i].revents & POLLIN)) continue;
+      for (int k = 0; k < kMessagesPerWake; ++k) {
+        const int n = i == 0 ? bus_.handle_shared(1) : bus_.handle_hardware(1);
+        if (n < 0) return false;
+        if ((until_command && has_pending_) || (until_request && has_request())) return true;
+        if (n == 0) break;
+      }
+    }
     if ((until_command && has_pending_) || (until_request && has_request())) return true;
   }
   return true;

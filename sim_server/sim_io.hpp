@@ -97,6 +97,7 @@ class SimIo {
   const int64_t session_;
   const std::string state_channel_, clock_channel_, gains_channel_, stats_channel_, response_channel_;
   std::vector<lcm::Subscription*> subs_, hw_subs_;  // on the shared bus, on the hardware loop
+  std::vector<int> socket_subs_;                    // on the sockets read directly (Bus::shared_socket() etc.)
   pollfd pollfds_[2] = {};  // the shared bus's, and the hardware loop's when it has its own
   int n_pollfds_ = 1;
 

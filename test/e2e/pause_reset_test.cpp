@@ -1,7 +1,8 @@
 // cmctl pause / resume / step / reset against the real sim_server and
 // controller_manager: controllers spawned while paused, exact steps, a reset
 // that restarts the controllers from the start pose without a jump, and in
-// lockstep a run after a reset repeating the one before bit for bit.
+// lockstep a run after a reset repeating the one before bit for bit, whichever
+// way the two processes receive (--hardware-reader direct or lcm).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -28,10 +29,11 @@ class Session {
       if (*p) (*p)->stop(10);
   }
 
-  void start(std::vector<std::string> sim_extra) {
-    cm_ = std::make_unique<ChildProcess>(std::vector<std::string>{bin("controller_manager"), "--urdf", urdf(),
-                                                                  "--config", yaml()},
-                                         env());
+  // sim_extra goes to sim_server; cm_extra to controller_manager.
+  void start(std::vector<std::string> sim_extra, std::vector<std::string> cm_extra = {}) {
+    std::vector<std::string> cm{bin("controller_manager"), "--urdf", urdf(), "--config", yaml()};
+    cm.insert(cm.end(), cm_extra.begin(), cm_extra.end());
+    cm_ = std::make_unique<ChildProcess>(cm, env());
     std::vector<std::string> sim{bin("sim_server"), "--urdf", urdf(), "--config", yaml()};
     sim.insert(sim.end(), sim_extra.begin(), sim_extra.end());
     sim_ = std::make_unique<ChildProcess>(sim, env());
@@ -122,6 +124,32 @@ TEST(PauseStepReset, LockstepSpawnsWhilePausedStepsExactlyAndRepeatsARunAfterARe
   j2->stop(5);
   EXPECT_TRUE(has(s.cm_output(), "hardware step went back from 1500 to 0 (a reset)")) << s.cm_output();
   EXPECT_FALSE(has(s.sim_output(), "dropped a hardware/command")) << s.sim_output();
+}
+
+// The same scripted run (spawned while paused, inputs on the sim clock, 1,500 steps) with the hardware loop read on
+// the loop threads and through LCM's receive thread: the same trajectory bit for bit.
+TEST(PauseStepReset, LockstepIsBitIdenticalWithEitherHardwareReader) {
+  std::vector<std::map<int64_t, std::vector<double>>> runs;
+  for (const std::string reader : {"direct", "lcm"}) {
+    SCOPED_TRACE(reader);
+    Session s;
+    Recorder<hardware_state_t> states(s.lc, "hardware/state");
+    ASSERT_NO_FATAL_FAILURE(s.start({"--mode", "lockstep", "--paused", "--hardware-reader", reader},
+                                    {"--hardware-reader", reader}));
+    EXPECT_EQ(has(s.sim_output(), "hardware read directly"), reader == "direct") << s.sim_output();
+    auto j1 = s.background({"turret-cmd", "--sim-time", "j1_controller", "0.5", "--rate", "60"});
+    auto j2 = s.background({"turret-cmd", "--sim-time", "j2_controller", "3.14*sin(i/100)", "--rate", "60"});
+    ASSERT_TRUE(j1->wait_for_output("turret-cmd: ", 30)) << j1->output();
+    ASSERT_TRUE(j2->wait_for_output("turret-cmd: ", 30)) << j2->output();
+    std::string out;
+    ASSERT_EQ(s.cmctl({"step", "1500"}, &out), 0) << out << s.sim_output();
+    ASSERT_TRUE(pump_until(s.lc, [&] { return !states.messages.empty() && states.messages.back().step == 1500; }, 5));
+    runs.push_back(by_step(states.messages, 0));
+    ASSERT_EQ(runs.back().size(), 1501u) << "every step 0..1500 once (lost on the bus?)";
+    EXPECT_NEAR(runs.back().at(1500)[0], 0.5, 0.02);
+    EXPECT_FALSE(has(s.sim_output(), "dropped a hardware/command")) << s.sim_output();
+  }
+  for (int64_t k = 0; k <= 1500; ++k) ASSERT_EQ(runs[0].at(k), runs[1].at(k)) << "step " << k;
 }
 
 TEST(PauseStepReset, RealTimePauseHoldsTimeSwitchesAndResetRestartsControllersWithoutAJump) {
