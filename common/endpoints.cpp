@@ -1,13 +1,13 @@
-#include "controller_manager/port.hpp"
+#include "common/endpoints.hpp"
 
-namespace lcm_control::cm {
+namespace lcm_control {
 
-Port::~Port() {
+Endpoints::~Endpoints() {
   for (auto* s : subs_) lc_.unsubscribe(s);
   for (const int id : socket_subs_) socket_->unsubscribe(id);
 }
 
-void Port::subscribe_raw(const std::string& channel, std::function<void(const lcm::ReceiveBuffer&)> handler) {
+void Endpoints::subscribe_raw(const std::string& channel, std::function<void(const lcm::ReceiveBuffer&)> handler) {
   handlers_.push_back(std::make_unique<Handler>(Handler{std::move(handler), channel, {}, false}));
   if (socket_) {
     Handler* h = handlers_.back().get();
@@ -19,14 +19,14 @@ void Port::subscribe_raw(const std::string& channel, std::function<void(const lc
   subs_.push_back(s);
 }
 
-std::vector<const Port::RawHandler*> Port::handlers_for(const std::string& channel) const {
+std::vector<const Endpoints::RawHandler*> Endpoints::handlers_for(const std::string& channel) const {
   std::vector<const RawHandler*> out;
   for (const auto& h : handlers_)
     if (h->channel == channel) out.push_back(&h->fn);
   return out;
 }
 
-void Port::divert(const std::string& channel, RawHandler to) {
+void Endpoints::divert(const std::string& channel, RawHandler to) {
   bool first = true;
   for (auto& h : handlers_) {
     if (h->channel != channel) continue;
@@ -36,10 +36,10 @@ void Port::divert(const std::string& channel, RawHandler to) {
   }
 }
 
-std::vector<std::string> Port::channels() const {
+std::vector<std::string> Endpoints::channels() const {
   std::vector<std::string> out;
   for (const auto& h : handlers_) out.push_back(h->channel);
   return out;
 }
 
-}  // namespace lcm_control::cm
+}  // namespace lcm_control

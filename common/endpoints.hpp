@@ -1,6 +1,7 @@
-// LCM endpoints of one owner (a controller, the services): subscriptions that
-// decode into a message kept between calls (no allocation once warm) and are
-// removed with the Port, and publishers that encode into a reused buffer.
+// The bus layer both processes use: the LCM endpoints of one owner (a controller, the services, sim_server's I/O):
+// subscriptions that decode into a message kept between calls (no allocation once warm) and are removed with the
+// Endpoints, on LCM's thread or on a socket read directly (Bus::shared_socket(), hardware_socket()), and
+// publishers that encode into a reused buffer.
 #pragma once
 
 #include <cstdint>
@@ -12,7 +13,7 @@
 
 #include "common/bus.hpp"
 
-namespace lcm_control::cm {
+namespace lcm_control {
 
 // Publishes one message type on one channel; after the first message of a given
 // size it neither allocates nor formats (safe on the loop path).
@@ -36,14 +37,18 @@ class Publisher {
   std::vector<uint8_t> buf_;
 };
 
-class Port {
+class Endpoints {
  public:
-  explicit Port(lcm::LCM& lc) : lc_(lc) {}
-  // Publishes on lc and subscribes on `socket` when it is not null (the hardware loop read directly).
-  Port(lcm::LCM& lc, LcmSocket* socket) : lc_(lc), socket_(socket) {}
-  ~Port();
-  Port(const Port&) = delete;
-  Port& operator=(const Port&) = delete;
+  // Publishes on lc and subscribes on `socket` when it is not null (read directly), else on lc.
+  explicit Endpoints(lcm::LCM& lc, LcmSocket* socket = nullptr) : lc_(lc), socket_(socket) {}
+  // On the bus's shared channels, or on its hardware loop (hardware/state, hardware/command).
+  enum class On { Shared, Hardware };
+  Endpoints(Bus& bus, On on)
+      : Endpoints(on == On::Shared ? bus.lcm() : bus.hardware(),
+                  on == On::Shared ? bus.shared_socket() : bus.hardware_socket()) {}
+  ~Endpoints();
+  Endpoints(const Endpoints&) = delete;
+  Endpoints& operator=(const Endpoints&) = delete;
 
   lcm::LCM& lcm() { return lc_; }
 
@@ -54,7 +59,7 @@ class Port {
   // a tighter bound on the counts), which then replaces decode_guarded's own walk.
   using Precheck = std::function<std::string(const void* data, size_t size)>;
 
-  // Decodes into a message kept by the Port; on_bad gets the reason when the
+  // Decodes into a message kept by the Endpoints; on_bad gets the reason when the
   // bytes are not a Msg (precheck refused them, or the decoder failed or threw).
   template <class Msg>
   void subscribe(const std::string& channel, std::function<void(const Msg&)> on_msg,
@@ -128,4 +133,4 @@ class Port {
   std::vector<int> socket_subs_;
 };
 
-}  // namespace lcm_control::cm
+}  // namespace lcm_control

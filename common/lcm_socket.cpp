@@ -36,9 +36,7 @@ int read_int(const std::string& url, const std::string& text, const char* what) 
 UdpmAddress parse_udpm_url(const std::string& url) {
   const std::string scheme = "udpm://";
   if (url.rfind(scheme, 0) != 0)
-    throw BusError(fmt::format("'{}' is not a udpm:// URL: the hardware loop's own reader takes only LCM's UDP "
-                               "multicast (give --hardware-reader lcm for another transport)",
-                               url));
+    throw BusError(fmt::format("'{}' is not a udpm:// URL (udpm://GROUP:PORT?ttl=N, LCM's UDP multicast)", url));
   UdpmAddress a;
   const size_t q = url.find('?');
   const std::string host_port = url.substr(scheme.size(), q == std::string::npos ? q : q - scheme.size());
@@ -55,10 +53,11 @@ UdpmAddress parse_udpm_url(const std::string& url) {
   for (size_t start = 0; start <= options.size();) {
     const size_t amp = std::min(options.find('&', start), options.size());
     const std::string kv = options.substr(start, amp - start);
-    const size_t eq = kv.find('=');
-    if (kv.substr(0, eq) == "recv_buf_size" && eq != std::string::npos)
-      a.recv_buf_size = read_int(url, kv.substr(eq + 1), "recv_buf_size");
     start = amp + 1;
+    const size_t eq = kv.find('=');
+    const std::string key = kv.substr(0, eq), value = eq == std::string::npos ? "" : kv.substr(eq + 1);
+    if (key == "recv_buf_size") a.recv_buf_size = read_int(url, value, "recv_buf_size");
+    if (key == "ttl") a.ttl = read_int(url, value, "ttl");
   }
   return a;
 }

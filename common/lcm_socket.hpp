@@ -19,10 +19,11 @@
 
 namespace lcm_control {
 
-// udpm://GROUP:PORT?recv_buf_size=N taken apart as LCM reads it (defaults 239.255.76.67, 7667).
+// udpm://GROUP:PORT?ttl=N&recv_buf_size=N taken apart as LCM reads it (defaults 239.255.76.67, 7667, ttl 0).
 struct UdpmAddress {
   std::string group = "239.255.76.67";
   int port = 7667;
+  int ttl = 0;
   int recv_buf_size = 0;  // 0: the kernel's default
 };
 // Throws BusError naming the URL when it is not a udpm:// URL LCM would take.

@@ -44,7 +44,7 @@ struct CommandSources::Echoes {
 
 struct CommandSources::Source {
   std::string controller, client, summary, channel;
-  Port* port = nullptr;  // the controller's, whose channel this source owns (diverted); null once given back
+  Endpoints* endpoints = nullptr;  // the controller's, whose channel this source owns (diverted); null once given back
   Echoes echoes;
   int64_t ignored = 0;  // messages from the bus on the channel that were not this source's echoes
   int64_t request_id = 0;
@@ -55,7 +55,7 @@ struct CommandSources::Source {
   float64_t one{};
   float64_array_t many{};
   std::vector<uint8_t> bytes;  // the encoded command, handed to the controller's handlers
-  std::vector<const Port::RawHandler*> handlers;
+  std::vector<const Endpoints::RawHandler*> handlers;
   Publisher<float64_t> pub_one;
   Publisher<float64_array_t> pub_many;
   double rate = 0, duration = 0;
@@ -72,10 +72,10 @@ struct CommandSources::Source {
 CommandSources::CommandSources(Loop& loop, Bus& bus)
     : loop_(loop),
       bus_(bus),
-      port_(bus.lcm(), bus.shared_socket()),
-      response_pub_(port_.publisher<cm_response_t>(bus.channel(channels::kCmResponse))) {
+      endpoints_(bus, Endpoints::On::Shared),
+      response_pub_(endpoints_.publisher<cm_response_t>(bus.channel(channels::kCmResponse))) {
   const std::string channel = bus.channel(channels::kCmCommandSource);
-  port_.subscribe<command_source_t>(
+  endpoints_.subscribe<command_source_t>(
       channel,
       [this](const command_source_t& r) {
         const cm_response_t* given = nullptr;
@@ -143,7 +143,7 @@ Reply CommandSources::handle(const command_source_t& r) {
     return refuse(fmt::format("duration_s {} is not >= 0", r.duration_s));
   if (r.count < 0) return refuse(fmt::format("count {} is not >= 0", r.count));
   const std::string command_channel = bus_.channel(r.controller + "/command");
-  auto handlers = slot->port->handlers_for(command_channel);
+  auto handlers = slot->endpoints->handlers_for(command_channel);
   const bool group = slot->type.find("/JointGroup") != std::string::npos;
   if (handlers.empty() || slot->type.find("JointTrajectory") != std::string::npos)
     return refuse(fmt::format("{} takes no float64_t / float64_array_t commands on '{}'", slot->type,
@@ -172,9 +172,9 @@ Reply CommandSources::handle(const command_source_t& r) {
   src->bytes.resize(static_cast<size_t>(group ? src->many.getEncodedSize() : src->one.getEncodedSize()));
   src->handlers = std::move(handlers);
   if (group)
-    src->pub_many = port_.publisher<float64_array_t>(command_channel);
+    src->pub_many = endpoints_.publisher<float64_array_t>(command_channel);
   else
-    src->pub_one = port_.publisher<float64_t>(command_channel);
+    src->pub_one = endpoints_.publisher<float64_t>(command_channel);
   src->rate = r.rate_hz;
   src->count = r.count;
   src->duration = r.duration_s;
@@ -182,9 +182,9 @@ Reply CommandSources::handle(const command_source_t& r) {
   std::string replaced;
   for (auto& s : sources_) {
     if (s->controller != r.controller) continue;
-    if (s->port) {  // the new source takes the channel over, with the echoes still on their way
+    if (s->endpoints) {  // the new source takes the channel over, with the echoes still on their way
       src->echoes = s->echoes;
-      s->port = nullptr;
+      s->endpoints = nullptr;
     }
     if (!s->end) {
       s->end = "replaced";
@@ -193,8 +193,8 @@ Reply CommandSources::handle(const command_source_t& r) {
     }
   }
   Source* owner = src.get();
-  src->port = slot->port.get();
-  src->port->divert(command_channel, [this, owner](const lcm::ReceiveBuffer& rb) { from_bus(*owner, rb); });
+  src->endpoints = slot->endpoints.get();
+  src->endpoints->divert(command_channel, [this, owner](const lcm::ReceiveBuffer& rb) { from_bus(*owner, rb); });
   std::vector<std::string> limits;
   if (r.count > 0) limits.push_back(fmt::format("{} tick(s)", r.count));
   if (r.duration_s > 0) limits.push_back(fmt::format("{:g} s", r.duration_s));
@@ -315,8 +315,8 @@ void CommandSources::from_bus(Source& s, const lcm::ReceiveBuffer& rb) {
 }
 
 void CommandSources::give_back(Source& s) {
-  if (s.port) s.port->divert(s.channel, {});
-  s.port = nullptr;
+  if (s.endpoints) s.endpoints->divert(s.channel, {});
+  s.endpoints = nullptr;
 }
 
 void CommandSources::end_for(const std::string& controller, const char* why) {

@@ -22,7 +22,7 @@
 #include "common/log.hpp"
 #include "common/expression.hpp"
 #include "controller_manager/controller.hpp"
-#include "controller_manager/port.hpp"
+#include "common/endpoints.hpp"
 #include "lcm_control/cm_response_t.hpp"
 #include "lcm_control/command_source_t.hpp"
 #include "lcm_control/float64_array_t.hpp"
@@ -69,7 +69,7 @@ class CommandSources {
 
   Loop& loop_;
   Bus& bus_;
-  Port port_;
+  Endpoints endpoints_;
   Publisher<cm_response_t> response_pub_;
   std::vector<std::unique_ptr<Source>> sources_;
   AnswerLedger<cm_response_t> ledger_;  // a resent request is answered again, not registered twice

@@ -15,7 +15,7 @@
 #include "common/robot_model.hpp"
 #include "controller_manager/hardware.hpp"
 #include "controller_manager/params.hpp"
-#include "controller_manager/port.hpp"
+#include "common/endpoints.hpp"
 
 namespace lcm_control::cm {
 
@@ -70,14 +70,14 @@ class Controller {
 class ControllerContext {
  public:
   ControllerContext(std::string name, std::string type, Params& params, const RobotModel& model, Hardware& hw, Bus& bus,
-                    Port& port)
+                    Endpoints& endpoints)
       : name_(std::move(name)),
         type_(std::move(type)),
         params_(params),
         model_(model),
         hw_(hw),
         bus_(bus),
-        port_(port) {}
+        endpoints_(endpoints) {}
 
   const std::string& name() const { return name_; }
   const std::string& type() const { return type_; }
@@ -93,7 +93,7 @@ class ControllerContext {
 
   std::string channel(const std::string& suffix) const { return bus_.channel(name_ + "/" + suffix); }
   std::string root_channel(const std::string& name) const { return bus_.channel(name); }
-  Port& port() { return port_; }
+  Endpoints& endpoints() { return endpoints_; }
   Controller*& self() { return self_; }
 
   // Non-fatal findings shown to the user once at load.
@@ -105,7 +105,7 @@ class ControllerContext {
   const RobotModel& model_;
   Hardware& hw_;
   Bus& bus_;
-  Port& port_;
+  Endpoints& endpoints_;
   Controller* self_ = nullptr;
 };
 

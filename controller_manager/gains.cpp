@@ -63,10 +63,10 @@ void serve_gains(ControllerSlot& slot, Bus& bus) {
   Controller* c = slot.controller.get();
   const std::string name = slot.name;
   auto pub =
-      std::make_shared<Publisher<pid_gains_t>>(slot.port->publisher<pid_gains_t>(bus.channel(gains_channel(name))));
+      std::make_shared<Publisher<pid_gains_t>>(slot.endpoints->publisher<pid_gains_t>(bus.channel(gains_channel(name))));
   auto answer = std::make_shared<pid_gains_t>();
   auto log = std::make_shared<BusLog>();
-  slot.port->subscribe<pid_gains_t>(
+  slot.endpoints->subscribe<pid_gains_t>(
       bus.channel(gains_set_channel(name)),
       [c, name, pub, answer, log](const pid_gains_t& req) {
         apply_gains_request(*c, name, req, *answer);

@@ -30,7 +30,7 @@ class CommandSources;
 struct ControllerSlot {
   std::string name, type;
   std::unique_ptr<Controller> controller;
-  std::unique_ptr<Port> port;       // declared after the controller: unsubscribes first
+  std::unique_ptr<Endpoints> endpoints;  // declared after the controller: unsubscribes first
   std::vector<JointData*> claimed;  // joints it commands
   bool running = false;
   bool ever_started = false;

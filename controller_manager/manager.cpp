@@ -29,13 +29,13 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       options_(options),
       hw_(model_),
       loop_(hw_),
-      port_(bus.lcm(), bus.shared_socket()),
-      hw_port_(bus.hardware(), bus.hardware_socket()),
+      endpoints_(bus, Endpoints::On::Shared),
+      hw_endpoints_(bus, Endpoints::On::Hardware),
       sources_(loop_, bus),
-      command_pub_(hw_port_.publisher<hardware_command_t>(bus.channel(channels::kHardwareCommand))),
-      stats_pub_(port_.publisher<loop_stats_t>(bus.channel(channels::kCmStatistics))) {
+      command_pub_(hw_endpoints_.publisher<hardware_command_t>(bus.channel(channels::kHardwareCommand))),
+      stats_pub_(endpoints_.publisher<loop_stats_t>(bus.channel(channels::kCmStatistics))) {
   loop_.set_command_sources(&sources_);
-  hw_port_.subscribe<hardware_state_t>(
+  hw_endpoints_.subscribe<hardware_state_t>(
       bus.channel(channels::kHardwareState),
       [this](const hardware_state_t& m) {
         const std::string why = check(m);
@@ -74,7 +74,7 @@ std::string ControllerManager::yaml_key(const std::string& controller) const {
   return model_.config_section.empty() ? controller : model_.config_section + "/" + controller;
 }
 
-ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Port& port,
+ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpoints& endpoints,
                                                std::unique_ptr<Controller>* out) {
   ControllerCheck c{spec.name, spec.type, ControllerCheck::Loads, "", {}};
   auto controller = registry_.create(spec.type);
@@ -85,7 +85,7 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Port&
     return c;
   }
   Params params(spec.params, fmt::format("{}: {}", model_.config_path, yaml_key(spec.name)));
-  ControllerContext ctx(spec.name, spec.type, params, model_, hw_, bus_, port);
+  ControllerContext ctx(spec.name, spec.type, params, model_, hw_, bus_, endpoints);
   ctx.self() = controller.get();
   try {
     controller->init(ctx);
@@ -131,8 +131,8 @@ Reply ControllerManager::load(const std::string& name) {
   auto slot = std::make_unique<ControllerSlot>();
   slot->name = name;
   slot->type = spec->type;
-  slot->port = std::make_unique<Port>(bus_.lcm(), bus_.shared_socket());
-  const ControllerCheck c = instantiate(*spec, *slot->port, &slot->controller);
+  slot->endpoints = std::make_unique<Endpoints>(bus_, Endpoints::On::Shared);
+  const ControllerCheck c = instantiate(*spec, *slot->endpoints, &slot->controller);
   if (c.outcome != ControllerCheck::Loads)
     return {false, c.outcome == ControllerCheck::NotImplemented || c.message.rfind(model_.config_path, 0) == 0
                        ? fmt::format("cannot load '{}': {}", name, c.message)
@@ -151,7 +151,7 @@ Reply ControllerManager::load(const std::string& name) {
 std::vector<ControllerCheck> ControllerManager::check_configured() {
   std::vector<ControllerCheck> out;
   for (const auto& spec : model_.controllers) {
-    Port scratch(bus_.lcm(), bus_.shared_socket());  // unsubscribes whatever init() subscribed
+    Endpoints scratch(bus_, Endpoints::On::Shared);  // unsubscribes whatever init() subscribed
     out.push_back(instantiate(spec, scratch, nullptr));
   }
   return out;

@@ -96,7 +96,7 @@ class ControllerManager {
  private:
   ControllerSlot* find(const std::string& name) const;
   // Creates and initialises a controller of `spec` on `port`; on success moves it to *out (if given).
-  ControllerCheck instantiate(const ControllerSpec& spec, Port& port, std::unique_ptr<Controller>* out);
+  ControllerCheck instantiate(const ControllerSpec& spec, Endpoints& endpoints, std::unique_ptr<Controller>* out);
   std::string yaml_key(const std::string& controller) const;  // its key path in the YAML
   void complete_pending();
   std::string names_loaded() const;
@@ -107,8 +107,8 @@ class ControllerManager {
   ManagerOptions options_;
   Hardware hw_;
   Loop loop_;
-  Port port_;
-  Port hw_port_;  // hardware/state and hardware/command: the bus's hardware loop
+  Endpoints endpoints_;
+  Endpoints hw_endpoints_;  // hardware/state and hardware/command: the bus's hardware loop
   CommandSources sources_;
   hardware_command_t command_{};
   Publisher<hardware_command_t> command_pub_;

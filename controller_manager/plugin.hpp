@@ -15,8 +15,8 @@
 
 namespace lcm_control::cm {
 
-// Raise when Controller, ControllerContext, Registry or what they hand out (JointData, Params, Port) changes.
-inline constexpr int kControllerAbi = 1;
+// Raise when Controller, ControllerContext, Registry or what they hand out (JointData, Params, Endpoints) changes.
+inline constexpr int kControllerAbi = 2;  // 2: Port became lcm_control::Endpoints (common/endpoints.hpp)
 
 // What must match between the controller manager and a library: the interface version, the C++ library's string
 // ABI, and the layout of the classes the two share.

@@ -43,9 +43,9 @@ std::string describe(const cm_request_t& r) {
 }
 
 Services::Services(ControllerManager& cm, Bus& bus)
-    : cm_(cm), port_(bus.lcm(), bus.shared_socket()), pub_(port_.publisher<cm_response_t>(bus.channel(channels::kCmResponse))) {
+    : cm_(cm), endpoints_(bus, Endpoints::On::Shared), pub_(endpoints_.publisher<cm_response_t>(bus.channel(channels::kCmResponse))) {
   const std::string channel = bus.channel(channels::kCmRequest);
-  port_.subscribe<cm_request_t>(
+  endpoints_.subscribe<cm_request_t>(
       channel, [this](const cm_request_t& r) { handle(r); },
       [this, channel](const std::string& why) {
         ++malformed_;

@@ -11,7 +11,7 @@
 #include "common/bus.hpp"
 #include "common/log.hpp"
 #include "controller_manager/manager.hpp"
-#include "controller_manager/port.hpp"
+#include "common/endpoints.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
 
@@ -28,7 +28,7 @@ class Services {
   void drain();
 
   ControllerManager& cm_;
-  Port port_;
+  Endpoints endpoints_;
   Publisher<cm_response_t> pub_;
   std::deque<cm_request_t> deferred_;
   int64_t malformed_ = 0;

@@ -43,10 +43,14 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
       clock_every_(std::max(1, clock_every)),
       session_(random_session()),
       state_channel_(bus.channel(channels::kHardwareState)),
-      clock_channel_(bus.channel(channels::kClock)),
-      gains_channel_(bus.channel(gains_channel(channels::kSimGainsOwner))),
-      stats_channel_(bus.channel(channels::kSimStatistics)),
-      response_channel_(bus.channel(channels::kSimResponse)) {
+      endpoints_(bus, Endpoints::On::Shared),
+      hw_endpoints_(bus, Endpoints::On::Hardware),
+      state_pub_(hw_endpoints_.publisher<hardware_state_t>(state_channel_)),
+      clock_pub_(endpoints_.publisher<sim_clock_t>(bus.channel(channels::kClock))),
+      base_pub_(endpoints_.publisher<odometry_t>(bus.channel(channels::kBasePose))),
+      gains_pub_(endpoints_.publisher<pid_gains_t>(bus.channel(gains_channel(channels::kSimGainsOwner)))),
+      stats_pub_(endpoints_.publisher<loop_stats_t>(bus.channel(channels::kSimStatistics))),
+      response_pub_(endpoints_.publisher<sim_response_t>(bus.channel(channels::kSimResponse))) {
   const Actuators& act = sim.actuators();
   const int n = act.size();
   resize(state_, n);
@@ -57,44 +61,27 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
   state_.session = session_;
   state_.lockstep = lockstep;
   state_.period_us = int32_t(std::llround(sim.control_period() * 1e6));
-  state_buf_.resize(state_.getEncodedSize());
-  clock_buf_.resize(clock_.getEncodedSize());
-  if (sim.multibody().floating_base()) {
+  floating_base_ = sim.multibody().floating_base();
+  if (floating_base_) {
     base_ = odometry_t{};
     base_.frame_id = "world";
     base_.child_frame_id = sim.multibody().root_link();
-    base_buf_.resize(base_.getEncodedSize());
-    base_channel_ = bus.channel(channels::kBasePose);
   }
   resize(cmd_, n);
   pending_mode_.assign(n, hardware_command_t::MODE_NONE);
   pending_value_.assign(n, 0.0);
 
-  using Handler = void (SimIo::*)(const lcm::ReceiveBuffer*, const std::string&);
-  auto on = [this](lcm::LCM& lc, LcmSocket* socket, std::vector<lcm::Subscription*>& subs, const std::string& channel,
-                   Handler handler) {
-    if (socket)
-      socket_subs_.push_back(
-          socket->subscribe(channel, [this, handler](const lcm::ReceiveBuffer& rb) { (this->*handler)(&rb, ""); }));
-    else
-      subs.push_back(lc.subscribe(channel, handler, this));
+  auto on = [this](Endpoints& e, const std::string& channel, void (SimIo::*handler)(const lcm::ReceiveBuffer&)) {
+    e.subscribe_raw(channel, [this, handler](const lcm::ReceiveBuffer& rb) { (this->*handler)(rb); });
   };
-  on(bus.hardware(), bus.hardware_socket(), hw_subs_, bus.channel(channels::kHardwareCommand), &SimIo::on_command);
-  on(bus.hardware(), bus.hardware_socket(), hw_subs_, state_channel_, &SimIo::on_state);
-  on(bus.lcm(), bus.shared_socket(), subs_, bus.channel(channels::kEStop), &SimIo::on_e_stop);
-  on(bus.lcm(), bus.shared_socket(), subs_, bus.channel(gains_set_channel(channels::kSimGainsOwner)), &SimIo::on_gains);
-  on(bus.lcm(), bus.shared_socket(), subs_, bus.channel(channels::kSimRequest), &SimIo::on_request);
+  on(hw_endpoints_, bus.channel(channels::kHardwareCommand), &SimIo::on_command);
+  on(hw_endpoints_, state_channel_, &SimIo::on_state);
+  on(endpoints_, bus.channel(channels::kEStop), &SimIo::on_e_stop);
+  on(endpoints_, bus.channel(gains_set_channel(channels::kSimGainsOwner)), &SimIo::on_gains);
+  on(endpoints_, bus.channel(channels::kSimRequest), &SimIo::on_request);
   const std::vector<int> fds = bus.fds();
   for (size_t i = 0; i < fds.size(); ++i) pollfds_[i] = {fds[i], POLLIN, 0};
   n_pollfds_ = int(fds.size());
-}
-
-SimIo::~SimIo() {
-  for (auto* s : subs_) bus_.lcm().unsubscribe(s);
-  for (auto* s : hw_subs_) bus_.hardware().unsubscribe(s);
-  for (const int id : socket_subs_)
-    for (LcmSocket* s : {bus_.shared_socket(), bus_.hardware_socket()})
-      if (s) s->unsubscribe(id);  // ids are unique: a socket without it keeps everything
 }
 
 void SimIo::publish_state(double real_time_factor, bool clock_again) {
@@ -108,17 +95,15 @@ void SimIo::publish_state(double real_time_factor, bool clock_again) {
     state_.velocity[i] = act.velocity(i);
     state_.effort[i] = act.effort(i);
   }
-  const int n = state_.encode(state_buf_.data(), 0, int(state_buf_.size()));
-  if (n > 0) bus_.hardware().publish(state_channel_, state_buf_.data(), unsigned(n));
+  state_pub_.publish(state_);
   const bool due = clock_step_ < 0 || (state_.step != clock_step_ && state_.step % clock_every_ == 0);
   if (!due && !clock_again) return;
   clock_step_ = state_.step;
   clock_.utime = state_.utime;
   clock_.step = state_.step;
   clock_.real_time_factor = real_time_factor;
-  const int m = clock_.encode(clock_buf_.data(), 0, int(clock_buf_.size()));
-  if (m > 0) bus_.lcm().publish(clock_channel_, clock_buf_.data(), unsigned(m));
-  if (!base_buf_.empty()) publish_base_pose();
+  clock_pub_.publish(clock_);
+  if (floating_base_) publish_base_pose();
 }
 
 void SimIo::publish_base_pose() {
@@ -133,11 +118,10 @@ void SimIo::publish_base_pose() {
   base_.linear = {v.x(), v.y(), v.z()};
   base_.angular = {w.x(), w.y(), w.z()};
   base_.yaw = std::atan2(pose.linear()(1, 0), pose.linear()(0, 0));
-  const int n = base_.encode(base_buf_.data(), 0, int(base_buf_.size()));
-  if (n > 0) bus_.lcm().publish(base_channel_, base_buf_.data(), unsigned(n));
+  base_pub_.publish(base_);
 }
 
-void SimIo::publish_statistics(const loop_stats_t& stats) { bus_.lcm().publish(stats_channel_, &stats); }
+void SimIo::publish_statistics(const loop_stats_t& stats) { stats_pub_.publish(stats); }
 
 bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_request) {
   for (int late = 0; late < kMaxMessagesPastDeadline;) {
@@ -199,11 +183,11 @@ void SimIo::drop(const std::string& why) {
   }
 }
 
-void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-  if (const std::string why = check_hardware_command_bytes(rbuf->data, rbuf->data_size, sim_.actuators().size());
+void SimIo::on_command(const lcm::ReceiveBuffer& rb) {
+  if (const std::string why = check_hardware_command_bytes(rb.data, rb.data_size, sim_.actuators().size());
       !why.empty())
     return drop(why);
-  if (!decode_walked(cmd_, rbuf->data, rbuf->data_size))
+  if (!decode_walked(cmd_, rb.data, rb.data_size))
     return drop("not a hardware_command_t (wrong fingerprint, truncated or undecodable)");
   const std::string why = why_rejected();
   if (!why.empty()) return drop(why);
@@ -233,10 +217,10 @@ void SimIo::on_command(const lcm::ReceiveBuffer* rbuf, const std::string&) {
 
 // hardware/state comes back to us (every socket on the port receives it anyway); one with another session is a second
 // simulator on this namespace. Only the fingerprint and the session (bytes 24-31) are read.
-void SimIo::on_state(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-  if (rbuf->data_size < 32) return;
-  const int64_t session = read_int64_be(static_cast<const uint8_t*>(rbuf->data) + 24);
-  if (payload_fingerprint(rbuf->data) != hardware_state_t::getHash() || session == session_) return;
+void SimIo::on_state(const lcm::ReceiveBuffer& rb) {
+  if (rb.data_size < 32) return;
+  const int64_t session = read_int64_be(static_cast<const uint8_t*>(rb.data) + 24);
+  if (payload_fingerprint(rb.data) != hardware_state_t::getHash() || session == session_) return;
   ++foreign_states_;
   log_.warn(fmt::format("another simulator publishes {} (session {:x}; this one is {:x}): the controller manager "
                         "follows one of them and the other is not controlled. Stop one, or give each robot its own "
@@ -244,8 +228,8 @@ void SimIo::on_state(const lcm::ReceiveBuffer* rbuf, const std::string&) {
                         state_channel_, session, session_));
 }
 
-void SimIo::on_e_stop(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-  if (!decode_guarded(e_stop_msg_, rbuf->data, rbuf->data_size)) return drop("e_stop: not an e_stop_t");
+void SimIo::on_e_stop(const lcm::ReceiveBuffer& rb) {
+  if (!decode_guarded(e_stop_msg_, rb.data, rb.data_size)) return drop("e_stop: not an e_stop_t");
   Actuators& act = sim_.actuators();
   if (e_stop_msg_.engaged != act.e_stop()) {
     const std::string who = e_stop_msg_.source.empty() ? "" : fmt::format(" by '{}'", clip(e_stop_msg_.source));
@@ -259,9 +243,9 @@ void SimIo::on_e_stop(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   act.set_e_stop(e_stop_msg_.engaged);
 }
 
-void SimIo::on_gains(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+void SimIo::on_gains(const lcm::ReceiveBuffer& rb) {
   pid_gains_t req;
-  if (!decode_guarded(req, rbuf->data, rbuf->data_size)) return drop("gains/set: not a pid_gains_t");
+  if (!decode_guarded(req, rb.data, rb.data_size)) return drop("gains/set: not a pid_gains_t");
   pid_gains_t ans = req;
   ans.utime = sim_.time_us();
   ans.owner = channels::kSimGainsOwner;
@@ -304,12 +288,12 @@ void SimIo::on_gains(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   answer_gains(ans);
 }
 
-void SimIo::answer_gains(pid_gains_t answer) { bus_.lcm().publish(gains_channel_, &answer); }
+void SimIo::answer_gains(pid_gains_t answer) { gains_pub_.publish(answer); }
 
 
-void SimIo::on_request(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+void SimIo::on_request(const lcm::ReceiveBuffer& rb) {
   sim_request_t req;
-  if (!decode_guarded(req, rbuf->data, rbuf->data_size)) return drop("sim_server/request: not a sim_request_t");
+  if (!decode_guarded(req, rb.data, rb.data_size)) return drop("sim_server/request: not a sim_request_t");
   const sim_response_t* given = nullptr;
   switch (ledger_.seen(req.request_id, &given)) {
     case AnswerLedger<sim_response_t>::Seen::Answered: return answer(*given);
@@ -338,7 +322,7 @@ sim_request_t SimIo::take_request() {
 }
 
 void SimIo::answer(const sim_response_t& a) {
-  bus_.lcm().publish(response_channel_, &a);
+  response_pub_.publish(a);
   ledger_.answered(a);
 }
 

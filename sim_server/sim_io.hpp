@@ -19,6 +19,7 @@
 
 #include "common/answer_ledger.hpp"
 #include "common/bus.hpp"
+#include "common/endpoints.hpp"
 #include "common/log.hpp"
 #include "lcm_control/e_stop_t.hpp"
 #include "lcm_control/hardware_command_t.hpp"
@@ -37,7 +38,6 @@ class SimIo {
  public:
   // clock_every: control steps per `clock` message (clock_every_for()).
   SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every = 1);
-  ~SimIo();
   SimIo(const SimIo&) = delete;
   SimIo& operator=(const SimIo&) = delete;
 
@@ -79,11 +79,11 @@ class SimIo {
   int64_t foreign_states() const { return foreign_states_; }  // hardware/state of another simulator on our channel
 
  private:
-  void on_command(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  void on_e_stop(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  void on_state(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  void on_gains(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
-  void on_request(const lcm::ReceiveBuffer* rbuf, const std::string& channel);
+  void on_command(const lcm::ReceiveBuffer& rb);
+  void on_e_stop(const lcm::ReceiveBuffer& rb);
+  void on_state(const lcm::ReceiveBuffer& rb);
+  void on_gains(const lcm::ReceiveBuffer& rb);
+  void on_request(const lcm::ReceiveBuffer& rb);
   std::string why_rejected();
   void drop(const std::string& why);
   void answer_gains(pid_gains_t answer);
@@ -95,17 +95,21 @@ class SimIo {
   const int clock_every_;
   int64_t clock_step_ = -1;  // step of the last `clock` sent
   const int64_t session_;
-  const std::string state_channel_, clock_channel_, gains_channel_, stats_channel_, response_channel_;
-  std::vector<lcm::Subscription*> subs_, hw_subs_;  // on the shared bus, on the hardware loop
-  std::vector<int> socket_subs_;                    // on the sockets read directly (Bus::shared_socket() etc.)
+  const std::string state_channel_;
+  Endpoints endpoints_, hw_endpoints_;  // the shared bus, the hardware loop
+  Publisher<hardware_state_t> state_pub_;
+  Publisher<sim_clock_t> clock_pub_;
+  Publisher<odometry_t> base_pub_;
+  Publisher<pid_gains_t> gains_pub_;
+  Publisher<loop_stats_t> stats_pub_;
+  Publisher<sim_response_t> response_pub_;
   pollfd pollfds_[2] = {};  // the shared bus's, and the hardware loop's when it has its own
   int n_pollfds_ = 1;
 
   hardware_state_t state_;
   sim_clock_t clock_;
   odometry_t base_;
-  std::vector<uint8_t> state_buf_, clock_buf_, base_buf_;
-  std::string base_channel_;
+  bool floating_base_ = false;
 
   hardware_command_t cmd_;  // decoded in place: its arrays keep their capacity
   std::vector<int8_t> pending_mode_;

@@ -21,23 +21,6 @@ namespace {
 
 constexpr const char* kChannel = "lcm_control/netcheck";
 
-struct Url {
-  std::string group;
-  int port = 0, ttl = 0;
-};
-
-Url parse_url(const std::string& url) {
-  char group[64] = {};
-  int port = 0, used = 0;
-  if (std::sscanf(url.c_str(), "udpm://%63[0-9.]:%d%n", group, &port, &used) != 2 ||
-      (url[size_t(used)] != '\0' && url[size_t(used)] != '?'))
-    throw std::runtime_error(fmt::format("{}: netcheck checks udpm:// URLs (udpm://GROUP:PORT?ttl=N)", url));
-  Url u{group, port, 0};
-  for (size_t at = url.find("ttl=", size_t(used)); at != std::string::npos; at = url.find("ttl=", at + 1))
-    if (url[at - 1] == '?' || url[at - 1] == '&') u.ttl = std::atoi(url.c_str() + at + 4);
-  return u;
-}
-
 // "eth0=192.168.1.5 lo=127.0.0.1".
 std::string addresses() {
   ifaddrs* list = nullptr;
@@ -55,7 +38,7 @@ std::string addresses() {
 
 // The interface multicast to the group leaves by, from the kernel's route (`ip route get`: the source address
 // alone does not tell it), or why there is none.
-std::string route_line(const Url& u) {
+std::string route_line(const UdpmAddress& u) {
   std::string out;
   const int rc = run_and_wait({"ip", "route", "get", u.group}, 3.0, &out);
   const size_t at = out.find(" dev ");
@@ -121,7 +104,7 @@ class Prober {
 }  // namespace
 
 int cmd_netcheck(Bus& bus, double duration_s, bool answer_only) {
-  const Url url = parse_url(bus.url());
+  const UdpmAddress url = parse_udpm_url(bus.url());
   char name[256] = {};
   gethostname(name, sizeof name - 1);
   const std::string host = name;

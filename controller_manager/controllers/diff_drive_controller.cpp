@@ -132,7 +132,7 @@ class DiffDriveController : public Controller {
     auto bad = [this, name](const std::string& why) {
       if (dropped_++ % 100 == 0) spdlog::warn("{}: dropped a cmd_vel: {} ({} dropped so far)", name, why, dropped_);
     };
-    ctx.port().subscribe<twist_t>(
+    ctx.endpoints().subscribe<twist_t>(
         ctx.channel("cmd_vel"),
         [this, bad](const twist_t& t) {
           if (!std::isfinite(t.linear.x) || !std::isfinite(t.angular.z)) return bad("NaN or Inf");
@@ -142,7 +142,7 @@ class DiffDriveController : public Controller {
           cmd_new_ = true;
         },
         bad);
-    odom_pub_ = ctx.port().publisher<odometry_t>(ctx.channel("odom"));
+    odom_pub_ = ctx.endpoints().publisher<odometry_t>(ctx.channel("odom"));
   }
 
   void starting(const Time& now) override {

@@ -38,7 +38,7 @@ class ForwardCommandController : public Controller {
       if (dropped_++ % 100 == 0) spdlog::warn("{}: dropped a command: {} ({} dropped so far)", name, why, dropped_);
     };
     if (group_) {
-      ctx.port().subscribe<float64_array_t>(
+      ctx.endpoints().subscribe<float64_array_t>(
           ctx.channel("command"),
           [this, bad](const float64_array_t& m) {
             if (static_cast<size_t>(m.size) != joints_.size()) {
@@ -52,7 +52,7 @@ class ForwardCommandController : public Controller {
           },
           bad);
     } else {
-      ctx.port().subscribe<float64_t>(
+      ctx.endpoints().subscribe<float64_t>(
           ctx.channel("command"),
           [this, bad](const float64_t& m) {
             if (!std::isfinite(m.data)) return bad("NaN or Inf");

@@ -82,7 +82,7 @@ class JointStateController : public Controller {
     }
     resize(msg_, static_cast<int>(names.size()));
     msg_.name = names;
-    pub_ = ctx.port().publisher<joint_state_t>(ctx.root_channel(channels::kJointStates));
+    pub_ = ctx.endpoints().publisher<joint_state_t>(ctx.root_channel(channels::kJointStates));
   }
 
   void starting(const Time& now) override { last_ = now.seconds() - 1.001 / rate_; }

@@ -105,10 +105,10 @@ class JointTrajectoryController : public Controller {
     for (auto* v : {&state_.desired_position, &state_.desired_velocity, &state_.desired_acceleration,
                     &state_.actual_position, &state_.actual_velocity, &state_.error_position, &state_.error_velocity})
       v->assign(n, 0.0);
-    feedback_pub_ = ctx.port().publisher<trajectory_status_t>(ctx.channel("feedback"));
-    result_pub_ = ctx.port().publisher<trajectory_status_t>(ctx.channel("result"));
-    state_pub_ = ctx.port().publisher<joint_trajectory_controller_state_t>(ctx.channel("state"));
-    ctx.port().subscribe_fresh<joint_trajectory_t>(
+    feedback_pub_ = ctx.endpoints().publisher<trajectory_status_t>(ctx.channel("feedback"));
+    result_pub_ = ctx.endpoints().publisher<trajectory_status_t>(ctx.channel("result"));
+    state_pub_ = ctx.endpoints().publisher<joint_trajectory_controller_state_t>(ctx.channel("state"));
+    ctx.endpoints().subscribe_fresh<joint_trajectory_t>(
         ctx.channel("command"), [this](const joint_trajectory_t& g) { on_goal(g); },
         [this](const std::string& why) {
           ++dropped_;

@@ -44,9 +44,9 @@ class PidController : public Controller {
                       ctx.name(), g.i));
     state_.controller = ctx.name();
     state_.joint = joint;
-    state_pub_ = ctx.port().publisher<controller_state_t>(ctx.channel("state"));
+    state_pub_ = ctx.endpoints().publisher<controller_state_t>(ctx.channel("state"));
     const std::string name = ctx.name();
-    ctx.port().subscribe<float64_t>(
+    ctx.endpoints().subscribe<float64_t>(
         ctx.channel("command"),
         [this, name](const float64_t& m) {
           if (!std::isfinite(m.data)) {
@@ -151,7 +151,7 @@ class GroupPositionPid : public Controller {
     auto bad = [this, name](const std::string& why) {
       if (dropped_++ % 100 == 0) spdlog::warn("{}: dropped a command: {} ({} dropped so far)", name, why, dropped_);
     };
-    ctx.port().subscribe<float64_array_t>(
+    ctx.endpoints().subscribe<float64_array_t>(
         ctx.channel("command"),
         [this, bad](const float64_array_t& m) {
           if (static_cast<size_t>(m.size) != joints_.size())

@@ -67,6 +67,8 @@ TEST(UdpmUrl, TakesLcmsDefaultsPortAndReceiveBufferAndNamesWhatIsWrong) {
   EXPECT_EQ(a.group, "239.1.2.3");
   EXPECT_EQ(a.port, 9001);
   EXPECT_EQ(a.recv_buf_size, 4194304);
+  EXPECT_EQ(a.ttl, 0);
+  EXPECT_EQ(parse_udpm_url("udpm://239.1.2.3:9001?ttl=1").ttl, 1);
   for (const auto& [url, says] : std::vector<std::pair<std::string, std::string>>{
            {"memq://", "not a udpm:// URL"},
            {"udpm://10.0.0.1:7667", "not an IPv4 multicast group"},

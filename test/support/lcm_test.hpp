@@ -27,11 +27,13 @@ class Recorder {
     sub_->setQueueCapacity(0);
   }
   std::vector<Msg> messages;
-  std::vector<int64_t> receive_us;  // monotonic receive times
+  std::vector<int64_t> receive_us;  // monotonic times when handled
+  std::vector<int64_t> arrival_us;  // wall-clock times LCM's receive thread read them (recv_utime)
 
  private:
-  void on(const lcm::ReceiveBuffer*, const std::string&, const Msg* m) {
+  void on(const lcm::ReceiveBuffer* rb, const std::string&, const Msg* m) {
     messages.push_back(*m);
+    arrival_us.push_back(rb->recv_utime);
     receive_us.push_back(std::chrono::duration_cast<std::chrono::microseconds>(
                              std::chrono::steady_clock::now().time_since_epoch())
                              .count());

@@ -131,7 +131,7 @@ TEST(Fuzz, ControllerManagerTakesHostilePayloadsOnEveryChannel) {
   for (const auto& s : rig.cm->loop().slots()) {
     running += s->running;
     hints.names.push_back(s->name);
-    for (const auto& c : s->port->channels()) channels.emplace_back(c, s->type);
+    for (const auto& c : s->endpoints->channels()) channels.emplace_back(c, s->type);
   }
   for (const auto& j : rig.cm->hardware().joints()) {
     hints.names.push_back(j.name);
