@@ -1,12 +1,22 @@
-// The schema walk of common/wire_check.hpp for hardware/state and
-// hardware/command, with num_actuators also bounded by the robot's actuators:
-// what the two processes run on those bytes before decoding them.
+// What both ends of the hardware loop share about its two messages: the wire
+// mode of an interface and its name, and the schema walk of
+// common/wire_check.hpp for hardware/state and hardware/command with
+// num_actuators also bounded by the robot's actuators, run on those bytes
+// before decoding them.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
+#include "common/robot_model.hpp"
+
 namespace lcm_control {
+
+// hardware_command_t::MODE_POSITION, _VELOCITY or _EFFORT for an interface.
+int8_t wire_mode(Interface i);
+// "position", "velocity", "effort" or "none" (MODE_NONE and anything unknown).
+const char* wire_mode_name(int mode);
 
 // "" when the bytes can be the message with num_actuators between 0 and max_actuators; else why not.
 std::string check_hardware_state_bytes(const void* data, size_t size, int max_actuators);

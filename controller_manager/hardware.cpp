@@ -4,36 +4,10 @@
 
 #include <cmath>
 
+#include "common/hardware_wire.hpp"
 #include "controller_manager/controller.hpp"
 
 namespace lcm_control::cm {
-
-int8_t to_mode(Interface i) {
-  switch (i) {
-    case Interface::Position:
-      return hardware_command_t::MODE_POSITION;
-    case Interface::Velocity:
-      return hardware_command_t::MODE_VELOCITY;
-    case Interface::Effort:
-      return hardware_command_t::MODE_EFFORT;
-  }
-  return hardware_command_t::MODE_NONE;
-}
-
-namespace {
-const char* mode_name(int m) {
-  switch (m) {
-    case hardware_command_t::MODE_POSITION:
-      return "position";
-    case hardware_command_t::MODE_VELOCITY:
-      return "velocity";
-    case hardware_command_t::MODE_EFFORT:
-      return "effort";
-    default:
-      return "none";
-  }
-}
-}  // namespace
 
 Hardware::Hardware(const RobotModel& model) {
   for (const auto& t : model.transmissions) {
@@ -71,9 +45,9 @@ std::string Hardware::bind(const hardware_state_t& state, hardware_command_t& co
       continue;
     }
     joint_of_actuator_[a] = static_cast<int>(k);
-    if (state.mode[a] != to_mode(j.offered.front()))
+    if (state.mode[a] != wire_mode(j.offered.front()))
       problems.push_back(fmt::format("actuator '{}' takes {} commands but the URDF transmission of joint '{}' says {}",
-                                     j.actuator, mode_name(state.mode[a]), j.name, to_string(j.offered.front())));
+                                     j.actuator, wire_mode_name(state.mode[a]), j.name, to_string(j.offered.front())));
   }
   if (!problems.empty()) {
     std::string s = "hardware does not match the URDF: ";
@@ -148,7 +122,7 @@ void Hardware::write(const hardware_state_t& s, hardware_command_t& c) const {
         break;
     }
     if (!std::isfinite(v)) continue;  // never send a NaN: the actuator holds instead
-    c.mode[a] = to_mode(i);
+    c.mode[a] = wire_mode(i);
     c.command[a] = v;
   }
 }

@@ -17,7 +17,6 @@ namespace lcm_control::cm {
 
 class Controller;
 
-int8_t to_mode(Interface i);  // hardware_command_t::MODE_*
 
 struct JointData {
   std::string name;

@@ -1,5 +1,7 @@
 #include "sim_server/actuators.hpp"
 
+#include "common/hardware_wire.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -55,17 +57,15 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
     switch (t.interfaces.front()) {
       case Interface::Position:
         a.mode = with_gains ? ActuatorMode::PositionPid : ActuatorMode::PositionDirect;
-        a.wire_mode = hardware_command_t::MODE_POSITION;
         break;
       case Interface::Velocity:
         a.mode = with_gains ? ActuatorMode::VelocityPid : ActuatorMode::VelocityMotor;
-        a.wire_mode = hardware_command_t::MODE_VELOCITY;
         break;
       case Interface::Effort:
         a.mode = ActuatorMode::Effort;
-        a.wire_mode = hardware_command_t::MODE_EFFORT;
         break;
     }
+    a.wire_mode = lcm_control::wire_mode(t.interfaces.front());
     a.has_pid = a.mode == ActuatorMode::PositionPid || a.mode == ActuatorMode::VelocityPid;
     if (a.has_pid) a.pid.set_gains(gains->second);
     // Direct position is kinematic, as in Gazebo (a capped dead-beat motor would overshoot once it saturates);

@@ -25,15 +25,6 @@ int64_t random_session() {
   return s == 0 ? 1 : s;
 }
 
-const char* mode_name(int8_t m) {
-  switch (m) {
-    case hardware_command_t::MODE_NONE: return "none";
-    case hardware_command_t::MODE_POSITION: return "position";
-    case hardware_command_t::MODE_VELOCITY: return "velocity";
-    case hardware_command_t::MODE_EFFORT: return "effort";
-  }
-  return "unknown";
-}
 }  // namespace
 
 SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
@@ -167,8 +158,8 @@ std::string SimIo::why_rejected() {
     if (cmd_.name[i] != act.name(i))
       return fmt::format("actuator {} is '{}', expected '{}' (URDF transmission order)", i, cmd_.name[i], act.name(i));
     if (cmd_.mode[i] != hardware_command_t::MODE_NONE && cmd_.mode[i] != act.wire_mode(i))
-      return fmt::format("actuator '{}' got a {} command but takes {}", act.name(i), mode_name(cmd_.mode[i]),
-                         mode_name(act.wire_mode(i)));
+      return fmt::format("actuator '{}' got a {} command but takes {}", act.name(i), wire_mode_name(cmd_.mode[i]),
+                         wire_mode_name(act.wire_mode(i)));
   }
   return "";
 }
