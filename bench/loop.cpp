@@ -19,6 +19,7 @@
 
 #include "bench/pingpong.hpp"
 #include "common/bus.hpp"
+#include "common/hardware_wire.hpp"
 #include "common/robot_model.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
@@ -28,15 +29,6 @@ namespace {
 
 using namespace lcm_control;
 using namespace lcm_control::bench;
-
-int8_t wire_mode(Interface i) {
-  switch (i) {
-    case Interface::Position: return hardware_command_t::MODE_POSITION;
-    case Interface::Velocity: return hardware_command_t::MODE_VELOCITY;
-    case Interface::Effort: return hardware_command_t::MODE_EFFORT;
-  }
-  return hardware_command_t::MODE_NONE;
-}
 
 // The lockstep hardware side, as sim_server does it: encode state k into a
 // preallocated buffer, publish, handle until the command for step k is decoded.
