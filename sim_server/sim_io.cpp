@@ -1,6 +1,7 @@
 #include "sim_server/sim_io.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <poll.h>
 #include <spdlog/spdlog.h>
 
@@ -9,6 +10,7 @@
 #include <cstring>
 #include <random>
 
+#include "common/gains_service.hpp"
 #include "common/hardware_wire.hpp"
 #include "common/messages.hpp"
 
@@ -39,7 +41,6 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
       state_pub_(hw_endpoints_.publisher<hardware_state_t>(state_channel_)),
       clock_pub_(endpoints_.publisher<sim_clock_t>(bus.channel(channels::kClock))),
       base_pub_(endpoints_.publisher<odometry_t>(bus.channel(channels::kBasePose))),
-      gains_pub_(endpoints_.publisher<pid_gains_t>(bus.channel(gains_channel(channels::kSimGainsOwner)))),
       stats_pub_(endpoints_.publisher<loop_stats_t>(bus.channel(channels::kSimStatistics))),
       response_pub_(endpoints_.publisher<sim_response_t>(bus.channel(channels::kSimResponse))) {
   const Actuators& act = sim.actuators();
@@ -68,7 +69,9 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
   on(hw_endpoints_, bus.channel(channels::kHardwareCommand), &SimIo::on_command);
   on(hw_endpoints_, state_channel_, &SimIo::on_state);
   on(endpoints_, bus.channel(channels::kEStop), &SimIo::on_e_stop);
-  on(endpoints_, bus.channel(gains_set_channel(channels::kSimGainsOwner)), &SimIo::on_gains);
+  serve_gains(endpoints_, bus, channels::kSimGainsOwner, pid_lookup(),
+              {[this] { return sim_.time_us(); }, [this] { return fmt::format(" from step {}", sim_.step_count()); },
+               [this](const std::string& message) { log_.info(message); }, [this](const std::string& why) { drop(why); }});
   on(endpoints_, bus.channel(channels::kSimRequest), &SimIo::on_request);
   const std::vector<int> fds = bus.fds();
   for (size_t i = 0; i < fds.size(); ++i) pollfds_[i] = {fds[i], POLLIN, 0};
@@ -234,53 +237,34 @@ void SimIo::on_e_stop(const lcm::ReceiveBuffer& rb) {
   act.set_e_stop(e_stop_msg_.engaged);
 }
 
-void SimIo::on_gains(const lcm::ReceiveBuffer& rb) {
-  pid_gains_t req;
-  if (!decode_guarded(req, rb.data, rb.data_size)) return drop("gains/set: not a pid_gains_t");
-  pid_gains_t ans = req;
-  ans.utime = sim_.time_us();
-  ans.owner = channels::kSimGainsOwner;
-  Actuators& act = sim_.actuators();
-  const int i = act.find_joint(req.joint);
-  if (i < 0) {
-    std::string joints;
+// The actuators' PIDs (position and velocity actuators with pid_gains), looked up through the simulation at each
+// request: a reset rebuilds the actuators.
+PidLookup SimIo::pid_lookup() {
+  PidLookup l;
+  l.joints = [this] {
+    const Actuators& act = sim_.actuators();
+    std::vector<std::string> joints;
     for (int k = 0; k < act.size(); ++k)
-      if (act.has_pid(k)) joints += (joints.empty() ? "" : ", ") + act.joint(k);
-    ans.ok = false;
-    ans.message = fmt::format("no actuated joint '{}'; joints with pid_gains: {}", req.joint,
-                              joints.empty() ? "none" : joints);
-    return answer_gains(ans);
-  }
-  if (!act.has_pid(i)) {
-    ans.ok = false;
-    ans.message = fmt::format("joint '{}' runs {} (no pid_gains); add gazebo_ros_control/pid_gains/{} to the YAML for "
-                              "a PID",
-                              req.joint, to_string(act.mode(i)), req.joint);
-    return answer_gains(ans);
-  }
-  if (!req.query) {
-    const PidGains g = gains_of(req);
-    const std::string problem = check_gains(g);
-    if (problem.empty()) {
-      act.set_gains(i, g);
-      log_.info(fmt::format("pid_gains of '{}' set to p {:g} i {:g} d {:g} i_clamp [{:g}, {:g}]{} from step {}", req.joint,
-                            g.p, g.i, g.d, g.i_clamp_min, g.i_clamp_max, g.antiwindup ? " antiwindup" : "",
-                            sim_.step_count()));
-      ans.message = fmt::format("applied from step {}", sim_.step_count());
-    } else {
-      ans.message = fmt::format("refused: {}", problem);
+      if (act.has_pid(k)) joints.push_back(act.joint(k));
+    return joints;
+  };
+  l.get = [this](const std::string& joint) { return sim_.actuators().gains(sim_.actuators().find_joint(joint)); };
+  l.set = [this](const std::string& joint, const PidGains& g) {
+    sim_.actuators().set_gains(sim_.actuators().find_joint(joint), g);
+  };
+  l.why_none = [this, joints = l.joints](const std::string& joint) {
+    const Actuators& act = sim_.actuators();
+    const int i = act.find_joint(joint);
+    if (i < 0) {
+      const std::vector<std::string> with = joints();
+      return fmt::format("no actuated joint '{}'; joints with pid_gains: {}", joint,
+                         with.empty() ? "none" : fmt::format("{}", fmt::join(with, ", ")));
     }
-    ans.ok = problem.empty();
-  } else {
-    ans.ok = true;
-    ans.message = "gains in force";
-  }
-  set_gains(ans, act.gains(i));
-  answer_gains(ans);
+    return fmt::format("joint '{}' runs {} (no pid_gains); add gazebo_ros_control/pid_gains/{} to the YAML for a PID",
+                       joint, to_string(act.mode(i)), joint);
+  };
+  return l;
 }
-
-void SimIo::answer_gains(pid_gains_t answer) { gains_pub_.publish(answer); }
-
 
 void SimIo::on_request(const lcm::ReceiveBuffer& rb) {
   sim_request_t req;

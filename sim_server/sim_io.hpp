@@ -20,6 +20,7 @@
 #include "common/answer_ledger.hpp"
 #include "common/bus.hpp"
 #include "common/endpoints.hpp"
+#include "common/gains_service.hpp"
 #include "common/log.hpp"
 #include "lcm_control/e_stop_t.hpp"
 #include "lcm_control/hardware_command_t.hpp"
@@ -82,11 +83,10 @@ class SimIo {
   void on_command(const lcm::ReceiveBuffer& rb);
   void on_e_stop(const lcm::ReceiveBuffer& rb);
   void on_state(const lcm::ReceiveBuffer& rb);
-  void on_gains(const lcm::ReceiveBuffer& rb);
   void on_request(const lcm::ReceiveBuffer& rb);
   std::string why_rejected();
   void drop(const std::string& why);
-  void answer_gains(pid_gains_t answer);
+  PidLookup pid_lookup();
   void publish_base_pose();
 
   Bus& bus_;
@@ -100,7 +100,6 @@ class SimIo {
   Publisher<hardware_state_t> state_pub_;
   Publisher<sim_clock_t> clock_pub_;
   Publisher<odometry_t> base_pub_;
-  Publisher<pid_gains_t> gains_pub_;
   Publisher<loop_stats_t> stats_pub_;
   Publisher<sim_response_t> response_pub_;
   pollfd pollfds_[2] = {};  // the shared bus's, and the hardware loop's when it has its own

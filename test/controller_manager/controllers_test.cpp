@@ -252,7 +252,7 @@ TEST(ControllerManagerPidControllers, GainsAtRunTime) {
   Controller& c = *rig.cm->loop().slots()[0]->controller;
   pid_gains_t req, ans;
   req.query = true;
-  apply_gains_request(c, "arm_position", req, ans);
+  ans = answer_gains("arm_position", pid_lookup(c), req, 0);
   EXPECT_TRUE(ans.ok) << ans.message;
   EXPECT_EQ(ans.joint, "arm");
   EXPECT_EQ(ans.p, 1000);
@@ -263,16 +263,16 @@ TEST(ControllerManagerPidControllers, GainsAtRunTime) {
   req.d = 1;
   req.i_clamp_min = -2;
   req.i_clamp_max = 2;
-  apply_gains_request(c, "arm_position", req, ans);
+  ans = answer_gains("arm_position", pid_lookup(c), req, 0);
   EXPECT_TRUE(ans.ok) << ans.message;
   EXPECT_EQ(c.pid("arm")->gains().p, 7);
   req.p = NAN;
-  apply_gains_request(c, "arm_position", req, ans);
+  ans = answer_gains("arm_position", pid_lookup(c), req, 0);
   EXPECT_FALSE(ans.ok);
   EXPECT_TRUE(has(ans.message, "p is not a finite number")) << ans.message;
   EXPECT_EQ(ans.p, 7);
   req.joint = "slide";
-  apply_gains_request(c, "arm_position", req, ans);
+  ans = answer_gains("arm_position", pid_lookup(c), req, 0);
   EXPECT_FALSE(ans.ok);
   EXPECT_TRUE(has(ans.message, "no PID for joint 'slide'")) << ans.message;
 }
