@@ -28,9 +28,7 @@ Stepper::Stepper(Simulation& sim, SimIo& io, const StepperOptions& options)
 bool Stepper::run(const std::atomic<bool>& stop) {
   start_us_ = monotonic_us();
   start_step_ = sim_.step_count();
-  w_ = Window{};
-  w_.start_us = start_us_;
-  w_.start_step = start_step_;
+  w_ = Window{start_us_, start_step_, io_.dropped()};
   return opt_.lockstep ? run_lockstep(stop) : run_real_time(stop);
 }
 
@@ -43,25 +41,13 @@ double Stepper::real_time_factor() const {
 
 void Stepper::step_timed(int64_t deadline_us) {
   const int64_t t0 = monotonic_us();
-  if (last_cycle_us_ >= 0) {
-    const double period = double(t0 - last_cycle_us_);
-    w_.period_min = w_.periods == 0 ? period : std::min(w_.period_min, period);
-    w_.period_max = std::max(w_.period_max, period);
-    w_.period_sum += period;
-    w_.period_sq += period * period;
-    ++w_.periods;
-  }
-  last_cycle_us_ = t0;
   sim_.step();
   const int64_t t1 = monotonic_us();
   publish(real_time_factor());
   const int64_t t2 = monotonic_us();
-  ++w_.cycles;
-  w_.step_sum += double(t1 - t0);
-  w_.step_max = std::max(w_.step_max, double(t1 - t0));
-  w_.publish_sum += double(t2 - t1);
-  w_.publish_max = std::max(w_.publish_max, double(t2 - t1));
-  if (deadline_us > 0 && t2 > deadline_us) ++w_.overruns;
+  stats_.add_cycle(t0, t2, deadline_us > 0 && t2 > deadline_us);
+  step_exec_.add(double(t1 - t0));
+  publish_exec_.add(double(t2 - t1));
 }
 
 bool Stepper::run_lockstep(const std::atomic<bool>& stop) {
@@ -82,7 +68,7 @@ bool Stepper::run_lockstep(const std::atomic<bool>& stop) {
       if (now - published >= timeout_us) {
         publish(real_time_factor());
         published = now;
-        ++w_.missed;
+        stats_.add_missed(1);
         if (!said)
           spdlog::info("lockstep: waiting for the hardware/command of step {} (session {}); hardware/state is "
                        "republished every {:g} s, sim time stands still",
@@ -144,15 +130,15 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
     const int64_t late = now - deadline;
     bool answered = false;
     if (late > std::max<int64_t>(kMaxCatchUpUs, std::llround(10 * period_us_))) {
-      w_.missed += std::llround(double(late) / period_us_);
+      stats_.add_missed(std::llround(double(late) / period_us_));
       rebase(now);
     } else if (opt_.overrun == Overrun::Skip && late >= period_us_) {
       answered = io_.take_command();  // the newest command holds through the skipped steps
-      w_.missed += skip_to(now);
+      stats_.add_missed(skip_to(now));
       deadline = due();
     }
     answered = io_.take_command() || answered;
-    if (!answered && io_.last_command_us() >= 0) ++w_.missed;  // the controller did not answer in time
+    if (!answered && io_.last_command_us() >= 0) stats_.add_missed(1);  // the controller did not answer in time
     watchdog(now);
     step_timed(deadline + std::llround(period_us_));
     after_step();
@@ -312,29 +298,18 @@ void Stepper::tick_statistics(int64_t now) {
   loop_stats_t s;
   s.utime = sim_.time_us();
   s.process = "sim_server";
-  s.cycles = w_.cycles;
-  const double periods = double(std::max<int64_t>(1, w_.periods));
-  s.period_mean_us = w_.period_sum / periods;
-  s.period_min_us = w_.period_min;
-  s.period_max_us = w_.period_max;
-  s.period_jitter_us = std::sqrt(std::max(0.0, w_.period_sq / periods - s.period_mean_us * s.period_mean_us));
-  s.overruns = w_.overruns;
-  s.missed = w_.missed;
-  s.dropped = io_.dropped() - w_.dropped_before;
-  s.real_time_factor = double(sim_.step_count() - w_.start_step) * period_us_ / double(now - w_.start_us);
-  const double cycles = double(std::max<int64_t>(1, w_.cycles));
-  s.exec_mean_us = (w_.step_sum + w_.publish_sum) / cycles;
-  s.exec_max_us = w_.step_max + w_.publish_max;
+  const int64_t dropped = io_.dropped();
+  stats_.add_dropped(dropped - w_.dropped_before);
+  stats_.set_real_time_factor(double(sim_.step_count() - w_.start_step) * period_us_ / double(now - w_.start_us));
+  stats_.fill_and_reset(s);
   s.num_items = 2;
   s.item = {"step", "publish"};
-  s.item_exec_mean_us = {w_.step_sum / cycles, w_.publish_sum / cycles};
-  s.item_exec_max_us = {w_.step_max, w_.publish_max};
+  s.item_exec_mean_us = {step_exec_.mean_us(), publish_exec_.mean_us()};
+  s.item_exec_max_us = {step_exec_.max_us, publish_exec_.max_us};
+  step_exec_.reset();
+  publish_exec_.reset();
   io_.publish_statistics(s);
-  const int64_t dropped = io_.dropped();
-  w_ = Window{};
-  w_.start_us = now;
-  w_.start_step = sim_.step_count();
-  w_.dropped_before = dropped;
+  w_ = Window{now, sim_.step_count(), dropped};
 }
 
 }  // namespace lcm_control::sim

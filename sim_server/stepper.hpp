@@ -9,6 +9,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "common/loop_stats.hpp"
 #include "sim_server/sim_io.hpp"
 #include "sim_server/simulation.hpp"
 
@@ -64,7 +65,7 @@ class Stepper {
   double period_us_;
   int64_t start_us_ = 0, start_step_ = 0;
   bool watchdog_holding_ = false;
-  int64_t last_cycle_us_ = -1, last_publish_us_ = -1;
+  int64_t last_publish_us_ = -1;
   int64_t base_us_ = 0, base_step_ = 0;  // real time: step base_step_ + n is due at base_us_ + n periods
   int64_t resumed_us_ = -1;              // the watchdog counts from here after a pause
   bool paused_ = false;
@@ -72,12 +73,12 @@ class Stepper {
   sim_request_t step_request_;           // the STEP under way (request_id 0: none)
   int64_t resets_ = 0;
 
-  // The current statistics window (1 s of wall time).
+  // The current statistics window (1 s of wall time): where it started, and the loop's timing in it.
   struct Window {
-    int64_t start_us = 0, start_step = 0, cycles = 0, periods = 0, overruns = 0, missed = 0, dropped_before = 0;
-    double period_sum = 0, period_sq = 0, period_min = 0, period_max = 0;
-    double step_sum = 0, step_max = 0, publish_sum = 0, publish_max = 0;
+    int64_t start_us = 0, start_step = 0, dropped_before = 0;
   } w_;
+  LoopStats stats_;
+  ExecStats step_exec_, publish_exec_;
 };
 
 }  // namespace lcm_control::sim

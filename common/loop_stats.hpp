@@ -1,6 +1,8 @@
-// Loop timing over a window (1 s by default): wall-clock period between cycles,
-// the loop's own work per cycle, overruns, missed steps, dropped messages and
-// per-controller execution time. add_*() are on the loop path: no allocation.
+// A loop's timing over one statistics window (loop_stats_t, about once a second
+// from both ends of the hardware loop): wall-clock period between cycle starts,
+// the loop's own work per cycle, overruns, missed steps, dropped messages, and
+// execution time per item (a controller, the physics step). add_*() are on the
+// loop path: no allocation.
 #pragma once
 
 #include <cstdint>
@@ -8,7 +10,7 @@
 
 #include "lcm_control/loop_stats_t.hpp"
 
-namespace lcm_control::cm {
+namespace lcm_control {
 
 struct ExecStats {
   double sum_us = 0, max_us = 0;
@@ -24,9 +26,9 @@ struct ExecStats {
 
 class LoopStats {
  public:
-  // One cycle that started at start_us and finished at end_us (monotonic); an
-  // overrun is a cycle whose work took longer than the nominal period.
-  void add_cycle(int64_t start_us, int64_t end_us, int64_t nominal_period_us);
+  // One cycle that started at start_us and whose work ended at end_us (monotonic); `overrun`: it ended late, by
+  // the loop's own rule (the controller manager: work longer than the period; sim_server: past the deadline).
+  void add_cycle(int64_t start_us, int64_t end_us, bool overrun);
   void add_missed(int64_t n) { missed_ += n; }
   void add_dropped(int64_t n) { dropped_ += n; }
   void set_real_time_factor(double f) { rtf_ = f; }
@@ -43,4 +45,4 @@ class LoopStats {
   double rtf_ = 0;
 };
 
-}  // namespace lcm_control::cm
+}  // namespace lcm_control

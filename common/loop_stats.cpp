@@ -1,11 +1,11 @@
-#include "controller_manager/stats.hpp"
+#include "common/loop_stats.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace lcm_control::cm {
+namespace lcm_control {
 
-void LoopStats::add_cycle(int64_t start_us, int64_t end_us, int64_t nominal_period_us) {
+void LoopStats::add_cycle(int64_t start_us, int64_t end_us, bool overrun) {
   ++cycles_;
   if (last_start_us_ >= 0) {
     const double p = static_cast<double>(start_us - last_start_us_);
@@ -18,7 +18,7 @@ void LoopStats::add_cycle(int64_t start_us, int64_t end_us, int64_t nominal_peri
   last_start_us_ = start_us;
   const double work = static_cast<double>(end_us - start_us);
   exec_.add(work);
-  if (nominal_period_us > 0 && work > static_cast<double>(nominal_period_us)) ++overruns_;
+  if (overrun) ++overruns_;
 }
 
 void LoopStats::fill_and_reset(loop_stats_t& m) {
@@ -39,4 +39,4 @@ void LoopStats::fill_and_reset(loop_stats_t& m) {
   last_start_us_ = keep;
 }
 
-}  // namespace lcm_control::cm
+}  // namespace lcm_control
