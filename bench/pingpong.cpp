@@ -119,6 +119,17 @@ double LcmPinger::round_trip_us(int timeout_ms) {
   return double(now_ns() - t0) / 1e3;
 }
 
+namespace {
+// How many bytes the pong to `ping` (n bytes) must have: its first 4 bytes ask, within [4, max]; 0 for a ping too
+// short to ask.
+int pong_size(const void* ping, size_t n, size_t max) {
+  if (n < sizeof(int)) return 0;
+  int asked = 0;
+  std::memcpy(&asked, ping, sizeof(int));
+  return std::clamp<int>(asked, sizeof(int), int(max));
+}
+}  // namespace
+
 int udp_echo(int port) {
   const int fd = udp_socket(port);
   std::vector<char> buf(65536);
@@ -126,11 +137,8 @@ int udp_echo(int port) {
   for (;;) {
     socklen_t len = sizeof(from);
     const ssize_t n = recvfrom(fd, buf.data(), buf.size(), 0, reinterpret_cast<sockaddr*>(&from), &len);
-    if (n < ssize_t(sizeof(int))) continue;
-    int pong = 0;
-    std::memcpy(&pong, buf.data(), sizeof(int));
-    pong = std::clamp<int>(pong, sizeof(int), int(buf.size()));
-    sendto(fd, buf.data(), size_t(pong), 0, reinterpret_cast<sockaddr*>(&from), len);
+    const int pong = n < 0 ? 0 : pong_size(buf.data(), size_t(n), buf.size());
+    if (pong > 0) sendto(fd, buf.data(), size_t(pong), 0, reinterpret_cast<sockaddr*>(&from), len);
   }
 }
 
@@ -139,11 +147,8 @@ struct Echo {
   lcm::LCM* lc;
   std::vector<uint8_t> pong = std::vector<uint8_t>(65536, 7);
   void on(const lcm::ReceiveBuffer* rbuf, const std::string&) {
-    if (rbuf->data_size < sizeof(int)) return;
-    int n = 0;
-    std::memcpy(&n, rbuf->data, sizeof(int));
-    n = std::clamp<int>(n, sizeof(int), int(pong.size()));
-    lc->publish("PONG", pong.data(), unsigned(n));
+    if (const int n = pong_size(rbuf->data, rbuf->data_size, pong.size()); n > 0)
+      lc->publish("PONG", pong.data(), unsigned(n));
   }
 };
 }  // namespace
@@ -195,11 +200,8 @@ int lcm_direct_echo(const std::string& url) {
   for (;;) {
     int n = 0;
     const uint8_t* ping = reader.wait_for("PING", 1000, &n);
-    if (!ping || n < int(sizeof(int))) continue;
-    int size = 0;
-    std::memcpy(&size, ping, sizeof(int));
-    size = std::clamp<int>(size, sizeof(int), int(pong.size()));
-    lc.publish("PONG", pong.data(), unsigned(size));
+    if (const int size = ping ? pong_size(ping, size_t(n), pong.size()) : 0; size > 0)
+      lc.publish("PONG", pong.data(), unsigned(size));
   }
 }
 

@@ -26,14 +26,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <sys/prctl.h>
-
 #include <ctime>
 #include <string>
 #include <vector>
 
 #include "bench/pingpong.hpp"
 #include "common/bus.hpp"
+#include "common/scheduling.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "lcm_control/loop_stats_t.hpp"
 
@@ -142,7 +141,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  if (slack_ns >= 0) prctl(PR_SET_TIMERSLACK, (unsigned long)std::max(1.0, slack_ns), 0, 0, 0);
+  if (slack_ns >= 0) lcm_control::set_timer_slack(long(std::max(1.0, slack_ns)));
   if (timer > 0) return timer_floor(timer, period_us, skip_overruns);
   lcm::LCM lc(url);
   if (!lc.good()) {

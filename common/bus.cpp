@@ -100,10 +100,13 @@ Bus::Bus(const std::string& url, const std::string& ns, const std::string& hardw
   }
 }
 
+// lcm::LCM's getFileno() on udpm:// starts its receive thread: only for an instance that is read through LCM.
+int Bus::shared_fd() { return shared_socket_ ? shared_socket_->fd() : lcm_->getFileno(); }
+int Bus::hardware_fd() { return !hw_ ? -1 : hw_socket_ ? hw_socket_->fd() : hw_->getFileno(); }
+
 std::vector<int> Bus::fds() {
-  // lcm::LCM's getFileno() on udpm:// starts its receive thread: only for an instance that is read through LCM.
-  std::vector<int> v{shared_socket_ ? shared_socket_->fd() : lcm_->getFileno()};
-  if (hw_) v.push_back(hw_socket_ ? hw_socket_->fd() : hw_->getFileno());
+  std::vector<int> v{shared_fd()};
+  if (hw_) v.push_back(hardware_fd());
   return v;
 }
 
@@ -124,14 +127,16 @@ int Bus::handle_shared(int max) { return handle_queued(*lcm_, shared_socket_.get
 
 int Bus::handle_hardware(int max) { return hw_ ? handle_queued(*hw_, hw_socket_.get(), max) : handle_shared(max); }
 
-bool Bus::handle(int timeout_ms) {
-  if (!hw_ && !shared_socket_) return lcm_->handleTimeout(timeout_ms) >= 0;
-  const std::vector<int> f = fds();
-  pollfd p[2] = {{f[0], POLLIN, 0}, {f.size() > 1 ? f[1] : -1, POLLIN, 0}};
-  const int r = poll(p, nfds_t(f.size()), timeout_ms);
+bool Bus::handle(int timeout_ms, int max) {
+  if (!hw_ && !shared_socket_) {
+    const int r = lcm_->handleTimeout(timeout_ms);
+    return r >= 0 && (r == 0 || handle_shared(max - 1) >= 0);
+  }
+  pollfd p[2] = {{shared_fd(), POLLIN, 0}, {hardware_fd(), POLLIN, 0}};
+  const int r = poll(p, hw_ ? 2 : 1, timeout_ms);
   if (r < 0) return errno == EINTR;
-  if (f.size() > 1 && (p[1].revents & POLLIN) && handle_hardware() < 0) return false;
-  if ((p[0].revents & POLLIN) && handle_shared() < 0) return false;
+  if (hw_ && (p[1].revents & POLLIN) && handle_hardware(max) < 0) return false;
+  if ((p[0].revents & POLLIN) && handle_shared(max) < 0) return false;
   return true;
 }
 

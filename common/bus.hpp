@@ -95,10 +95,14 @@ class Bus {
     return lcm_->publish(channel(name), &msg);
   }
 
-  // Waits up to timeout_ms for messages on either instance and handles what came; false on an LCM error.
-  bool handle(int timeout_ms);
+  // Waits up to timeout_ms for messages on either instance and handles what is queued there, the hardware loop
+  // first: at most `max` from each (one by default, so that a tool can stop after any message; the controller
+  // manager drains a backlog before its housekeeping); false on an error.
+  bool handle(int timeout_ms, int max = 1);
 
  private:
+  int shared_fd();
+  int hardware_fd();  // -1 without a hardware URL of its own
   std::unique_ptr<lcm::LCM> lcm_, hw_;
   std::unique_ptr<LcmSocket> shared_socket_, hw_socket_;
   std::string url_, ns_, prefix_, hw_url_;

@@ -11,7 +11,7 @@ void Endpoints::subscribe_raw(const std::string& channel, std::function<void(con
   handlers_.push_back(std::make_unique<Handler>(Handler{std::move(handler), channel, {}, false}));
   if (socket_) {
     Handler* h = handlers_.back().get();
-    socket_subs_.push_back(socket_->subscribe(channel, [h](const lcm::ReceiveBuffer& rb) { h->on(&rb, ""); }));
+    socket_subs_.push_back(socket_->subscribe(channel, [h](const lcm::ReceiveBuffer& rb) { h->deliver(rb); }));
     return;
   }
   lcm::Subscription* s = lc_.subscribe(channel, &Handler::on, handlers_.back().get());

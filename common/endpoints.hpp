@@ -25,9 +25,12 @@ class Publisher {
   bool valid() const { return lc_ != nullptr; }
   const std::string& channel() const { return channel_; }
   int publish(const Msg& m) {
-    const int n = m.getEncodedSize();
-    if (n > static_cast<int>(buf_.size())) buf_.resize(n);
-    if (m.encode(buf_.data(), 0, n) != n) return -1;
+    int n = m.encode(buf_.data(), 0, static_cast<int>(buf_.size()));  // the size is computed only when it grew
+    if (n < 0) {
+      buf_.resize(static_cast<size_t>(m.getEncodedSize()));
+      n = m.encode(buf_.data(), 0, static_cast<int>(buf_.size()));
+    }
+    if (n < 0) return -1;
     return lc_->publish(channel_, buf_.data(), static_cast<unsigned>(n));
   }
 
@@ -119,12 +122,13 @@ class Endpoints {
     std::string channel;
     RawHandler diverted;
     bool muted = false;  // diverted through another handler of the same channel
-    void on(const lcm::ReceiveBuffer* rb, const std::string&) {
+    void deliver(const lcm::ReceiveBuffer& rb) {
       if (diverted)
-        diverted(*rb);
+        diverted(rb);
       else if (!muted)
-        fn(*rb);
+        fn(rb);
     }
+    void on(const lcm::ReceiveBuffer* rb, const std::string&) { deliver(*rb); }
   };
   lcm::LCM& lc_;
   LcmSocket* socket_ = nullptr;

@@ -14,6 +14,7 @@
 #include <cstring>
 
 #include "common/bus.hpp"
+#include "common/wire_check.hpp"
 
 namespace lcm_control {
 
@@ -106,11 +107,6 @@ void LcmSocket::unsubscribe(int id) {
                      subscribers_.end());
 }
 
-namespace {
-uint32_t be32(const uint8_t* p) { return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | p[3]; }
-uint16_t be16(const uint8_t* p) { return uint16_t(p[0] << 8 | p[1]); }
-}  // namespace
-
 bool LcmSocket::subscribed(std::string_view channel) const {
   return std::any_of(subscribers_.begin(), subscribers_.end(), [&](const Entry& e) { return e.channel == channel; });
 }
@@ -139,8 +135,8 @@ bool LcmSocket::parse(int n, const sockaddr_in& from, std::string_view* channel,
 bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* channel, const uint8_t** payload,
                          int* size) {
   const uint8_t* b = buf_.data();
-  const uint32_t seqno = be32(b + 4), total = be32(b + 8), offset = be32(b + 12);
-  const uint16_t number = be16(b + 16), count = be16(b + 18);
+  const uint32_t seqno = read_be<uint32_t>(b + 4), total = read_be<uint32_t>(b + 8), offset = read_be<uint32_t>(b + 12);
+  const uint16_t number = read_be<uint16_t>(b + 16), count = read_be<uint16_t>(b + 18);
   const uint8_t* chunk = b + kFragmentHeader;
   uint32_t chunk_size = uint32_t(n - kFragmentHeader);
   if (count == 0 || number >= count || total > kMaxMessageBytes) {
@@ -205,23 +201,26 @@ bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* chann
   return true;
 }
 
+bool LcmSocket::receive(ssize_t* n, std::string_view* channel, const uint8_t** payload, int* size) {
+  sockaddr_in from{};
+  socklen_t from_size = sizeof(from);
+  *n = recvfrom(fd_, buf_.data(), buf_.size(), MSG_DONTWAIT, reinterpret_cast<sockaddr*>(&from), &from_size);
+  return *n >= 0 && parse(int(*n), from, channel, payload, size);
+}
+
 int LcmSocket::handle_queued(int max) {
   int read = 0;
   for (; read < max; ++read) {
-    sockaddr_in from{};
-    socklen_t from_size = sizeof(from);
-    const ssize_t n =
-        recvfrom(fd_, buf_.data(), buf_.size(), MSG_DONTWAIT, reinterpret_cast<sockaddr*>(&from), &from_size);
-    if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR ? read : -1;
+    ssize_t n = 0;
     std::string_view channel;
     const uint8_t* payload = nullptr;
     int size = 0;
-    if (!parse(int(n), from, &channel, &payload, &size)) continue;
-    for (const Entry& e : subscribers_) {
-      if (e.channel != channel) continue;
-      lcm::ReceiveBuffer rb{const_cast<uint8_t*>(payload), uint32_t(size), wall_us()};
-      e.handler(rb);
-    }
+    const bool complete = receive(&n, &channel, &payload, &size);
+    if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR ? read : -1;
+    if (!complete) continue;
+    const lcm::ReceiveBuffer rb{const_cast<uint8_t*>(payload), uint32_t(size), wall_us()};
+    for (const Entry& e : subscribers_)
+      if (e.channel == channel) e.handler(rb);
   }
   return read;
 }
@@ -232,14 +231,11 @@ const uint8_t* LcmSocket::wait_for(std::string_view channel, int timeout_ms, int
     const int64_t left_us = end - monotonic_us();
     pollfd p{fd_, POLLIN, 0};
     if (left_us < 0 || poll(&p, 1, int((left_us + 999) / 1000)) <= 0) return nullptr;
-    sockaddr_in from{};
-    socklen_t from_size = sizeof(from);
-    const ssize_t n =
-        recvfrom(fd_, buf_.data(), buf_.size(), MSG_DONTWAIT, reinterpret_cast<sockaddr*>(&from), &from_size);
+    ssize_t n = 0;
     std::string_view got;
     const uint8_t* payload = nullptr;
     int bytes = 0;
-    if (n <= 0 || !parse(int(n), from, &got, &payload, &bytes) || got != channel) continue;
+    if (!receive(&n, &got, &payload, &bytes) || got != channel) continue;
     if (size) *size = bytes;
     return payload;
   }

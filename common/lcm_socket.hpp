@@ -9,6 +9,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 #include <netinet/in.h>
+#include <sys/types.h>
 
 #include <cstdint>
 #include <functional>
@@ -60,6 +61,8 @@ class LcmSocket {
   int64_t not_lcm() const { return not_lcm_; }          // datagrams on the port that are not LCM's
 
  private:
+  // Reads one datagram into buf_ without waiting (*n: recvfrom's result): true when it completes a message.
+  bool receive(ssize_t* n, std::string_view* channel, const uint8_t** payload, int* size);
   // The channel and payload of the message the datagram of n bytes in buf_ completes; false when it completes
   // none (a fragment of one still in progress, or not LCM: counted).
   bool parse(int n, const sockaddr_in& from, std::string_view* channel, const uint8_t** payload, int* size);

@@ -18,13 +18,15 @@
 
 namespace lcm_control {
 
-// An int64 as LCM puts it on the wire (big-endian); the caller checks that the 8 bytes are there.
-inline int64_t read_int64_be(const void* p) {
+// An unsigned integer as LCM puts it on the wire (big-endian); the caller checks that the bytes are there.
+template <class U>
+inline U read_be(const void* p) {
   const auto* b = static_cast<const uint8_t*>(p);
-  uint64_t v = 0;
-  for (int k = 0; k < 8; ++k) v = v << 8 | b[k];
-  return int64_t(v);
+  U v = 0;
+  for (size_t k = 0; k < sizeof(U); ++k) v = U(v << 8 | b[k]);
+  return v;
 }
+inline int64_t read_int64_be(const void* p) { return int64_t(read_be<uint64_t>(p)); }
 
 // The type fingerprint in an LCM payload's first 8 bytes.
 inline int64_t payload_fingerprint(const void* data) { return read_int64_be(data); }
@@ -107,7 +109,7 @@ class WireWalk {
       fail();
       return false;
     }
-    v = int32_t(uint32_t(p_[0]) << 24 | uint32_t(p_[1]) << 16 | uint32_t(p_[2]) << 8 | uint32_t(p_[3]));
+    v = int32_t(read_be<uint32_t>(p_));
     skip(4);
     return true;
   }

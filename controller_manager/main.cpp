@@ -1,9 +1,6 @@
 // controller_manager: flags and wiring only. Loads the URDF and YAML, answers
 // requests, runs the loop on hardware/state, stops and unloads everything on
 // SIGINT/SIGTERM. Exit codes: 0 clean stop, 2 usage, 3 bad URDF/YAML, 4 LCM.
-#include <poll.h>
-
-#include <cerrno>
 #include <csignal>
 
 #include "common/cli.hpp"
@@ -17,16 +14,6 @@ namespace {
 volatile std::sig_atomic_t g_stop = 0;
 void on_signal(int) { g_stop = 1; }
 
-// Waits up to timeout_ms for the hardware loop or the shared bus, then handles what is queued on each (the
-// hardware first; bounded, so that a flood cannot starve the housekeeping). Messages handled, or -1 on an error.
-int wait_and_handle(lcm_control::Bus& bus, const std::vector<int>& fds, int timeout_ms) {
-  pollfd p[2] = {{fds[0], POLLIN, 0}, {fds.size() > 1 ? fds[1] : -1, POLLIN, 0}};
-  const int r = poll(p, nfds_t(fds.size()), timeout_ms);
-  if (r < 0) return errno == EINTR ? 0 : -1;
-  const int hardware = fds.size() > 1 && (p[1].revents & POLLIN) ? bus.handle_hardware(1000) : 0;
-  const int shared = hardware >= 0 && (p[0].revents & POLLIN) ? bus.handle_shared(1000) : 0;
-  return hardware < 0 || shared < 0 ? -1 : hardware + shared;
-}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -88,10 +75,10 @@ int main(int argc, char** argv) {
                  bus.url(), hardware_note(bus),
                  bus.ns().empty() ? "" : ", namespace ", bus.ns(), scheduling.empty() ? "" : ", " + scheduling);
     int errors = 0;
-    const std::vector<int> fds = bus.fds();
     while (!g_stop) {
-      const int r = wait_and_handle(bus, fds, 20);
-      if (r < 0 && !g_stop) {
+      // What is queued, the hardware loop first and at most 1,000 messages each, then the housekeeping: silence
+      // is measured after the backlog, so other traffic cannot mask a dead hardware.
+      if (!bus.handle(20, 1000) && !g_stop) {
         if (++errors > 100) throw std::runtime_error("LCM keeps failing to receive; giving up");
         continue;
       }

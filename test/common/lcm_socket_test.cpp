@@ -240,7 +240,7 @@ TEST(HardwareReader, DirectReadsTheHardwareLoopOnItsOwnSocketOnUdpmOnly) {
       other.publish("r0/e_stop", b, 4u);
       other.publish("r0/hardware/command", b, 4u);
     }
-    for (int i = 0; i < 100 && order.size() < 100; ++i) robot.handle(20);
+    for (int i = 0; i < 100 && order.size() < 100; ++i) robot.handle(20, 1000);
     std::string expected;
     for (int k = 0; k < 50; ++k) expected += "ec";
     EXPECT_EQ(order, expected);
