@@ -1,6 +1,7 @@
-// bus: rostopic and rosbag info for LCM, headless: list the channels on the bus
-// with their types and rates, measure one channel's rate, print its messages,
-// publish any lcm_control message from field=value pairs, summarise a log.
+// bus: rostopic and rosbag record/info for LCM, headless: list the channels on
+// the bus with their types and rates, measure one channel's rate, print its
+// messages, publish any lcm_control message from field=value pairs, record a
+// log in lcm-logger's format, summarise a log.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -269,6 +270,59 @@ int cmd_info(const std::string& path) {
   return kExitOk;
 }
 
+// Writes what arrives into an lcm-logger log: the same events (receive time, channel, bytes), with a queue deep
+// enough for a lockstep run, where lcm-logger's 30 messages per subscription last a few ms.
+class Recorder {
+ public:
+  Recorder(Bus& bus, const std::string& regex, const std::string& path) : log_(path, "w") {
+    if (!log_.good())
+      throw std::runtime_error("cannot write the log '" + path + "': check the folder exists and is writable");
+    bus.lcm().subscribe(regex, &Recorder::on, this)->setQueueCapacity(1000000);
+  }
+  int64_t events() const { return events_; }
+  size_t channels() const { return channels_.size(); }
+  int64_t bytes() const { return bytes_; }
+  bool failed() const { return failed_; }
+
+ private:
+  void on(const lcm::ReceiveBuffer* rb, const std::string& channel) {
+    lcm::LogEvent e{};
+    e.eventnum = events_;
+    e.timestamp = rb->recv_utime;
+    e.channel = channel;
+    e.datalen = static_cast<int32_t>(rb->data_size);
+    e.data = rb->data;
+    if (log_.writeEvent(&e) != 0) {
+      failed_ = true;  // not thrown through LCM's C dispatch: cmd_record stops and says so
+      return;
+    }
+    ++events_;
+    bytes_ += rb->data_size;
+    ++channels_[channel];
+  }
+  lcm::LogFile log_;
+  bool failed_ = false;
+  int64_t events_ = 0, bytes_ = 0;
+  std::map<std::string, int64_t> channels_;
+};
+
+int cmd_record(Bus& bus, const std::string& path, const std::string& regex, bool force, double duration) {
+  if (!force && std::filesystem::exists(path))
+    throw CLI::ValidationError("LOG", "'" + path + "' exists: give --force to overwrite it, or another file name");
+  Recorder rec(bus, regex, path);
+  fmt::print("bus record: recording '{}' on {} to {} until Ctrl-C{}\n", regex, bus.url(), path,
+             duration > 0 ? fmt::format(" or {}", seconds_text(duration)) : "");
+  std::fflush(stdout);
+  pump_until(bus, [&] { return rec.failed(); }, duration > 0 ? duration : 1e12);
+  while (!rec.failed() && bus.lcm().handleTimeout(0) > 0) {  // what LCM had queued when the time was up
+  }
+  if (rec.failed())
+    throw std::runtime_error(fmt::format("writing '{}' failed after {} messages (disk full?)", path, rec.events()));
+  fmt::print("bus record: {} messages on {} channels, {} -> {}\n", rec.events(), rec.channels(),
+             bytes_text(double(rec.bytes())), path);
+  return kExitOk;
+}
+
 int cmd_types(const std::string& type) {
   if (type.empty()) {
     for (const auto& t : message_type_names()) fmt::print("{}\n", t);
@@ -305,6 +359,7 @@ int main(int argc, char** argv) {
       "  bus pub arm_controller/command joint_trajectory_t joint_names=[j1,j2] \\\n"
       "      points[0].positions=[0.5,1.0] points[0].time_from_start=2\n"
       "  bus types joint_trajectory_t                  # the fields pub takes\n"
+      "  bus record run.lcmlog -c 'joint_states|j2_controller/command'   # then Ctrl-C\n"
       "  bus info run.lcmlog",
       "bus"};
   app.require_subcommand(1);
@@ -358,6 +413,16 @@ int main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   netcheck->add_flag("--answer", answer_only, "only answer the probes of other computers' netcheck");
 
+  std::string record_regex = ".*";
+  bool force = false;
+  auto* record = app.add_subcommand(
+      "record", "record the bus into a log in lcm-logger's format, losing nothing at lockstep's rates (rosbag record)");
+  record->add_option("LOG", log_path, "log file to write")->required();
+  record->add_option("-c,--channel", record_regex, "channels to record: a regular expression on the whole name "
+                                                   "(default .*; the namespace is not prefixed)");
+  record->add_option("--duration", duration, "stop after S seconds (default: at Ctrl-C)")->check(CLI::PositiveNumber);
+  record->add_flag("-f,--force", force, "overwrite LOG");
+
   auto* info = app.add_subcommand("info", "channels, counts, rates and duration of an lcm-logger log (rosbag info)");
   info->add_option("LOG", log_path, "log file written by lcm-logger")->required();
 
@@ -372,6 +437,7 @@ int main(int argc, char** argv) {
                                                    bus_flags.ns);
     Bus bus(url, bus_flags.ns);
     if (list->parsed()) return cmd_list(bus, list_duration);
+    if (record->parsed()) return cmd_record(bus, log_path, record_regex, force, duration);
     if (netcheck->parsed())
       return cmd_netcheck(bus, answer_only && netcheck->count("--duration") == 0 ? 0.0 : net_duration, answer_only);
     if (hz->parsed()) return cmd_hz(bus, channel, window, duration);
