@@ -1,7 +1,7 @@
 // The bus layer both processes use: the LCM endpoints of one owner (a controller, the services, sim_server's I/O):
 // subscriptions that decode into a message kept between calls (no allocation once warm) and are removed with the
 // Endpoints, on LCM's thread or on a socket read directly (Bus::shared_socket(), hardware_socket()), and
-// publishers that encode into a reused buffer.
+// publishers that encode into a reused buffer, or into an Outbox's slot (common/outbox.hpp).
 #pragma once
 
 #include <cstdint>
@@ -12,30 +12,56 @@
 #include <vector>
 
 #include "common/bus.hpp"
+#include "common/outbox.hpp"
 
 namespace lcm_control {
 
-// Publishes one message type on one channel; after the first message of a given
-// size it neither allocates nor formats (safe on the loop path).
+// Encodes m into buf (grown only when m outgrew it); the encoded size, or -1.
+template <class Msg>
+int encode_into(const Msg& m, std::vector<uint8_t>& buf) {
+  int n = m.encode(buf.data(), 0, static_cast<int>(buf.size()));  // the size is computed only when it grew
+  if (n < 0) {
+    buf.resize(static_cast<size_t>(m.getEncodedSize()));
+    n = m.encode(buf.data(), 0, static_cast<int>(buf.size()));
+  }
+  return n;
+}
+
+// Publishes one message type on one channel: sent at once, or handed to an Outbox when it has one (the loop path
+// then never touches a socket). After the first message of a given size it neither allocates nor formats.
 template <class Msg>
 class Publisher {
  public:
   Publisher() = default;
-  Publisher(lcm::LCM* lc, std::string channel) : lc_(lc), channel_(std::move(channel)) { buf_.resize(256); }
+  Publisher(lcm::LCM* lc, std::string channel, Outbox* outbox = nullptr)
+      : lc_(lc), outbox_(outbox), channel_(std::move(channel)) {
+    if (!outbox_) buf_.resize(256);
+  }
   bool valid() const { return lc_ != nullptr; }
   const std::string& channel() const { return channel_; }
+  // 0, or -1: not encodable, or dropped by the outbox (counted there).
   int publish(const Msg& m) {
-    int n = m.encode(buf_.data(), 0, static_cast<int>(buf_.size()));  // the size is computed only when it grew
-    if (n < 0) {
-      buf_.resize(static_cast<size_t>(m.getEncodedSize()));
-      n = m.encode(buf_.data(), 0, static_cast<int>(buf_.size()));
+    if (outbox_) {
+      Outbox::Slot* s = outbox_->begin();
+      if (!s) return -1;
+      const int n = encode_into(m, s->bytes);
+      if (n < 0) {
+        outbox_->abandon();
+        return -1;
+      }
+      s->channel = channel_;
+      s->size = static_cast<size_t>(n);
+      outbox_->commit();
+      return 0;
     }
+    const int n = encode_into(m, buf_);
     if (n < 0) return -1;
     return lc_->publish(channel_, buf_.data(), static_cast<unsigned>(n));
   }
 
  private:
   lcm::LCM* lc_ = nullptr;
+  Outbox* outbox_ = nullptr;
   std::string channel_;
   std::vector<uint8_t> buf_;
 };
@@ -90,9 +116,12 @@ class Endpoints {
   // Every channel subscribed, in subscription order (tests send to each).
   std::vector<std::string> channels() const;
 
+  // Publishers made from now on hand their messages to `outbox` (nullptr: they send at once).
+  void set_outbox(Outbox* outbox) { outbox_ = outbox; }
+
   template <class Msg>
   Publisher<Msg> publisher(const std::string& channel) {
-    return Publisher<Msg>(&lc_, channel);
+    return Publisher<Msg>(&lc_, channel, outbox_);
   }
 
  private:
@@ -132,6 +161,7 @@ class Endpoints {
   };
   lcm::LCM& lc_;
   LcmSocket* socket_ = nullptr;
+  Outbox* outbox_ = nullptr;
   std::vector<std::unique_ptr<Handler>> handlers_;
   std::vector<lcm::Subscription*> subs_;
   std::vector<int> socket_subs_;

@@ -20,6 +20,15 @@ namespace lcm_control::cm {
 
 namespace {
 const char* const kShuttingDown = "the controller manager is shutting down";
+
+// On udpm:// the outbox sends on an lcm::LCM of its own: its own socket and lock, so that a send in progress never
+// holds up the loop's hardware/command. Other providers (memq://) are in-process: only the bus's instance reaches it.
+std::unique_ptr<lcm::LCM> outbox_lcm(const Bus& bus) {
+  if (bus.url().rfind("udpm://", 0) != 0) return nullptr;
+  auto lc = std::make_unique<lcm::LCM>(bus.url());
+  if (!lc->good()) throw std::runtime_error("cannot open LCM at " + bus.url() + " to send the controllers' messages");
+  return lc;
+}
 }  // namespace
 
 ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry& registry, ManagerOptions options)
@@ -27,6 +36,8 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       bus_(bus),
       registry_(registry),
       options_(options),
+      outbox_lcm_(outbox_lcm(bus)),
+      outbox_(outbox_lcm_ ? *outbox_lcm_ : bus.lcm()),
       hw_(model_),
       loop_(hw_),
       endpoints_(bus, Endpoints::On::Shared),
@@ -132,6 +143,7 @@ Reply ControllerManager::load(const std::string& name) {
   slot->name = name;
   slot->type = spec->type;
   slot->endpoints = std::make_unique<Endpoints>(bus_, Endpoints::On::Shared);
+  slot->endpoints->set_outbox(&outbox_);
   const ControllerCheck c = instantiate(*spec, *slot->endpoints, &slot->controller);
   if (c.outcome != ControllerCheck::Loads)
     return {false, c.outcome == ControllerCheck::NotImplemented || c.message.rfind(model_.config_path, 0) == 0
@@ -351,7 +363,7 @@ void ControllerManager::poll(int64_t now) {
 }
 
 loop_stats_t ControllerManager::statistics() {
-  loop_stats_t m;
+  loop_stats_t m{};
   m.utime = wall_us();
   m.process = "controller_manager";
   loop_.stats().fill_and_reset(m);
@@ -365,6 +377,9 @@ loop_stats_t ControllerManager::statistics() {
   }
   m.dropped = std::max<int64_t>(0, dropped - reported_dropped_);
   reported_dropped_ = dropped;
+  const int64_t unpublished = outbox_.dropped();
+  m.unpublished = unpublished - reported_unpublished_;
+  reported_unpublished_ = unpublished;
   m.num_items = static_cast<int32_t>(m.item.size());
   return m;
 }

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/bus.hpp"
+#include "common/outbox.hpp"
 #include "common/log.hpp"
 #include "common/robot_model.hpp"
 #include "controller_manager/command_sources.hpp"
@@ -90,6 +91,8 @@ class ControllerManager {
   const hardware_command_t& last_command() const { return command_; }
 
   loop_stats_t statistics();  // the current window, then a new one
+  // Waits until the controllers' messages handed over so far have left (tests; not for the loop path).
+  void flush_published() { outbox_.flush(); }
   // Stops and unloads every controller; returns what was done.
   std::string shutdown();
 
@@ -105,6 +108,10 @@ class ControllerManager {
   Bus& bus_;
   const Registry& registry_;
   ManagerOptions options_;
+  // What the controllers publish leaves from here, not from the loop thread; declared before the controllers so
+  // that it outlives them and sends what they publish when stopped.
+  std::unique_ptr<lcm::LCM> outbox_lcm_;
+  Outbox outbox_;
   Hardware hw_;
   Loop loop_;
   Endpoints endpoints_;
@@ -119,7 +126,7 @@ class ControllerManager {
   HardwareStatus hw_status_;
   std::string pending_summary_;
   int64_t last_state_us_ = 0, last_stats_us_ = 0, bad_session_ = 0, dropped_ = 0, bad_state_logged_ = 0,
-          reported_dropped_ = 0;
+          reported_dropped_ = 0, reported_unpublished_ = 0;
   bool silent_ = false;
 };
 

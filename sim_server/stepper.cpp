@@ -295,7 +295,7 @@ void Stepper::serve(const sim_request_t& req) {
 
 void Stepper::tick_statistics(int64_t now) {
   if (now - w_.start_us < kStatsPeriodUs) return;
-  loop_stats_t s;
+  loop_stats_t s{};
   s.utime = sim_.time_us();
   s.process = "sim_server";
   const int64_t dropped = io_.dropped();

@@ -5,12 +5,12 @@
 #include <new>
 
 namespace {
-std::atomic<bool> g_counting{false};
+thread_local bool g_counting = false;  // the loop's thread only: the outbox's sending thread is not the loop path
 std::atomic<long> g_allocations{0};
 }  // namespace
 
 void* operator new(std::size_t n) {
-  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (g_counting) g_allocations.fetch_add(1, std::memory_order_relaxed);
   if (void* p = std::malloc(n ? n : 1)) return p;
   throw std::bad_alloc();
 }

@@ -1,5 +1,6 @@
-// Counts C++ heap allocations (global operator new) while counting is on, to
-// prove a code path allocates nothing. Linked into one test binary only.
+// Counts C++ heap allocations (global operator new) made on the thread that
+// turned counting on, to prove a code path allocates nothing. Linked into one
+// test binary only.
 #pragma once
 
 namespace lcm_control::testing {

@@ -204,6 +204,7 @@ TEST(ControllerManagerLoop, StatisticsCoverCyclesAndControllers) {
   EXPECT_GE(s.period_jitter_us, 0);
   EXPECT_EQ(s.item, (std::vector<std::string>{"joint_state_controller", "arm_position"}));
   EXPECT_GT(s.item_exec_mean_us[1], 0);
+  EXPECT_EQ(s.unpublished, 0);  // joint_states went through the outbox, none dropped
   EXPECT_EQ(rig.cm->statistics().cycles, 0);
 }
 

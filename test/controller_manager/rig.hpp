@@ -42,8 +42,13 @@ struct Rig {
       pump();
     }
   }
+  // Until quiet: what the controllers handed to the outbox is sent, and what that (or anything queued) makes them
+  // publish too.
   void pump() {
-    while (bus.lcm().handleTimeout(0) > 0) {
+    for (bool more = true; more;) {
+      cm->flush_published();
+      more = false;
+      while (bus.lcm().handleTimeout(0) > 0) more = true;
     }
   }
   cm::Reply load(const std::string& name) { return cm->load(name); }
