@@ -24,11 +24,11 @@
 #include "dashboard/web_server.hpp"
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
-#include "tools/cm_client.hpp"
-#include "tools/message_json.hpp"
-#include "tools/message_text.hpp"
-#include "tools/support.hpp"
-#include "tools/time_base.hpp"
+#include "tools/lib/cm_client.hpp"
+#include "tools/lib/message_json.hpp"
+#include "tools/lib/message_text.hpp"
+#include "tools/lib/support.hpp"
+#include "tools/lib/time_base.hpp"
 
 namespace lcm_control::dashboard {
 namespace {

@@ -11,7 +11,7 @@ the const overload), calling on v, per field of the .lcm file:
   v.structs(name, vec, count_name)      a variable array of nested messages
   v.nested(name, msg)                   one nested message
 so that tools read and write any message by field path without a hand-written
-function per type (tools/fields.cpp, the bus tool). for_each_type(f) calls
+function per type (tools/lib/fields.cpp, the bus tool). for_each_type(f) calls
 f(type_tag<T>{}) for every message type. kFieldInfo lists what the field
 comments say: a unit as `// [rad or m] ...`, names for a fixed inner
 dimension as `{x y z}` (CSV columns and plot paths use them).

@@ -12,13 +12,13 @@
 #include <memory>
 
 #include "common/cli.hpp"
-#include "tools/census.hpp"
-#include "tools/csv.hpp"
-#include "tools/fields.hpp"
-#include "tools/message_text.hpp"
-#include "tools/netcheck.hpp"
-#include "tools/support.hpp"
-#include "tools/time_base.hpp"
+#include "tools/lib/census.hpp"
+#include "tools/lib/csv.hpp"
+#include "tools/lib/fields.hpp"
+#include "tools/lib/message_text.hpp"
+#include "tools/lib/netcheck.hpp"
+#include "tools/lib/support.hpp"
+#include "tools/lib/time_base.hpp"
 
 namespace lcm_control::tools {
 namespace {

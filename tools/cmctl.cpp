@@ -5,9 +5,9 @@
 #include <fmt/ranges.h>
 
 #include "common/cli.hpp"
-#include "tools/cm_client.hpp"
-#include "tools/sim_client.hpp"
-#include "tools/support.hpp"
+#include "tools/lib/cm_client.hpp"
+#include "tools/lib/sim_client.hpp"
+#include "tools/lib/support.hpp"
 
 int main(int argc, char** argv) {
   using namespace lcm_control;

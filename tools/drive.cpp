@@ -9,8 +9,8 @@
 #include "common/cli.hpp"
 #include "common/expression.hpp"
 #include "lcm_control/twist_t.hpp"
-#include "tools/support.hpp"
-#include "tools/time_base.hpp"
+#include "tools/lib/support.hpp"
+#include "tools/lib/time_base.hpp"
 
 int main(int argc, char** argv) {
   using namespace lcm_control;

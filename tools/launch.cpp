@@ -17,10 +17,10 @@
 #include "common/urdf_reader.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
-#include "tools/cm_client.hpp"
-#include "tools/launch_file.hpp"
-#include "tools/supervisor.hpp"
-#include "tools/support.hpp"
+#include "tools/lib/cm_client.hpp"
+#include "tools/lib/launch_file.hpp"
+#include "tools/lib/supervisor.hpp"
+#include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
 namespace {

@@ -7,9 +7,9 @@
 #include <regex>
 
 #include "common/cli.hpp"
-#include "tools/csv.hpp"
-#include "tools/fields.hpp"
-#include "tools/support.hpp"
+#include "tools/lib/csv.hpp"
+#include "tools/lib/fields.hpp"
+#include "tools/lib/support.hpp"
 
 int main(int argc, char** argv) {
   using namespace lcm_control;

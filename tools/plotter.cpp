@@ -12,9 +12,10 @@
 #include <set>
 
 #include "common/cli.hpp"
-#include "tools/fields.hpp"
-#include "tools/support.hpp"
-#include "tools/time_base.hpp"
+#include "tools/lib/fields.hpp"
+#include "tools/lib/process.hpp"
+#include "tools/lib/support.hpp"
+#include "tools/lib/time_base.hpp"
 
 namespace lcm_control::tools {
 namespace {

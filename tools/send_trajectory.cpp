@@ -14,9 +14,9 @@
 #include "common/messages.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
-#include "tools/cm_client.hpp"
-#include "tools/support.hpp"
-#include "tools/trajectory_goal.hpp"
+#include "tools/lib/cm_client.hpp"
+#include "tools/lib/support.hpp"
+#include "tools/lib/trajectory_goal.hpp"
 
 namespace lcm_control::tools {
 namespace {

@@ -1,9 +1,9 @@
 // spawner: the controller_manager spawner. Loads controllers, starts them in
 // one strict switch, stays running, and stops and unloads them on Ctrl-C.
 #include "common/cli.hpp"
-#include "tools/cm_client.hpp"
-#include "tools/spawn.hpp"
-#include "tools/support.hpp"
+#include "tools/lib/cm_client.hpp"
+#include "tools/lib/spawn.hpp"
+#include "tools/lib/support.hpp"
 
 int main(int argc, char** argv) {
   using namespace lcm_control;

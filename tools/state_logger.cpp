@@ -6,10 +6,10 @@
 #include <memory>
 
 #include "common/cli.hpp"
-#include "tools/census.hpp"
-#include "tools/csv.hpp"
-#include "tools/fields.hpp"
-#include "tools/support.hpp"
+#include "tools/lib/census.hpp"
+#include "tools/lib/csv.hpp"
+#include "tools/lib/fields.hpp"
+#include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
 namespace {

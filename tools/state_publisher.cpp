@@ -6,8 +6,8 @@
 #include "common/messages.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/link_poses_t.hpp"
-#include "tools/kinematics.hpp"
-#include "tools/support.hpp"
+#include "tools/lib/kinematics.hpp"
+#include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
 namespace {

@@ -10,8 +10,8 @@
 #include "common/cli.hpp"
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
-#include "tools/support.hpp"
-#include "tools/time_base.hpp"
+#include "tools/lib/support.hpp"
+#include "tools/lib/time_base.hpp"
 
 namespace {
 

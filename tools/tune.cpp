@@ -6,7 +6,7 @@
 
 #include "common/cli.hpp"
 #include "lcm_control/pid_gains_t.hpp"
-#include "tools/support.hpp"
+#include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
 namespace {

@@ -14,9 +14,9 @@
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
-#include "tools/cm_client.hpp"
-#include "tools/support.hpp"
-#include "tools/time_base.hpp"
+#include "tools/lib/cm_client.hpp"
+#include "tools/lib/support.hpp"
+#include "tools/lib/time_base.hpp"
 
 namespace lcm_control::tools {
 namespace {

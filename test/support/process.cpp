@@ -1,9 +1,6 @@
 #include "test/support/process.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -15,7 +12,7 @@
 #include <stdexcept>
 #include <thread>
 
-extern char** environ;
+#include "tools/lib/process.hpp"
 
 namespace lcm_control::testing {
 
@@ -39,30 +36,15 @@ ChildProcess::ChildProcess(std::vector<std::string> argv, std::map<std::string, 
   const int fd = mkstemp(tmpl);
   if (fd < 0) throw std::runtime_error("mkstemp failed");
   log_path_ = tmpl;
-
-  std::map<std::string, std::string> all;
-  for (char** e = environ; *e; ++e) {
-    const char* eq = std::strchr(*e, '=');
-    if (eq) all[std::string(*e, static_cast<size_t>(eq - *e))] = eq + 1;
+  // In the test's process group (ctest's timeout kill takes it with the test) and not tied to the thread that
+  // started it: a test may start a child from a thread that ends before the child should.
+  try {
+    pid_ = tools::start_process(argv, tools::environment_with(env), fd, {false, false});
+  } catch (...) {
+    close(fd);
+    throw;
   }
-  for (auto& [k, v] : env) all[k] = v;
-  std::vector<std::string> env_strings;
-  for (auto& [k, v] : all) env_strings.push_back(k + "=" + v);
-  std::vector<char*> envp, args;
-  for (auto& s : env_strings) envp.push_back(s.data());
-  envp.push_back(nullptr);
-  for (auto& s : argv) args.push_back(s.data());
-  args.push_back(nullptr);
-
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_adddup2(&fa, fd, 1);
-  posix_spawn_file_actions_adddup2(&fa, fd, 2);
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  const int rc = posix_spawn(&pid_, args[0], &fa, nullptr, args.data(), envp.data());
-  posix_spawn_file_actions_destroy(&fa);
   close(fd);
-  if (rc != 0) throw std::runtime_error("cannot start " + argv[0] + ": " + std::strerror(rc));
 }
 
 ChildProcess::~ChildProcess() {
@@ -72,14 +54,12 @@ ChildProcess::~ChildProcess() {
 
 bool ChildProcess::running() {
   if (exited_ || pid_ <= 0) return false;
-  int st = 0;
-  const pid_t r = waitpid(pid_, &st, WNOHANG);
-  if (r == pid_) {
+  if (const std::optional<int> code = tools::reap_process(pid_, false)) {
     exited_ = true;
-    status_ = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    status_ = *code;
     return false;
   }
-  return r == 0;
+  return true;
 }
 
 int ChildProcess::wait(double timeout_s) {
@@ -93,10 +73,10 @@ int ChildProcess::wait(double timeout_s) {
 
 int ChildProcess::stop(double grace_s, int sig) {
   if (!running()) return status_;
-  kill(pid_, sig);
+  tools::signal_process(pid_, sig);
   const int rc = wait(grace_s);
   if (rc != -1) return rc;
-  kill(pid_, SIGKILL);
+  tools::signal_process(pid_, SIGKILL);
   return wait(5.0);
 }
 

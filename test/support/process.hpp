@@ -1,5 +1,6 @@
 // A child process for end-to-end tests: started with its output captured to a
-// file, bounded waits, and always stopped by its pid (SIGINT, then SIGKILL).
+// file, bounded waits, and always stopped by its pid (SIGINT, then SIGKILL),
+// started and reaped as launch does it (tools/lib/process.hpp).
 #pragma once
 
 #include <sys/types.h>

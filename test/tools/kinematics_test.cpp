@@ -1,6 +1,6 @@
 // Forward kinematics against hand-computed poses: turret_bot at three joint
 // configurations, and a chain with offsets that checks the composition order.
-#include "tools/kinematics.hpp"
+#include "tools/lib/kinematics.hpp"
 
 #include <gtest/gtest.h>
 

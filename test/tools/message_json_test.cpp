@@ -1,4 +1,4 @@
-#include "tools/message_json.hpp"
+#include "tools/lib/message_json.hpp"
 
 #include <gtest/gtest.h>
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/csv.hpp"
+#include "tools/lib/csv.hpp"
 
 namespace lcm_control::testing {
 

@@ -22,9 +22,9 @@
 #include "test/controller_manager/rig.hpp"
 #include "test/reliability/fuzz/payloads.hpp"
 #include "test/support/lcm_test.hpp"
-#include "tools/fields.hpp"
-#include "tools/message_text.hpp"
-#include "tools/time_base.hpp"
+#include "tools/lib/fields.hpp"
+#include "tools/lib/message_text.hpp"
+#include "tools/lib/time_base.hpp"
 
 namespace lt = lcm_control::testing;
 using namespace lcm_control;

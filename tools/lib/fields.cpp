@@ -1,5 +1,5 @@
-#include "tools/fields.hpp"
-#include "tools/message_text.hpp"
+#include "tools/lib/fields.hpp"
+#include "tools/lib/message_text.hpp"
 
 #include <fmt/format.h>
 

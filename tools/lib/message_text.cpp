@@ -1,4 +1,4 @@
-#include "tools/message_text.hpp"
+#include "tools/lib/message_text.hpp"
 
 #include <fmt/format.h>
 

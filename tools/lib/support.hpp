@@ -47,10 +47,6 @@ bool pump_until(Bus& bus, Pred&& done, double timeout_s) {
 // A fresh id for matching an answer to its request (random, positive).
 int64_t new_request_id();
 
-// Runs argv (argv[0] searched on PATH) with stdin from /dev/null and stdout +
-// stderr collected into *output; kills it after timeout_s. Returns the exit code,
-// 128+signal if killed, or -1 if it could not start or timed out.
-int run_and_wait(const std::vector<std::string>& argv, double timeout_s, std::string* output);
 
 // Seconds as text for messages: "2 s", "0.5 s".
 std::string seconds_text(double s);

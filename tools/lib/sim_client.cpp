@@ -1,11 +1,11 @@
-#include "tools/sim_client.hpp"
+#include "tools/lib/sim_client.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <stdexcept>
 
-#include "tools/support.hpp"
+#include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
 

@@ -1,4 +1,4 @@
-#include "tools/message_json.hpp"
+#include "tools/lib/message_json.hpp"
 
 #include <fmt/format.h>
 
@@ -8,7 +8,7 @@
 
 #include "common/bus.hpp"
 #include "lcm_control/visit.hpp"
-#include "tools/message_text.hpp"
+#include "tools/lib/message_text.hpp"
 
 namespace lcm_control::tools {
 namespace {

@@ -1,4 +1,4 @@
-#include "tools/trajectory_goal.hpp"
+#include "tools/lib/trajectory_goal.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -12,7 +12,7 @@
 #include "common/robot_model.hpp"
 #include "common/text.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
-#include "tools/support.hpp"
+#include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
 

@@ -1,4 +1,4 @@
-#include "tools/kinematics.hpp"
+#include "tools/lib/kinematics.hpp"
 
 #include <functional>
 

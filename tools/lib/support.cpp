@@ -1,11 +1,9 @@
-#include "tools/support.hpp"
+#include "tools/lib/support.hpp"
 
 #include <fmt/format.h>
 #include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 #include <time.h>
 
@@ -63,52 +61,6 @@ void handle_bus(Bus& bus, int timeout_ms) {
 int64_t new_request_id() {
   static std::mt19937_64 rng{std::random_device{}()};
   return int64_t(rng() >> 1) | 1;
-}
-
-int run_and_wait(const std::vector<std::string>& argv, double timeout_s, std::string* output) {
-  char tmpl[] = "/tmp/lcm_control_run_XXXXXX";
-  const int fd = mkstemp(tmpl);
-  if (fd < 0) return -1;
-  std::vector<char*> args;
-  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-  args.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_adddup2(&fa, fd, 1);
-  posix_spawn_file_actions_adddup2(&fa, fd, 2);
-  pid_t pid = -1;
-  const int rc = posix_spawnp(&pid, args[0], &fa, nullptr, args.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  close(fd);
-  int code = -1;
-  if (rc != 0) {
-    if (output) *output = fmt::format("cannot start {}: {}", argv[0], std::strerror(rc));
-  } else {
-    const int64_t end = monotonic_us() + int64_t(timeout_s * 1e6);
-    int st = 0;
-    for (;;) {
-      const pid_t r = waitpid(pid, &st, WNOHANG);
-      if (r == pid) {
-        code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
-        break;
-      }
-      if (monotonic_us() > end) {
-        kill(pid, SIGKILL);
-        waitpid(pid, &st, 0);
-        break;
-      }
-      usleep(2000);
-    }
-    if (output) {
-      std::ifstream in(tmpl);
-      std::stringstream ss;
-      ss << in.rdbuf();
-      *output = ss.str();
-    }
-  }
-  std::remove(tmpl);
-  return code;
 }
 
 std::string seconds_text(double s) { return fmt::format("{:g} s", s); }

@@ -1,12 +1,10 @@
-#include "tools/supervisor.hpp"
+#include "tools/lib/supervisor.hpp"
 
 #include <fcntl.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <poll.h>
 #include <signal.h>
-#include <sys/prctl.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -16,9 +14,8 @@
 #include <map>
 #include <stdexcept>
 
-#include "tools/support.hpp"
-
-extern char** environ;
+#include "tools/lib/process.hpp"
+#include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
 
@@ -26,24 +23,6 @@ namespace {
 void say(const std::string& line) {
   fmt::print("[launch] {}\n", line);
   std::fflush(stdout);
-}
-
-// The file execve will run: next to launch, else the first match on PATH.
-std::string resolve_program(const std::string& name, const std::string& exe_dir) {
-  namespace fs = std::filesystem;
-  std::error_code ec;
-  if (name.find('/') != std::string::npos) return name;
-  if (fs::exists(fs::path(exe_dir) / name, ec)) return (fs::path(exe_dir) / name).string();
-  const char* path = std::getenv("PATH");
-  std::string dirs = path ? path : "/usr/bin:/bin";
-  size_t start = 0;
-  while (start <= dirs.size()) {
-    const size_t end = std::min(dirs.find(':', start), dirs.size());
-    const fs::path candidate = fs::path(dirs.substr(start, end - start)) / name;
-    if (access(candidate.c_str(), X_OK) == 0) return candidate.string();
-    start = end + 1;
-  }
-  return name;  // execve fails and the child says so
 }
 }  // namespace
 
@@ -53,20 +32,15 @@ bool Child::clean() const {
 
 Supervisor::Supervisor(std::vector<std::pair<std::string, std::string>> env) {
   exe_dir_ = std::filesystem::read_symlink("/proc/self/exe").parent_path().string();
-  std::map<std::string, std::string> all;
-  for (char** e = environ; *e; ++e) {
-    const char* eq = std::strchr(*e, '=');
-    if (eq) all[std::string(static_cast<const char*>(*e), eq)] = eq + 1;
-  }
-  for (auto& [k, v] : env) all[k] = v;
-  for (auto& [k, v] : all) env_strings_.push_back(k + "=" + v);
+  std::map<std::string, std::string> overrides;
+  for (auto& [k, v] : env) overrides[k] = v;  // the last of a name wins
+  env_strings_ = environment_with(overrides);
 }
 
 Supervisor::~Supervisor() {
   for (auto& c : children_)
     if (!c->exited) {
-      kill(-c->pid, SIGKILL);
-      kill(c->pid, SIGKILL);
+      signal_process(c->pid, SIGKILL);
       reap(*c, true);
     }
 }
@@ -77,34 +51,18 @@ Child& Supervisor::start(const std::string& name, std::vector<std::string> argv,
   c->name = name;
   c->required = required;
   c->ready_text = ready_text;
-  argv[0] = resolve_program(argv[0], exe_dir_);
+  if (const std::string found = find_program(argv[0], exe_dir_); !found.empty())
+    argv[0] = found;  // else execve fails and the child says so
   c->argv = argv;
-  // Everything the child needs is built before fork: between fork and exec a
-  // child of a threaded process may only make async-signal-safe calls.
-  std::vector<char*> args, envp;
-  for (auto& a : c->argv) args.push_back(a.data());
-  args.push_back(nullptr);
-  for (auto& e : env_strings_) envp.push_back(e.data());
-  envp.push_back(nullptr);
-  const std::string cannot = fmt::format("cannot start {}: execve failed (not found or not executable)\n", argv[0]);
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error(std::string("pipe: ") + std::strerror(errno));
-  const pid_t parent = getpid();
-  const pid_t pid = fork();
-  if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
-  if (pid == 0) {
-    setpgid(0, 0);
-    prctl(PR_SET_PDEATHSIG, SIGTERM);
-    if (getppid() != parent) _exit(127);
-    signal(SIGINT, SIG_DFL);
-    signal(SIGTERM, SIG_DFL);
-    const int devnull = open("/dev/null", O_RDONLY);
-    dup2(devnull, 0);
-    dup2(fds[1], 1);
-    dup2(fds[1], 2);
-    execve(args[0], args.data(), envp.data());
-    if (write(2, cannot.data(), cannot.size()) < 0) _exit(127);
-    _exit(127);
+  pid_t pid = -1;
+  try {
+    pid = start_process(c->argv, env_strings_, fds[1]);
+  } catch (...) {
+    close(fds[0]);
+    close(fds[1]);
+    throw;
   }
   close(fds[1]);
   fcntl(fds[0], F_SETFL, O_NONBLOCK);
@@ -148,7 +106,7 @@ void Supervisor::stop(const std::vector<Child*>& cs, int64_t deadline_us) {
   for (auto* c : cs)
     if (!c->exited) {
       c->signalled = true;
-      if (kill(-c->pid, SIGINT) != 0) kill(c->pid, SIGINT);
+      signal_process(c->pid, SIGINT);
     }
   auto all_exited = [&] {
     for (auto* c : cs)
@@ -161,8 +119,7 @@ void Supervisor::stop(const std::vector<Child*>& cs, int64_t deadline_us) {
       say(fmt::format("{} (pid {}) did not stop {}: killing it", c->name, c->pid,
                       stop_requested() ? "before the second Ctrl-C" : "in time"));
       c->killed = true;
-      kill(-c->pid, SIGKILL);
-      kill(c->pid, SIGKILL);
+      signal_process(c->pid, SIGKILL);
     }
   for (auto* c : cs) reap(*c, true);
 }
@@ -212,12 +169,11 @@ void Supervisor::print_line(Child& c, std::string line) {
 
 void Supervisor::reap(Child& c, bool block) {
   if (c.exited) return;
-  int st = 0;
-  const pid_t r = waitpid(c.pid, &st, block ? 0 : WNOHANG);
-  if (r != c.pid) return;
+  const std::optional<int> code = reap_process(c.pid, block);
+  if (!code) return;
   if (c.fd >= 0) read_output(c);
   c.exited = true;
-  c.code = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+  c.code = *code;
   if (!c.clean() || !c.signalled) say(exit_text(c));
 }
 

@@ -1,8 +1,8 @@
-#include "tools/time_base.hpp"
+#include "tools/lib/time_base.hpp"
 
 #include <fmt/format.h>
 
-#include "tools/support.hpp"
+#include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
 

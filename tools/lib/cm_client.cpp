@@ -1,4 +1,4 @@
-#include "tools/cm_client.hpp"
+#include "tools/lib/cm_client.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "common/messages.hpp"
-#include "tools/support.hpp"
+#include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/fields.hpp"
+#include "tools/lib/fields.hpp"
 
 namespace lcm_control::tools {
 

@@ -1,4 +1,4 @@
-#include "tools/launch_file.hpp"
+#include "tools/lib/launch_file.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

@@ -1,4 +1,4 @@
-#include "tools/csv.hpp"
+#include "tools/lib/csv.hpp"
 
 #include <fmt/format.h>
 

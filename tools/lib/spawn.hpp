@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/cm_client.hpp"
+#include "tools/lib/cm_client.hpp"
 
 namespace lcm_control::tools {
 

@@ -1,10 +1,10 @@
-#include "tools/census.hpp"
+#include "tools/lib/census.hpp"
 
 #include <fmt/format.h>
 
 #include "common/wire_check.hpp"
-#include "tools/message_text.hpp"
-#include "tools/support.hpp"
+#include "tools/lib/message_text.hpp"
+#include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
 

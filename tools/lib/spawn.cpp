@@ -1,4 +1,4 @@
-#include "tools/spawn.hpp"
+#include "tools/lib/spawn.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <set>
 
-#include "tools/support.hpp"
+#include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
 

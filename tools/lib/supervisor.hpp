@@ -1,6 +1,7 @@
 // Child processes for launch: each in its own process group (the terminal's
 // Ctrl-C reaches launch only, which stops them in order), its output printed
-// line by line prefixed with its name, stopped with SIGINT and then SIGKILL.
+// line by line prefixed with its name, stopped with SIGINT and then SIGKILL
+// (started, signalled and reaped by tools/lib/process.hpp).
 #pragma once
 
 #include <sys/types.h>

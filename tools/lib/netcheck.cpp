@@ -1,4 +1,4 @@
-#include "tools/netcheck.hpp"
+#include "tools/lib/netcheck.hpp"
 
 #include <arpa/inet.h>
 #include <ifaddrs.h>
@@ -14,7 +14,8 @@
 #include <utility>
 
 #include "lcm_control/netcheck_t.hpp"
-#include "tools/support.hpp"
+#include "tools/lib/process.hpp"
+#include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
 namespace {
