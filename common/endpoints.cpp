@@ -19,13 +19,6 @@ void Endpoints::subscribe_raw(const std::string& channel, std::function<void(con
   subs_.push_back(s);
 }
 
-std::vector<const Endpoints::RawHandler*> Endpoints::handlers_for(const std::string& channel) const {
-  std::vector<const RawHandler*> out;
-  for (const auto& h : handlers_)
-    if (h->channel == channel) out.push_back(&h->fn);
-  return out;
-}
-
 void Endpoints::divert(const std::string& channel, RawHandler to) {
   bool first = true;
   for (auto& h : handlers_) {

@@ -106,12 +106,9 @@ class Endpoints {
     subscribe_decoded<Msg>(channel, std::move(on_msg), std::move(on_bad), false, {});
   }
 
-  // The handlers subscribed on `channel` (exact name), to deliver bytes to them
-  // in-process exactly as a received message (command sources).
   using RawHandler = std::function<void(const lcm::ReceiveBuffer&)>;
-  std::vector<const RawHandler*> handlers_for(const std::string& channel) const;
   // While diverted, what arrives from the bus on `channel` goes to `to` (once) instead of its handlers: a command
-  // source owns the channel. handlers_for() still reaches them. An empty `to` gives the channel back.
+  // source owns the channel. An empty `to` gives the channel back.
   void divert(const std::string& channel, RawHandler to);
   // Every channel subscribed, in subscription order (tests send to each).
   std::vector<std::string> channels() const;

@@ -54,10 +54,8 @@ struct CommandSources::Source {
   bool array = false;
   float64_t one{};
   float64_array_t many{};
-  std::vector<uint8_t> bytes;  // the encoded command, handed to the controller's handlers
-  std::vector<const Endpoints::RawHandler*> handlers;
-  Publisher<float64_t> pub_one;
-  Publisher<float64_array_t> pub_many;
+  const CommandInput* input = nullptr;  // the controller's: the values go to it as numbers
+  std::vector<uint8_t> bytes;           // the tick as published on the channel (its hash marks the echo)
   double rate = 0, duration = 0;
   int64_t count = 0;
   bool started = false, fresh = false;
@@ -143,15 +141,14 @@ Reply CommandSources::handle(const command_source_t& r) {
     return refuse(fmt::format("duration_s {} is not >= 0", r.duration_s));
   if (r.count < 0) return refuse(fmt::format("count {} is not >= 0", r.count));
   const std::string command_channel = bus_.channel(r.controller + "/command");
-  auto handlers = slot->endpoints->handlers_for(command_channel);
-  const bool group = slot->type.find("/JointGroup") != std::string::npos;
-  if (handlers.empty() || slot->type.find("JointTrajectory") != std::string::npos)
+  const CommandInput* input = slot->controller->command_input();
+  if (!input)
     return refuse(fmt::format("{} takes no float64_t / float64_array_t commands on '{}'", slot->type,
                               command_channel));
-  const size_t joints = slot->controller->claim().joints.size();
-  if (group && r.expressions.size() != joints)
+  const bool group = input->array;
+  if (group && r.expressions.size() != input->width)
     return refuse(fmt::format("{} expression(s) for {} joints ({} takes one value per joint)", r.expressions.size(),
-                              joints, slot->type));
+                              input->width, slot->type));
   if (!group && r.expressions.size() != 1)
     return refuse(fmt::format("{} expressions, but {} takes one value (float64_t)", r.expressions.size(), slot->type));
   auto src = std::make_unique<Source>();
@@ -170,11 +167,7 @@ Reply CommandSources::handle(const command_source_t& r) {
   src->many.size = static_cast<int32_t>(r.expressions.size());
   src->many.data.assign(r.expressions.size(), 0.0);
   src->bytes.resize(static_cast<size_t>(group ? src->many.getEncodedSize() : src->one.getEncodedSize()));
-  src->handlers = std::move(handlers);
-  if (group)
-    src->pub_many = endpoints_.publisher<float64_array_t>(command_channel);
-  else
-    src->pub_one = endpoints_.publisher<float64_t>(command_channel);
+  src->input = input;
   src->rate = r.rate_hz;
   src->count = r.count;
   src->duration = r.duration_s;
@@ -241,20 +234,14 @@ void CommandSources::before_update(const Time& now) {
       continue;
     }
     const int64_t utime = s.rate > 0 ? s.start_us + std::llround(static_cast<double>(j) * 1e6 / s.rate) : now.utime;
-    int n = 0;
+    s.input->set(s.values.data());
     if (s.array) {
       s.many.utime = utime;
       for (size_t k = 0; k < s.values.size(); ++k) s.many.data[k] = s.values[k];
-      n = s.many.encode(s.bytes.data(), 0, static_cast<int>(s.bytes.size()));
     } else {
       s.one.utime = utime;
       s.one.data = s.values[0];
-      n = s.one.encode(s.bytes.data(), 0, static_cast<int>(s.bytes.size()));
     }
-    if (n <= 0) continue;
-    s.echoes.sent(hash_of(s.bytes.data(), static_cast<size_t>(n)));
-    lcm::ReceiveBuffer rb{s.bytes.data(), static_cast<uint32_t>(n), now.utime};
-    for (const auto* h : s.handlers) (*h)(rb);
     s.fresh = true;
     s.next = j + 1;
     ++s.ticks;
@@ -271,10 +258,11 @@ void CommandSources::after_cycle() {
     Source& s = *sp;
     if (!s.fresh) continue;
     s.fresh = false;
-    if (s.array)
-      s.pub_many.publish(s.many);
-    else
-      s.pub_one.publish(s.one);
+    const int n = s.array ? s.many.encode(s.bytes.data(), 0, static_cast<int>(s.bytes.size()))
+                          : s.one.encode(s.bytes.data(), 0, static_cast<int>(s.bytes.size()));
+    if (n <= 0) continue;
+    s.echoes.sent(hash_of(s.bytes.data(), static_cast<size_t>(n)));
+    endpoints_.lcm().publish(s.channel, s.bytes.data(), static_cast<unsigned>(n));
   }
 }
 

@@ -1,10 +1,10 @@
 // Command sources: the controller manager generates a controller's commands
 // itself, on hardware time, from muparser expressions (command_source_t on
 // `controller_manager/command_source`). Tick j is due j/rate after the first
-// cycle in which the controller runs; its values are delivered through the
-// controller's own `<controller>/command` handler before that cycle's update
-// (so lockstep runs repeat exactly) and published on that channel after the
-// cycle. While a source runs it owns that channel: its own messages coming
+// cycle in which the controller runs; its values are handed to the
+// controller's command input (CommandInput, as numbers) before that cycle's
+// update (so lockstep runs repeat exactly) and published on
+// `<controller>/command` after the cycle. While a source runs it owns that channel: its own messages coming
 // back from the bus are not delivered again (they may come after a newer
 // tick), and another publisher's are ignored and counted in its end.
 // before_update() and after_cycle() neither allocate nor log. A

@@ -1,8 +1,14 @@
 #include "controller_manager/controller.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
+#include <cmath>
+
+#include "common/messages.hpp"
 #include "controller_manager/claims.hpp"
+#include "lcm_control/float64_array_t.hpp"
+#include "lcm_control/float64_t.hpp"
 
 namespace lcm_control::cm {
 
@@ -37,5 +43,35 @@ const JointData* ControllerContext::read(const std::string& joint, const std::st
 }
 
 std::vector<std::string> ControllerContext::actuated_joints() const { return model_.actuated_joints(); }
+
+void ControllerContext::take_commands(bool array, size_t width, std::function<void(const double* values)> set) {
+  if (!self_) throw ControllerError(fmt::format("controller '{}': take_commands() outside init()", name_));
+  Controller* c = self_;
+  const std::string name = name_;
+  auto bad = [c, name](const std::string& why) {
+    if (c->dropped_++ % 100 == 0)
+      spdlog::warn("{}: dropped a command: {} ({} dropped so far)", name, why, c->dropped_);
+  };
+  c->input_ = CommandInput{array, width, set};
+  if (array) {
+    endpoints_.subscribe<float64_array_t>(
+        channel("command"),
+        [bad, width, set](const float64_array_t& m) {
+          if (static_cast<size_t>(m.size) != width) return bad(fmt::format("{} values for {} joints", m.size, width));
+          const std::string why = check(m);
+          if (!why.empty()) return bad(why);
+          set(m.data.data());
+        },
+        bad);
+  } else {
+    endpoints_.subscribe<float64_t>(
+        channel("command"),
+        [bad, set](const float64_t& m) {
+          if (!std::isfinite(m.data)) return bad("NaN or Inf");
+          set(&m.data);
+        },
+        bad);
+  }
+}
 
 }  // namespace lcm_control::cm

@@ -1,10 +1,12 @@
 // What a controller is: init() reads its YAML and claims joints (not real
 // time), then starting() / update() / stopping() run on the loop path and must
 // not allocate, log or lock. Commands reach a controller through LCM handlers
-// that run in the loop's own thread between cycles, so plain members suffice.
+// that run in the loop's own thread between cycles (numbers through
+// take_commands), so plain members suffice.
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,6 +33,15 @@ struct Claim {
   std::vector<std::string> joints;
 };
 
+// A controller's numbers on `<name>/command`: one float64_t (width 1), or a float64_array_t of `width` values
+// (array). `set` gets them checked (finite, the right count) from the bus, or straight from a command source in
+// the loop, which hands the values over without encoding them.
+struct CommandInput {
+  bool array = false;
+  size_t width = 1;
+  std::function<void(const double* values)> set;
+};
+
 class ControllerContext;
 
 class Controller {
@@ -55,10 +66,13 @@ class Controller {
 
   const Claim& claim() const { return claim_; }
   int64_t dropped() const { return dropped_; }  // malformed or wrong-size commands
+  // What it takes on `<name>/command` as numbers (ControllerContext::take_commands), or nullptr.
+  const CommandInput* command_input() const { return input_.set ? &input_ : nullptr; }
 
  protected:
   friend class ControllerContext;
   Claim claim_;
+  CommandInput input_;
   int64_t dropped_ = 0;
   bool running_ = false;  // set by the loop around starting()/stopping()
   friend class Loop;
@@ -95,6 +109,10 @@ class ControllerContext {
   std::string root_channel(const std::string& name) const { return bus_.channel(name); }
   Endpoints& endpoints() { return endpoints_; }
   Controller*& self() { return self_; }
+
+  // Takes numbers on `<name>/command` (CommandInput: a float64_t, or with `array` a float64_array_t of `width`);
+  // what is not finite or not `width` values is dropped, counted in dropped() and logged (the 1st and every 100th).
+  void take_commands(bool array, size_t width, std::function<void(const double* values)> set);
 
   // Non-fatal findings shown to the user once at load.
   std::vector<std::string> notes;

@@ -11,21 +11,22 @@
 namespace lcm_control::cm {
 
 void register_builtin(Registry& r) {
+  using I = Interface;
   r.add("joint_state_controller/JointStateController", make_joint_state_controller);
   r.add("franka_control/FrankaStateController", make_joint_state_controller);
-  r.add("position_controllers/JointPositionController", make_forward_command_controller);
-  r.add("velocity_controllers/JointVelocityController", make_forward_command_controller);
-  r.add("effort_controllers/JointEffortController", make_forward_command_controller);
-  r.add("position_controllers/JointGroupPositionController", make_forward_command_controller);
-  r.add("velocity_controllers/JointGroupVelocityController", make_forward_command_controller);
-  r.add("effort_controllers/JointGroupEffortController", make_forward_command_controller);
-  r.add("effort_controllers/JointPositionController", make_pid_controller);
-  r.add("effort_controllers/JointVelocityController", make_pid_controller);
-  r.add("velocity_controllers/JointPositionController", make_pid_controller);
-  r.add("position_controllers/JointTrajectoryController", make_joint_trajectory_controller);
-  r.add("effort_controllers/JointTrajectoryController", make_joint_trajectory_controller);
-  r.add("velocity_controllers/JointTrajectoryController", make_joint_trajectory_controller);
-  r.add("effort_controllers/JointGroupPositionController", make_pid_controller);
+  r.add("position_controllers/JointPositionController", forward_command_controller(I::Position, false));
+  r.add("velocity_controllers/JointVelocityController", forward_command_controller(I::Velocity, false));
+  r.add("effort_controllers/JointEffortController", forward_command_controller(I::Effort, false));
+  r.add("position_controllers/JointGroupPositionController", forward_command_controller(I::Position, true));
+  r.add("velocity_controllers/JointGroupVelocityController", forward_command_controller(I::Velocity, true));
+  r.add("effort_controllers/JointGroupEffortController", forward_command_controller(I::Effort, true));
+  r.add("effort_controllers/JointPositionController", pid_controller(I::Effort, PidTarget::Position));
+  r.add("effort_controllers/JointVelocityController", pid_controller(I::Effort, PidTarget::Velocity));
+  r.add("velocity_controllers/JointPositionController", pid_controller(I::Velocity, PidTarget::Position));
+  r.add("effort_controllers/JointGroupPositionController", group_position_pid_controller());
+  r.add("position_controllers/JointTrajectoryController", joint_trajectory_controller(I::Position));
+  r.add("effort_controllers/JointTrajectoryController", joint_trajectory_controller(I::Effort));
+  r.add("velocity_controllers/JointTrajectoryController", joint_trajectory_controller(I::Velocity));
   r.add("diff_drive_controller/DiffDriveController", make_diff_drive_controller);
 }
 

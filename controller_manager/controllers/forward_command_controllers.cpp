@@ -18,12 +18,6 @@ namespace lcm_control::cm {
 
 namespace {
 
-Interface interface_of(const std::string& type) {
-  if (type.rfind("position_controllers/", 0) == 0) return Interface::Position;
-  if (type.rfind("velocity_controllers/", 0) == 0) return Interface::Velocity;
-  return Interface::Effort;
-}
-
 class ForwardCommandController : public Controller {
  public:
   ForwardCommandController(Interface iface, bool group) : iface_(iface), group_(group) {}
@@ -33,33 +27,10 @@ class ForwardCommandController : public Controller {
     const std::vector<std::string> names = group_ ? p.strings("joints") : std::vector<std::string>{p.string("joint")};
     for (const auto& n : names) joints_.push_back(ctx.claim(n, iface_));
     commands_.assign(joints_.size(), 0.0);
-    const std::string name = ctx.name();
-    auto bad = [this, name](const std::string& why) {
-      if (dropped_++ % 100 == 0) spdlog::warn("{}: dropped a command: {} ({} dropped so far)", name, why, dropped_);
-    };
-    if (group_) {
-      ctx.endpoints().subscribe<float64_array_t>(
-          ctx.channel("command"),
-          [this, bad](const float64_array_t& m) {
-            if (static_cast<size_t>(m.size) != joints_.size()) {
-              bad(fmt::format("{} values for {} joints", m.size, joints_.size()));
-              return;
-            }
-            const std::string why = check(m);
-            if (!why.empty()) return bad(why);
-            if (running_)
-              for (size_t k = 0; k < joints_.size(); ++k) commands_[k] = m.data[k];
-          },
-          bad);
-    } else {
-      ctx.endpoints().subscribe<float64_t>(
-          ctx.channel("command"),
-          [this, bad](const float64_t& m) {
-            if (!std::isfinite(m.data)) return bad("NaN or Inf");
-            if (running_) commands_[0] = m.data;
-          },
-          bad);
-    }
+    ctx.take_commands(group_, joints_.size(), [this](const double* v) {
+      if (running_)
+        for (size_t k = 0; k < joints_.size(); ++k) commands_[k] = v[k];
+    });
   }
 
   void starting(const Time&) override {
@@ -80,8 +51,8 @@ class ForwardCommandController : public Controller {
 
 }  // namespace
 
-std::unique_ptr<Controller> make_forward_command_controller(const std::string& type) {
-  return std::make_unique<ForwardCommandController>(interface_of(type), type.find("/JointGroup") != std::string::npos);
+Factory forward_command_controller(Interface command, bool group) {
+  return [command, group](const std::string&) { return std::make_unique<ForwardCommandController>(command, group); };
 }
 
 }  // namespace lcm_control::cm

@@ -437,11 +437,8 @@ class JointTrajectoryController : public Controller {
 
 }  // namespace
 
-std::unique_ptr<Controller> make_joint_trajectory_controller(const std::string& type) {
-  if (type.rfind("effort_controllers/", 0) == 0) return std::make_unique<JointTrajectoryController>(Interface::Effort);
-  if (type.rfind("velocity_controllers/", 0) == 0)
-    return std::make_unique<JointTrajectoryController>(Interface::Velocity);
-  return std::make_unique<JointTrajectoryController>(Interface::Position);
+Factory joint_trajectory_controller(Interface command) {
+  return [command](const std::string&) { return std::make_unique<JointTrajectoryController>(command); };
 }
 
 }  // namespace lcm_control::cm

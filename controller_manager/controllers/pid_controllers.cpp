@@ -45,19 +45,9 @@ class PidController : public Controller {
     state_.controller = ctx.name();
     state_.joint = joint;
     state_pub_ = ctx.endpoints().publisher<controller_state_t>(ctx.channel("state"));
-    const std::string name = ctx.name();
-    ctx.endpoints().subscribe<float64_t>(
-        ctx.channel("command"),
-        [this, name](const float64_t& m) {
-          if (!std::isfinite(m.data)) {
-            if (dropped_++ % 100 == 0) spdlog::warn("{}: dropped a NaN/Inf command", name);
-            return;
-          }
-          if (running_) set_point_ = limit(m.data);
-        },
-        [this, name](const std::string& why) {
-          if (dropped_++ % 100 == 0) spdlog::warn("{}: {}", name, why);
-        });
+    ctx.take_commands(false, 1, [this](const double* v) {
+      if (running_) set_point_ = limit(v[0]);
+    });
   }
 
   std::vector<std::string> pid_joints() const override { return {state_.joint}; }
@@ -147,21 +137,10 @@ class GroupPositionPid : public Controller {
       pids_.back().set_gains(Params::pid_from(entry["pid"], p.where() + "/" + n + "/pid"));
     }
     set_points_.assign(names_.size(), 0.0);
-    const std::string name = ctx.name();
-    auto bad = [this, name](const std::string& why) {
-      if (dropped_++ % 100 == 0) spdlog::warn("{}: dropped a command: {} ({} dropped so far)", name, why, dropped_);
-    };
-    ctx.endpoints().subscribe<float64_array_t>(
-        ctx.channel("command"),
-        [this, bad](const float64_array_t& m) {
-          if (static_cast<size_t>(m.size) != joints_.size())
-            return bad(fmt::format("{} values for {} joints", m.size, joints_.size()));
-          const std::string why = check(m);
-          if (!why.empty()) return bad(why);
-          if (running_)
-            for (size_t k = 0; k < joints_.size(); ++k) set_points_[k] = clamp_to_limits(*joints_[k], m.data[k]);
-        },
-        bad);
+    ctx.take_commands(true, joints_.size(), [this](const double* v) {
+      if (running_)
+        for (size_t k = 0; k < joints_.size(); ++k) set_points_[k] = clamp_to_limits(*joints_[k], v[k]);
+    });
   }
 
   std::vector<std::string> pid_joints() const override { return names_; }
@@ -198,13 +177,12 @@ class GroupPositionPid : public Controller {
 
 }  // namespace
 
-std::unique_ptr<Controller> make_pid_controller(const std::string& type) {
-  if (type == "effort_controllers/JointGroupPositionController") return std::make_unique<GroupPositionPid>();
-  if (type == "effort_controllers/JointVelocityController")
-    return std::make_unique<PidController>(Interface::Effort, false);
-  if (type == "velocity_controllers/JointPositionController")
-    return std::make_unique<PidController>(Interface::Velocity, true);
-  return std::make_unique<PidController>(Interface::Effort, true);
+Factory pid_controller(Interface out, PidTarget target) {
+  return [out, target](const std::string&) { return std::make_unique<PidController>(out, target == PidTarget::Position); };
+}
+
+Factory group_position_pid_controller() {
+  return [](const std::string&) { return std::make_unique<GroupPositionPid>(); };
 }
 
 }  // namespace lcm_control::cm

@@ -304,3 +304,55 @@ TEST(CommandSources, ANewSourceKeepsTheChannelWhenTheOneBeforeItIsAnswered) {
   rig.cycle();
   EXPECT_EQ(commanded(rig, "slide_motor").back(), 5) << "the second source lost its channel";
 }
+
+namespace {
+
+// A controller type the manager has never heard of: it declares its numbers with take_commands and commands twice
+// what it gets. Nothing in the manager or the command sources names it.
+class Doubler : public Controller {
+ public:
+  void init(ControllerContext& ctx) override {
+    joint_ = ctx.claim(ctx.params().string("joint"), Interface::Position);
+    ctx.take_commands(false, 1, [this](const double* v) { value_ = 2 * v[0]; });
+  }
+  void starting(const Time&) override {}
+  void update(const Time&, double) override { joint_->command = value_; }
+
+ private:
+  JointData* joint_ = nullptr;
+  double value_ = 0;
+};
+
+}  // namespace
+
+TEST(CommandSources, ANewControllerTypeIsOneRegistrationAndTakesSourcesThroughItsCommandInput) {
+  Registry registry;
+  register_builtin(registry);
+  registry.add("position_controllers/JointPositionController", [](const std::string&) { return std::make_unique<Doubler>(); });
+  Rig rig(registry);
+  ASSERT_TRUE(rig.load("slide_position").ok);
+  ASSERT_TRUE(rig.switch_({"slide_position"}, {}).ok);
+  ASSERT_TRUE(rig.cm->command_sources().handle(source("slide_position", {"0.01*(i+1)"}, 0, 10)).ok);
+  rig.cycle(12);
+  rig.cm->poll(monotonic_us());  // the source ends and gives the channel back
+  rig.pump();
+  EXPECT_EQ(rig.cm->command_sources().active(), 0u);
+  auto v = commanded(rig, "slide_motor");
+  for (int k = 0; k < 10; ++k) EXPECT_NEAR(v[k], 0.02 * (k + 1), 1e-12) << "step " << k;
+  float64_t m{};
+  m.data = 0.25;
+  rig.bus.lcm().publish("slide_position/command", &m);  // and from the bus, through the same input
+  rig.pump();
+  rig.cycle(2);
+  v = commanded(rig, "slide_motor");
+  EXPECT_DOUBLE_EQ(v.back(), 0.5);
+  m.data = NAN;
+  rig.bus.lcm().publish("slide_position/command", &m);
+  rig.pump();
+  rig.cycle(2);
+  EXPECT_DOUBLE_EQ(commanded(rig, "slide_motor").back(), 0.5);
+  int64_t dropped = -1;
+  for (const auto& slot : rig.cm->loop().slots())
+    if (slot->name == "slide_position") dropped = slot->controller->dropped();
+  EXPECT_EQ(dropped, 1);
+}
