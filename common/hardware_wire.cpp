@@ -1,5 +1,8 @@
 #include "common/hardware_wire.hpp"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include "common/wire_check.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
@@ -22,6 +25,36 @@ const char* wire_mode_name(int mode) {
     case hardware_command_t::MODE_EFFORT: return "effort";
   }
   return "none";
+}
+
+ActuatorBinding bind_actuators(const std::vector<std::string>& ours, const std::vector<std::string>& theirs) {
+  ActuatorBinding b;
+  b.slot.assign(ours.size(), -1);
+  b.ours_at.assign(theirs.size(), -1);
+  for (size_t i = 0; i < theirs.size(); ++i) {
+    size_t k = 0;
+    while (k < ours.size() && ours[k] != theirs[i]) ++k;
+    if (k == ours.size()) {
+      b.unknown.push_back(theirs[i]);
+    } else if (b.slot[k] >= 0) {
+      b.repeated.push_back(theirs[i]);
+    } else {
+      b.slot[k] = static_cast<int>(i);
+      b.ours_at[i] = static_cast<int>(k);
+    }
+  }
+  for (size_t k = 0; k < ours.size(); ++k)
+    if (b.slot[k] < 0) b.missing.push_back(ours[k]);
+  return b;
+}
+
+std::string ActuatorBinding::problem(bool allow_unknown) const {
+  std::vector<std::string> p;
+  if (!missing.empty()) p.push_back(fmt::format("missing actuator(s) '{}'", fmt::join(missing, "', '")));
+  if (!allow_unknown && !unknown.empty())
+    p.push_back(fmt::format("unknown actuator(s) '{}'", fmt::join(unknown, "', '")));
+  if (!repeated.empty()) p.push_back(fmt::format("actuator(s) '{}' listed twice", fmt::join(repeated, "', '")));
+  return fmt::format("{}", fmt::join(p, "; "));
 }
 
 std::string check_hardware_state_bytes(const void* data, size_t size, int max_actuators) {

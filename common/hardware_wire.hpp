@@ -1,5 +1,6 @@
 // What both ends of the hardware loop share about its two messages: the wire
-// mode of an interface and its name, and the schema walk of
+// mode of an interface and its name, matching actuators by name (once per
+// session, then indices: docs/hardware-protocol.md), and the schema walk of
 // common/wire_check.hpp for hardware/state and hardware/command with
 // num_actuators also bounded by the robot's actuators, run on those bytes
 // before decoding them.
@@ -8,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "common/robot_model.hpp"
 
@@ -17,6 +19,18 @@ namespace lcm_control {
 int8_t wire_mode(Interface i);
 // "position", "velocity", "effort" or "none" (MODE_NONE and anything unknown).
 const char* wire_mode_name(int mode);
+
+// A hardware message's actuators matched by name to ours. slot[k]: the message's index of ours[k], or -1 (listed in
+// `missing`); ours_at[i]: our index of the message's actuator i, or -1 (listed in `unknown`).
+struct ActuatorBinding {
+  std::vector<int> slot;
+  std::vector<int> ours_at;
+  std::vector<std::string> missing, unknown, repeated;
+  // "" when every one of ours is there exactly once (unknown ones are allowed only with `allow_unknown`); else what
+  // differs, naming the actuators.
+  std::string problem(bool allow_unknown) const;
+};
+ActuatorBinding bind_actuators(const std::vector<std::string>& ours, const std::vector<std::string>& theirs);
 
 // "" when the bytes can be the message with num_actuators between 0 and max_actuators; else why not.
 std::string check_hardware_state_bytes(const void* data, size_t size, int max_actuators);

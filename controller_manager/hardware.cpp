@@ -31,29 +31,29 @@ JointData* Hardware::find(const std::string& joint) {
 
 std::string Hardware::bind(const hardware_state_t& state, hardware_command_t& command) {
   bound_ = false;
-  const int n = state.num_actuators;
-  joint_of_actuator_.assign(n, -1);
+  std::vector<std::string> ours;
+  for (const JointData& j : joints_) ours.push_back(j.actuator);
+  const ActuatorBinding b = bind_actuators(ours, state.name);
+  actuator_of_joint_ = b.slot;
   std::vector<std::string> problems;
   for (size_t k = 0; k < joints_.size(); ++k) {
     const JointData& j = joints_[k];
-    actuator_of_joint_[k] = -1;
-    for (int a = 0; a < n; ++a)
-      if (state.name[a] == j.actuator) actuator_of_joint_[k] = a;
     const int a = actuator_of_joint_[k];
     if (a < 0) {
       problems.push_back(fmt::format("actuator '{}' (joint '{}') is missing", j.actuator, j.name));
       continue;
     }
-    joint_of_actuator_[a] = static_cast<int>(k);
     if (state.mode[a] != wire_mode(j.offered.front()))
       problems.push_back(fmt::format("actuator '{}' takes {} commands but the URDF transmission of joint '{}' says {}",
                                      j.actuator, wire_mode_name(state.mode[a]), j.name, to_string(j.offered.front())));
   }
+  if (!b.repeated.empty()) problems.push_back(b.problem(true));
   if (!problems.empty()) {
     std::string s = "hardware does not match the URDF: ";
     for (size_t k = 0; k < problems.size(); ++k) s += (k ? "; " : "") + problems[k];
     return s;
   }
+  const int n = state.num_actuators;
   command.num_actuators = n;
   command.name = state.name;
   command.mode.assign(n, hardware_command_t::MODE_NONE);

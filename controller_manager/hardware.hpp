@@ -55,8 +55,7 @@ class Hardware {
 
  private:
   std::vector<JointData> joints_;
-  std::vector<int> actuator_of_joint_;  // index in the hardware message
-  std::vector<int> joint_of_actuator_;  // -1 for actuators we do not know
+  std::vector<int> actuator_of_joint_;  // index in the hardware message (bind_actuators)
   bool bound_ = false;
   int64_t session_ = 0;
 };

@@ -157,11 +157,18 @@ std::string SimIo::why_rejected() {
                        cmd_.session, session_);
   if (cmd_.num_actuators != act.size())
     return fmt::format("{} actuators, but this robot has {}", cmd_.num_actuators, act.size());
+  if (cmd_.name != bound_names_) {  // a new sender or a new order: match by name, then use the indices
+    const ActuatorBinding b = bind_actuators(state_.name, cmd_.name);
+    if (const std::string p = b.problem(false); !p.empty())
+      return fmt::format("its actuators are not this robot's: {} (this robot's: '{}')", p,
+                         fmt::join(state_.name, "', '"));
+    bound_names_ = cmd_.name;
+    slot_ = b.slot;
+  }
   for (int i = 0; i < act.size(); ++i) {
-    if (cmd_.name[i] != act.name(i))
-      return fmt::format("actuator {} is '{}', expected '{}' (URDF transmission order)", i, cmd_.name[i], act.name(i));
-    if (cmd_.mode[i] != hardware_command_t::MODE_NONE && cmd_.mode[i] != act.wire_mode(i))
-      return fmt::format("actuator '{}' got a {} command but takes {}", act.name(i), wire_mode_name(cmd_.mode[i]),
+    const int8_t mode = cmd_.mode[slot_[i]];
+    if (mode != hardware_command_t::MODE_NONE && mode != act.wire_mode(i))
+      return fmt::format("actuator '{}' got a {} command but takes {}", act.name(i), wire_mode_name(mode),
                          wire_mode_name(act.wire_mode(i)));
   }
   return "";
@@ -200,8 +207,8 @@ void SimIo::on_command(const lcm::ReceiveBuffer& rb) {
     return;
   }
   for (int i = 0; i < cmd_.num_actuators; ++i) {
-    pending_mode_[i] = cmd_.mode[i];
-    pending_value_[i] = cmd_.command[i];
+    pending_mode_[i] = cmd_.mode[slot_[i]];
+    pending_value_[i] = cmd_.command[slot_[i]];
   }
   has_pending_ = true;
   last_step_ = cmd_.step;

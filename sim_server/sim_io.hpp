@@ -111,6 +111,8 @@ class SimIo {
   bool floating_base_ = false;
 
   hardware_command_t cmd_;  // decoded in place: its arrays keep their capacity
+  std::vector<std::string> bound_names_;  // the actuator list of the commands being taken, as matched
+  std::vector<int> slot_;                 // our actuator i is the command's slot_[i]
   std::vector<int8_t> pending_mode_;
   std::vector<double> pending_value_;
   bool has_pending_ = false;

@@ -138,3 +138,20 @@ TEST(GuardedDecode, AStringWithANulInsideIsRefused) {
   b[owner + 4 + 1 + 4 + 2] = 'x';  // joint's terminating NUL overwritten
   EXPECT_FALSE(decode_guarded(out, b.data(), b.size()));
 }
+
+TEST(ActuatorBinding, MatchesByNameInAnyOrderAndNamesWhatDiffers) {
+  const std::vector<std::string> ours{"a", "b", "c"};
+  const ActuatorBinding same = bind_actuators(ours, {"c", "a", "b"});
+  EXPECT_EQ(same.slot, (std::vector<int>{1, 2, 0}));
+  EXPECT_EQ(same.ours_at, (std::vector<int>{2, 0, 1}));
+  EXPECT_EQ(same.problem(false), "");
+
+  const ActuatorBinding extra = bind_actuators(ours, {"a", "x", "b", "c"});
+  EXPECT_EQ(extra.ours_at, (std::vector<int>{0, -1, 1, 2}));
+  EXPECT_EQ(extra.problem(true), "");
+  EXPECT_EQ(extra.problem(false), "unknown actuator(s) 'x'");
+
+  const ActuatorBinding bad = bind_actuators(ours, {"b", "b", "y"});
+  EXPECT_EQ(bad.slot, (std::vector<int>{-1, 0, -1}));
+  EXPECT_EQ(bad.problem(false), "missing actuator(s) 'a', 'c'; unknown actuator(s) 'y'; actuator(s) 'b' listed twice");
+}

@@ -4,6 +4,8 @@
 // and signals.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+
+#include <algorithm>
 #include <signal.h>
 
 #include <chrono>
@@ -166,6 +168,52 @@ TEST(sim_e2e, ActuatorSpaceOnTheWireReductionTwoMovesTheJointToHalfTheCommand) {
   EXPECT_EQ(s.mode[2], hardware_command_t::MODE_VELOCITY);
   EXPECT_NEAR(s.position[0], 2.0, 2e-3);  // actuator units: the joint is at 1.0 rad
   EXPECT_NE(server.output().find("position direct (no pid_gains)"), std::string::npos);
+}
+
+// docs/hardware-protocol.md: actuators are matched by name, so a command may list them in any order; one that does not
+// name each of the robot's actuators exactly once is dropped and says which.
+TEST(sim_e2e, CommandActuatorsAreMatchedByNameInAnyOrder) {
+  SimServerProcess server;
+  std::string why;
+  ASSERT_TRUE(server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1"}, kData + "/modes_bot.urdf", kData + "/modes_bot.yaml", &why)) << why;
+  Recorder<loop_stats_t> stats(server.lc, "sim_server/statistics");
+  FakeController cm(server.lc);
+  cm.policy = [](const hardware_state_t& s, hardware_command_t& c) {
+    for (int i = 0; i < s.num_actuators; ++i)
+      c.command[i] = s.name[i] == "t_pid_motor" ? 2.0 : s.mode[i] == hardware_command_t::MODE_POSITION ? s.position[i]
+                                                                                                        : 0.0;
+    std::reverse(c.name.begin(), c.name.end());
+    std::reverse(c.mode.begin(), c.mode.end());
+    std::reverse(c.command.begin(), c.command.end());
+  };
+  std::string ghost;
+  cm.before_answer = [&](const hardware_state_t& s) {
+    if (s.step != 100) return;
+    hardware_command_t c;
+    resize(c, s.num_actuators);
+    c.step = s.step;
+    c.session = s.session;
+    c.name = s.name;
+    c.mode = s.mode;
+    ghost = c.name[4];
+    c.name[4] = "ghost_motor";
+    cm.publish_command(c);
+  };
+  ASSERT_TRUE(cm.run_until_step(3000, 20.0)) << server.output();
+  const hardware_state_t& s = cm.states.back();
+  ASSERT_EQ(s.name[0], "t_pid_motor");
+  EXPECT_NEAR(s.position[0], 2.0, 2e-3);  // reversed on the wire, applied to the right actuator
+  int64_t dropped = 0;
+  lcm_control::testing::pump_until(server.lc, [&] {
+    dropped = 0;
+    for (const auto& m : stats.messages) dropped += m.dropped;
+    return dropped >= 1;
+  }, 5.0);
+  EXPECT_EQ(dropped, 1) << server.output();
+  EXPECT_NE(server.output().find(fmt::format(
+                "its actuators are not this robot's: missing actuator(s) '{}'; unknown actuator(s) 'ghost_motor'", ghost)),
+            std::string::npos)
+      << server.output();
 }
 
 TEST(sim_e2e, ControlRateBelowThePhysicsRateSetsThePeriodAndSimTime) {
