@@ -201,10 +201,11 @@ class Dashboard {
     bus_.lcm().subscribe(pattern, &Dashboard::on_any, this)->setQueueCapacity(10000);
   }
 
-  // What a browser gets first: the bus it looks at, its URDF, and the controllers as last listed.
+  // What a browser gets first: the bus it looks at, its URDF, the messages' schema (lcmtypes/), and the controllers
+  // as last listed.
   void hello(int conn) {
     json h = {{"kind", "hello"}, {"namespace", bus_.ns()}, {"lcm_url", bus_.url()}, {"read_only", o_.read_only},
-              {"rate_hz", o_.rate_hz}, {"urdf", nullptr}};
+              {"rate_hz", o_.rate_hz}, {"urdf", nullptr}, {"schema", tools::schema_json()}};
     if (!o_.urdf.empty()) h["urdf"] = "/robot/" + fs::path(o_.urdf).filename().string();
     web_.send(conn, dump(h));
     const std::string list = cm_ ? cm_->last_list() : "";

@@ -12,9 +12,11 @@ the const overload), calling on v, per field of the .lcm file:
   v.nested(name, msg)                   one nested message
 so that tools read and write any message by field path without a hand-written
 function per type (tools/lib/fields.cpp, the bus tool). for_each_type(f) calls
-f(type_tag<T>{}) for every message type. kFieldInfo lists what the field
-comments say: a unit as `// [rad or m] ...`, names for a fixed inner
-dimension as `{x y z}` (CSV columns and plot paths use them).
+f(type_tag<T>{}) for every message type. kFieldInfo lists every field: its
+.lcm type, the field that sizes it, the string array of the same size that
+names its rows (joint_state_t's `name` for `position`), and what its comment
+says: a unit as `// [rad or m] ...`, names for a fixed inner dimension as
+`{x y z}` (CSV columns, plot paths and the dashboard's page use them).
 """
 import re
 import sys
@@ -92,15 +94,22 @@ def main():
     tags = "\n".join(f"  f(type_tag<{n}>{{}});" for n, _, _ in structs)
     info = []
     for n, fields, notes in structs:
-        for ftype, fname, _ in fields:
+        for ftype, fname, dims in fields:
             unit, comps = notes.get(fname, ("", []))
             nested = ftype if ftype not in PRIMITIVES else ""
-            if unit or comps or nested:
-                info.append(f'    {{"{n}", "{fname}", "{unit}", "{nested}", "{" ".join(comps)}"}},')
-    bodies += ("\n\n// What the schema's comments say of a field: its unit (`// [unit]`), the message type it nests,\n"
-               "// and names for a fixed inner dimension (`{x y z}`). Fields with none of them are not listed.\n"
-               "struct FieldInfo {\n  const char* type;\n  const char* field;\n  const char* unit;\n"
-               "  const char* nested;\n  const char* components;  // space-separated\n};\n"
+            count = dims[0] if dims else ""
+            labels = ""
+            if count and not count.isdigit() and ftype != "string":
+                named_by = [f for t, f, d in fields if t == "string" and d and d[0] == count]
+                labels = named_by[0] if len(named_by) == 1 else ""
+            info.append(f'    {{"{n}", "{fname}", "{ftype}", "{count}", "{labels}", "{unit}", "{nested}", '
+                        f'"{" ".join(comps)}"}},')
+    bodies += ("\n\n// Every field of every message in schema order: its .lcm type, the field (or fixed size) of its\n"
+               "// first dimension, the string array of that size that names its rows, what its comment says (a unit\n"
+               "// as `// [unit]`, names for a fixed inner dimension as `{x y z}`), and the message type it nests.\n"
+               "struct FieldInfo {\n  const char* type;\n  const char* field;\n  const char* lcm_type;\n"
+               "  const char* count;   // \"\" for a scalar\n  const char* labels;  // \"\" when no string array names its rows\n"
+               "  const char* unit;\n  const char* nested;\n  const char* components;  // space-separated\n};\n"
                "inline constexpr FieldInfo kFieldInfo[] = {\n" + "\n".join(info) + "\n};")
     bodies += ("\n\ntemplate <class T>\nstruct type_tag {\n  using type = T;\n};\n\n"
                f"template <class F>\nvoid for_each_type(F&& f) {{\n{tags}\n}}")

@@ -189,6 +189,12 @@ def main():
         wd.js("document.querySelector('.channel[data-channel=\"joint_states\"] .channel-head').click()")
         wait_for("joint_states' fields", lambda: wd.js(
             "return !!document.querySelector('.channel[data-channel=\"joint_states\"] .field[data-path=\"position[0]\"]')"), 10)
+        label = wd.js("return document.querySelector('.channel[data-channel=\"joint_states\"] .field[data-path="
+                      "\"position[0]\"] .label').textContent")
+        print("joint_states position[0] is shown as", label)
+        assert label == "position[j1]", f"the schema's labels (name names position's rows) were not used: {label}"
+        tied = wd.js("const s = window.dashboard.channels.schema; return s && s.joint_state_t.position.labels")
+        assert tied == "name", f"the server's hello gave the page no schema: {tied}"
         wd.js("document.querySelector('.channel[data-channel=\"joint_states\"] .field[data-path=\"position[0]\"]').click()")
         n1 = wait_for("the first points", lambda: wd.js("return window.dashboard.plots.points()"), 5)
         time.sleep(1.0)

@@ -108,3 +108,22 @@ TEST(MessageJson, ErrorsNameTheTypeAndField) {
 
 }  // namespace
 }  // namespace lcm_control::tools
+
+// The page labels rows and builds the gains panel from this, so a new field in lcmtypes/ needs no edit in the page.
+TEST(MessageJson, SchemaListsEveryFieldWithItsTypeSizeLabelsAndUnit) {
+  const auto s = lcm_control::tools::schema_json();
+  EXPECT_EQ(s["joint_state_t"]["position"],
+            (nlohmann::ordered_json{{"type", "double"}, {"count", "num_joints"}, {"labels", "name"}, {"unit", "rad or m"}}));
+  EXPECT_EQ(s["joint_state_t"]["name"], (nlohmann::ordered_json{{"type", "string"}, {"count", "num_joints"}}));
+  EXPECT_EQ(s["link_poses_t"]["position"]["labels"], "name");
+  EXPECT_EQ(s["link_poses_t"]["position"]["components"], "x y z");
+  std::vector<std::string> gains;
+  for (const auto& [field, info] : s["pid_gains_t"].items())
+    if (info["type"] == "double") gains.push_back(field);
+  EXPECT_EQ(gains, (std::vector<std::string>{"p", "i", "d", "i_clamp_min", "i_clamp_max"}));
+  EXPECT_EQ(s["joint_trajectory_t"]["points"]["nested"], "trajectory_point_t");
+  EXPECT_FALSE(s["joint_trajectory_t"]["points"].contains("labels"));  // no string array of its size names them
+  size_t types = 0;
+  lcm_control::for_each_type([&](auto) { ++types; });
+  EXPECT_EQ(s.size(), types);
+}

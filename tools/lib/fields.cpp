@@ -46,8 +46,8 @@ bool labels_ok(const std::vector<std::string>& names) {
 }
 
 // A visitor (lcm_control/visit.hpp) that appends a message's numbers and strings as fields under a path prefix.
-// A matrix's rows are labelled by the message's `name` list of the same count when there is one (link_poses:
-// position[rotor].z), its columns by the schema's component names (kFieldInfo).
+// A matrix's rows are labelled by the string array the schema says names them (kFieldInfo's labels; link_poses:
+// position[rotor].z) when its names can be, its columns by the schema's component names.
 class Flatten {
  public:
   Flatten(std::vector<Field>& f, std::string prefix, std::string type)
@@ -58,16 +58,16 @@ class Flatten {
   }
   void count(const char*, int32_t) {}  // array lengths are left out
   template <class T>
-  void list(const char* name, const std::vector<T>& xs, const char* count) {
+  void list(const char* name, const std::vector<T>& xs, const char*) {
     if constexpr (std::is_same_v<T, std::string>)
-      if (std::string(name) == "name" && labels_ok(xs)) row_names_[count] = &xs;
+      if (labels_ok(xs)) row_names_[name] = &xs;
     for (size_t k = 0; k < xs.size(); ++k) put(fmt::format("{}{}[{}]", prefix_, name, k), xs[k]);
   }
   template <class T>
-  void matrix(const char* name, const std::vector<std::vector<T>>& xs, const char* count, int) {
+  void matrix(const char* name, const std::vector<std::vector<T>>& xs, const char*, int) {
     const FieldInfo* info = field_info(type_, name);
     const std::vector<std::string> cols = info ? words(info->components) : std::vector<std::string>{};
-    const auto rows = row_names_.find(count);
+    const auto rows = row_names_.find(info ? info->labels : "");
     for (size_t k = 0; k < xs.size(); ++k) {
       const bool named_row = rows != row_names_.end() && k < rows->second->size();
       const std::string row = named_row ? (*rows->second)[k] : std::to_string(k);
@@ -100,7 +100,7 @@ class Flatten {
   }
   std::vector<Field>& f_;
   std::string prefix_, type_;
-  std::map<std::string, const std::vector<std::string>*> row_names_;  // by the count that sizes them
+  std::map<std::string, const std::vector<std::string>*> row_names_;  // string arrays usable as labels, by field
 };
 
 struct TypeEntry {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
+#include <utility>
 
 #include "common/bus.hpp"
 #include "lcm_control/visit.hpp"
@@ -135,6 +136,18 @@ std::vector<uint8_t> message_from_json(const std::string& type, const nlohmann::
   std::vector<std::string> assignments;
   flatten("", fields, assignments);
   return build_message(type, assignments, default_utime);
+}
+
+nlohmann::ordered_json schema_json() {
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  for (const FieldInfo& f : kFieldInfo) {
+    nlohmann::ordered_json field{{"type", f.lcm_type}};
+    for (const auto& [key, text] : {std::pair{"count", f.count}, {"labels", f.labels}, {"unit", f.unit},
+                                    {"nested", f.nested}, {"components", f.components}})
+      if (*text) field[key] = text;
+    out[f.type][f.field] = std::move(field);
+  }
+  return out;
 }
 
 }  // namespace lcm_control::tools

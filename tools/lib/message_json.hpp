@@ -16,6 +16,11 @@ namespace lcm_control::tools {
 // one of our types or do not decode.
 nlohmann::ordered_json message_to_json(const void* data, size_t size);
 
+// The schema as the dashboard's page reads it: {"joint_state_t": {"position": {"type": "double", "count": "num_joints",
+// "labels": "name", "unit": "rad or m"}, ...}, ...}, every message type and field in schema order (kFieldInfo); keys
+// with nothing to say are left out.
+nlohmann::ordered_json schema_json();
+
 // Encodes a message of `type` (as build_message takes it) from a JSON object of its fields, nested as
 // message_to_json writes them; fields not given are 0 or "", `utime` not given is default_utime. Throws
 // std::invalid_argument naming the type and the field at fault.

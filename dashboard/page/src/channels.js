@@ -8,6 +8,7 @@ export class Channels {
     this.filter = filter;
     this.plots = plots;
     this.rows = new Map(); // channel -> {div, head, body, open, type, hz}
+    this.schema = null; // the messages' fields, from the server's hello
     filter.oninput = () => this.applyFilter();
     setInterval(() => this.refreshOpen(), 200);
   }
@@ -73,10 +74,18 @@ export class Channels {
     for (const [channel, r] of this.rows) if (r.open && r.changed) this.renderFields(channel, r);
   }
 
+  setSchema(schema) {
+    this.schema = schema;
+    for (const r of this.rows.values()) {
+      r.body.innerHTML = '';
+      r.changed = true;
+    }
+  }
+
   renderFields(channel, r) {
     r.changed = false;
     if (!r.open || !r.msg) return;
-    const fields = numericFields(r.msg);
+    const fields = numericFields(r.msg, this.schema, r.type);
     if (r.body.childElementCount !== fields.length) {
       r.body.innerHTML = '';
       for (const f of fields) {

@@ -1,26 +1,35 @@
-// A decoded message's numbers as (path, label, value): arrays by index, and labelled by name when the message has
-// a name list of the same length (joint_states' position[0] shows as position[j1]).
-export function numericFields(msg, path0 = '', label0 = '', out = []) {
-  const names = [msg.name, msg.joints, msg.item, msg.joint_names].find((a) => Array.isArray(a));
+// A decoded message's numbers as (path, label, value), read through the schema the server sends (lcmtypes/, as
+// kFieldInfo): arrays by index in the path, and in the label by the string array the schema says names their rows
+// (joint_state_t's position[0] shows as position[j1]) and by the components of a fixed inner dimension
+// (link_poses_t's position[1][2] shows as position[rotor].z); nested messages through their own type.
+export function numericFields(msg, schema, type, path0 = '', label0 = '', out = []) {
+  const info = (schema && schema[type]) || {};
   for (const [key, value] of Object.entries(msg)) {
+    const f = info[key] || {};
     const path = path0 ? `${path0}.${key}` : key;
     const label = label0 ? `${label0}.${key}` : key;
     if (typeof value === 'number') {
       out.push({ path, label, value });
     } else if (Array.isArray(value)) {
+      const names = f.labels && Array.isArray(msg[f.labels]) && msg[f.labels].length === value.length ? msg[f.labels] : null;
+      const comps = f.components ? f.components.split(' ') : [];
       value.forEach((v, k) => {
-        const named = names && names.length === value.length && typeof names[k] === 'string' ? names[k] : k;
         const p = `${path}[${k}]`;
-        const l = `${label}[${named}]`;
+        const l = `${label}[${names && typeof names[k] === 'string' && names[k] !== '' ? names[k] : k}]`;
         if (typeof v === 'number') out.push({ path: p, label: l, value: v });
-        else if (Array.isArray(v)) v.forEach((x, c) => typeof x === 'number' && out.push({ path: `${p}[${c}]`, label: `${l}[${c}]`, value: x }));
-        else if (v && typeof v === 'object') numericFields(v, p, l, out);
+        else if (Array.isArray(v)) v.forEach((x, c) => typeof x === 'number' && out.push({ path: `${p}[${c}]`, label: c < comps.length ? `${l}.${comps[c]}` : `${l}[${c}]`, value: x }));
+        else if (v && typeof v === 'object') numericFields(v, schema, f.nested, p, l, out);
       });
     } else if (value && typeof value === 'object') {
-      numericFields(value, path, label, out);
+      numericFields(value, schema, f.nested, path, label, out);
     }
   }
   return out;
+}
+
+// The fields of `type` whose .lcm type is one of `lcmTypes`, in schema order ([] before the schema arrives).
+export function fieldsOfType(schema, type, lcmTypes) {
+  return Object.entries((schema && schema[type]) || {}).filter(([, f]) => lcmTypes.includes(f.type)).map(([name]) => name);
 }
 
 // The value at a path written by numericFields ("position[1]", "points[0].positions[2]").

@@ -1,8 +1,11 @@
 import { options } from './dom.js';
+import { fieldsOfType } from './fields.js';
 
 // PID gains of a joint while it runs (rqt_reconfigure, the tune tool): read from the owner, edit, apply; the owner
 // (sim_server for gazebo_ros_control/pid_gains, or a controller with its own PID) confirms on <owner>/gains.
-const FIELDS = ['p', 'i', 'd', 'i_clamp_min', 'i_clamp_max'];
+// The inputs are pid_gains_t's numbers (its doubles) and switches (its booleans but the request's own `query` and
+// `ok`), as the schema lists them.
+const REQUEST_FLAGS = ['query', 'ok'];
 
 export class Gains {
   constructor(conn, el) {
@@ -13,9 +16,10 @@ export class Gains {
     el.innerHTML = `
       <div class="gains-row"><select id="gains-owner"></select><select id="gains-joint"></select>
       <button id="gains-read">Read</button><button id="gains-apply">Apply</button></div>
-      <div class="gains-fields">${FIELDS.map((f) => `<label>${f} <input id="gains-${f}" type="number" step="any"></label>`).join('')}
-      <label>antiwindup <input id="gains-antiwindup" type="checkbox"></label></div>
+      <div class="gains-fields"></div>
       <div id="gains-message" class="message"></div>`;
+    this.numbers = [];
+    this.switches = [];
     this.owner = el.querySelector('#gains-owner');
     this.joint = el.querySelector('#gains-joint');
     this.message = el.querySelector('#gains-message');
@@ -23,6 +27,16 @@ export class Gains {
     this.joint.onchange = () => this.fillJoints();
     el.querySelector('#gains-read').onclick = () => this.ask(true);
     el.querySelector('#gains-apply').onclick = () => this.ask(false);
+  }
+
+  setSchema(schema) {
+    this.numbers = fieldsOfType(schema, 'pid_gains_t', ['double']);
+    this.switches = fieldsOfType(schema, 'pid_gains_t', ['boolean']).filter((f) => !REQUEST_FLAGS.includes(f));
+    this.el.querySelector('.gains-fields').innerHTML =
+      this.numbers.map((f) => `<label>${f} <input id="gains-${f}" type="number" step="any"></label>`).join('') +
+      this.switches.map((f) => `<label>${f} <input id="gains-${f}" type="checkbox"></label>`).join('');
+    this.shown = null; // read the gains again into the new inputs
+    this.fillJoints();
   }
 
   // Owners: sim_server with every joint, and each running controller that commands joints (its answer says when it
@@ -58,8 +72,8 @@ export class Gains {
     if (!owner || !joint) return;
     const msg = { request_id: Math.floor(Math.random() * 1e9), owner, joint, query: query ? 1 : 0 };
     if (!query) {
-      for (const f of FIELDS) msg[f] = Number(this.el.querySelector(`#gains-${f}`).value);
-      msg.antiwindup = this.el.querySelector('#gains-antiwindup').checked ? 1 : 0;
+      for (const f of this.numbers) msg[f] = Number(this.el.querySelector(`#gains-${f}`).value);
+      for (const f of this.switches) msg[f] = this.el.querySelector(`#gains-${f}`).checked ? 1 : 0;
     }
     this.waiting = { id: msg.request_id, channel: `${owner}/gains`, since: performance.now() };
     this.message.textContent = `asking ${owner} ...`;
@@ -78,8 +92,8 @@ export class Gains {
   onMessage(channel, msg) {
     if (!this.waiting || channel !== this.waiting.channel || msg.request_id !== this.waiting.id) return;
     this.waiting = null;
-    for (const f of FIELDS) this.el.querySelector(`#gains-${f}`).value = msg[f];
-    this.el.querySelector('#gains-antiwindup').checked = !!msg.antiwindup;
+    for (const f of this.numbers) this.el.querySelector(`#gains-${f}`).value = msg[f];
+    for (const f of this.switches) this.el.querySelector(`#gains-${f}`).checked = !!msg[f];
     this.show(msg.ok, msg.message || (msg.ok ? 'gains in force' : 'refused'));
   }
 

@@ -33,6 +33,8 @@ controllers.onChange.push((list) => {
 
 conn.on('hello', (h) => {
   state.hello = h;
+  channels.setSchema(h.schema);
+  gains.setSchema(h.schema);
   $('robot-name').textContent = `${h.namespace ? `namespace ${h.namespace} · ` : ''}${h.lcm_url}${h.read_only ? ' · read-only' : ''}`;
   document.body.classList.toggle('read-only', h.read_only);
   if (!view.robot) view.load(h.urdf);
