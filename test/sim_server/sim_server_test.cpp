@@ -49,6 +49,17 @@ std::vector<hardware_state_t> lockstep_run(int steps) {
   return cm.states;
 }
 
+// sim_server's dropped commands as its statistics count them, once `at_least` are counted (or after 5 s).
+int64_t dropped_commands(SimServerProcess& server, const Recorder<loop_stats_t>& stats, int64_t at_least) {
+  int64_t dropped = 0;
+  lcm_control::testing::pump_until(server.lc, [&] {
+    dropped = 0;
+    for (const auto& m : stats.messages) dropped += m.dropped;
+    return dropped >= at_least;
+  }, 5.0);
+  return dropped;
+}
+
 TEST(sim_e2e, LockstepRunsWithTheSameCommandsAreBitIdenticalFor10000Steps) {
   const auto t0 = std::chrono::steady_clock::now();
   const auto a = lockstep_run(10000);
@@ -203,13 +214,7 @@ TEST(sim_e2e, CommandActuatorsAreMatchedByNameInAnyOrder) {
   const hardware_state_t& s = cm.states.back();
   ASSERT_EQ(s.name[0], "t_pid_motor");
   EXPECT_NEAR(s.position[0], 2.0, 2e-3);  // reversed on the wire, applied to the right actuator
-  int64_t dropped = 0;
-  lcm_control::testing::pump_until(server.lc, [&] {
-    dropped = 0;
-    for (const auto& m : stats.messages) dropped += m.dropped;
-    return dropped >= 1;
-  }, 5.0);
-  EXPECT_EQ(dropped, 1) << server.output();
+  EXPECT_EQ(dropped_commands(server, stats, 1), 1) << server.output();
   EXPECT_NE(server.output().find(fmt::format(
                 "its actuators are not this robot's: missing actuator(s) '{}'; unknown actuator(s) 'ghost_motor'", ghost)),
             std::string::npos)
@@ -295,13 +300,7 @@ TEST(sim_e2e, MalformedNanWrongSizeAndForeignCommandsAreDroppedAndCounted) {
     }
   };
   ASSERT_TRUE(cm.run_until_step(150, 20.0)) << server.output();
-  int64_t dropped = 0;
-  lcm_control::testing::pump_until(server.lc, [&] {
-    dropped = 0;
-    for (const auto& m : stats.messages) dropped += m.dropped;
-    return dropped >= 8;
-  }, 5.0);
-  EXPECT_EQ(dropped, 8) << server.output();
+  EXPECT_EQ(dropped_commands(server, stats, 8), 8) << server.output();
   for (const auto& s : cm.states)
     for (int i = 0; i < 2; ++i) ASSERT_TRUE(std::isfinite(s.position[i]) && std::isfinite(s.effort[i])) << s.step;
   EXPECT_NE(server.output().find("dropped a hardware/command"), std::string::npos);
