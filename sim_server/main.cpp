@@ -66,6 +66,12 @@ int main(int argc, char** argv) {
                  "(a timer wakes late by tens of microseconds; spinning costs this much CPU per period)")
       ->check(CLI::Range(int64_t{0}, int64_t{100000}))
       ->capture_default_str();
+  app.add_option("--answer-wait-us", opt.answer_wait_us,
+                 "real time: how long a step, once due, waits for the controller's answer to the state before "
+                 "it (a catch-up burst then still gets a command per step); 0: step at once with the previous command "
+                 "and count a missed cycle")
+      ->check(CLI::Range(int64_t{0}, int64_t{100000}))
+      ->capture_default_str();
   long timer_slack_ns = 50000;
   app.add_option("--timer-slack-ns", timer_slack_ns,
                  "real time: how late the pacing timer may wake (Linux's default for a normal thread: 50000)")

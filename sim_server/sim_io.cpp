@@ -131,13 +131,22 @@ bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_reque
       for (int k = 0; k < kMessagesPerWake; ++k) {
         const int n = i == 0 ? bus_.handle_shared(1) : bus_.handle_hardware(1);
         if (n < 0) return false;
-        if ((until_command && has_pending_) || (until_request && has_request())) return true;
+        if ((until_command && has_pending_ && last_step_ >= awaited_step_) || (until_request && has_request()))
+          return true;
         if (n == 0) break;
       }
     }
-    if ((until_command && has_pending_) || (until_request && has_request())) return true;
+    if ((until_command && has_pending_ && last_step_ >= awaited_step_) || (until_request && has_request())) return true;
   }
   return true;
+}
+
+bool SimIo::wait_for_answer(int64_t step, int64_t deadline_us) {
+  if (last_step_ >= step) return true;
+  awaited_step_ = step;
+  const bool ok = poll_until(deadline_us, true);
+  awaited_step_ = -1;
+  return ok;
 }
 
 bool SimIo::take_command() {

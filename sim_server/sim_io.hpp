@@ -70,6 +70,9 @@ class SimIo {
   // and resumes must not replay its backlog onto the robot); 0: no limit.
   void set_max_command_age(int64_t steps) { max_age_ = steps; }
   bool has_command() const { return has_pending_; }
+  // Real time: handles messages until a command answering state `step` (or a later one) has been accepted, or until
+  // `deadline_us`; true at once if one already was. False if LCM failed.
+  bool wait_for_answer(int64_t step, int64_t deadline_us);
   // Hands the newest accepted command to the actuators; false if none arrived since the last call.
   bool take_command();
   // monotonic_us() when the newest command was accepted, -1 before the first.
@@ -117,6 +120,7 @@ class SimIo {
   std::vector<double> pending_value_;
   bool has_pending_ = false;
   int64_t expected_step_ = -1, last_step_ = -1, last_command_us_ = -1;
+  int64_t awaited_step_ = -1;  // wait_for_answer(): a pending command counts only if it answers this step or later
   int64_t foreign_states_ = 0;
   int64_t dropped_ = 0, stale_ = 0, dropped_logged_ = 0, last_drop_log_us_ = 0, max_age_ = 0;
   int64_t pre_reset_step_ = -1;  // commands up to this step answer states from before the last reset

@@ -128,7 +128,7 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
       now = monotonic_us();
     }
     const int64_t late = now - deadline;
-    bool answered = false;
+    bool answered = false, skipped = false;
     if (late > std::max<int64_t>(kMaxCatchUpUs, std::llround(10 * period_us_))) {
       stats_.add_missed(std::llround(double(late) / period_us_));
       rebase(now);
@@ -136,6 +136,10 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
       answered = io_.take_command();  // the newest command holds through the skipped steps
       stats_.add_missed(skip_to(now));
       deadline = due();
+      skipped = true;  // the newest state was not published: nothing answers it
+    }
+    if (opt_.answer_wait_us > 0 && !skipped && !answered && !watchdog_holding_ && io_.last_command_us() >= 0) {
+      if (!io_.wait_for_answer(sim_.step_count(), now + opt_.answer_wait_us)) return false;
     }
     answered = io_.take_command() || answered;
     if (!answered && io_.last_command_us() >= 0) stats_.add_missed(1);  // the controller did not answer in time

@@ -16,8 +16,9 @@
 namespace lcm_control::sim {
 
 // Real time, a cycle that starts a period or more late: run the steps due back to back, publishing each (the
-// controller gets a burst), or take them without publishing and go on from the newest (the controller sees the
-// step jump, counted as missed). Either way sim time keeps up with the wall clock.
+// controller gets a burst and answers each state, StepperOptions::answer_wait_us), or take them without publishing
+// and go on from the newest (the controller sees the step jump, counted as missed). Either way sim time keeps up
+// with the wall clock.
 enum class Overrun { CatchUp, Skip };
 
 struct StepperOptions {
@@ -28,6 +29,10 @@ struct StepperOptions {
   bool start_paused = false;        // as Gazebo's paused:=true: nothing steps until a RESUME or STEP request
   Overrun overrun = Overrun::CatchUp;  // real time
   int64_t spin_us = 0;  // real time: sleep to this long before each deadline, then poll without sleeping up to it
+  // Real time: how long a step, once due, waits for the controller's answer to the state before it, so that a
+  // catch-up burst (or a controller a little late) still gets a command per step; 0 steps at once with the previous
+  // command. Only while a controller answers (not before its first command, nor under the watchdog).
+  int64_t answer_wait_us = 200;
 };
 
 class Stepper {
