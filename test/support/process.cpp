@@ -39,7 +39,7 @@ ChildProcess::ChildProcess(std::vector<std::string> argv, std::map<std::string, 
   // In the test's process group (ctest's timeout kill takes it with the test) and not tied to the thread that
   // started it: a test may start a child from a thread that ends before the child should.
   try {
-    pid_ = tools::start_process(argv, tools::environment_with(env), fd, {false, false});
+    pid_ = tools::start_process(argv, tools::environment_with(env), fd, {false, false, {}});
   } catch (...) {
     close(fd);
     throw;

@@ -1,6 +1,7 @@
 // tools/lib/process: how every child process here is started, signalled and
 // reaped (launch's Supervisor, the tests' ChildProcess, run_and_wait).
 #include "tools/lib/process.hpp"
+#include "tools/lib/process_c.h"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>
@@ -33,7 +34,7 @@ TEST(Process, TheEnvironmentIsOursWithTheOverrides) {
   const int fd = mkstemp(tmpl);
   ASSERT_GE(fd, 0);
   const pid_t pid = start_process({"/bin/sh", "-c", "echo \"$LCM_CONTROL_PROCESS_TEST;$HOME\""},
-                                  environment_with({{"LCM_CONTROL_PROCESS_TEST", "set"}}), fd, {false, false});
+                                  environment_with({{"LCM_CONTROL_PROCESS_TEST", "set"}}), fd, {false, false, {}});
   close(fd);
   EXPECT_EQ(reap_process(pid, true), 0);
   FILE* f = fopen(tmpl, "r");
@@ -75,7 +76,42 @@ TEST(Process, AStopReachesTheChildsOwnGroupOnceAndAMissingProgramExits127) {
   EXPECT_EQ(std::string(line), "got 1\n");  // once, not twice
 
   const int devnull = open("/dev/null", O_WRONLY);
-  const pid_t missing = start_process({"/no/such/program"}, environment_with({}), devnull, {false, false});
+  const pid_t missing = start_process({"/no/such/program"}, environment_with({}), devnull, {false, false, {}});
   close(devnull);
   EXPECT_EQ(reap_process(missing, true), 127);
+}
+
+// bench/run's Python goes through the C interface: a child pinned to one CPU, and what it used once reaped.
+TEST(Process, TheCInterfacePinsAChildAndReportsItsUsage) {
+  char tmpl[] = "/tmp/lcm_control_process_test_XXXXXX";
+  const int fd = mkstemp(tmpl);
+  ASSERT_GE(fd, 0);
+  const char* argv[] = {"/bin/sh", "-c", "grep Cpus_allowed_list /proc/self/status; i=0; while [ $i -lt 20000 ]; do i=$((i+1)); done",
+                        nullptr};
+  const int cpu[] = {0};
+  const int pid = lcm_control_start_process(argv, fd, cpu, 1, 0);
+  close(fd);
+  ASSERT_GT(pid, 0);
+  int code = -1;
+  double user = -1, system = -1;
+  long rss = -1;
+  EXPECT_EQ(lcm_control_reap_process(pid, 1, &code, &user, &system, &rss), 1);
+  EXPECT_EQ(code, 0);
+  EXPECT_GT(user + system, 0.0);
+  EXPECT_GT(rss, 100);  // kB: a shell is more than that
+  EXPECT_EQ(lcm_control_reap_process(pid, 0, &code, nullptr, nullptr, nullptr), -1);  // reaped already
+  FILE* f = fopen(tmpl, "r");
+  char line[256] = {};
+  ASSERT_NE(f, nullptr);
+  ASSERT_NE(fgets(line, sizeof line, f), nullptr);
+  fclose(f);
+  unlink(tmpl);
+  EXPECT_STREQ(line, "Cpus_allowed_list:\t0\n");
+
+  const int none[] = {4095};  // no such CPU: said, exit 127
+  const char* sh[] = {"/bin/true", nullptr};
+  const int bad = lcm_control_start_process(sh, open("/dev/null", O_WRONLY | O_CLOEXEC), none, 1, 0);
+  ASSERT_GT(bad, 0);
+  EXPECT_EQ(lcm_control_reap_process(bad, 1, &code, nullptr, nullptr, nullptr), 1);
+  EXPECT_EQ(code, 127);
 }

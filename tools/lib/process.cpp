@@ -1,6 +1,7 @@
 #include "tools/lib/process.hpp"
 
 #include <fcntl.h>
+#include <sched.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -46,6 +47,11 @@ pid_t start_process(const std::vector<std::string>& argv, const std::vector<std:
   for (auto& e : env_copy) envp.push_back(e.data());
   envp.push_back(nullptr);
   const std::string cannot = "cannot start " + argv[0] + ": execve failed (not found or not executable)\n";
+  cpu_set_t cpus;
+  CPU_ZERO(&cpus);
+  for (int c : options.cpus)
+    if (c >= 0 && c < CPU_SETSIZE) CPU_SET(c, &cpus);
+  const std::string unpinned = "cannot start " + argv[0] + ": sched_setaffinity failed (no such CPU?)\n";
   const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) throw std::runtime_error(std::string("fork: ") + std::strerror(errno));
@@ -61,6 +67,10 @@ pid_t start_process(const std::vector<std::string>& argv, const std::vector<std:
     dup2(devnull, 0);
     dup2(output_fd, 1);
     dup2(output_fd, 2);
+    if (!options.cpus.empty() && sched_setaffinity(0, sizeof cpus, &cpus) != 0) {
+      if (write(2, unpinned.data(), unpinned.size()) < 0) _exit(127);
+      _exit(127);
+    }
     execve(args[0], args.data(), envp.data());
     if (write(2, cannot.data(), cannot.size()) < 0) _exit(127);
     _exit(127);
@@ -74,11 +84,11 @@ void signal_process(pid_t pid, int sig) {
   kill(pid, sig);
 }
 
-std::optional<int> reap_process(pid_t pid, bool block) {
+std::optional<int> reap_process(pid_t pid, bool block, rusage* usage) {
   int st = 0;
   pid_t r;
   do {
-    r = waitpid(pid, &st, block ? 0 : WNOHANG);
+    r = wait4(pid, &st, block ? 0 : WNOHANG, usage);
   } while (r < 0 && errno == EINTR);
   if (r != pid) return std::nullopt;
   return WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
@@ -112,7 +122,7 @@ int run_and_wait(const std::vector<std::string>& argv, double timeout_s, std::st
   if (fd < 0) return -1;
   int code = -1;
   try {
-    const pid_t pid = start_process(args, environment_with({}), fd, {false, true});
+    const pid_t pid = start_process(args, environment_with({}), fd, {false, true, {}});
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
     for (;;) {
       if (const std::optional<int> c = reap_process(pid, false)) {

@@ -1,9 +1,10 @@
 // Starting, signalling and reaping one child process: the one way this project runs programs (launch's
-// Supervisor, the tests' ChildProcess). stdin from /dev/null, stdout and stderr on one fd; optionally a process
+// Supervisor, the tests' ChildProcess, and bench/run's Python through process_c.h). stdin from /dev/null, stdout and stderr on one fd; optionally a process
 // group of its own (a terminal's Ctrl-C then reaches only the parent, and a stop reaches the child's children)
 // and SIGTERM when the thread that started it ends.
 #pragma once
 
+#include <sys/resource.h>
 #include <sys/types.h>
 
 #include <map>
@@ -16,6 +17,7 @@ namespace lcm_control::tools {
 struct ProcessOptions {
   bool own_group = true;
   bool die_with_parent = true;  // PR_SET_PDEATHSIG: fires when the starting *thread* ends
+  std::vector<int> cpus;        // pinned to these CPUs before exec (its threads inherit it); empty: any
 };
 
 // "K=V" for this process's environment with `overrides` added or replaced.
@@ -30,7 +32,8 @@ pid_t start_process(const std::vector<std::string>& argv, const std::vector<std:
 void signal_process(pid_t pid, int sig);
 
 // Its exit code (128 + signal when a signal ended it) once it has exited; nullopt while it runs. block: wait.
-std::optional<int> reap_process(pid_t pid, bool block);
+// usage: what it used (CPU time, peak RSS), filled when it is reaped.
+std::optional<int> reap_process(pid_t pid, bool block, rusage* usage = nullptr);
 
 // The file execve should run for `name`: a path as given, else in first_dir (e.g. next to the running program),
 // else the first executable match on PATH; "" when there is none.
