@@ -63,6 +63,7 @@ pid_t start_process(const std::vector<std::string>& argv, const std::vector<std:
     }
     signal(SIGINT, SIG_DFL);
     signal(SIGTERM, SIG_DFL);
+    signal(SIGPIPE, SIG_DFL);  // a parent that ignores it (Python does) must not hand that on
     const int devnull = open("/dev/null", O_RDONLY);
     dup2(devnull, 0);
     dup2(output_fd, 1);
