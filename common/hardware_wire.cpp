@@ -30,7 +30,6 @@ const char* wire_mode_name(int mode) {
 ActuatorBinding bind_actuators(const std::vector<std::string>& ours, const std::vector<std::string>& theirs) {
   ActuatorBinding b;
   b.slot.assign(ours.size(), -1);
-  b.ours_at.assign(theirs.size(), -1);
   for (size_t i = 0; i < theirs.size(); ++i) {
     size_t k = 0;
     while (k < ours.size() && ours[k] != theirs[i]) ++k;
@@ -40,7 +39,6 @@ ActuatorBinding bind_actuators(const std::vector<std::string>& ours, const std::
       b.repeated.push_back(theirs[i]);
     } else {
       b.slot[k] = static_cast<int>(i);
-      b.ours_at[i] = static_cast<int>(k);
     }
   }
   for (size_t k = 0; k < ours.size(); ++k)

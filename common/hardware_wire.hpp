@@ -21,10 +21,9 @@ int8_t wire_mode(Interface i);
 const char* wire_mode_name(int mode);
 
 // A hardware message's actuators matched by name to ours. slot[k]: the message's index of ours[k], or -1 (listed in
-// `missing`); ours_at[i]: our index of the message's actuator i, or -1 (listed in `unknown`).
+// `missing`); the message's names that are not ours are in `unknown`, those it lists twice in `repeated`.
 struct ActuatorBinding {
   std::vector<int> slot;
-  std::vector<int> ours_at;
   std::vector<std::string> missing, unknown, repeated;
   // "" when every one of ours is there exactly once (unknown ones are allowed only with `allow_unknown`); else what
   // differs, naming the actuators.

@@ -117,7 +117,10 @@ void SimIo::publish_base_pose() {
 
 void SimIo::publish_statistics(const loop_stats_t& stats) { stats_pub_.publish(stats); }
 
-bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_request) {
+bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_request, int64_t answering_step) {
+  auto done = [&] {
+    return (until_command && has_pending_ && last_step_ >= answering_step) || (until_request && has_request());
+  };
   for (int late = 0; late < kMaxMessagesPastDeadline;) {
     const int64_t left = std::max<int64_t>(0, deadline_us - monotonic_us());
     if (left == 0) ++late;
@@ -131,22 +134,17 @@ bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_reque
       for (int k = 0; k < kMessagesPerWake; ++k) {
         const int n = i == 0 ? bus_.handle_shared(1) : bus_.handle_hardware(1);
         if (n < 0) return false;
-        if ((until_command && has_pending_ && last_step_ >= awaited_step_) || (until_request && has_request()))
-          return true;
+        if (done()) return true;
         if (n == 0) break;
       }
     }
-    if ((until_command && has_pending_ && last_step_ >= awaited_step_) || (until_request && has_request())) return true;
+    if (done()) return true;
   }
   return true;
 }
 
 bool SimIo::wait_for_answer(int64_t step, int64_t deadline_us) {
-  if (last_step_ >= step) return true;
-  awaited_step_ = step;
-  const bool ok = poll_until(deadline_us, true);
-  awaited_step_ = -1;
-  return ok;
+  return last_step_ >= step || poll_until(deadline_us, true, false, step);
 }
 
 bool SimIo::take_command() {

@@ -51,9 +51,10 @@ class SimIo {
   void publish_statistics(const loop_stats_t& stats);
 
   // Handles LCM messages as they come until `deadline_us` (monotonic_us()), or until a command is
-  // accepted if `until_command`, or a request is queued if `until_request`; at least one non-blocking pass. False if
-  // LCM failed.
-  bool poll_until(int64_t deadline_us, bool until_command = false, bool until_request = false);
+  // accepted if `until_command` (one answering `answering_step` or later), or a request is queued if `until_request`;
+  // at least one non-blocking pass. False if LCM failed.
+  bool poll_until(int64_t deadline_us, bool until_command = false, bool until_request = false,
+                  int64_t answering_step = -1);
 
   // sim_server/request, oldest first. answer() publishes on sim_server/response and remembers the answer, so that a
   // client resending the request (a lost answer) gets it again.
@@ -120,7 +121,6 @@ class SimIo {
   std::vector<double> pending_value_;
   bool has_pending_ = false;
   int64_t expected_step_ = -1, last_step_ = -1, last_command_us_ = -1;
-  int64_t awaited_step_ = -1;  // wait_for_answer(): a pending command counts only if it answers this step or later
   int64_t foreign_states_ = 0;
   int64_t dropped_ = 0, stale_ = 0, dropped_logged_ = 0, last_drop_log_us_ = 0, max_age_ = 0;
   int64_t pre_reset_step_ = -1;  // commands up to this step answer states from before the last reset

@@ -138,7 +138,7 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
       deadline = due();
       skipped = true;  // the newest state was not published: nothing answers it
     }
-    if (opt_.answer_wait_us > 0 && !skipped && !answered && !watchdog_holding_ && io_.last_command_us() >= 0) {
+    if (opt_.answer_wait_us > 0 && !skipped && !watchdog_holding_ && io_.last_command_us() >= 0) {
       if (!io_.wait_for_answer(sim_.step_count(), now + opt_.answer_wait_us)) return false;
     }
     answered = io_.take_command() || answered;

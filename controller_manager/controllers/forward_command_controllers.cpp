@@ -4,15 +4,7 @@
 // A group (`joints`, float64_array_t, one value per joint, wrong size dropped
 // and counted): the three JointGroup*Controller types.
 // On start a position command holds the current position; velocity and effort start at 0.
-#include <fmt/format.h>
-#include <spdlog/spdlog.h>
-
-#include <cmath>
-
-#include "common/messages.hpp"
 #include "controller_manager/controllers/factories.hpp"
-#include "lcm_control/float64_array_t.hpp"
-#include "lcm_control/float64_t.hpp"
 
 namespace lcm_control::cm {
 

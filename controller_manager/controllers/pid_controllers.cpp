@@ -11,17 +11,13 @@
 // where it is the shortest angle. Position set points are clamped to the
 // URDF limits; start holds the current position (velocity: 0), PID reset.
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
 
 #include "common/angles.hpp"
 #include "controller_manager/controllers/factories.hpp"
-#include "common/messages.hpp"
 #include "lcm_control/controller_state_t.hpp"
-#include "lcm_control/float64_array_t.hpp"
-#include "lcm_control/float64_t.hpp"
 
 namespace lcm_control::cm {
 

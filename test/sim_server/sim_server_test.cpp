@@ -162,16 +162,19 @@ TEST(sim_e2e, EStopHoldsTheJointWithin1mmUnderAContraryCommand) {
   EXPECT_NE(server.output().find("e-stop engaged by 'sim_e2e'"), std::string::npos) << server.output();
 }
 
+// modes_bot: t_pid_motor to 2.0 (actuator units), the other position actuators hold, the rest get 0.
+void command_pid_motor_to_2(const hardware_state_t& s, hardware_command_t& c) {
+  for (int i = 0; i < s.num_actuators; ++i)
+    c.command[i] = s.name[i] == "t_pid_motor" ? 2.0 : s.mode[i] == hardware_command_t::MODE_POSITION ? s.position[i]
+                                                                                                      : 0.0;
+}
+
 TEST(sim_e2e, ActuatorSpaceOnTheWireReductionTwoMovesTheJointToHalfTheCommand) {
   SimServerProcess server;
   std::string why;
   ASSERT_TRUE(server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1"}, kData + "/modes_bot.urdf", kData + "/modes_bot.yaml", &why)) << why;
   FakeController cm(server.lc);
-  cm.policy = [](const hardware_state_t& s, hardware_command_t& c) {
-    for (int i = 0; i < s.num_actuators; ++i)
-      c.command[i] = s.name[i] == "t_pid_motor" ? 2.0 : s.mode[i] == hardware_command_t::MODE_POSITION ? s.position[i]
-                                                                                                        : 0.0;
-  };
+  cm.policy = command_pid_motor_to_2;
   ASSERT_TRUE(cm.run_until_step(3000, 20.0)) << server.output();
   const hardware_state_t& s = cm.states.back();
   ASSERT_EQ(s.num_actuators, 5);
@@ -190,9 +193,7 @@ TEST(sim_e2e, CommandActuatorsAreMatchedByNameInAnyOrder) {
   Recorder<loop_stats_t> stats(server.lc, "sim_server/statistics");
   FakeController cm(server.lc);
   cm.policy = [](const hardware_state_t& s, hardware_command_t& c) {
-    for (int i = 0; i < s.num_actuators; ++i)
-      c.command[i] = s.name[i] == "t_pid_motor" ? 2.0 : s.mode[i] == hardware_command_t::MODE_POSITION ? s.position[i]
-                                                                                                        : 0.0;
+    command_pid_motor_to_2(s, c);
     std::reverse(c.name.begin(), c.name.end());
     std::reverse(c.mode.begin(), c.mode.end());
     std::reverse(c.command.begin(), c.command.end());

@@ -60,17 +60,19 @@ class Flatten {
   template <class T>
   void list(const char* name, const std::vector<T>& xs, const char*) {
     if constexpr (std::is_same_v<T, std::string>)
-      if (labels_ok(xs)) row_names_[name] = &xs;
+      strings_[name] = &xs;
     for (size_t k = 0; k < xs.size(); ++k) put(fmt::format("{}{}[{}]", prefix_, name, k), xs[k]);
   }
   template <class T>
   void matrix(const char* name, const std::vector<std::vector<T>>& xs, const char*, int) {
     const FieldInfo* info = field_info(type_, name);
     const std::vector<std::string> cols = info ? words(info->components) : std::vector<std::string>{};
-    const auto rows = row_names_.find(info ? info->labels : "");
+    const auto found = strings_.find(info ? info->labels : "");
+    const std::vector<std::string>* rows =
+        found != strings_.end() && labels_ok(*found->second) ? found->second : nullptr;
     for (size_t k = 0; k < xs.size(); ++k) {
-      const bool named_row = rows != row_names_.end() && k < rows->second->size();
-      const std::string row = named_row ? (*rows->second)[k] : std::to_string(k);
+      const bool named_row = rows && k < rows->size();
+      const std::string row = named_row ? (*rows)[k] : std::to_string(k);
       for (size_t j = 0; j < xs[k].size(); ++j)
         put(j < cols.size() && named_row ? fmt::format("{}{}[{}].{}", prefix_, name, row, cols[j])
                                          : fmt::format("{}{}[{}][{}]", prefix_, name, row, j),
@@ -100,7 +102,7 @@ class Flatten {
   }
   std::vector<Field>& f_;
   std::string prefix_, type_;
-  std::map<std::string, const std::vector<std::string>*> row_names_;  // string arrays usable as labels, by field
+  std::map<std::string, const std::vector<std::string>*> strings_;  // the string arrays visited so far, by field
 };
 
 struct TypeEntry {
