@@ -5,6 +5,8 @@
 #include <netinet/in.h>
 #include <poll.h>
 #include <sys/socket.h>
+#include <sys/time.h>
+#include <sys/uio.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -79,6 +81,7 @@ LcmSocket::LcmSocket(const std::string& url) : url_(url) {
   };
   const int one = 1;
   if (setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one)) != 0) fail("SO_REUSEADDR");
+  setsockopt(fd_, SOL_SOCKET, SO_TIMESTAMP, &one, sizeof(one));  // recv_utime as LCM gives it: when it arrived
   if (a.recv_buf_size > 0) setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &a.recv_buf_size, sizeof(a.recv_buf_size));
   sockaddr_in addr{};
   addr.sin_family = AF_INET;
@@ -203,9 +206,25 @@ bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* chann
 
 bool LcmSocket::receive(ssize_t* n, std::string_view* channel, const uint8_t** payload, int* size) {
   sockaddr_in from{};
-  socklen_t from_size = sizeof(from);
-  *n = recvfrom(fd_, buf_.data(), buf_.size(), MSG_DONTWAIT, reinterpret_cast<sockaddr*>(&from), &from_size);
-  return *n >= 0 && parse(int(*n), from, channel, payload, size);
+  iovec iov{buf_.data(), buf_.size()};
+  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(timeval))];
+  msghdr msg{};
+  msg.msg_name = &from;
+  msg.msg_namelen = sizeof(from);
+  msg.msg_iov = &iov;
+  msg.msg_iovlen = 1;
+  msg.msg_control = control;
+  msg.msg_controllen = sizeof(control);
+  *n = recvmsg(fd_, &msg, MSG_DONTWAIT);
+  if (*n < 0) return false;
+  arrived_us_ = -1;
+  for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c; c = CMSG_NXTHDR(&msg, c))
+    if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMP) {
+      timeval tv{};
+      std::memcpy(&tv, CMSG_DATA(c), sizeof(tv));
+      arrived_us_ = int64_t(tv.tv_sec) * 1000000 + tv.tv_usec;
+    }
+  return parse(int(*n), from, channel, payload, size);
 }
 
 int LcmSocket::handle_queued(int max) {
@@ -218,7 +237,7 @@ int LcmSocket::handle_queued(int max) {
     const bool complete = receive(&n, &channel, &payload, &size);
     if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR ? read : -1;
     if (!complete) continue;
-    const lcm::ReceiveBuffer rb{const_cast<uint8_t*>(payload), uint32_t(size), wall_us()};
+    const lcm::ReceiveBuffer rb{const_cast<uint8_t*>(payload), uint32_t(size), arrived_us_ >= 0 ? arrived_us_ : wall_us()};
     for (const Entry& e : subscribers_)
       if (e.channel == channel) e.handler(rb);
   }

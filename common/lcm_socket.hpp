@@ -42,7 +42,7 @@ class LcmSocket {
   const std::string& url() const { return url_; }
 
   // Messages on `channel` (the exact name) go to `handler` with LCM's ReceiveBuffer (recv_utime: the wall clock
-  // when read), until unsubscribe() with the id returned (unique in the process). Not from inside a handler.
+  // when the datagram arrived, the kernel's SO_TIMESTAMP as LCM's own receive thread gives it), until unsubscribe() with the id returned (unique in the process). Not from inside a handler.
   using Handler = std::function<void(const lcm::ReceiveBuffer&)>;
   int subscribe(const std::string& channel, Handler handler);
   void unsubscribe(int id);
@@ -92,6 +92,7 @@ class LcmSocket {
   std::vector<uint8_t> buf_ = std::vector<uint8_t>(65536);
   Partial partials_[4];
   int64_t reassembled_ = 0, incomplete_ = 0, not_lcm_ = 0;
+  int64_t arrived_us_ = -1;  // the kernel's arrival stamp of the datagram receive() read last, -1 without one
 };
 
 }  // namespace lcm_control

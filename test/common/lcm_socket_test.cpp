@@ -122,6 +122,23 @@ TEST(LcmSocket, DeliversLcmsOwnBytesOnSubscribedChannelsOnly) {
   EXPECT_EQ(socket.not_lcm(), 0);
 }
 
+TEST(LcmSocket, RecvUtimeIsWhenTheDatagramArrivedAsLcmGivesIt) {
+  const std::string url = lt::unique_lcm_url();
+  LcmSocket socket(url);
+  lcm::LCM lc(url);
+  ASSERT_TRUE(lc.good());
+  Got got;
+  socket.subscribe("state", [&](const lcm::ReceiveBuffer& rb) { got.recv_utime = rb.recv_utime; });
+  const uint8_t byte = 1;
+  const int64_t before = wall_us();
+  lc.publish("state", &byte, 1);
+  usleep(50000);  // read well after it arrived
+  const int64_t read_from = wall_us();
+  ASSERT_TRUE(pump(socket, [&] { return got.recv_utime != 0; }));
+  EXPECT_GE(got.recv_utime, before);
+  EXPECT_LT(got.recv_utime, read_from - 40000) << "recv_utime is when it was read, not when it arrived";
+}
+
 TEST(LcmSocket, CountsWhatIsNotLcmAndDeliversNoneOfIt) {
   const std::string url = lt::unique_lcm_url();
   LcmSocket socket(url);
