@@ -5,7 +5,7 @@
 
 namespace lcm_control {
 
-void LoopStats::add_cycle(int64_t start_us, int64_t end_us, bool overrun) {
+void LoopStats::add_cycle(int64_t start_us, int64_t work_us, bool overrun) {
   ++cycles_;
   if (last_start_us_ >= 0) {
     const double p = static_cast<double>(start_us - last_start_us_);
@@ -16,8 +16,7 @@ void LoopStats::add_cycle(int64_t start_us, int64_t end_us, bool overrun) {
     p_max_ = std::max(p_max_, p);
   }
   last_start_us_ = start_us;
-  const double work = static_cast<double>(end_us - start_us);
-  exec_.add(work);
+  exec_.add(static_cast<double>(work_us));
   if (overrun) ++overruns_;
 }
 

@@ -26,9 +26,10 @@ struct ExecStats {
 
 class LoopStats {
  public:
-  // One cycle that started at start_us and whose work ended at end_us (monotonic); `overrun`: it ended late, by
-  // the loop's own rule (the controller manager: work longer than the period; sim_server: past the deadline).
-  void add_cycle(int64_t start_us, int64_t end_us, bool overrun);
+  // One cycle that started at start_us (monotonic; the period is taken between starts) and did work_us of work;
+  // `overrun`: it ended late, by the loop's own rule (the controller manager: work longer than the period;
+  // sim_server: its state published a period or more after its deadline).
+  void add_cycle(int64_t start_us, int64_t work_us, bool overrun);
   void add_missed(int64_t n) { missed_ += n; }
   void add_dropped(int64_t n) { dropped_ += n; }
   void set_real_time_factor(double f) { rtf_ = f; }

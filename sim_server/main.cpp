@@ -67,9 +67,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(int64_t{0}, int64_t{100000}))
       ->capture_default_str();
   app.add_option("--answer-wait-us", opt.answer_wait_us,
-                 "real time: how long a step, once due, waits for the controller's answer to the state before "
-                 "it (a catch-up burst then still gets a command per step); 0: step at once with the previous command "
-                 "and count a missed cycle")
+                 "real time: each step is taken when the controller's answer to the state before it arrives and "
+                 "its state published on its deadline; this is how long past the deadline the answer is awaited (a "
+                 "catch-up burst then still gets a command per step); 0: step when due with the newest command, a "
+                 "missed cycle when it is not the answer")
       ->check(CLI::Range(int64_t{0}, int64_t{100000}))
       ->capture_default_str();
   long timer_slack_ns = 50000;

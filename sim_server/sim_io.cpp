@@ -143,10 +143,6 @@ bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_reque
   return true;
 }
 
-bool SimIo::wait_for_answer(int64_t step, int64_t deadline_us) {
-  return last_step_ >= step || poll_until(deadline_us, true, false, step);
-}
-
 bool SimIo::take_command() {
   if (!has_pending_) return false;
   Actuators& act = sim_.actuators();

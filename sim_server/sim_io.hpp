@@ -71,9 +71,8 @@ class SimIo {
   // and resumes must not replay its backlog onto the robot); 0: no limit.
   void set_max_command_age(int64_t steps) { max_age_ = steps; }
   bool has_command() const { return has_pending_; }
-  // Real time: handles messages until a command answering state `step` (or a later one) has been accepted, or until
-  // `deadline_us`; true at once if one already was. False if LCM failed.
-  bool wait_for_answer(int64_t step, int64_t deadline_us);
+  // Real time: a command answering state `step` (or a later one) has been accepted (poll_until waits for one).
+  bool answered(int64_t step) const { return last_step_ >= step; }
   // Hands the newest accepted command to the actuators; false if none arrived since the last call.
   bool take_command();
   // monotonic_us() when the newest command was accepted, -1 before the first.

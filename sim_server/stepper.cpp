@@ -39,15 +39,20 @@ double Stepper::real_time_factor() const {
   return wall > 0 ? double(sim_.step_count() - start_step_) * period_us_ / double(wall) : 0.0;
 }
 
-void Stepper::step_timed(int64_t deadline_us) {
+int64_t Stepper::step_timed() {
   const int64_t t0 = monotonic_us();
   sim_.step();
-  const int64_t t1 = monotonic_us();
+  const int64_t us = monotonic_us() - t0;
+  step_exec_.add(double(us));
+  return us;
+}
+
+void Stepper::publish_timed(int64_t step_us, int64_t late_after_us) {
+  const int64_t t0 = monotonic_us();
   publish(real_time_factor());
-  const int64_t t2 = monotonic_us();
-  stats_.add_cycle(t0, t2, deadline_us > 0 && t2 > deadline_us);
-  step_exec_.add(double(t1 - t0));
-  publish_exec_.add(double(t2 - t1));
+  const int64_t t1 = monotonic_us();
+  publish_exec_.add(double(t1 - t0));
+  stats_.add_cycle(t0, step_us + (t1 - t0), late_after_us > 0 && t1 > late_after_us);
 }
 
 bool Stepper::run_lockstep(const std::atomic<bool>& stop) {
@@ -83,7 +88,7 @@ bool Stepper::run_lockstep(const std::atomic<bool>& stop) {
     if (!io_.has_command()) continue;  // a request first: it may pause or reset
     if (said) spdlog::info("lockstep: command for step {} arrived; stepping", sim_.step_count());
     io_.take_command();
-    step_timed(0);
+    publish_timed(step_timed(), 0);
     after_step();
     tick_statistics(monotonic_us());
   }
@@ -103,6 +108,25 @@ void Stepper::watchdog(int64_t now) {
     spdlog::info("hardware/command is back at step {}: commands apply again", sim_.step_count());
 }
 
+bool Stepper::sleep_until(int64_t until_us, int64_t answer_to, const std::atomic<bool>& stop) {
+  const int64_t wake = until_us - opt_.spin_us;
+  int64_t now = monotonic_us();
+  auto answered = [&] { return answer_to >= 0 && io_.answered(answer_to); };
+  do {  // at least one pass, so messages are handled even while catching up
+    if (stop) return true;
+    tick_statistics(now);
+    if (!io_.poll_until(std::min({wake, now + kMaxWaitSliceUs, w_.start_us + kStatsPeriodUs}), answer_to >= 0, false,
+                        answer_to))
+      return false;
+    now = monotonic_us();
+  } while (now < wake && !answered());
+  while (now < until_us && !answered() && !stop) {  // --spin-us: the tail without sleeping, still taking messages
+    if (!io_.poll_until(now, answer_to >= 0, false, answer_to)) return false;
+    now = monotonic_us();
+  }
+  return true;
+}
+
 bool Stepper::run_real_time(const std::atomic<bool>& stop) {
   base_us_ = start_us_;
   base_step_ = sim_.step_count();
@@ -114,21 +138,17 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
       continue;
     }
     auto due = [&] { return base_us_ + std::llround(double(sim_.step_count() + 1 - base_step_) * period_us_); };
-    int64_t deadline = due();
-    const int64_t wake = deadline - opt_.spin_us;
-    int64_t now = monotonic_us();
-    do {  // at least one pass, so messages are handled even while catching up
-      if (stop) return true;
-      tick_statistics(now);
-      if (!io_.poll_until(std::min({wake, now + kMaxWaitSliceUs, w_.start_us + kStatsPeriodUs}))) return false;
-      now = monotonic_us();
-    } while (now < wake);
-    while (now < deadline) {  // --spin-us: the tail without sleeping, still taking messages
-      if (!io_.poll_until(now)) return false;
-      now = monotonic_us();
-    }
+    int64_t deadline = due();  // when the state of the step taken next is published
+    // The step is taken as soon as the controller's answer to the last state published (this step's) is here, at
+    // most answer_wait_us after its deadline, or when due if no answer is awaited.
+    const bool awaited = opt_.answer_wait_us > 0 && !watchdog_holding_ && io_.last_command_us() >= 0;
+    if (!(awaited ? sleep_until(std::max(deadline, monotonic_us()) + opt_.answer_wait_us, sim_.step_count(), stop)
+                  : sleep_until(deadline, -1, stop)))
+      return false;
+    if (stop) return true;
+    const int64_t now = monotonic_us();
     const int64_t late = now - deadline;
-    bool answered = false, skipped = false;
+    bool answered = false;
     if (late > std::max<int64_t>(kMaxCatchUpUs, std::llround(10 * period_us_))) {
       stats_.add_missed(std::llround(double(late) / period_us_));
       rebase(now);
@@ -136,15 +156,14 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
       answered = io_.take_command();  // the newest command holds through the skipped steps
       stats_.add_missed(skip_to(now));
       deadline = due();
-      skipped = true;  // the newest state was not published: nothing answers it
-    }
-    if (opt_.answer_wait_us > 0 && !skipped && !watchdog_holding_ && io_.last_command_us() >= 0) {
-      if (!io_.wait_for_answer(sim_.step_count(), now + opt_.answer_wait_us)) return false;
     }
     answered = io_.take_command() || answered;
     if (!answered && io_.last_command_us() >= 0) stats_.add_missed(1);  // the controller did not answer in time
     watchdog(now);
-    step_timed(deadline + std::llround(period_us_));
+    const int64_t step_us = step_timed();
+    // Published on its deadline: the physics time and the wait for the answer do not move it.
+    if (!sleep_until(deadline, -1, stop)) return false;
+    publish_timed(step_us, deadline + std::llround(period_us_));
     after_step();
     tick_statistics(monotonic_us());
   }

@@ -1,5 +1,7 @@
 // Paces the simulation and runs the hardware loop around it: real time
-// (absolute deadlines on the monotonic clock, newest command, watchdog hold)
+// (each state published on its absolute deadline on the monotonic clock, the
+// step before it taken as soon as the controller has answered; newest command,
+// watchdog hold)
 // or lockstep (publish state k, wait for the command tagged k, step; time
 // stands still while nobody answers). Serves sim_server/request between steps:
 // pause (sim time holds, the state is republished so that the controller
@@ -29,9 +31,11 @@ struct StepperOptions {
   bool start_paused = false;        // as Gazebo's paused:=true: nothing steps until a RESUME or STEP request
   Overrun overrun = Overrun::CatchUp;  // real time
   int64_t spin_us = 0;  // real time: sleep to this long before each deadline, then poll without sleeping up to it
-  // Real time: how long a step, once due, waits for the controller's answer to the state before it, so that a
-  // catch-up burst (or a controller a little late) still gets a command per step; 0 steps at once with the previous
-  // command. Only while a controller answers (not before its first command, nor under the watchdog).
+  // Real time: the step is taken when the controller's answer to the state before it arrives, and its state is
+  // published when due, so neither the physics time nor the controller's moves the period it sees. The answer is
+  // awaited up to this long past the step's deadline, so that a catch-up burst (or a controller a little late) still
+  // gets a command per step; 0 steps when due with the newest command, and publishes at once. Only while a
+  // controller answers (not before its first command, nor under the watchdog).
   int64_t answer_wait_us = 200;
 };
 
@@ -60,7 +64,15 @@ class Stepper {
   int64_t skip_to(int64_t now_us);
   bool done() const;
   double real_time_factor() const;
-  void step_timed(int64_t deadline_us);
+  // One physics step, its time counted: how long it took (us).
+  int64_t step_timed();
+  // Publishes the state of the step just taken, counting a cycle of step_us + the publish; late when the publish
+  // ends after late_after_us (0: never).
+  void publish_timed(int64_t step_us, int64_t late_after_us);
+  // Real time: handles messages and the statistics window until until_us (sleeping to --spin-us before it, then
+  // polling), or, with answer_to >= 0, until the controller's answer to that step is here; false when LCM fails.
+  // Returns early when `stop` is set.
+  bool sleep_until(int64_t until_us, int64_t answer_to, const std::atomic<bool>& stop);
   void watchdog(int64_t now_us);
   void tick_statistics(int64_t now_us);
 
