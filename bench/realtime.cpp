@@ -5,8 +5,11 @@
 // controller_manager's 1 Hz statistics say (missed cycles, overruns, the sim's
 // own worst period, its real-time factor). The first `--skip` seconds are
 // start-up and not counted. Exits after `--seconds` or `--idle` s (default 2) without a state.
-//   bench_realtime --lcm-url URL [--seconds S] [--skip S] [--idle S]
+//   bench_realtime --lcm-url URL [--seconds S] [--skip S] [--idle S] [--reader direct|lcm]
 //   bench_realtime --timer-floor S [--period-us P] [--timer-slack-ns N] [--overrun catch-up|skip]
+//   bench_realtime --chain-floor S [--period-us P]
+// The listener reads the socket on its own thread as the controller manager does (--reader direct, the default), or
+// through LCM's receive thread as the tools do (--reader lcm).
 // The second form is the floor: a bare loop sleeping to absolute 1 kHz deadlines
 // (clock_nanosleep on CLOCK_MONOTONIC, what sim_server's pacing comes down to),
 // printing "timer N P50_ERR P99_ERR MAX_ERR MISSED SHORT" (MISSED: deadlines woken for a period or more
@@ -20,18 +23,29 @@
 //            ARRIVAL_P50_ERR ARRIVAL_P99_ERR ARRIVAL_SHORT
 // (errors in microseconds; LOST: states that never arrived here; SIM_JITTER: median over the 1 s windows of
 // the standard deviation of sim_server's own period; SHORT: periods under half the nominal one, i.e. states
-// that came back to back, as sim_server catches up after a stall; ARRIVAL_*: the same from LCM's recv_utime, when
-// its receive thread read the datagram, before the hand-off to the thread that handles it)
+// that came back to back, as sim_server catches up after a stall; ARRIVAL_*: the same from recv_utime, the kernel's
+// stamp of when each datagram arrived, i.e. when sim_server sent it, before any receiver woke)
+// The third form is the floor of a period seen from another process (see chain_floor).
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "bench/pingpong.hpp"
 #include "common/bus.hpp"
+#include "common/lcm_socket.hpp"
 #include "common/scheduling.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "lcm_control/loop_stats_t.hpp"
@@ -82,6 +96,22 @@ struct Listener {
   }
 };
 
+template <class F>
+struct detail_msg;
+template <class Msg>
+struct detail_msg<void (Listener::*)(const lcm::ReceiveBuffer*, const std::string&, const Msg*)> {
+  using type = Msg;
+};
+
+template <auto Handler>
+void subscribe_direct(LcmSocket& socket, const std::string& channel, Listener* l) {
+  socket.subscribe(channel, [l, channel](const lcm::ReceiveBuffer& rb) {
+    using Msg = typename detail_msg<decltype(Handler)>::type;
+    Msg m;
+    if (decode_guarded(m, rb.data, rb.data_size)) (l->*Handler)(&rb, channel, &m);
+  });
+}
+
 int timer_floor(double seconds, double period_us, bool skip) {
   const int64_t period_ns = int64_t(period_us * 1e3);
   timespec next{};
@@ -120,16 +150,85 @@ int timer_floor(double seconds, double period_us, bool skip) {
   return 0;
 }
 
+
+// The floor of a paced sender seen from another process: a child sleeps to absolute deadlines as timer_floor does and
+// sends one datagram on loopback after each; this process blocks in recv and takes the period between receipts, as a
+// controller takes it between states. Prints "chain N P50_ERR P99_ERR MAX_ERR SHORT LATENCY_P50 LATENCY_P99" (latency:
+// from the send to the receipt, both on CLOCK_MONOTONIC).
+int chain_floor(double seconds, double period_us) {
+  const int rx = socket(AF_INET, SOCK_DGRAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  socklen_t len = sizeof addr;
+  if (rx < 0 || bind(rx, reinterpret_cast<sockaddr*>(&addr), len) != 0 ||
+      getsockname(rx, reinterpret_cast<sockaddr*>(&addr), &len) != 0) {
+    std::perror("bench_realtime --chain-floor: socket");
+    return 1;
+  }
+  const pid_t child = fork();
+  if (child < 0) {
+    std::perror("bench_realtime --chain-floor: fork");
+    return 1;
+  }
+  if (child == 0) {
+    const int tx = socket(AF_INET, SOCK_DGRAM, 0);
+    const int64_t period_ns = int64_t(period_us * 1e3), end = now_ns() + int64_t(seconds * 1e9);
+    timespec next{};
+    clock_gettime(CLOCK_MONOTONIC, &next);
+    while (now_ns() < end) {
+      next.tv_nsec += period_ns;
+      while (next.tv_nsec >= 1000000000L) {
+        next.tv_nsec -= 1000000000L;
+        ++next.tv_sec;
+      }
+      clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
+      const int64_t t = now_ns();
+      sendto(tx, &t, sizeof t, 0, reinterpret_cast<const sockaddr*>(&addr), sizeof addr);
+    }
+    const int64_t done = -1;
+    sendto(tx, &done, sizeof done, 0, reinterpret_cast<const sockaddr*>(&addr), sizeof addr);
+    _exit(0);
+  }
+  std::vector<double> err, latency;
+  err.reserve(size_t(seconds * 1e6 / period_us) + 1);
+  latency.reserve(err.capacity());
+  int64_t last = -1, short_periods = 0;
+  for (;;) {
+    pollfd p{rx, POLLIN, 0};
+    if (poll(&p, 1, 2000) <= 0) break;  // the sender is gone
+    int64_t sent = 0;
+    if (recv(rx, &sent, sizeof sent, 0) != sizeof sent || sent < 0) break;
+    const int64_t t = now_ns();
+    latency.push_back(double(t - sent) / 1e3);
+    if (last >= 0) {
+      const double period = double(t - last) / 1e3;
+      err.push_back(std::abs(period - period_us));
+      if (period < 0.5 * period_us) ++short_periods;
+    }
+    last = t;
+  }
+  kill(child, SIGKILL);
+  waitpid(child, nullptr, 0);
+  std::printf("chain %zu %.2f %.2f %.2f %lld %.2f %.2f\n", err.size(), quantile(err, 0.5), quantile(err, 0.99),
+              err.empty() ? std::nan("") : *std::max_element(err.begin(), err.end()), (long long)short_periods,
+              quantile(latency, 0.5), quantile(latency, 0.99));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   std::string url;
-  double seconds = 70, skip = 1, timer = 0, period_us = 1000, slack_ns = -1, idle = 2;
-  bool skip_overruns = false;
+  double seconds = 70, skip = 1, timer = 0, chain = 0, period_us = 1000, slack_ns = -1, idle = 2;
+  bool skip_overruns = false, direct = true;
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string a = argv[k];
     if (a == "--lcm-url") url = argv[k + 1];
     else if (a == "--timer-floor") timer = std::atof(argv[k + 1]);
+    else if (a == "--chain-floor") chain = std::atof(argv[k + 1]);
+    else if (a == "--reader" && (std::string(argv[k + 1]) == "direct" || std::string(argv[k + 1]) == "lcm"))
+      direct = std::string(argv[k + 1]) == "direct";
     else if (a == "--period-us") period_us = std::atof(argv[k + 1]);
     else if (a == "--timer-slack-ns") slack_ns = std::atof(argv[k + 1]);
     else if (a == "--seconds") seconds = std::atof(argv[k + 1]);
@@ -143,21 +242,36 @@ int main(int argc, char** argv) {
   }
   if (slack_ns >= 0) lcm_control::set_timer_slack(long(std::max(1.0, slack_ns)));
   if (timer > 0) return timer_floor(timer, period_us, skip_overruns);
-  lcm::LCM lc(url);
-  if (!lc.good()) {
-    std::fprintf(stderr, "bench_realtime: LCM cannot start on %s\n", url.c_str());
-    return 1;
-  }
+  if (chain > 0) return chain_floor(chain, period_us);
   Listener l;
-  lc.subscribe(channels::kHardwareState, &Listener::on_state, &l);
-  lc.subscribe(channels::kSimStatistics, &Listener::on_sim_stats, &l);
-  lc.subscribe(channels::kCmStatistics, &Listener::on_cm_stats, &l);
+  std::unique_ptr<lcm::LCM> lc;
+  std::unique_ptr<LcmSocket> socket;
+  if (direct) {  // the controller manager's own receive path (HardwareReader::Direct)
+    socket = std::make_unique<LcmSocket>(url);
+    subscribe_direct<&Listener::on_state>(*socket, channels::kHardwareState, &l);
+    subscribe_direct<&Listener::on_sim_stats>(*socket, channels::kSimStatistics, &l);
+    subscribe_direct<&Listener::on_cm_stats>(*socket, channels::kCmStatistics, &l);
+  } else {  // through LCM's receive thread, as lcm-spy and every tool receive
+    lc = std::make_unique<lcm::LCM>(url);
+    if (!lc->good()) {
+      std::fprintf(stderr, "bench_realtime: LCM cannot start on %s\n", url.c_str());
+      return 1;
+    }
+    lc->subscribe(channels::kHardwareState, &Listener::on_state, &l);
+    lc->subscribe(channels::kSimStatistics, &Listener::on_sim_stats, &l);
+    lc->subscribe(channels::kCmStatistics, &Listener::on_cm_stats, &l);
+  }
   std::printf("listening\n");
   std::fflush(stdout);
   const int64_t start = now_ns(), end = start + int64_t(seconds * 1e9);
   bool started = false;
   while (now_ns() < end) {
-    lc.handleTimeout(100);
+    if (socket) {
+      pollfd p{socket->fd(), POLLIN, 0};
+      if (poll(&p, 1, 100) > 0) socket->handle_queued();
+    } else {
+      lc->handleTimeout(100);
+    }
     if (!started && l.states > 0) {
       started = true;
       l.skip_until_ns = now_ns() + int64_t(skip * 1e9);
