@@ -112,6 +112,16 @@ void subscribe_direct(LcmSocket& socket, const std::string& channel, Listener* l
   });
 }
 
+// Moves `next` on by one period and sleeps to it (an absolute deadline on CLOCK_MONOTONIC).
+void sleep_to_next(timespec& next, int64_t period_ns) {
+  next.tv_nsec += long(period_ns);
+  while (next.tv_nsec >= 1000000000L) {
+    next.tv_nsec -= 1000000000L;
+    ++next.tv_sec;
+  }
+  clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
+}
+
 int timer_floor(double seconds, double period_us, bool skip) {
   const int64_t period_ns = int64_t(period_us * 1e3);
   timespec next{};
@@ -121,12 +131,7 @@ int timer_floor(double seconds, double period_us, bool skip) {
   int64_t last = -1, missed = 0, short_periods = 0;
   const int64_t end = now_ns() + int64_t(seconds * 1e9);
   while (now_ns() < end) {
-    next.tv_nsec += period_ns;
-    while (next.tv_nsec >= 1000000000L) {
-      next.tv_nsec -= 1000000000L;
-      ++next.tv_sec;
-    }
-    clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
+    sleep_to_next(next, period_ns);
     const int64_t t = now_ns();
     const int64_t due = int64_t(next.tv_sec) * 1000000000LL + next.tv_nsec;
     if (const int64_t passed = (t - due) / period_ns; passed > 0) {
@@ -177,12 +182,7 @@ int chain_floor(double seconds, double period_us) {
     timespec next{};
     clock_gettime(CLOCK_MONOTONIC, &next);
     while (now_ns() < end) {
-      next.tv_nsec += period_ns;
-      while (next.tv_nsec >= 1000000000L) {
-        next.tv_nsec -= 1000000000L;
-        ++next.tv_sec;
-      }
-      clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
+      sleep_to_next(next, period_ns);
       const int64_t t = now_ns();
       sendto(tx, &t, sizeof t, 0, reinterpret_cast<const sockaddr*>(&addr), sizeof addr);
     }
