@@ -45,6 +45,7 @@
 
 #include "bench/pingpong.hpp"
 #include "common/bus.hpp"
+#include "common/endpoints.hpp"
 #include "common/lcm_socket.hpp"
 #include "common/scheduling.hpp"
 #include "lcm_control/hardware_state_t.hpp"
@@ -65,50 +66,43 @@ struct Listener {
   double sim_max_err = 0;
   std::vector<double> sim_jitter;  // per 1 s window: the standard deviation of sim_server's own period
 
-  void on_state(const lcm::ReceiveBuffer* rb, const std::string&, const hardware_state_t* s) {
+  void on_state(const lcm::ReceiveBuffer& rb, const hardware_state_t& s) {
     const int64_t now = now_ns();  // when the controller side gets it (recv_utime is the wall clock, not monotonic)
     ++states;
-    nominal_us = s->period_us;
-    rtf = s->real_time_factor;
-    if (now >= skip_until_ns && last_ns >= 0 && s->step > last_step) {
+    nominal_us = s.period_us;
+    rtf = s.real_time_factor;
+    if (now >= skip_until_ns && last_ns >= 0 && s.step > last_step) {
       const double period = double(now - last_ns) / 1e3;
       period_err_us.push_back(std::abs(period - nominal_us));
       if (period < 0.5 * nominal_us) ++short_periods;
-      lost += s->step - last_step - 1;
-      const double arrival = double(rb->recv_utime - last_arrival_us);
+      lost += s.step - last_step - 1;
+      const double arrival = double(rb.recv_utime - last_arrival_us);
       arrival_err_us.push_back(std::abs(arrival - nominal_us));
       if (arrival < 0.5 * nominal_us) ++short_arrivals;
     }
     last_ns = now;
-    last_arrival_us = rb->recv_utime;
-    last_step = s->step;
+    last_arrival_us = rb.recv_utime;
+    last_step = s.step;
   }
-  void on_sim_stats(const lcm::ReceiveBuffer*, const std::string&, const loop_stats_t* s) {
+  void on_sim_stats(const loop_stats_t& s) {
     if (now_ns() < skip_until_ns) return;
-    missed += s->missed;
-    overruns += s->overruns;
-    if (s->cycles > 1) sim_jitter.push_back(s->period_jitter_us);
-    if (s->cycles > 1)
-      sim_max_err = std::max({sim_max_err, s->period_max_us - nominal_us, nominal_us - s->period_min_us});
+    missed += s.missed;
+    overruns += s.overruns;
+    if (s.cycles > 1) sim_jitter.push_back(s.period_jitter_us);
+    if (s.cycles > 1)
+      sim_max_err = std::max({sim_max_err, s.period_max_us - nominal_us, nominal_us - s.period_min_us});
   }
-  void on_cm_stats(const lcm::ReceiveBuffer*, const std::string&, const loop_stats_t* s) {
-    if (now_ns() >= skip_until_ns) cm_missed += s->missed;
+  void on_cm_stats(const loop_stats_t& s) {
+    if (now_ns() >= skip_until_ns) cm_missed += s.missed;
   }
 };
 
-template <class F>
-struct detail_msg;
-template <class Msg>
-struct detail_msg<void (Listener::*)(const lcm::ReceiveBuffer*, const std::string&, const Msg*)> {
-  using type = Msg;
-};
-
-template <auto Handler>
-void subscribe_direct(LcmSocket& socket, const std::string& channel, Listener* l) {
-  socket.subscribe(channel, [l, channel](const lcm::ReceiveBuffer& rb) {
-    using Msg = typename detail_msg<decltype(Handler)>::type;
+// Messages on `channel` decoded (bytes that are not a Msg are skipped) and handed to `f` with their ReceiveBuffer.
+template <class Msg, class F>
+void on(Endpoints& e, const std::string& channel, F f) {
+  e.subscribe_raw(channel, [f](const lcm::ReceiveBuffer& rb) {
     Msg m;
-    if (decode_guarded(m, rb.data, rb.data_size)) (l->*Handler)(&rb, channel, &m);
+    if (decode_guarded(m, rb.data, rb.data_size)) f(rb, m);
   });
 }
 
@@ -154,7 +148,6 @@ int timer_floor(double seconds, double period_us, bool skip) {
               (long long)short_periods);
   return 0;
 }
-
 
 // The floor of a paced sender seen from another process: a child sleeps to absolute deadlines as timer_floor does and
 // sends one datagram on loopback after each; this process blocks in recv and takes the period between receipts, as a
@@ -244,23 +237,22 @@ int main(int argc, char** argv) {
   if (timer > 0) return timer_floor(timer, period_us, skip_overruns);
   if (chain > 0) return chain_floor(chain, period_us);
   Listener l;
-  std::unique_ptr<lcm::LCM> lc;
-  std::unique_ptr<LcmSocket> socket;
-  if (direct) {  // the controller manager's own receive path (HardwareReader::Direct)
-    socket = std::make_unique<LcmSocket>(url);
-    subscribe_direct<&Listener::on_state>(*socket, channels::kHardwareState, &l);
-    subscribe_direct<&Listener::on_sim_stats>(*socket, channels::kSimStatistics, &l);
-    subscribe_direct<&Listener::on_cm_stats>(*socket, channels::kCmStatistics, &l);
-  } else {  // through LCM's receive thread, as lcm-spy and every tool receive
-    lc = std::make_unique<lcm::LCM>(url);
-    if (!lc->good()) {
-      std::fprintf(stderr, "bench_realtime: LCM cannot start on %s\n", url.c_str());
-      return 1;
-    }
-    lc->subscribe(channels::kHardwareState, &Listener::on_state, &l);
-    lc->subscribe(channels::kSimStatistics, &Listener::on_sim_stats, &l);
-    lc->subscribe(channels::kCmStatistics, &Listener::on_cm_stats, &l);
+  lcm::LCM lc(url);
+  if (!lc.good()) {
+    std::fprintf(stderr, "bench_realtime: LCM cannot start on %s\n", url.c_str());
+    return 1;
   }
+  std::unique_ptr<LcmSocket> socket;  // the controller manager's own receive path (HardwareReader::Direct)
+  try {
+    if (direct) socket = std::make_unique<LcmSocket>(url);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_realtime: %s\n", e.what());
+    return 1;
+  }
+  Endpoints e(lc, socket.get());  // without a socket, through LCM's receive thread as lcm-spy and the tools receive
+  on<hardware_state_t>(e, channels::kHardwareState, [&](auto& rb, auto& m) { l.on_state(rb, m); });
+  on<loop_stats_t>(e, channels::kSimStatistics, [&](auto&, auto& m) { l.on_sim_stats(m); });
+  on<loop_stats_t>(e, channels::kCmStatistics, [&](auto&, auto& m) { l.on_cm_stats(m); });
   std::printf("listening\n");
   std::fflush(stdout);
   const int64_t start = now_ns(), end = start + int64_t(seconds * 1e9);
@@ -270,7 +262,7 @@ int main(int argc, char** argv) {
       pollfd p{socket->fd(), POLLIN, 0};
       if (poll(&p, 1, 100) > 0) socket->handle_queued();
     } else {
-      lc->handleTimeout(100);
+      lc.handleTimeout(100);
     }
     if (!started && l.states > 0) {
       started = true;
