@@ -112,12 +112,11 @@ bool Stepper::sleep_until(int64_t until_us, int64_t answer_to, const std::atomic
   const int64_t wake = until_us - opt_.spin_us;
   int64_t now = monotonic_us();
   auto answered = [&] { return answer_to >= 0 && io_.answered(answer_to); };
-  do {  // at least one pass, so messages are handled even while catching up
+  do {  // at least one pass, so messages are handled even while catching up (without waiting when answered)
     if (stop) return true;
     tick_statistics(now);
-    if (!io_.poll_until(std::min({wake, now + kMaxWaitSliceUs, w_.start_us + kStatsPeriodUs}), answer_to >= 0, false,
-                        answer_to))
-      return false;
+    const int64_t until = answered() ? now : std::min({wake, now + kMaxWaitSliceUs, w_.start_us + kStatsPeriodUs});
+    if (!io_.poll_until(until, answer_to >= 0, false, answer_to)) return false;
     now = monotonic_us();
   } while (now < wake && !answered());
   while (now < until_us && !answered() && !stop) {  // --spin-us: the tail without sleeping, still taking messages
@@ -139,16 +138,18 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
     }
     auto due = [&] { return base_us_ + std::llround(double(sim_.step_count() + 1 - base_step_) * period_us_); };
     int64_t deadline = due();  // when the state of the step taken next is published
-    // The step is taken as soon as the controller's answer to the last state published (this step's) is here, at
-    // most answer_wait_us after its deadline, or when due if no answer is awaited.
     const bool awaited = opt_.answer_wait_us > 0 && !watchdog_holding_ && io_.last_command_us() >= 0;
-    if (!(awaited ? sleep_until(std::max(deadline, monotonic_us()) + opt_.answer_wait_us, sim_.step_count(), stop)
-                  : sleep_until(deadline, -1, stop)))
+    // Catch-up: the step is taken as soon as the controller's answer to the last state published (this step's) is
+    // here, at most answer_wait_us after its deadline, and its state waits for the deadline. Skip: the step is taken
+    // when due, so that a stall cannot overtake a state computed ahead and publish it next to the newest.
+    const bool ahead = awaited && opt_.overrun == Overrun::CatchUp;
+    if (!(ahead ? sleep_until(std::max(deadline, monotonic_us()) + opt_.answer_wait_us, sim_.step_count(), stop)
+                : sleep_until(deadline, -1, stop)))
       return false;
     if (stop) return true;
     const int64_t now = monotonic_us();
     const int64_t late = now - deadline;
-    bool answered = false;
+    bool answered = false, skipped = false;
     if (late > std::max<int64_t>(kMaxCatchUpUs, std::llround(10 * period_us_))) {
       stats_.add_missed(std::llround(double(late) / period_us_));
       rebase(now);
@@ -156,7 +157,9 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
       answered = io_.take_command();  // the newest command holds through the skipped steps
       stats_.add_missed(skip_to(now));
       deadline = due();
+      skipped = true;  // the newest state was not published: nothing answers it
     }
+    if (awaited && !ahead && !skipped && !sleep_until(now + opt_.answer_wait_us, sim_.step_count(), stop)) return false;
     answered = io_.take_command() || answered;
     if (!answered && io_.last_command_us() >= 0) stats_.add_missed(1);  // the controller did not answer in time
     watchdog(now);

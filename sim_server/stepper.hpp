@@ -31,11 +31,11 @@ struct StepperOptions {
   bool start_paused = false;        // as Gazebo's paused:=true: nothing steps until a RESUME or STEP request
   Overrun overrun = Overrun::CatchUp;  // real time
   int64_t spin_us = 0;  // real time: sleep to this long before each deadline, then poll without sleeping up to it
-  // Real time: the step is taken when the controller's answer to the state before it arrives, and its state is
-  // published when due, so neither the physics time nor the controller's moves the period it sees. The answer is
-  // awaited up to this long past the step's deadline, so that a catch-up burst (or a controller a little late) still
-  // gets a command per step; 0 steps when due with the newest command, and publishes at once. Only while a
-  // controller answers (not before its first command, nor under the watchdog).
+  // Real time: how long past a step's deadline the controller's answer to the state before it is awaited, so that a
+  // catch-up burst (or a controller a little late) still gets a command per step. With Overrun::CatchUp the step is
+  // taken as soon as the answer arrives and its state published when due, so neither the physics time nor the
+  // controller's moves the period the controller sees; with Skip it is taken when due. 0 steps when due with the
+  // newest command. Only while a controller answers (not before its first command, nor under the watchdog).
   int64_t answer_wait_us = 200;
 };
 
