@@ -164,7 +164,8 @@ bool Stepper::run_real_time(const std::atomic<bool>& stop) {
     if (!answered && io_.last_command_us() >= 0) stats_.add_missed(1);  // the controller did not answer in time
     watchdog(now);
     const int64_t step_us = step_timed();
-    // Published on its deadline: the physics time and the wait for the answer do not move it.
+    // Catch-up: held until its deadline, so the physics time and the wait for the answer do not move it (a step
+    // taken when due or late is published at once).
     if (!sleep_until(deadline, -1, stop)) return false;
     publish_timed(step_us, deadline + std::llround(period_us_));
     after_step();
