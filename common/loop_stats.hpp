@@ -1,12 +1,14 @@
 // A loop's timing over one statistics window (loop_stats_t, about once a second
 // from both ends of the hardware loop): wall-clock period between cycle starts,
-// the loop's own work per cycle, overruns, missed steps, dropped messages, and
-// execution time per item (a controller, the physics step). add_*() are on the
-// loop path: no allocation.
+// the loop's own work per cycle, its error against the nominal period
+// (percentiles), overruns, missed steps, dropped messages, and execution time
+// per item (a controller, the physics step). add_*() are on the loop path: no
+// allocation.
 #pragma once
 
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 #include "lcm_control/loop_stats_t.hpp"
 
@@ -26,6 +28,7 @@ struct ExecStats {
 
 class LoopStats {
  public:
+  LoopStats();
   // One cycle that started at start_us (monotonic; the period is taken between starts) and did work_us of work;
   // `overrun`: it ended late, by the loop's own rule (the controller manager: work longer than the period;
   // sim_server: its state published a period or more after its deadline).
@@ -33,17 +36,23 @@ class LoopStats {
   void add_missed(int64_t n) { missed_ += n; }
   void add_dropped(int64_t n) { dropped_ += n; }
   void set_real_time_factor(double f) { rtf_ = f; }
+  // The period the loop keeps in real time, for the error percentiles; 0 (lockstep, the default): none are taken.
+  void set_nominal_period_us(double p) { nominal_us_ = p; }
 
   // Fills the timing fields (not the items) and starts a new window.
   void fill_and_reset(loop_stats_t& m);
   int64_t cycles() const { return cycles_; }
+
+  // Period errors kept per window for the percentiles: a 1 s window at up to 8 kHz; past it, the first ones count.
+  static constexpr size_t kErrorCapacity = 8192;
 
  private:
   int64_t cycles_ = 0, periods_ = 0, overruns_ = 0, missed_ = 0, dropped_ = 0;
   int64_t last_start_us_ = -1;
   double p_sum_ = 0, p_sq_ = 0, p_min_ = std::numeric_limits<double>::infinity(), p_max_ = 0;
   ExecStats exec_;
-  double rtf_ = 0;
+  double rtf_ = 0, nominal_us_ = 0;
+  std::vector<double> errors_;  // |period - nominal| this window; reserved once, never grown on the loop path
 };
 
 }  // namespace lcm_control

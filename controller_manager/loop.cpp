@@ -82,6 +82,7 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
   hw_.enforce_soft_limits(period);
   hw_.write(st, cmd);
   stats_.set_real_time_factor(st.real_time_factor);
+  stats_.set_nominal_period_us(st.lockstep ? 0.0 : static_cast<double>(st.period_us));
   const int64_t t1 = monotonic_us();
   stats_.add_cycle(t0, t1 - t0, st.period_us > 0 && t1 - t0 > st.period_us);
   return Outcome::Answered;

@@ -129,6 +129,7 @@ bool Stepper::sleep_until(int64_t until_us, int64_t answer_to, const std::atomic
 bool Stepper::run_real_time(const std::atomic<bool>& stop) {
   base_us_ = start_us_;
   base_step_ = sim_.step_count();
+  stats_.set_nominal_period_us(period_us_);
   publish(1.0);
   while (!stop && !done()) {
     serve_requests();

@@ -34,3 +34,38 @@ TEST(LoopStats, PeriodsWorkOverrunsAndAFreshWindowThatKeepsTheLastStart) {
   EXPECT_EQ(m.overruns, 0);
   EXPECT_EQ(m.missed, 0);
 }
+
+TEST(LoopStats, PeriodErrorPercentilesAgainstTheNominalPeriodInRealTimeOnly) {
+  LoopStats s;
+  loop_stats_t m{};
+  s.add_cycle(0, 1, false);
+  s.add_cycle(1500, 1, false);
+  s.fill_and_reset(m);
+  EXPECT_EQ(m.period_error_p50_us, 0);  // no nominal period (lockstep): none taken
+  EXPECT_EQ(m.period_error_p99_us, 0);
+
+  s.set_nominal_period_us(1000);
+  int64_t t = 1500;
+  for (int k = 1; k <= 200; ++k) s.add_cycle(t += (k % 100 == 0 ? 1400 : 1000 + (k % 2 ? 10 : -10)), 1, false);
+  s.fill_and_reset(m);
+  EXPECT_DOUBLE_EQ(m.period_error_p50_us, 10);  // 198 periods 10 us off, 2 of them 400 us
+  EXPECT_DOUBLE_EQ(m.period_error_p99_us, 10);  // the 198th of 200
+  for (int k = 1; k <= 100; ++k) s.add_cycle(t += (k % 10 == 0 ? 1400 : 1000), 1, false);
+  s.fill_and_reset(m);  // a fresh window: 90 on time, 10 of them 400 us late
+  EXPECT_DOUBLE_EQ(m.period_error_p50_us, 0);
+  EXPECT_DOUBLE_EQ(m.period_error_p99_us, 400);
+  EXPECT_EQ(m.cycles, 100);
+}
+
+TEST(LoopStats, AWindowLongerThanTheBufferKeepsItsFirstErrors) {
+  LoopStats s;
+  s.set_nominal_period_us(100);
+  int64_t t = 0;
+  s.add_cycle(t, 1, false);
+  for (size_t k = 0; k < LoopStats::kErrorCapacity; ++k) s.add_cycle(t += 101, 1, false);
+  for (int k = 0; k < 1000; ++k) s.add_cycle(t += 500, 1, false);  // past the buffer: not counted
+  loop_stats_t m{};
+  s.fill_and_reset(m);
+  EXPECT_DOUBLE_EQ(m.period_error_p99_us, 1);
+  EXPECT_EQ(m.cycles, int64_t(LoopStats::kErrorCapacity) + 1001);
+}
