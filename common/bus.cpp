@@ -4,9 +4,11 @@
 
 #include <poll.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
+#include <ctime>
 
 namespace lcm_control {
 
@@ -127,13 +129,15 @@ int Bus::handle_shared(int max) { return handle_queued(*lcm_, shared_socket_.get
 
 int Bus::handle_hardware(int max) { return hw_ ? handle_queued(*hw_, hw_socket_.get(), max) : handle_shared(max); }
 
-bool Bus::handle(int timeout_ms, int max) {
+bool Bus::handle_us(int64_t timeout_us, int max) {
+  timeout_us = std::max<int64_t>(0, timeout_us);
   if (!hw_ && !shared_socket_) {
-    const int r = lcm_->handleTimeout(timeout_ms);
+    const int r = lcm_->handleTimeout(static_cast<int>((timeout_us + 999) / 1000));
     return r >= 0 && (r == 0 || handle_shared(max - 1) >= 0);
   }
   pollfd p[2] = {{shared_fd(), POLLIN, 0}, {hardware_fd(), POLLIN, 0}};
-  const int r = poll(p, hw_ ? 2 : 1, timeout_ms);
+  const timespec ts{static_cast<time_t>(timeout_us / 1000000), static_cast<long>(timeout_us % 1000000) * 1000};
+  const int r = ppoll(p, hw_ ? 2 : 1, &ts, nullptr);
   if (r < 0) return errno == EINTR;
   if (hw_ && (p[1].revents & POLLIN) && handle_hardware(max) < 0) return false;
   if ((p[0].revents & POLLIN) && handle_shared(max) < 0) return false;

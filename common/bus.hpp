@@ -98,7 +98,10 @@ class Bus {
   // Waits up to timeout_ms for messages on either instance and handles what is queued there, the hardware loop
   // first: at most `max` from each (one by default, so that a tool can stop after any message; the controller
   // manager drains a backlog before its housekeeping); false on an error.
-  bool handle(int timeout_ms, int max = 1);
+  bool handle(int timeout_ms, int max = 1) { return handle_us(int64_t{timeout_ms} * 1000, max); }
+  // The same with the wait in microseconds (0: what is queued now, without sleeping). Through LCM's receive thread
+  // (no socket read directly) the wait is rounded up to whole milliseconds.
+  bool handle_us(int64_t timeout_us, int max = 1);
 
  private:
   int shared_fd();

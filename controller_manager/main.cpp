@@ -1,6 +1,8 @@
 // controller_manager: flags and wiring only. Loads the URDF and YAML, answers
 // requests, runs the loop on hardware/state, stops and unloads everything on
 // SIGINT/SIGTERM. Exit codes: 0 clean stop, 2 usage, 3 bad URDF/YAML, 4 LCM.
+#include <sched.h>
+
 #include <csignal>
 
 #include "common/cli.hpp"
@@ -43,10 +45,21 @@ int main(int argc, char** argv) {
   app.add_option("--silence-timeout", silence_s,
                  "seconds without hardware/state after which controllers are not updated and switches apply at once")
       ->check(CLI::PositiveNumber);
+  int64_t spin_us = 0;
+  app.add_option("--spin-us", spin_us,
+                 "real time: sleep to this long before each expected hardware/state, then poll without sleeping up "
+                 "to this long after it, so that the state is taken as it arrives instead of a wake-up later (costs "
+                 "about this much CPU per period; sim_server has the same flag for its deadlines). The poll yields the "
+                 "CPU to anything else ready on it: on a loaded machine use it with --rt-priority")
+      ->check(CLI::Range(int64_t{0}, int64_t{100000}));
   app.add_option("--log-level", log_level, "debug, info, warn, error");
 
   return run_program(app, argc, argv, [&]() -> int {
-    const std::string scheduling = apply_scheduling(sched);
+    std::string scheduling = apply_scheduling(sched);
+    if (spin_us > 0) {
+      set_timer_slack(1000);  // the sleep before each spin must not end late by the default 50 us
+      scheduling += fmt::format("{}spinning {} us around each real-time state", scheduling.empty() ? "" : ", ", spin_us);
+    }
     setup_logging("controller_manager", log_level);
     RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
     for (const auto& n : model.notes) spdlog::info("{}", n);
@@ -78,7 +91,9 @@ int main(int argc, char** argv) {
     while (!g_stop) {
       // What is queued, the hardware loop first and at most 1,000 messages each, then the housekeeping: silence
       // is measured after the backlog, so other traffic cannot mask a dead hardware.
-      if (!bus.handle(20, 1000) && !g_stop) {
+      const int64_t wait_us = manager.state_arrivals().sleep_us(monotonic_us(), spin_us, 20000);
+      if (wait_us == 0) sched_yield();  // spinning: the simulator, woken to its deadline on this CPU, runs first
+      if (!bus.handle_us(wait_us, 1000) && !g_stop) {
         if (++errors > 100) throw std::runtime_error("LCM keeps failing to receive; giving up");
         continue;
       }

@@ -337,6 +337,7 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
     hardware_log_.info(fmt::format("hardware step went back from {} to {} (a reset): running controllers restart from "
                                    "the measured state",
                                    loop_.step(), st.step));
+  arrivals_.arrived(now, st.lockstep ? 0 : st.period_us);
   loop_.cycle(st, command_);
   sources_.after_cycle();  // before the command: the echo is on the bus before the next state
   command_pub_.publish(command_);

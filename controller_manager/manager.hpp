@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/arrival_clock.hpp"
 #include "common/bus.hpp"
 #include "common/outbox.hpp"
 #include "common/log.hpp"
@@ -88,6 +89,8 @@ class ControllerManager {
   std::string hardware_summary(int64_t monotonic_now_us) const;
   int64_t hardware_age_us(int64_t monotonic_now_us) const { return hw_status_.age_us(monotonic_now_us); }
   void count_dropped(int64_t n) { dropped_ += n; }
+  // When the next hardware/state is expected in real time, from the states taken so far (--spin-us sleeps to it).
+  const ArrivalClock& state_arrivals() const { return arrivals_; }
   const hardware_command_t& last_command() const { return command_; }
 
   loop_stats_t statistics();  // the current window, then a new one
@@ -124,6 +127,7 @@ class ControllerManager {
   bool shutting_down_ = false;  // from shutdown() on, switches and reloads are refused
   BusLog hardware_log_;         // session lines: a peer can send a new session with every message
   HardwareStatus hw_status_;
+  ArrivalClock arrivals_;
   std::string pending_summary_;
   int64_t last_state_us_ = 0, last_stats_us_ = 0, bad_session_ = 0, dropped_ = 0, bad_state_logged_ = 0,
           reported_dropped_ = 0, reported_unpublished_ = 0;
