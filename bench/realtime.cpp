@@ -5,14 +5,17 @@
 // controller_manager's 1 Hz statistics say (missed cycles, overruns, the sim's
 // own worst period, its real-time factor). The first `--skip` seconds are
 // start-up and not counted. Exits after `--seconds` or `--idle` s (default 2) without a state.
-//   bench_realtime --lcm-url URL [--seconds S] [--skip S] [--idle S] [--reader direct|lcm]
+//   bench_realtime --lcm-url URL [--seconds S] [--skip S] [--idle S] [--reader direct|lcm] [--statistics-only yes]
 //   bench_realtime --timer-floor S [--period-us P] [--timer-slack-ns N] [--overrun catch-up|skip]
 //   bench_realtime --chain-floor S [--period-us P]
 // The listener reads the socket on its own thread as the controller manager does (--reader direct, the default), or
-// through LCM's receive thread as the tools do (--reader lcm).
+// through LCM's receive thread as the tools do (--reader lcm). With --statistics-only yes it takes only the 1 Hz
+// statistics (the hardware loop then travels on a URL of its own, so this listener does not wake with each state):
+// the figures from states are NaN or 0, the window figures and the missed counts hold; it stops --idle s after
+// sim_server's last statistics.
 // The second form is the floor: a bare loop sleeping to absolute 1 kHz deadlines
 // (clock_nanosleep on CLOCK_MONOTONIC, what sim_server's pacing comes down to),
-// printing "timer N P50_ERR P99_ERR MAX_ERR MISSED SHORT" (MISSED: deadlines woken for a period or more
+// printing "timer N P50_ERR P99_ERR MAX_ERR MISSED SHORT WINDOW_P99" (MISSED: deadlines woken for a period or more
 // late, the steps a loop that skips would drop; SHORT: periods
 // under half of it, the loop catching up after a stall, as sim_server's --overrun catch-up does; with
 // --overrun skip the deadlines a stall passed are dropped, as sim_server's --overrun skip does).
@@ -20,11 +23,13 @@
 // for normal threads, which every sleep and ppoll timeout may be late by).
 // Prints one line:
 //   realtime N LOST P50_ERR P99_ERR MAX_ERR SIM_MAX_ERR MISSED OVERRUNS CM_MISSED RTF SIM_JITTER SHORT
-//            ARRIVAL_P50_ERR ARRIVAL_P99_ERR ARRIVAL_SHORT
+//            ARRIVAL_P50_ERR ARRIVAL_P99_ERR ARRIVAL_SHORT WINDOW_P99 CM_WINDOW_P99 SIM_WINDOW_P99
 // (errors in microseconds; LOST: states that never arrived here; SIM_JITTER: median over the 1 s windows of
 // the standard deviation of sim_server's own period; SHORT: periods under half the nominal one, i.e. states
 // that came back to back, as sim_server catches up after a stall; ARRIVAL_*: the same from recv_utime, the kernel's
-// stamp of when each datagram arrived, i.e. when sim_server sent it, before any receiver woke)
+// stamp of when each datagram arrived, i.e. when sim_server sent it, before any receiver woke; *WINDOW_P99: the
+// median over 1 s windows of each window's period error p99, here, in controller_manager's own loop and in
+// sim_server's, the last two from their statistics; the floor's WINDOW_P99 is the same of the bare loop)
 // The third form is the floor of a period seen from another process (see chain_floor).
 #include <arpa/inet.h>
 #include <netinet/in.h>
@@ -65,6 +70,7 @@ struct Listener {
   int64_t states = 0, lost = 0, short_periods = 0, missed = 0, overruns = 0, cm_missed = 0;
   double sim_max_err = 0;
   std::vector<double> sim_jitter;  // per 1 s window: the standard deviation of sim_server's own period
+  std::vector<double> sim_window_p99, cm_window_p99;  // per 1 s window: each process's own period error p99
 
   void on_state(const lcm::ReceiveBuffer& rb, const hardware_state_t& s) {
     const int64_t now = now_ns();  // when the controller side gets it (recv_utime is the wall clock, not monotonic)
@@ -89,13 +95,26 @@ struct Listener {
     missed += s.missed;
     overruns += s.overruns;
     if (s.cycles > 1) sim_jitter.push_back(s.period_jitter_us);
+    if (s.cycles > 1) sim_window_p99.push_back(s.period_error_p99_us);
     if (s.cycles > 1)
       sim_max_err = std::max({sim_max_err, s.period_max_us - nominal_us, nominal_us - s.period_min_us});
   }
   void on_cm_stats(const loop_stats_t& s) {
-    if (now_ns() >= skip_until_ns) cm_missed += s.missed;
+    if (now_ns() < skip_until_ns) return;
+    cm_missed += s.missed;
+    if (s.cycles > 1) cm_window_p99.push_back(s.period_error_p99_us);
   }
 };
+
+// The median over 1 s windows (per_window consecutive periods each) of each window's p99: the figure
+// controller_manager and sim_server publish per window (period_error_p99_us), which a minute's worth of VM noise moves
+// less than the p99 of the whole minute.
+double window_p99_median(const std::vector<double>& err, size_t per_window) {
+  std::vector<double> p99;
+  for (size_t i = 0; per_window > 0 && i + per_window <= err.size(); i += per_window)
+    p99.push_back(quantile(std::vector<double>(err.begin() + long(i), err.begin() + long(i + per_window)), 0.99));
+  return quantile(p99, 0.5);
+}
 
 // Messages on `channel` decoded (bytes that are not a Msg are skipped) and handed to `f` with their ReceiveBuffer.
 template <class Msg, class F>
@@ -143,9 +162,9 @@ int timer_floor(double seconds, double period_us, bool skip) {
     }
     last = t;
   }
-  std::printf("timer %zu %.2f %.2f %.2f %lld %lld\n", err.size(), quantile(err, 0.5), quantile(err, 0.99),
+  std::printf("timer %zu %.2f %.2f %.2f %lld %lld %.2f\n", err.size(), quantile(err, 0.5), quantile(err, 0.99),
               err.empty() ? std::nan("") : *std::max_element(err.begin(), err.end()), (long long)missed,
-              (long long)short_periods);
+              (long long)short_periods, window_p99_median(err, size_t(1e6 / period_us)));
   return 0;
 }
 
@@ -214,7 +233,7 @@ int chain_floor(double seconds, double period_us) {
 int main(int argc, char** argv) {
   std::string url;
   double seconds = 70, skip = 1, timer = 0, chain = 0, period_us = 1000, slack_ns = -1, idle = 2;
-  bool skip_overruns = false, direct = true;
+  bool skip_overruns = false, direct = true, stats_only = false;
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string a = argv[k];
     if (a == "--lcm-url") url = argv[k + 1];
@@ -222,6 +241,7 @@ int main(int argc, char** argv) {
     else if (a == "--chain-floor") chain = std::atof(argv[k + 1]);
     else if (a == "--reader" && (std::string(argv[k + 1]) == "direct" || std::string(argv[k + 1]) == "lcm"))
       direct = std::string(argv[k + 1]) == "direct";
+    else if (a == "--statistics-only") stats_only = std::string(argv[k + 1]) == "yes";
     else if (a == "--period-us") period_us = std::atof(argv[k + 1]);
     else if (a == "--timer-slack-ns") slack_ns = std::atof(argv[k + 1]);
     else if (a == "--seconds") seconds = std::atof(argv[k + 1]);
@@ -250,8 +270,12 @@ int main(int argc, char** argv) {
     return 1;
   }
   Endpoints e(lc, socket.get());  // without a socket, through LCM's receive thread as lcm-spy and the tools receive
-  on<hardware_state_t>(e, channels::kHardwareState, [&](auto& rb, auto& m) { l.on_state(rb, m); });
-  on<loop_stats_t>(e, channels::kSimStatistics, [&](auto&, auto& m) { l.on_sim_stats(m); });
+  if (!stats_only) on<hardware_state_t>(e, channels::kHardwareState, [&](auto& rb, auto& m) { l.on_state(rb, m); });
+  int64_t last_stats_ns = -1;
+  on<loop_stats_t>(e, channels::kSimStatistics, [&](auto&, auto& m) {
+    l.on_sim_stats(m);
+    last_stats_ns = now_ns();
+  });
   on<loop_stats_t>(e, channels::kCmStatistics, [&](auto&, auto& m) { l.on_cm_stats(m); });
   std::printf("listening\n");
   std::fflush(stdout);
@@ -264,18 +288,21 @@ int main(int argc, char** argv) {
     } else {
       lc.handleTimeout(100);
     }
-    if (!started && l.states > 0) {
+    const int64_t last = stats_only ? last_stats_ns : l.last_ns;  // what this listener follows
+    if (!started && last >= 0) {
       started = true;
       l.skip_until_ns = now_ns() + int64_t(skip * 1e9);
     }
-    if (started && now_ns() - l.last_ns > int64_t(idle * 1e9)) break;  // the run is over
+    if (started && now_ns() - last > int64_t(idle * 1e9)) break;  // the run is over
   }
-  std::printf("realtime %zu %lld %.2f %.2f %.2f %.2f %lld %lld %lld %.4f %.2f %lld %.2f %.2f %lld\n",
+  std::printf("realtime %zu %lld %.2f %.2f %.2f %.2f %lld %lld %lld %.4f %.2f %lld %.2f %.2f %lld %.2f %.2f %.2f\n",
               l.period_err_us.size(), (long long)l.lost,
               quantile(l.period_err_us, 0.5), quantile(l.period_err_us, 0.99),
               l.period_err_us.empty() ? std::nan("") : *std::max_element(l.period_err_us.begin(), l.period_err_us.end()),
               l.sim_max_err, (long long)l.missed, (long long)l.overruns, (long long)l.cm_missed, l.rtf,
               quantile(l.sim_jitter, 0.5), (long long)l.short_periods, quantile(l.arrival_err_us, 0.5),
-              quantile(l.arrival_err_us, 0.99), (long long)l.short_arrivals);
+              quantile(l.arrival_err_us, 0.99), (long long)l.short_arrivals,
+              window_p99_median(l.period_err_us, size_t(1e6 / l.nominal_us)), quantile(l.cm_window_p99, 0.5),
+              quantile(l.sim_window_p99, 0.5));
   return 0;
 }
