@@ -157,6 +157,11 @@ def main():
         note = wait_for("the robot model", lambda: wd.js(
             "return window.dashboard && document.getElementById('view-note').textContent"), 20)
         assert "turret_bot" in note, note
+        # Both loops' 1 Hz statistics, with the period error p99 they publish in real time.
+        figures = wait_for("both loops' period error p99", lambda: (lambda t: t if t.count("error p99") >= 2 else None)(
+            wd.js("return document.getElementById('stats').textContent")), 20)
+        print("statistics:", figures)
+        assert "controller_manager" in figures and "sim_server" in figures, figures
 
         # Gains as rqt_reconfigure shows them: sim_server's j1 (turret_bot.yaml: p 150, d 50), then a new p applied
         # and read back from the owner with `tune`.

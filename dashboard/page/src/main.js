@@ -85,7 +85,7 @@ function stats() {
   const parts = [];
   for (const [name, s] of Object.entries(state.stats)) {
     const f = (x, digits) => (Number.isFinite(x) ? x.toFixed(digits) : '–');
-    const figures = `${s.real_time_factor ? `RTF ${f(s.real_time_factor, 2)} · ` : ''}period ${f(s.period_mean_us, 0)} µs · jitter ${f(s.period_jitter_us, 1)} µs · missed ${s.missed}`;
+    const figures = `${s.real_time_factor ? `RTF ${f(s.real_time_factor, 2)} · ` : ''}period ${f(s.period_mean_us, 0)} µs · jitter ${f(s.period_jitter_us, 1)} µs${s.period_error_p99_us ? ` · error p99 ${f(s.period_error_p99_us, 0)} µs` : ''} · missed ${s.missed}`;
     parts.push(el('span', { title: name }, el('b', {}, name.replace(/\/statistics$/, '')), ' ', figures));
   }
   $('stats').replaceChildren(...parts);
