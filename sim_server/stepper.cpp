@@ -109,7 +109,7 @@ void Stepper::watchdog(int64_t now) {
 }
 
 bool Stepper::sleep_until(int64_t until_us, int64_t answer_to, const std::atomic<bool>& stop) {
-  const int64_t wake = until_us - opt_.spin_us;
+  const int64_t wake = answer_to >= 0 ? until_us : until_us - opt_.spin_us;
   int64_t now = monotonic_us();
   auto answered = [&] { return answer_to >= 0 && io_.answered(answer_to); };
   do {  // at least one pass, so messages are handled even while catching up (without waiting when answered)

@@ -70,7 +70,8 @@ class Stepper {
   // ends after late_after_us (0: never).
   void publish_timed(int64_t step_us, int64_t late_after_us);
   // Real time: handles messages and the statistics window until until_us (sleeping to --spin-us before it, then
-  // polling), or, with answer_to >= 0, until the controller's answer to that step is here; false when LCM fails.
+  // polling), or, with answer_to >= 0, until the controller's answer to that step is here (sleeping throughout:
+  // spinning for an answer would hold the CPU from a controller manager that shares it); false when LCM fails.
   // Returns early when `stop` is set.
   bool sleep_until(int64_t until_us, int64_t answer_to, const std::atomic<bool>& stop);
   void watchdog(int64_t now_us);
