@@ -94,10 +94,10 @@ struct Listener {
     if (now_ns() < skip_until_ns) return;
     missed += s.missed;
     overruns += s.overruns;
-    if (s.cycles > 1) sim_jitter.push_back(s.period_jitter_us);
-    if (s.cycles > 1) sim_window_p99.push_back(s.period_error_p99_us);
-    if (s.cycles > 1)
-      sim_max_err = std::max({sim_max_err, s.period_max_us - nominal_us, nominal_us - s.period_min_us});
+    if (s.cycles < 2) return;  // no period in the window
+    sim_jitter.push_back(s.period_jitter_us);
+    sim_window_p99.push_back(s.period_error_p99_us);
+    sim_max_err = std::max({sim_max_err, s.period_max_us - nominal_us, nominal_us - s.period_min_us});
   }
   void on_cm_stats(const loop_stats_t& s) {
     if (now_ns() < skip_until_ns) return;

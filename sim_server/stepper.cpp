@@ -119,8 +119,8 @@ bool Stepper::sleep_until(int64_t until_us, int64_t answer_to, const std::atomic
     if (!io_.poll_until(until, answer_to >= 0, false, answer_to)) return false;
     now = monotonic_us();
   } while (now < wake && !answered());
-  while (now < until_us && !answered() && !stop) {  // --spin-us: the tail without sleeping, still taking messages
-    if (!io_.poll_until(now, answer_to >= 0, false, answer_to)) return false;
+  while (answer_to < 0 && now < until_us && !stop) {  // --spin-us: the tail without sleeping, still taking messages
+    if (!io_.poll_until(now, false, false, -1)) return false;
     now = monotonic_us();
   }
   return true;

@@ -694,7 +694,11 @@ TEST(ControllerManagerWithSimServer, SpinningAnswersEveryStateSleepsBetweenThemA
       EXPECT_LE(m.period_error_p50_us, m.period_error_p99_us);
       EXPECT_LE(m.period_error_p99_us,
                 std::max(m.period_max_us - 1000.0, 1000.0 - m.period_min_us) + 1e-9);
-      EXPECT_GE(m.period_error_p50_us, 0.0);
+      // The controller manager's nominal period comes from the states: a loop woken by datagrams never keeps it to
+      // the microsecond in 99 % of a window, so 0 would mean no errors were taken.
+      if (m.process == "controller_manager") {
+        EXPECT_GT(m.period_error_p99_us, 0.0);
+      }
     }
   }
   EXPECT_EQ(s.proc.stop(5.0, SIGINT), 0);
