@@ -414,7 +414,7 @@ TEST(ControllerManagerE2E, JointStatesAtPublishRateInTransmissionOrder) {
   pump_until(
       s.lc, [] { return false; }, 2.0);
   ASSERT_GT(js.messages.size(), 10u);
-  const double wall = (js.receive_us.back() - js.receive_us.front()) * 1e-6;
+  const double wall = (js.arrival_us.back() - js.arrival_us.front()) * 1e-6;
   const double hw_time = (js.messages.back().utime - js.messages.front().utime) * 1e-6;
   const double rate_wall = (js.messages.size() - 1) / wall, rate_hw = (js.messages.size() - 1) / hw_time;
   std::printf("joint_states: %zu messages, %.2f Hz on the wall clock, %.2f Hz on the hardware clock\n",
@@ -628,7 +628,7 @@ TEST(ControllerManagerWithSimServer, TurretTutorialMovesAndPublishesJointStatesA
   pump_until(
       s.lc, [] { return false; }, 3.0);
   ASSERT_GT(js.messages.size(), 100u) << s.proc.output() << sim.output();
-  const double wall = (js.receive_us.back() - js.receive_us.front()) * 1e-6;
+  const double wall = (js.arrival_us.back() - js.arrival_us.front()) * 1e-6;
   const double rate = (js.messages.size() - 1) / wall;
   const double hw_time = (js.messages.back().utime - js.messages.front().utime) * 1e-6;
   EXPECT_NEAR((js.messages.size() - 1) / hw_time, 60.0, 3.0);

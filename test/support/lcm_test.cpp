@@ -5,6 +5,8 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace lcm_control::testing {
@@ -39,6 +41,20 @@ bool pump_until(lcm::LCM& lc, const std::function<bool()>& pred, double timeout_
     lc.handleTimeout(static_cast<int>(std::min<int64_t>(left.count(), 50)));
   }
   return true;
+}
+
+double sender_clock_drift_s(const std::vector<int64_t>& sender_us, const std::vector<int64_t>& arrival_us,
+                            double window_s) {
+  const size_t n = std::min(sender_us.size(), arrival_us.size());
+  if (n < 2) return 0.0;
+  const auto window = static_cast<int64_t>(window_s * 1e6);
+  int64_t first = std::numeric_limits<int64_t>::max(), last = std::numeric_limits<int64_t>::max();
+  for (size_t k = 0; k < n; ++k) {
+    const int64_t late = arrival_us[k] - sender_us[k];
+    if (sender_us[k] - sender_us.front() <= window) first = std::min(first, late);
+    if (sender_us.back() - sender_us[k] <= window) last = std::min(last, late);
+  }
+  return double(first - last) * 1e-6;
 }
 
 }  // namespace lcm_control::testing

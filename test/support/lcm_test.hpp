@@ -18,6 +18,12 @@ std::string unique_lcm_url();
 // Pumps lc until pred() is true or timeout_s passes; returns pred().
 bool pump_until(lcm::LCM& lc, const std::function<bool()>& pred, double timeout_s);
 
+// How far a sender's clock ran ahead of the arrival clock between the start and the end of a recording,
+// in seconds (negative: it fell behind). Each end takes the earliest arrival relative to its stamp within
+// window_s of that end, so a receiver that got to its first messages late does not count as drift.
+double sender_clock_drift_s(const std::vector<int64_t>& sender_us, const std::vector<int64_t>& arrival_us,
+                            double window_s);
+
 // Collects every message of type Msg on one channel.
 template <class Msg>
 class Recorder {
