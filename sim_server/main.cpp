@@ -114,8 +114,10 @@ int main(int argc, char** argv) {
     opt.overrun = overrun == "skip" ? sim::Overrun::Skip : sim::Overrun::CatchUp;
     sim::substeps_for(rates);  // bad rates fail before anything else is said
     const int clock_every = sim::clock_every_for(rates.control_hz, clock_hz);
-    const std::string scheduling = apply_scheduling(sched);
+    std::string scheduling = apply_scheduling(sched);
     if (!opt.lockstep) set_timer_slack(timer_slack_ns);
+    if (!opt.lockstep && opt.spin_us > 0)
+      scheduling += fmt::format("{}spinning {} us before each deadline", scheduling.empty() ? "" : ", ", opt.spin_us);
     setup_logging("sim_server", log_level);
     const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
     for (const auto& n : model.notes) spdlog::info("{}", n);

@@ -206,6 +206,17 @@ int main(int argc, char** argv) {
                  "override the file's cpu: auto (lockstep: sim_server and controller_manager share the least busy "
                  "CPU), none, or a CPU number")
       ->check([](const std::string& v) { return check_cpu(v); });
+  int rt_priority = -1, spin_us = -1;
+  app.add_option("--rt-priority", rt_priority,
+                 "run sim_server and controller_manager at SCHED_FIFO with this priority (1-99) and memory locked, "
+                 "and in real time let each spin the last --spin-us before its deadline; 0: the normal scheduler "
+                 "(overrides the file's rt_priority; needs root, CAP_SYS_NICE or `ulimit -r`)")
+      ->check(CLI::Range(0, kMaxRtPriority));
+  app.add_option("--spin-us", spin_us,
+                 fmt::format("microseconds each loop process spins before its real-time deadline instead of "
+                             "sleeping (default {} with --rt-priority, else 0; overrides the file's spin_us)",
+                             kRealTimeSpinUs))
+      ->check(CLI::Range(0, kMaxSpinUs));
   app.add_option("--ready-timeout", ready_timeout, "seconds for the servers and the spawner to come up")
       ->check(CLI::PositiveNumber);
   app.add_option("--stop-timeout", stop_timeout, "seconds for everything to stop before the rest is killed")
@@ -238,6 +249,8 @@ int main(int argc, char** argv) {
     if (!mode.empty()) plan.mode = mode;
     if (paused) plan.paused = true;
     if (!cpu.empty()) plan.cpu = cpu;
+    if (rt_priority >= 0) plan.rt_priority = rt_priority;
+    if (spin_us >= 0) plan.spin_us = spin_us;
     for (const auto& n : plan.notes) say("note: " + n);
 
     if (robots > 0) plan.robots = robot_names(robots);
@@ -249,6 +262,8 @@ int main(int argc, char** argv) {
       pass("--mode", mode);
       if (paused) ro.args.push_back("--paused");
       pass("--cpu", cpu);
+      if (rt_priority >= 0) pass("--rt-priority", std::to_string(rt_priority));
+      if (spin_us >= 0) pass("--spin-us", std::to_string(spin_us));
       pass("--ready-timeout", fmt::format("{:g}", ready_timeout));
       pass("--stop-timeout", fmt::format("{:g}", stop_timeout));
       if (duration > 0) pass("--duration", fmt::format("{:g}", duration));
@@ -286,9 +301,18 @@ int main(int argc, char** argv) {
     int pin = -1;
     if (plan.cpu == "auto" && plan.mode == "lockstep") pin = least_busy_cpu();
     if (plan.cpu != "auto" && plan.cpu != "none") pin = std::stoi(plan.cpu);
-    for (auto* argv : {&sim, &cm}) {
+    // The real-time profile, where the file's own flags for a process do not set it already.
+    const int spin = plan.mode == "realtime" ? effective_spin_us(plan) : 0;
+    for (auto [argv, extra] : {std::pair{&sim, &plan.sim_args}, std::pair{&cm, &plan.cm_args}}) {
       if (pin >= 0) argv->insert(argv->end(), {"--cpu", std::to_string(pin)});
       if (hw_apart) argv->insert(argv->end(), {"--hardware-lcm-url", hw_url});
+      auto unset = [&](const std::string& flag) {
+        return std::none_of(extra->begin(), extra->end(),
+                            [&](const std::string& e) { return e == flag || e.rfind(flag + "=", 0) == 0; });
+      };
+      if (plan.rt_priority > 0 && unset("--rt-priority"))
+        argv->insert(argv->end(), {"--rt-priority", std::to_string(plan.rt_priority)});
+      if (spin > 0 && unset("--spin-us")) argv->insert(argv->end(), {"--spin-us", std::to_string(spin)});
     }
     std::vector<std::string> spawner{"spawner"};
     spawner.insert(spawner.end(), plan.controllers.begin(), plan.controllers.end());

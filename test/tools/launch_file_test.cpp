@@ -213,6 +213,34 @@ TEST(LaunchFile, RobotsAsACountOrNamespacesAndTheHardwareUrl) {
   EXPECT_NE(p.find("namespace 'a' is empty or given twice"), std::string::npos) << p;
 }
 
+TEST(LaunchFile, RealTimeProfileSpinsOnlyWithAPriorityUnlessToldAndOutOfRangeIsRefused) {
+  const std::string dir = lt::temp_dir("launch_rt");
+  const std::string head = "urdf: " + lt::source("config/turret_bot.urdf") + "\nconfig: " +
+                           lt::source("config/turret_bot.yaml") + "\n";
+  const LaunchPlan plain = read_launch_file(lt::source("config/turret_bot.launch.yaml"), {});
+  EXPECT_EQ(plain.rt_priority, 0);
+  EXPECT_EQ(effective_spin_us(plain), 0);
+  const LaunchPlan fifo = read_launch_file(write(dir, "fifo.yaml", head + "rt_priority: 80\n"), {});
+  EXPECT_EQ(fifo.rt_priority, 80);
+  EXPECT_EQ(effective_spin_us(fifo), kRealTimeSpinUs);
+  const LaunchPlan still = read_launch_file(write(dir, "still.yaml", head + "rt_priority: 80\nspin_us: 0\n"), {});
+  EXPECT_EQ(effective_spin_us(still), 0);
+  const LaunchPlan spin = read_launch_file(write(dir, "spin.yaml", head + "spin_us: 40\n"), {});
+  EXPECT_EQ(spin.rt_priority, 0);
+  EXPECT_EQ(effective_spin_us(spin), 40);
+
+  std::string p = problems_of([&] { read_launch_file(write(dir, "hi.yaml", head + "rt_priority: 100\n"), {}); });
+  EXPECT_NE(p.find("hi.yaml:3: 'rt_priority' must be a whole number from 0 to 99 (0: the normal scheduler; 1-99: "
+                   "SCHED_FIFO)"),
+            std::string::npos)
+      << p;
+  p = problems_of([&] { read_launch_file(write(dir, "half.yaml", head + "spin_us: 12.5\n"), {}); });
+  EXPECT_NE(p.find("half.yaml:3: 'spin_us' must be a whole number from 0 to 100000 (microseconds)"), std::string::npos)
+      << p;
+  p = problems_of([&] { read_launch_file(write(dir, "word.yaml", head + "spin_us: lots\n"), {}); });
+  EXPECT_NE(p.find("word.yaml:3: 'spin_us' must be a number"), std::string::npos) << p;
+}
+
 TEST(LaunchFile, PausedFromYamlAndFromGazebosPausedArgUnlessSpawnModelUnpauses) {
   const std::string dir = lt::temp_dir("launch_paused");
   const std::string files = "urdf: " + lt::source("config/turret_bot.urdf") + "\nconfig: " +

@@ -2,6 +2,7 @@
 // down (pids checked), a child's death, the tutorial's ROS launch file, tune's
 // effect on the step response, and turret-cmd --sim-time under lockstep (exact).
 #include <gtest/gtest.h>
+#include <sched.h>
 #include <signal.h>
 
 #include <cerrno>
@@ -88,6 +89,54 @@ TEST(Launch, TurretBotUpAndDownCleanly) {
   EXPECT_LT(unloaded, cm_down);
   EXPECT_NE(out.find("[launch] all 4 processes stopped"), std::string::npos) << out;
   EXPECT_EQ(out.find(", cpu "), std::string::npos) << "real time: not pinned by default\n" << out;
+}
+
+// --rt-priority: both loop processes at SCHED_FIFO with memory locked, each spinning before its real-time deadline,
+// and the robot runs; where SCHED_FIFO is not permitted, launch stops with the child's reason and what to do.
+TEST(Launch, RtPriorityRunsBothLoopsAtSchedFifoSpinningAndTheFilesOwnFlagsWin) {
+  auto [rc, dry] = run({bin("launch"), source("config/turret_bot.launch.yaml"), "--rt-priority", "20", "--dry-run"},
+                       unique_lcm_url());
+  ASSERT_EQ(rc, 0) << dry;
+  const std::string lines = "\n" + dry;
+  for (const std::string name : {"sim_server: ", "controller_manager: "}) {
+    const auto at = lines.find("\n" + name) + 1;
+    ASSERT_NE(at, 0u) << dry;
+    const std::string line = lines.substr(at, lines.find('\n', at) - at);
+    EXPECT_NE(line.find(" --rt-priority 20 --spin-us 150"), std::string::npos) << line;
+  }
+  std::tie(rc, dry) = run({bin("launch"), source("config/turret_bot.launch.yaml"), "--rt-priority", "20", "--mode",
+                           "lockstep", "--dry-run"},
+                          unique_lcm_url());
+  EXPECT_EQ(dry.find("--spin-us"), std::string::npos) << "no spinning in lockstep\n" << dry;
+  const std::string dir = temp_dir("launch_rt_own");
+  const std::string file = dir + "/own.launch.yaml";
+  std::ofstream(file) << "urdf: " << source("config/turret_bot.urdf") << "\nconfig: " << source("config/turret_bot.yaml")
+                      << "\nrt_priority: 20\ncontroller_manager_args: [--spin-us=40]\n";
+  std::tie(rc, dry) = run({bin("launch"), file, "--dry-run"}, unique_lcm_url());
+  EXPECT_NE(dry.find("--rt-priority 20 --spin-us 150\n"), std::string::npos) << dry;
+  EXPECT_NE(dry.find("--spin-us=40 --rt-priority 20\n"), std::string::npos) << dry;
+
+  const std::string url = unique_lcm_url();
+  ChildProcess launch({bin("launch"), source("config/turret_bot.launch.yaml"), "--rt-priority", "20", "--lcm-url", url});
+  if (!launch.wait_for_output("[launch] up:", 25.0)) {
+    const std::string out = launch.output();
+    ASSERT_NE(out.find("--rt-priority 20: SCHED_FIFO not permitted"), std::string::npos) << out;
+    EXPECT_NE(launch.wait(10.0), 0) << out;
+    GTEST_SKIP() << "SCHED_FIFO is not permitted here; launch said so and stopped";
+  }
+  const auto pids = started_pids(launch.output());
+  for (const std::string name : {"sim_server", "controller_manager"}) {
+    ASSERT_TRUE(pids.count(name)) << launch.output();
+    EXPECT_EQ(sched_getscheduler(pids.at(name)), SCHED_FIFO) << name;
+    sched_param p{};
+    ASSERT_EQ(sched_getparam(pids.at(name), &p), 0);
+    EXPECT_EQ(p.sched_priority, 20) << name;
+  }
+  const std::string out = launch.output();
+  EXPECT_NE(out.find("spinning 150 us before each deadline"), std::string::npos) << out;
+  EXPECT_NE(out.find("spinning 150 us around each real-time state"), std::string::npos) << out;
+  expect_three_running(url);
+  stop_and_check(launch, pids);
 }
 
 // A second launch onto a bus where a robot already runs in the same namespace would fight it for the robot.

@@ -125,7 +125,8 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
                                        "physics_rate", "control_rate",    "sim_server_args",
                                        "controller_manager_args", "controllers", "spawner_args",
                                        "state_publisher", "processes",  "commands", "namespace", "args",
-                                       "initial_positions", "paused", "robots", "hardware_lcm_url"};
+                                       "initial_positions", "paused", "robots", "hardware_lcm_url",
+                                       "rt_priority", "spin_us"};
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
     const YAML::Node& v = kv.second;
@@ -144,6 +145,15 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
         plan.cpu = str(v, key);
         if (const std::string problem = check_cpu(plan.cpu); !problem.empty())
           problems.push_back(where(v, key) + " " + problem);
+      } else if (key == "rt_priority" || key == "spin_us") {
+        const int most = key == "rt_priority" ? kMaxRtPriority : kMaxSpinUs;
+        const double n = number_any(v, key);
+        if (n < 0 || n > most || n != double(int(n)))
+          problems.push_back(fmt::format("{} must be a whole number from 0 to {}{}", where(v, key), most,
+                                         key == "rt_priority" ? " (0: the normal scheduler; 1-99: SCHED_FIFO)"
+                                                              : " (microseconds)"));
+        else
+          (key == "rt_priority" ? plan.rt_priority : plan.spin_us) = int(n);
       } else if (key == "physics_rate") {
         plan.physics_rate = number(v, key);
       } else if (key == "control_rate") {

@@ -34,6 +34,12 @@ struct LaunchPlan {
   // CPU for sim_server and controller_manager: "auto" (lockstep: the least busy CPU for both; real time: any),
   // "none", or a CPU number.
   std::string cpu = "auto";
+  // Both loop processes' real-time profile (`rt_priority:`, `spin_us:`; launch --rt-priority, --spin-us):
+  // rt_priority 0 is the normal scheduler, 1..99 SCHED_FIFO at that priority with memory locked; spin_us is how
+  // long each spins before its real-time deadline, -1 meaning kRealTimeSpinUs with rt_priority and 0 without
+  // (spinning pays at SCHED_FIFO, where handing the CPU to the other loop costs nothing: bench/README.md).
+  int rt_priority = 0;
+  int spin_us = -1;
   bool sim = true, controller_manager = true;
   std::vector<std::string> sim_args, cm_args;  // extra flags
   std::vector<std::string> controllers;        // spawned in one strict switch
@@ -55,6 +61,12 @@ struct LaunchPlan {
   std::vector<std::pair<std::string, double>> initial_positions;  // `initial_positions:`, spawn_model's -J
 };
 
+inline constexpr int kRealTimeSpinUs = 150;
+// The spin both loop processes get in real time: spin_us, or its default for rt_priority.
+inline int effective_spin_us(const LaunchPlan& p) {
+  return p.spin_us >= 0 ? p.spin_us : p.rt_priority > 0 ? kRealTimeSpinUs : 0;
+}
+
 // Reads either format (XML if the file starts with '<' after blanks, else YAML).
 // Throws ModelError naming the file, line or key at fault.
 LaunchPlan read_launch_file(const std::string& path, const std::vector<std::string>& package_path);
@@ -67,5 +79,8 @@ std::vector<std::string> robot_names(int n);
 
 // "" if `cpu` is auto, none or a CPU number; else what is wrong with it.
 std::string check_cpu(const std::string& cpu);
+
+// The bounds of rt_priority and spin_us, as the loop processes take them.
+inline constexpr int kMaxRtPriority = 99, kMaxSpinUs = 100000;
 
 }  // namespace lcm_control::tools
