@@ -108,8 +108,10 @@ class RateMeter {
   }
 
  private:
-  void on(const lcm::ReceiveBuffer*, const std::string&) {
-    const int64_t now = monotonic_us();
+  // Periods between arrival stamps (the socket's receive time), not between handler calls, which a stall of this
+  // process would bunch up.
+  void on(const lcm::ReceiveBuffer* rb, const std::string&) {
+    const int64_t now = rb->recv_utime;
     if (last_ >= 0) {
       periods_.push_back(double(now - last_));
       if (periods_.size() > window_) periods_.pop_front();

@@ -156,7 +156,9 @@ TEST(PauseStepReset, RealTimePauseHoldsTimeSwitchesAndResetRestartsControllersWi
   Session s;
   Recorder<hardware_state_t> states(s.lc, "hardware/state");
   Recorder<hardware_command_t> commands(s.lc, "hardware/command");
-  ASSERT_NO_FATAL_FAILURE(s.start({}));
+  // A watchdog of 0.5 s, shorter than the pause below (which must not trip it) and longer than a stall of a loaded
+  // machine (which would).
+  ASSERT_NO_FATAL_FAILURE(s.start({"--watchdog", "0.5"}));
   ASSERT_EQ(s.run({"turret-cmd", "j1_controller", "0.5"}), 0);
   ASSERT_TRUE(pump_until(
       s.lc, [&] { return !states.messages.empty() && std::abs(states.messages.back().position[0] - 0.5) < 0.01; }, 10));

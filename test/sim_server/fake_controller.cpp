@@ -15,7 +15,7 @@ FakeController::FakeController(lcm::LCM& lc, const std::string& ns)
 
 FakeController::~FakeController() { lc_.unsubscribe(sub_); }
 
-void FakeController::on_state(const lcm::ReceiveBuffer*, const std::string&, const hardware_state_t* s) {
+void FakeController::on_state(const lcm::ReceiveBuffer* rb, const std::string&, const hardware_state_t* s) {
   const bool repeat = !states.empty() && states.back().step == s->step && states.back().session == s->session;
   if (repeat)
     ++republished;
@@ -35,6 +35,10 @@ void FakeController::on_state(const lcm::ReceiveBuffer*, const std::string&, con
   if (before_answer) before_answer(*s);
   last_ = cmd;
   have_last_ = true;
+  const int64_t now_us =
+      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+          .count();  // the clock of LCM's recv_utime
+  if (now_us - rb->recv_utime > late_after_us) ++late_answers;
   publish_command(cmd);
 }
 

@@ -225,6 +225,7 @@ TEST(LaunchFile, RealTimeProfileSpinsOnlyWithAPriorityUnlessToldAndOutOfRangeIsR
   EXPECT_EQ(effective_spin_us(fifo), kRealTimeSpinUs);
   const LaunchPlan still = read_launch_file(write(dir, "still.yaml", head + "rt_priority: 80\nspin_us: 0\n"), {});
   EXPECT_EQ(effective_spin_us(still), 0);
+  EXPECT_EQ(read_launch_file(write(dir, "auto.yaml", head + "rt_priority: 5\nspin_us: auto\n"), {}).spin_us, -1);
   const LaunchPlan spin = read_launch_file(write(dir, "spin.yaml", head + "spin_us: 40\n"), {});
   EXPECT_EQ(spin.rt_priority, 0);
   EXPECT_EQ(effective_spin_us(spin), 40);
@@ -235,7 +236,8 @@ TEST(LaunchFile, RealTimeProfileSpinsOnlyWithAPriorityUnlessToldAndOutOfRangeIsR
             std::string::npos)
       << p;
   p = problems_of([&] { read_launch_file(write(dir, "half.yaml", head + "spin_us: 12.5\n"), {}); });
-  EXPECT_NE(p.find("half.yaml:3: 'spin_us' must be a whole number from 0 to 100000 (microseconds)"), std::string::npos)
+  EXPECT_NE(p.find("half.yaml:3: 'spin_us' must be a whole number from 0 to 100000 (microseconds), or auto"),
+            std::string::npos)
       << p;
   p = problems_of([&] { read_launch_file(write(dir, "word.yaml", head + "spin_us: lots\n"), {}); });
   EXPECT_NE(p.find("word.yaml:3: 'spin_us' must be a number"), std::string::npos) << p;
