@@ -145,13 +145,15 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
         plan.cpu = str(v, key);
         if (const std::string problem = check_cpu(plan.cpu); !problem.empty())
           problems.push_back(where(v, key) + " " + problem);
+      } else if (key == "spin_us" && v.IsScalar() && v.Scalar() == "auto") {
+        plan.spin_us = -1;
       } else if (key == "rt_priority" || key == "spin_us") {
         const int most = key == "rt_priority" ? kMaxRtPriority : kMaxSpinUs;
-        const double n = number_any(v, key);
+        const double n = number_any(v, key);  // says so if it is not a number
         if (n < 0 || n > most || n != double(int(n)))
           problems.push_back(fmt::format("{} must be a whole number from 0 to {}{}", where(v, key), most,
                                          key == "rt_priority" ? " (0: the normal scheduler; 1-99: SCHED_FIFO)"
-                                                              : " (microseconds)"));
+                                                              : " (microseconds), or auto"));
         else
           (key == "rt_priority" ? plan.rt_priority : plan.spin_us) = int(n);
       } else if (key == "physics_rate") {
