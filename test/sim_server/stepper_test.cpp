@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <map>
 #include <cmath>
@@ -54,7 +55,7 @@ TEST(sim_realtime, PacesToTheWallClockAndPublishesClockAndStatistics) {
   std::string why;
   ASSERT_TRUE(server.start({}, source("config/turret_bot.urdf"), source("config/turret_bot.yaml"), &why)) << why;
   FakeController cm(server.lc);
-  cm.pump_for(2.5);
+  cm.pump_for(3.5);
   ASSERT_GE(clock.messages.size(), 2u);
   // Sim time against arrival time over the run: no drift beyond scheduling noise (stalls of a loaded
   // machine are caught up by stepping back to back). Clock messages that queued while this test was not
@@ -69,8 +70,12 @@ TEST(sim_realtime, PacesToTheWallClockAndPublishesClockAndStatistics) {
               sim_s, wall_s, clock.messages.size(), drift_s);
   EXPECT_LT(std::abs(drift_s), 0.05);
   EXPECT_EQ(clock.messages.back().utime, clock.messages.back().step * 1000);
+  // The median window by cycles: a stall of a loaded machine across one window's edge moves cycles to the next.
   ASSERT_FALSE(stats.messages.empty());
-  const loop_stats_t& s = stats.messages.back();
+  std::vector<loop_stats_t> windows = stats.messages;
+  std::nth_element(windows.begin(), windows.begin() + long(windows.size() / 2), windows.end(),
+                   [](const loop_stats_t& a, const loop_stats_t& b) { return a.cycles < b.cycles; });
+  const loop_stats_t& s = windows[windows.size() / 2];
   EXPECT_EQ(s.process, "sim_server");
   EXPECT_NEAR(s.real_time_factor, 1.0, 0.25);
   EXPECT_NEAR(double(s.cycles), 1000, 250);

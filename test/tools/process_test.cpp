@@ -12,6 +12,7 @@
 #include <cstdlib>
 
 #include <chrono>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -54,7 +55,14 @@ TEST(Process, AStopReachesTheChildsOwnGroupOnceAndAMissingProgramExits127) {
   const pid_t pid = start_process({"/bin/sh", "-c", "n=0; trap 'n=$((n+1))' INT; sleep 30; echo got $n; exit 5"},
                                   environment_with({}), fd, {});
   close(fd);
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  // Signalled once sh runs its sleep (its trap is set by then), however long a loaded machine takes to get there.
+  const std::string children = "/proc/" + std::to_string(pid) + "/task/" + std::to_string(pid) + "/children";
+  for (int k = 0; k < 500; ++k) {
+    std::ifstream in(children);
+    std::string child;
+    if (in >> child) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   EXPECT_EQ(getpgid(pid), pid);
   signal_process(pid, SIGINT);
   std::optional<int> code;

@@ -35,7 +35,7 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 void sleep_s(double s) { std::this_thread::sleep_for(std::chrono::duration<double>(s)); }
 
 struct Sample {
-  double t;  // seconds since the watcher started
+  double t;  // seconds since the watcher started, when it arrived
   int64_t session, step;
   double j1, j2;  // positions (hardware/state) or commands (hardware/command, NaN when not commanded)
 };
@@ -43,7 +43,7 @@ struct Sample {
 // Records every hardware/state on a thread of its own.
 class Watcher {
  public:
-  explicit Watcher(const std::string& url) : lc_(url), t0_(Clock::now()) {
+  explicit Watcher(const std::string& url) : lc_(url), t0_us_(wall_us()) {
     lc_.subscribe("hardware/state", &Watcher::on, this)->setQueueCapacity(100000);
     lc_.subscribe("hardware/command", &Watcher::on_command, this)->setQueueCapacity(100000);
     lc_.subscribe("controller_manager/statistics", &Watcher::on_stats, this)->setQueueCapacity(1000);
@@ -55,7 +55,9 @@ class Watcher {
     stop_ = true;
     thread_.join();
   }
-  double now() const { return since(t0_); }
+  // Seconds since the watcher started, on the clock of LCM's arrival stamps: a message is placed when it arrived,
+  // not when this thread got to it.
+  double now() const { return double(wall_us() - t0_us_) * 1e-6; }
   std::vector<Sample> between(double a, double b) {
     std::lock_guard<std::mutex> lock(mutex_);
     std::vector<Sample> out;
@@ -90,23 +92,28 @@ class Watcher {
   }
 
  private:
-  void on(const lcm::ReceiveBuffer*, const std::string&, const hardware_state_t* m) {
+  static int64_t wall_us() {
+    return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
+        .count();
+  }
+  double arrived(const lcm::ReceiveBuffer* rb) const { return double(rb->recv_utime - t0_us_) * 1e-6; }
+  void on(const lcm::ReceiveBuffer* rb, const std::string&, const hardware_state_t* m) {
     if (m->num_actuators < 2) return;
     std::lock_guard<std::mutex> lock(mutex_);
-    samples_.push_back(Sample{now(), m->session, m->step, m->position[0], m->position[1]});
+    samples_.push_back(Sample{arrived(rb), m->session, m->step, m->position[0], m->position[1]});
   }
-  void on_command(const lcm::ReceiveBuffer*, const std::string&, const hardware_command_t* m) {
+  void on_command(const lcm::ReceiveBuffer* rb, const std::string&, const hardware_command_t* m) {
     if (m->num_actuators < 2) return;
     auto value = [&](int k) { return m->mode[size_t(k)] == hardware_command_t::MODE_NONE ? NAN : m->command[size_t(k)]; };
     std::lock_guard<std::mutex> lock(mutex_);
-    commands_.push_back(Sample{now(), m->session, m->step, value(0), value(1)});
+    commands_.push_back(Sample{arrived(rb), m->session, m->step, value(0), value(1)});
   }
-  void on_stats(const lcm::ReceiveBuffer*, const std::string&, const loop_stats_t* m) {
+  void on_stats(const lcm::ReceiveBuffer* rb, const std::string&, const loop_stats_t* m) {
     std::lock_guard<std::mutex> lock(mutex_);
-    cm_cycles_.emplace_back(now(), m->cycles);
+    cm_cycles_.emplace_back(arrived(rb), m->cycles);
   }
   lcm::LCM lc_;
-  Clock::time_point t0_;
+  int64_t t0_us_;
   std::vector<std::pair<double, int64_t>> cm_cycles_;
   std::mutex mutex_;
   std::vector<Sample> samples_;
