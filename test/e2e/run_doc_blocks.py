@@ -27,11 +27,14 @@ import os
 import re
 import shutil
 import signal
-import socket
 import subprocess
 import sys
 import tempfile
 import time
+from importlib.machinery import SourceFileLoader
+
+bench_run = SourceFileLoader(
+    "bench_run", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "bench", "run")).load_module()
 
 BACKGROUND_S = 3.0
 
@@ -86,11 +89,8 @@ def wait_controllers_running(root, env, timeout_s=40, namespaces=("",)):
 
 
 def free_url():
-    s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
-    s.bind(("", 0))
-    port = s.getsockname()[1]
-    s.close()
-    return "udpm://239.255.76.67:%d?ttl=0" % port
+    """An LCM URL on a port no running test uses, as bench/run picks them (below the ephemeral range)."""
+    return bench_run.lcm_url()
 
 
 def stop(p, grace=10.0):

@@ -6,31 +6,38 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <fstream>
+#include <random>
 #include <limits>
 #include <stdexcept>
 
 namespace lcm_control::testing {
 
 std::string unique_lcm_url() {
-  // The kernel hands out a UDP port nobody has bound; LCM then binds the same
-  // port with SO_REUSEADDR. Per-port isolation is what separates tests (a
-  // different multicast group on the same port would leak).
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  if (fd < 0) throw std::runtime_error("socket() failed");
-  sockaddr_in a{};
-  a.sin_family = AF_INET;
-  a.sin_addr.s_addr = htonl(INADDR_ANY);
-  a.sin_port = 0;
-  socklen_t len = sizeof(a);
-  if (bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) != 0 ||
-      getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
+  // A random port below the kernel's ephemeral range: a port from that range can be taken, between this check and
+  // LCM's bind, by any socket a sendto binds on its own (every LCM publisher's is one), and LCM's bind then fails
+  // with "Address already in use". Checked free with an exclusive bind, which fails where any socket has the port
+  // (LCM's, bound with SO_REUSEADDR, too). Per-port isolation is what separates tests (a different multicast group
+  // on the same port would leak). Ports below 10000 are left to LCM's default (7667) and hardware URLs (7700-9699).
+  int ephemeral_low = 32768;
+  std::ifstream("/proc/sys/net/ipv4/ip_local_port_range") >> ephemeral_low;
+  if (ephemeral_low <= 11000) throw std::runtime_error("the ephemeral port range starts below 11000: no port to pick");
+  std::mt19937 rng(std::random_device{}());
+  std::uniform_int_distribution<int> pick(10000, ephemeral_low - 1);
+  for (int tries = 0; tries < 1000; ++tries) {
+    const int port = pick(rng);
+    const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+    if (fd < 0) throw std::runtime_error("socket() failed");
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_ANY);
+    a.sin_port = htons(static_cast<uint16_t>(port));
+    const bool free = bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof(a)) == 0;
     close(fd);
-    throw std::runtime_error("bind() failed");
+    // A large receive buffer: a lockstep loop on the same port floods every socket.
+    if (free) return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
   }
-  const int port = ntohs(a.sin_port);
-  close(fd);
-  // A large receive buffer: a lockstep loop on the same port floods every socket.
-  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
+  throw std::runtime_error("no free UDP port below the ephemeral range in 1000 tries");
 }
 
 bool pump_until(lcm::LCM& lc, const std::function<bool()>& pred, double timeout_s) {
