@@ -1,7 +1,6 @@
 #include "test/sim_server/fake_controller.hpp"
 
-#include <chrono>
-
+#include "common/bus.hpp"
 #include "common/messages.hpp"
 #include "test/support/lcm_test.hpp"
 
@@ -35,10 +34,7 @@ void FakeController::on_state(const lcm::ReceiveBuffer* rb, const std::string&, 
   if (before_answer) before_answer(*s);
   last_ = cmd;
   have_last_ = true;
-  const int64_t now_us =
-      std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-          .count();  // the clock of LCM's recv_utime
-  if (now_us - rb->recv_utime > late_after_us) ++late_answers;
+  if (wall_us() - rb->recv_utime > kLateAnswerUs) ++late_answers;  // recv_utime is on the wall clock
   publish_command(cmd);
 }
 

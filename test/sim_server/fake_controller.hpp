@@ -32,9 +32,9 @@ class FakeController {
 
   std::vector<hardware_state_t> states;
   int republished = 0;  // states received again for a step already seen
-  // Answers this process sent more than late_after_us after their state arrived (a stall of the test, not of the
+  // Answers this process sent more than kLateAnswerUs after their state arrived (a stall of the test, not of the
   // server: sim_server counts each as a missed step when it waits less than that for its answer).
-  int64_t late_after_us = 200;
+  static constexpr int64_t kLateAnswerUs = 200;
   int64_t late_answers = 0;
 
   // Pumps LCM until a state with step >= `step` arrived; false on timeout.

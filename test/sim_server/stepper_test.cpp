@@ -193,8 +193,8 @@ TEST(sim_realtime, AStallIsCaughtUpInABurstOrSkippedAsAskedAndSimTimeKeepsUp) {
   if (late_by[waits] <= 10)
     EXPECT_LT(missed_by[waits], missed_by[no_wait]);
   else
-    std::printf("this test answered %lld states more than 200 us after they arrived: missed steps not compared\n",
-                static_cast<long long>(late_by[waits]));
+    std::printf("this test answered %lld states more than %lld us after they arrived: missed steps not compared\n",
+                static_cast<long long>(late_by[waits]), static_cast<long long>(FakeController::kLateAnswerUs));
 }
 
 }  // namespace

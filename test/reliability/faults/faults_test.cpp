@@ -18,6 +18,7 @@
 
 #include <fmt/format.h>
 
+#include "common/bus.hpp"
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
@@ -92,10 +93,6 @@ class Watcher {
   }
 
  private:
-  static int64_t wall_us() {
-    return std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch())
-        .count();
-  }
   double arrived(const lcm::ReceiveBuffer* rb) const { return double(rb->recv_utime - t0_us_) * 1e-6; }
   void on(const lcm::ReceiveBuffer* rb, const std::string&, const hardware_state_t* m) {
     if (m->num_actuators < 2) return;
