@@ -151,10 +151,14 @@ TEST(sim_realtime, AStallIsCaughtUpInABurstOrSkippedAsAskedAndSimTimeKeepsUp) {
     std::this_thread::sleep_for(std::chrono::milliseconds(80));
     ASSERT_EQ(kill(server.process->pid(), SIGCONT), 0);
     cm.pump_for(1.2);
+    // Back-to-back states are counted in the 150 states from the stall on, where a catch-up burst of its 80 steps is:
+    // a wake-up of the sim late by over half a period elsewhere in the run also gives one, and says nothing of the
+    // policy.
     int64_t jump = 0, burst = 0;
     for (size_t k = before; k < states.messages.size(); ++k) {
       jump = std::max<int64_t>(jump, states.messages[k].step - states.messages[k - 1].step - 1);
-      if (states.arrival_us[k] - states.arrival_us[k - 1] < 500) ++burst;  // as read, not as this test got to them
+      if (k < before + 150 && states.arrival_us[k] - states.arrival_us[k - 1] < 500)
+        ++burst;  // as read, not as this test got to them
     }
     // Sim time against the wall clock since the first state, at the last state.
     const double lag_ms = double(states.arrival_us.back() - states.arrival_us.front()) * 1e-3 -
