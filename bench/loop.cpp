@@ -18,9 +18,9 @@
 #include <vector>
 
 #include "bench/pingpong.hpp"
-#include "common/bus.hpp"
-#include "common/hardware_wire.hpp"
-#include "common/robot_model.hpp"
+#include "bus/bus.hpp"
+#include "bus/hardware_wire.hpp"
+#include "description/robot_model.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "lcm_control/sim_clock_t.hpp"

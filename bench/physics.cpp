@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "bench/pingpong.hpp"
-#include "common/robot_model.hpp"
+#include "description/robot_model.hpp"
 #include "sim_server/simulation.hpp"
 
 namespace {

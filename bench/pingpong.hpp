@@ -6,7 +6,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
-#include "common/lcm_socket.hpp"
+#include "bus/lcm_socket.hpp"
 
 #include <cstdint>
 #include <string>

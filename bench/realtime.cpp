@@ -49,10 +49,10 @@
 #include <vector>
 
 #include "bench/pingpong.hpp"
-#include "common/bus.hpp"
-#include "common/endpoints.hpp"
-#include "common/lcm_socket.hpp"
-#include "common/scheduling.hpp"
+#include "bus/bus.hpp"
+#include "bus/endpoints.hpp"
+#include "bus/lcm_socket.hpp"
+#include "rt/scheduling.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "lcm_control/loop_stats_t.hpp"
 

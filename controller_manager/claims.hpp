@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "common/robot_model.hpp"
+#include "description/robot_model.hpp"
 #include "controller_manager/controller.hpp"
 
 namespace lcm_control::cm {

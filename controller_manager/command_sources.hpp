@@ -17,12 +17,12 @@
 #include <string>
 #include <vector>
 
-#include "common/answer_ledger.hpp"
-#include "common/bus.hpp"
-#include "common/log.hpp"
-#include "common/expression.hpp"
+#include "bus/answer_ledger.hpp"
+#include "bus/bus.hpp"
+#include "rt/log.hpp"
+#include "control/expression.hpp"
 #include "controller_manager/controller.hpp"
-#include "common/endpoints.hpp"
+#include "bus/endpoints.hpp"
 #include "lcm_control/cm_response_t.hpp"
 #include "lcm_control/command_source_t.hpp"
 #include "lcm_control/float64_array_t.hpp"

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "common/messages.hpp"
+#include "bus/messages.hpp"
 #include "controller_manager/claims.hpp"
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"

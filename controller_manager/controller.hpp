@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "common/bus.hpp"
-#include "common/pid.hpp"
-#include "common/robot_model.hpp"
+#include "bus/bus.hpp"
+#include "control/pid.hpp"
+#include "description/robot_model.hpp"
 #include "controller_manager/hardware.hpp"
 #include "controller_manager/params.hpp"
-#include "common/endpoints.hpp"
+#include "bus/endpoints.hpp"
 
 namespace lcm_control::cm {
 

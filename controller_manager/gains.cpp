@@ -2,7 +2,7 @@
 
 #include <memory>
 
-#include "common/log.hpp"
+#include "rt/log.hpp"
 
 namespace lcm_control::cm {
 

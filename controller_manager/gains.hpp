@@ -2,8 +2,8 @@
 // and `<controller>/gains`, the service sim_server runs for its pid_gains.
 #pragma once
 
-#include "common/bus.hpp"
-#include "common/gains_service.hpp"
+#include "bus/bus.hpp"
+#include "bus/gains_service.hpp"
 #include "controller_manager/loop.hpp"
 
 namespace lcm_control::cm {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "common/hardware_wire.hpp"
+#include "bus/hardware_wire.hpp"
 #include "controller_manager/controller.hpp"
 
 namespace lcm_control::cm {

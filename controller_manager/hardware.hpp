@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "common/robot_model.hpp"
+#include "description/robot_model.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 
@@ -48,7 +48,7 @@ class Hardware {
 
   void read(const hardware_state_t& state);
   // The URDF's soft limits (<safety_controller>) on every owned joint's command, for the interface its controller
-  // claimed, as joint_limits_interface's *SoftLimitsHandle (common/joint_limits.hpp). dt: this cycle's period (s).
+  // claimed, as joint_limits_interface's *SoftLimitsHandle (control/joint_limits.hpp). dt: this cycle's period (s).
   void enforce_soft_limits(double dt);
   void reset_soft_limits();  // after a (re)start: position commands restart from the measured position
   void write(const hardware_state_t& state, hardware_command_t& command) const;

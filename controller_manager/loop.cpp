@@ -1,6 +1,6 @@
 #include "controller_manager/loop.hpp"
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 #include "controller_manager/command_sources.hpp"
 
 namespace lcm_control::cm {

@@ -21,7 +21,7 @@
 
 #include "controller_manager/controller.hpp"
 #include "controller_manager/hardware.hpp"
-#include "common/loop_stats.hpp"
+#include "rt/loop_stats.hpp"
 
 namespace lcm_control::cm {
 

@@ -5,9 +5,9 @@
 
 #include <csignal>
 
-#include "common/cli.hpp"
-#include "common/log.hpp"
-#include "common/scheduling.hpp"
+#include "cli/cli.hpp"
+#include "rt/log.hpp"
+#include "rt/scheduling.hpp"
 #include "controller_manager/manager.hpp"
 #include "controller_manager/plugins.hpp"
 #include "controller_manager/services.hpp"

@@ -5,11 +5,11 @@
 
 #include <algorithm>
 
-#include "common/hardware_wire.hpp"
-#include "common/messages.hpp"
-#include "common/text.hpp"
-#include "common/control_config.hpp"
-#include "common/model_check.hpp"
+#include "bus/hardware_wire.hpp"
+#include "bus/messages.hpp"
+#include "description/text.hpp"
+#include "description/control_config.hpp"
+#include "description/model_check.hpp"
 #include "controller_manager/claims.hpp"
 #include "controller_manager/gains.hpp"
 #include "controller_manager/ros_catalog.hpp"

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "common/arrival_clock.hpp"
-#include "common/bus.hpp"
-#include "common/outbox.hpp"
-#include "common/log.hpp"
-#include "common/robot_model.hpp"
+#include "controller_manager/arrival_clock.hpp"
+#include "bus/bus.hpp"
+#include "rt/outbox.hpp"
+#include "rt/log.hpp"
+#include "description/robot_model.hpp"
 #include "controller_manager/command_sources.hpp"
 #include "controller_manager/hardware.hpp"
 #include "controller_manager/hardware_status.hpp"

@@ -1,7 +1,7 @@
 #include "controller_manager/params.hpp"
 
-#include "common/robot_model.hpp"
-#include "common/control_config.hpp"
+#include "description/robot_model.hpp"
+#include "description/control_config.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>

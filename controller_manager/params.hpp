@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "common/pid.hpp"
+#include "control/pid.hpp"
 
 namespace lcm_control::cm {
 

@@ -16,7 +16,7 @@
 namespace lcm_control::cm {
 
 // Raise when Controller, ControllerContext, Registry or what they hand out (JointData, Params, Endpoints) changes.
-inline constexpr int kControllerAbi = 4;  // 2: Port became lcm_control::Endpoints (common/endpoints.hpp); 3: publishers
+inline constexpr int kControllerAbi = 4;  // 2: Port became lcm_control::Endpoints (bus/endpoints.hpp); 3: publishers
                                           // hand messages to an Outbox; 4: CommandInput (take_commands)
 
 // What must match between the controller manager and a library: the interface version, the C++ library's string

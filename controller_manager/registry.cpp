@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "common/text.hpp"
+#include "description/text.hpp"
 #include "controller_manager/controllers/factories.hpp"
 #include "controller_manager/ros_catalog.hpp"
 

@@ -8,10 +8,10 @@
 #include <deque>
 #include <string>
 
-#include "common/bus.hpp"
-#include "common/log.hpp"
+#include "bus/bus.hpp"
+#include "rt/log.hpp"
 #include "controller_manager/manager.hpp"
-#include "common/endpoints.hpp"
+#include "bus/endpoints.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
 

@@ -15,10 +15,10 @@
 #include <set>
 #include <thread>
 
-#include "common/cli.hpp"
-#include "common/expression.hpp"
-#include "common/packages.hpp"
-#include "common/scheduling.hpp"
+#include "cli/cli.hpp"
+#include "control/expression.hpp"
+#include "description/packages.hpp"
+#include "rt/scheduling.hpp"
 #include "dashboard/requests.hpp"
 #include "dashboard/throttle.hpp"
 #include "dashboard/web_server.hpp"

@@ -1,13 +1,13 @@
 #include "sim_server/actuators.hpp"
 
-#include "common/hardware_wire.hpp"
+#include "bus/hardware_wire.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "common/angles.hpp"
+#include "control/angles.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 
 namespace lcm_control::sim {

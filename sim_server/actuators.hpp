@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "common/joint_limits.hpp"
-#include "common/pid.hpp"
-#include "common/robot_model.hpp"
+#include "control/joint_limits.hpp"
+#include "control/pid.hpp"
+#include "description/robot_model.hpp"
 #include "sim_server/multibody_builder.hpp"
 
 namespace lcm_control::sim {

@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "common/robot_model.hpp"
+#include "description/robot_model.hpp"
 
 namespace lcm_control::sim {
 

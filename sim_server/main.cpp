@@ -6,9 +6,9 @@
 #include <atomic>
 #include <cmath>
 
-#include "common/cli.hpp"
-#include "common/log.hpp"
-#include "common/scheduling.hpp"
+#include "cli/cli.hpp"
+#include "rt/log.hpp"
+#include "rt/scheduling.hpp"
 #include "sim_server/sim_io.hpp"
 #include "sim_server/simulation.hpp"
 #include "sim_server/stepper.hpp"

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <functional>
 
-#include "common/text.hpp"
+#include "description/text.hpp"
 
 namespace lcm_control::sim {
 

@@ -25,8 +25,8 @@
 #include <string>
 #include <vector>
 
-#include "common/initial_positions.hpp"
-#include "common/robot_model.hpp"
+#include "description/initial_positions.hpp"
+#include "description/robot_model.hpp"
 #include "sim_server/collision_shapes.hpp"
 #include "sim_server/limit_constraint.hpp"
 

@@ -10,9 +10,9 @@
 #include <cstring>
 #include <random>
 
-#include "common/gains_service.hpp"
-#include "common/hardware_wire.hpp"
-#include "common/messages.hpp"
+#include "bus/gains_service.hpp"
+#include "bus/hardware_wire.hpp"
+#include "bus/messages.hpp"
 
 namespace lcm_control::sim {
 

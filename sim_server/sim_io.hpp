@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "common/answer_ledger.hpp"
-#include "common/bus.hpp"
-#include "common/endpoints.hpp"
-#include "common/gains_service.hpp"
-#include "common/log.hpp"
+#include "bus/answer_ledger.hpp"
+#include "bus/bus.hpp"
+#include "bus/endpoints.hpp"
+#include "bus/gains_service.hpp"
+#include "rt/log.hpp"
 #include "lcm_control/e_stop_t.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"

@@ -10,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-#include "common/robot_model.hpp"
+#include "description/robot_model.hpp"
 #include "sim_server/actuators.hpp"
 #include "sim_server/multibody_builder.hpp"
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/log.hpp"
+#include "rt/log.hpp"
 
 namespace lcm_control::sim {
 

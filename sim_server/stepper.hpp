@@ -11,7 +11,7 @@
 #include <atomic>
 #include <cstdint>
 
-#include "common/loop_stats.hpp"
+#include "rt/loop_stats.hpp"
 #include "sim_server/sim_io.hpp"
 #include "sim_server/simulation.hpp"
 

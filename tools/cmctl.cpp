@@ -4,7 +4,7 @@
 // sim_server/request and /response.
 #include <fmt/ranges.h>
 
-#include "common/cli.hpp"
+#include "cli/cli.hpp"
 #include "tools/lib/cm_client.hpp"
 #include "tools/lib/sim_client.hpp"
 #include "tools/lib/support.hpp"

@@ -7,9 +7,9 @@
 
 #include <cstdio>
 
-#include "common/cli.hpp"
-#include "common/model_report.hpp"
-#include "common/robot_model.hpp"
+#include "cli/cli.hpp"
+#include "tools/model_report.hpp"
+#include "description/robot_model.hpp"
 #include "controller_manager/manager.hpp"
 #include "controller_manager/plugins.hpp"
 

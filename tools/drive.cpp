@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "common/cli.hpp"
-#include "common/expression.hpp"
+#include "cli/cli.hpp"
+#include "control/expression.hpp"
 #include "lcm_control/twist_t.hpp"
 #include "tools/lib/support.hpp"
 #include "tools/lib/time_base.hpp"

@@ -11,10 +11,10 @@
 #include <cstring>
 #include <memory>
 
-#include "common/cli.hpp"
-#include "common/messages.hpp"
-#include "common/scheduling.hpp"
-#include "common/urdf_reader.hpp"
+#include "cli/cli.hpp"
+#include "bus/messages.hpp"
+#include "rt/scheduling.hpp"
+#include "description/urdf_reader.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
 #include "tools/lib/cm_client.hpp"

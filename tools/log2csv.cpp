@@ -6,7 +6,7 @@
 #include <memory>
 #include <regex>
 
-#include "common/cli.hpp"
+#include "cli/cli.hpp"
 #include "tools/lib/csv.hpp"
 #include "tools/lib/fields.hpp"
 #include "tools/lib/support.hpp"

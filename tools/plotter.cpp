@@ -11,7 +11,7 @@
 #include <optional>
 #include <set>
 
-#include "common/cli.hpp"
+#include "cli/cli.hpp"
 #include "tools/lib/fields.hpp"
 #include "tools/lib/process.hpp"
 #include "tools/lib/support.hpp"

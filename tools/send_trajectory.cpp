@@ -9,9 +9,9 @@
 #include <optional>
 #include <set>
 
-#include "common/cli.hpp"
-#include "common/input_file.hpp"
-#include "common/messages.hpp"
+#include "cli/cli.hpp"
+#include "description/input_file.hpp"
+#include "bus/messages.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 #include "tools/lib/cm_client.hpp"

@@ -1,6 +1,6 @@
 // spawner: the controller_manager spawner. Loads controllers, starts them in
 // one strict switch, stays running, and stops and unloads them on Ctrl-C.
-#include "common/cli.hpp"
+#include "cli/cli.hpp"
 #include "tools/lib/cm_client.hpp"
 #include "tools/lib/spawn.hpp"
 #include "tools/lib/support.hpp"

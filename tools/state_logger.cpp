@@ -5,7 +5,7 @@
 #include <map>
 #include <memory>
 
-#include "common/cli.hpp"
+#include "cli/cli.hpp"
 #include "tools/lib/census.hpp"
 #include "tools/lib/csv.hpp"
 #include "tools/lib/fields.hpp"

@@ -2,8 +2,8 @@
 // world pose of every URDF link (forward kinematics) on `link_poses`.
 #include <map>
 
-#include "common/cli.hpp"
-#include "common/messages.hpp"
+#include "cli/cli.hpp"
+#include "bus/messages.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/link_poses_t.hpp"
 #include "tools/lib/kinematics.hpp"

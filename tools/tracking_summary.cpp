@@ -7,7 +7,7 @@
 #include <cmath>
 #include <map>
 
-#include "common/cli.hpp"
+#include "cli/cli.hpp"
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "tools/lib/support.hpp"

@@ -4,7 +4,7 @@
 #include <optional>
 #include <set>
 
-#include "common/cli.hpp"
+#include "cli/cli.hpp"
 #include "lcm_control/pid_gains_t.hpp"
 #include "tools/lib/support.hpp"
 

@@ -9,8 +9,8 @@
 #include <memory>
 #include <optional>
 
-#include "common/cli.hpp"
-#include "common/expression.hpp"
+#include "cli/cli.hpp"
+#include "control/expression.hpp"
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"

@@ -11,7 +11,7 @@
 // joint_states unchanged.
 #include <fmt/format.h>
 
-#include "common/messages.hpp"
+#include "bus/messages.hpp"
 #include "controller_manager/controllers/factories.hpp"
 #include "lcm_control/joint_state_t.hpp"
 

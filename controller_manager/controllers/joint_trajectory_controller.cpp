@@ -20,7 +20,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "common/angles.hpp"
+#include "control/angles.hpp"
 #include "controller_manager/controllers/factories.hpp"
 #include "controller_manager/controllers/trajectory.hpp"
 #include "lcm_control/joint_trajectory_controller_state_t.hpp"

@@ -15,7 +15,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/angles.hpp"
+#include "control/angles.hpp"
 #include "controller_manager/controllers/factories.hpp"
 #include "lcm_control/controller_state_t.hpp"
 

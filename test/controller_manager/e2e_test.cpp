@@ -15,7 +15,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "common/messages.hpp"
+#include "bus/messages.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
 #include "lcm_control/controller_state_t.hpp"

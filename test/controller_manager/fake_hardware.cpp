@@ -5,7 +5,7 @@
 #include <random>
 #include <stdexcept>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 
 namespace lcm_control::testing {
 

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "common/messages.hpp"
+#include "bus/messages.hpp"
 #include "controller_manager/services.hpp"
 #include "lcm_control/command_source_t.hpp"
 #include "test/controller_manager/rig.hpp"

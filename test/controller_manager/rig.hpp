@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "common/bus.hpp"
-#include "common/robot_model.hpp"
+#include "bus/bus.hpp"
+#include "description/robot_model.hpp"
 #include "controller_manager/manager.hpp"
 #include "lcm_control/joint_trajectory_t.hpp"
 #include "test/controller_manager/fake_hardware.hpp"

@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "common/messages.hpp"
+#include "bus/messages.hpp"
 #include "test/controller_manager/rig.hpp"
 #include "test/support/lcm_test.hpp"
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 #include "lcm_control/odometry_t.hpp"
 #include "lcm_control/twist_t.hpp"
 #include "test/support/lcm_test.hpp"

@@ -11,7 +11,7 @@
 
 #include <cmath>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "test/support/lcm_test.hpp"

@@ -1,7 +1,7 @@
 #include "test/sim_server/fake_controller.hpp"
 
-#include "common/bus.hpp"
-#include "common/messages.hpp"
+#include "bus/bus.hpp"
+#include "bus/messages.hpp"
 #include "test/support/lcm_test.hpp"
 
 namespace lcm_control::sim::testing {

@@ -13,7 +13,7 @@
 #include <cstring>
 #include <fstream>
 
-#include "common/messages.hpp"
+#include "bus/messages.hpp"
 #include "lcm_control/e_stop_t.hpp"
 #include "lcm_control/loop_stats_t.hpp"
 #include "lcm_control/pid_gains_t.hpp"

@@ -5,7 +5,7 @@
 #include <functional>
 #include <string>
 
-#include "common/robot_model.hpp"
+#include "description/robot_model.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "sim_server/simulation.hpp"
 

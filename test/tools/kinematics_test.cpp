@@ -8,7 +8,7 @@
 #include <fstream>
 
 #include "test/support/process.hpp"
-#include "common/urdf_reader.hpp"
+#include "description/urdf_reader.hpp"
 
 using namespace lcm_control;
 using namespace lcm_control::tools;

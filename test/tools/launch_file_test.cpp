@@ -6,7 +6,7 @@
 
 #include <fstream>
 
-#include "common/robot_model.hpp"
+#include "description/robot_model.hpp"
 #include "test/support/process.hpp"
 #include "test/tools/tool_test_util.hpp"
 

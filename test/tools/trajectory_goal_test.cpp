@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "common/robot_model.hpp"
+#include "description/robot_model.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 
 using namespace lcm_control;

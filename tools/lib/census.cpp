@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "common/wire_check.hpp"
+#include "bus/wire_check.hpp"
 #include "tools/lib/message_text.hpp"
 #include "tools/lib/support.hpp"
 

@@ -6,7 +6,7 @@
 #include <map>
 #include <string>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 
 namespace lcm_control::tools {
 

@@ -5,7 +5,7 @@
 
 #include <algorithm>
 
-#include "common/messages.hpp"
+#include "bus/messages.hpp"
 #include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {

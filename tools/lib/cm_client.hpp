@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
 #include "lcm_control/command_source_t.hpp"

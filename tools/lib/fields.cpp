@@ -8,7 +8,7 @@
 #include <utility>
 #include <type_traits>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 #include "lcm_control/visit.hpp"
 
 namespace lcm_control::tools {

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "common/robot_model.hpp"
+#include "description/robot_model.hpp"
 
 namespace lcm_control::tools {
 

@@ -13,10 +13,10 @@
 #include <set>
 #include <sstream>
 
-#include "common/packages.hpp"
-#include "common/robot_model.hpp"
-#include "common/substitution.hpp"
-#include "common/text.hpp"
+#include "description/packages.hpp"
+#include "description/robot_model.hpp"
+#include "description/substitution.hpp"
+#include "description/text.hpp"
 
 namespace fs = std::filesystem;
 

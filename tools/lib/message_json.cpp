@@ -7,7 +7,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 #include "lcm_control/visit.hpp"
 #include "tools/lib/message_text.hpp"
 

@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 #include "lcm_control/visit.hpp"
 
 namespace lcm_control::tools {

@@ -4,7 +4,7 @@
 // `lcm_control/netcheck` and lists every other netcheck that heard or answered.
 #pragma once
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 
 namespace lcm_control::tools {
 

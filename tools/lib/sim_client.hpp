@@ -7,10 +7,10 @@
 #include <map>
 #include <string>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 #include "lcm_control/sim_request_t.hpp"
 #include "lcm_control/sim_response_t.hpp"
-#include "common/initial_positions.hpp"
+#include "description/initial_positions.hpp"
 
 namespace lcm_control::tools {
 

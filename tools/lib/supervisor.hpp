@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 
 namespace lcm_control::tools {
 

@@ -16,7 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "common/robot_model.hpp"
+#include "description/robot_model.hpp"
 
 extern char** environ;
 

@@ -1,4 +1,4 @@
-// What the tools share beyond common/cli.hpp: Ctrl-C / SIGTERM as a flag that
+// What the tools share beyond cli/cli.hpp: Ctrl-C / SIGTERM as a flag that
 // every bounded wait checks, sleeping to absolute monotonic deadlines, pumping
 // the bus with a deadline, request ids, and running a helper program (gnuplot).
 #pragma once
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 
 namespace lcm_control::tools {
 
@@ -22,7 +22,7 @@ void request_stop(int sig);
 // Ctrl-C during it sets the flag again and cuts it short. Returns the signal.
 int clear_stop();
 
-// Sleeps until the monotonic clock reaches deadline_us (common/bus.hpp's
+// Sleeps until the monotonic clock reaches deadline_us (bus/bus.hpp's
 // monotonic_us()). Returns early when a stop is requested.
 void sleep_until_us(int64_t deadline_us);
 

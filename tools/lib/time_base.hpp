@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <string>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 #include "lcm_control/sim_clock_t.hpp"
 
 namespace lcm_control::tools {

@@ -9,8 +9,8 @@
 #include <set>
 #include <stdexcept>
 
-#include "common/robot_model.hpp"
-#include "common/text.hpp"
+#include "description/robot_model.hpp"
+#include "description/text.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 #include "tools/lib/support.hpp"
 

@@ -3,8 +3,8 @@
 // what another project does with the installed headers and libraries.
 #include <cstdio>
 
-#include "common/bus.hpp"
-#include "common/robot_model.hpp"
+#include "bus/bus.hpp"
+#include "description/robot_model.hpp"
 #include "controller_manager/manager.hpp"
 #include "lcm_control/joint_state_t.hpp"
 

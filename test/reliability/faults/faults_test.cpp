@@ -18,7 +18,7 @@
 
 #include <fmt/format.h>
 
-#include "common/bus.hpp"
+#include "bus/bus.hpp"
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"

@@ -18,7 +18,7 @@
 #include <sstream>
 #include <thread>
 
-#include "common/robot_model.hpp"
+#include "description/robot_model.hpp"
 #include "controller_manager/manager.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "sim_server/simulation.hpp"

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "common/bus.hpp"
-#include "common/hardware_wire.hpp"
+#include "bus/bus.hpp"
+#include "bus/hardware_wire.hpp"
 #include "lcm_control/visit.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

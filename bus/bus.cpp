@@ -1,0 +1,147 @@
+#include "bus/bus.hpp"
+
+#include <fmt/format.h>
+
+#include <poll.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <ctime>
+
+namespace lcm_control {
+
+std::string gains_set_channel(const std::string& owner) { return owner + "/gains/set"; }
+std::string gains_channel(const std::string& owner) { return owner + "/gains"; }
+
+namespace {
+std::string trim_slashes(std::string ns) {
+  while (!ns.empty() && ns.back() == '/') ns.pop_back();
+  while (!ns.empty() && ns.front() == '/') ns.erase(0, 1);
+  return ns;
+}
+
+std::unique_ptr<lcm::LCM> open_lcm(const std::string& url, const std::string& shown, const char* flag) {
+  auto lc = std::make_unique<lcm::LCM>(url);  // "" lets LCM read LCM_DEFAULT_URL itself
+  if (!lc->good())
+    throw BusError(fmt::format(
+        "LCM could not start on '{}': check the URL ({}); for udpm:// on this host, loopback needs a multicast "
+        "route: run as root `ip link set lo multicast on; ip route add 224.0.0.0/4 dev lo` (scripts/setup does this)",
+        shown, flag));
+  return lc;
+}
+}  // namespace
+
+std::string effective_url(const std::string& url) {
+  const char* env = std::getenv("LCM_DEFAULT_URL");
+  return !url.empty() ? url : (env && *env ? env : "udpm://239.255.76.67:7667?ttl=0");
+}
+
+std::string hardware_url_for(const std::string& value, const std::string& shared_url, const std::string& ns) {
+  if (value.empty() || value == "shared") return shared_url;
+  if (value != "auto") return value;
+  // udpm://GROUP[:PORT][?OPTIONS]
+  const std::string scheme = "udpm://";
+  if (shared_url.rfind(scheme, 0) != 0)
+    throw BusError(fmt::format("--hardware-lcm-url auto derives a port from the shared bus's udpm:// URL, and that "
+                               "is '{}': give the hardware loop's URL itself",
+                               shared_url));
+  const size_t query = shared_url.find('?');
+  const std::string host_port = shared_url.substr(scheme.size(), query == std::string::npos ? std::string::npos
+                                                                                            : query - scheme.size());
+  const std::string options = query == std::string::npos ? "" : shared_url.substr(query);
+  const std::string group = host_port.substr(0, host_port.find(':'));
+  uint32_t h = 2166136261u;  // FNV-1a: the same namespace gives the same port on every host
+  for (const char c : trim_slashes(ns)) h = (h ^ uint8_t(c)) * 16777619u;
+  return fmt::format("{}{}:{}{}", scheme, group.empty() ? "239.255.76.67" : group,
+                     kHardwarePortBase + int(h % kHardwarePorts), options);
+}
+
+HardwareReader hardware_reader_named(const std::string& name) {
+  if (name == "direct") return HardwareReader::Direct;
+  if (name == "lcm") return HardwareReader::Lcm;
+  throw BusError(fmt::format("--hardware-reader '{}': expected direct or lcm", name));
+}
+
+namespace {
+// The direct reader's start-up check, as LCM's own self-test: a datagram published on the URL must come back.
+void self_test(lcm::LCM& publisher, LcmSocket& socket) {
+  const char* channel = "LCM_SELF_TEST";
+  const std::string text = "lcm_control hardware reader self-test";
+  for (int attempt = 0; attempt < 4; ++attempt) {
+    publisher.publish(channel, text.data(), unsigned(text.size()));
+    if (socket.wait_for(channel, 50)) return;
+  }
+  throw BusError(fmt::format(
+      "the hardware loop reads {} on its own socket, and its test datagram did not come back within 0.2 s: for "
+      "udpm:// on this host, loopback needs a multicast route: run as root `ip link set lo multicast on; ip route add "
+      "224.0.0.0/4 dev lo` (scripts/setup does this); a firewall may also drop it (docs/security.md), or give "
+      "--hardware-reader lcm",
+      socket.url()));
+}
+}  // namespace
+
+Bus::Bus(const std::string& url, const std::string& ns, const std::string& hardware_url, HardwareReader reader)
+    : url_(effective_url(url)), ns_(trim_slashes(ns)) {
+  prefix_ = ns_.empty() ? "" : ns_ + "/";
+  lcm_ = open_lcm(url, url_, "--lcm-url or LCM_DEFAULT_URL");
+  const std::string hw = hardware_url_for(hardware_url, url_, ns_);
+  if (hw != url_) {
+    hw_url_ = hw;
+    hw_ = open_lcm(hw, hw, "--hardware-lcm-url");
+  }
+  if (reader != HardwareReader::Direct) return;
+  const auto udpm = [](const std::string& u) { return u.rfind("udpm://", 0) == 0; };
+  if (hw_ && udpm(hw_url_)) {
+    hw_socket_ = std::make_unique<LcmSocket>(hw_url_);
+    self_test(*hw_, *hw_socket_);
+  } else if (!hw_ && udpm(url_)) {
+    shared_socket_ = std::make_unique<LcmSocket>(url_);
+    self_test(*lcm_, *shared_socket_);
+  }
+}
+
+// lcm::LCM's getFileno() on udpm:// starts its receive thread: only for an instance that is read through LCM.
+int Bus::shared_fd() { return shared_socket_ ? shared_socket_->fd() : lcm_->getFileno(); }
+int Bus::hardware_fd() { return !hw_ ? -1 : hw_socket_ ? hw_socket_->fd() : hw_->getFileno(); }
+
+std::vector<int> Bus::fds() {
+  std::vector<int> v{shared_fd()};
+  if (hw_) v.push_back(hardware_fd());
+  return v;
+}
+
+namespace {
+int handle_queued(lcm::LCM& lc, LcmSocket* socket, int max) {
+  if (socket) return socket->handle_queued(max);
+  int handled = 0;
+  for (; handled < max; ++handled) {
+    const int n = lc.handleTimeout(0);
+    if (n < 0) return -1;
+    if (n == 0) break;
+  }
+  return handled;
+}
+}  // namespace
+
+int Bus::handle_shared(int max) { return handle_queued(*lcm_, shared_socket_.get(), max); }
+
+int Bus::handle_hardware(int max) { return hw_ ? handle_queued(*hw_, hw_socket_.get(), max) : handle_shared(max); }
+
+bool Bus::handle_us(int64_t timeout_us, int max) {
+  timeout_us = std::max<int64_t>(0, timeout_us);
+  if (!hw_ && !shared_socket_) {
+    const int r = lcm_->handleTimeout(static_cast<int>((timeout_us + 999) / 1000));
+    return r >= 0 && (r == 0 || handle_shared(max - 1) >= 0);
+  }
+  pollfd p[2] = {{shared_fd(), POLLIN, 0}, {hardware_fd(), POLLIN, 0}};
+  const timespec ts{static_cast<time_t>(timeout_us / 1000000), static_cast<long>(timeout_us % 1000000) * 1000};
+  const int r = ppoll(p, hw_ ? 2 : 1, &ts, nullptr);
+  if (r < 0) return errno == EINTR;
+  if (hw_ && (p[1].revents & POLLIN) && handle_hardware(max) < 0) return false;
+  if ((p[0].revents & POLLIN) && handle_shared(max) < 0) return false;
+  return true;
+}
+
+}  // namespace lcm_control

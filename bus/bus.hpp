@@ -1,0 +1,154 @@
+// LCM plumbing both processes and the tools share: the URL (flag, else
+// LCM_DEFAULT_URL), namespaced channel names, and checked LCM instances: the
+// shared bus, and the hardware loop's own when it is given one.
+#pragma once
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "bus/lcm_socket.hpp"
+#include "bus/wire_check.hpp"
+#include "rt/clock.hpp"
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace lcm_control {
+
+// Well-known channel names (before the namespace prefix).
+namespace channels {
+inline constexpr const char* kJointStates = "joint_states";
+inline constexpr const char* kHardwareState = "hardware/state";
+inline constexpr const char* kHardwareCommand = "hardware/command";
+inline constexpr const char* kCmRequest = "controller_manager/request";
+inline constexpr const char* kCmResponse = "controller_manager/response";
+inline constexpr const char* kCmStatistics = "controller_manager/statistics";
+inline constexpr const char* kCmCommandSource = "controller_manager/command_source";
+inline constexpr const char* kSimStatistics = "sim_server/statistics";
+inline constexpr const char* kSimGainsOwner = "sim_server";
+inline constexpr const char* kSimRequest = "sim_server/request";
+inline constexpr const char* kSimResponse = "sim_server/response";
+inline constexpr const char* kEStop = "e_stop";
+inline constexpr const char* kClock = "clock";
+inline constexpr const char* kLinkPoses = "link_poses";
+inline constexpr const char* kBasePose = "sim_server/base_pose";
+}  // namespace channels
+
+// "<owner>/gains/set" and "<owner>/gains".
+std::string gains_set_channel(const std::string& owner);
+std::string gains_channel(const std::string& owner);
+
+class BusError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The URL of a robot's hardware loop (hardware/state, hardware/command) for `--hardware-lcm-url VALUE`:
+// "" or "shared" = the shared bus itself; "auto" = the shared udpm URL with its port moved to one the namespace picks
+// (kHardwarePortBase + FNV-1a(ns) % kHardwarePorts), so that every robot's loop has its own socket and the
+// processes on the shared bus do not wake for it; anything else is used as given. Throws BusError when auto meets
+// a URL that is not udpm://.
+inline constexpr int kHardwarePortBase = 7700, kHardwarePorts = 2000;
+std::string hardware_url_for(const std::string& value, const std::string& shared_url, const std::string& ns);
+
+// The URL in effect for `url` "" (LCM_DEFAULT_URL, else LCM's default).
+std::string effective_url(const std::string& url);
+
+// How sim_server and controller_manager receive. Lcm: LCM's receive thread hands each message over through its
+// pipe (what every tool does). Direct (on udpm:// URLs; Lcm elsewhere): LcmSocket, read on the loop's own thread,
+// for the hardware loop, and for the shared bus too when the hardware loop travels on it, so that one socket keeps
+// the order in which everything was sent (an e-stop or gains published before a command act before it).
+// Publishing goes through lcm::LCM either way.
+enum class HardwareReader { Lcm, Direct };
+HardwareReader hardware_reader_named(const std::string& name);
+
+// A namespace prefix "NS/" (empty for none) applied to every channel name.
+class Bus {
+ public:
+  // url "" means LCM_DEFAULT_URL, else LCM's default; hardware_url as hardware_url_for() takes it. Throws BusError
+  // with the URL and the multicast-route fix when LCM cannot start, or when a Direct reader's own test datagram
+  // does not come back.
+  Bus(const std::string& url, const std::string& ns, const std::string& hardware_url = "",
+      HardwareReader reader = HardwareReader::Lcm);
+
+  lcm::LCM& lcm() { return *lcm_; }
+  // Where hardware/state and hardware/command travel: lcm() unless the hardware loop has its own URL.
+  lcm::LCM& hardware() { return hw_ ? *hw_ : *lcm_; }
+  bool hardware_apart() const { return hw_ != nullptr; }
+  const std::string& hardware_url() const { return hw_ ? hw_url_ : url_; }
+  // The sockets read directly (HardwareReader::Direct on udpm://), else null: subscribe there instead of on lcm()
+  // or hardware(). The same socket when the hardware loop travels on the shared bus.
+  LcmSocket* shared_socket() { return shared_socket_.get(); }
+  LcmSocket* hardware_socket() { return hw_ ? hw_socket_.get() : shared_socket_.get(); }
+  // The file descriptors to wait on: the shared bus's, then the hardware loop's when it has a URL of its own.
+  std::vector<int> fds();
+  // Handle what is queued (at most `max` messages) without blocking: how many, -1 on an error.
+  int handle_shared(int max = 1000);
+  int handle_hardware(int max = 1000);
+  const std::string& url() const { return url_; }
+  const std::string& ns() const { return ns_; }
+  std::string channel(const std::string& name) const { return prefix_ + name; }
+
+  template <class Msg>
+  int publish(const std::string& name, const Msg& msg) {
+    return lcm_->publish(channel(name), &msg);
+  }
+
+  // Waits up to timeout_ms for messages on either instance and handles what is queued there, the hardware loop
+  // first: at most `max` from each (one by default, so that a tool can stop after any message; the controller
+  // manager drains a backlog before its housekeeping); false on an error.
+  bool handle(int timeout_ms, int max = 1) { return handle_us(int64_t{timeout_ms} * 1000, max); }
+  // The same with the wait in microseconds (0: what is queued now, without sleeping). Through LCM's receive thread
+  // (no socket read directly) the wait is rounded up to whole milliseconds.
+  bool handle_us(int64_t timeout_us, int max = 1);
+
+ private:
+  int shared_fd();
+  int hardware_fd();  // -1 without a hardware URL of its own
+  std::unique_ptr<lcm::LCM> lcm_, hw_;
+  std::unique_ptr<LcmSocket> shared_socket_, hw_socket_;
+  std::string url_, ns_, prefix_, hw_url_;
+};
+
+// lcm-gen's decode of bytes the schema walk (wire_fits or wire_problem) has accepted; false if it still fails or
+// throws. Only for bytes already walked: decode_guarded is the one to call otherwise.
+template <class Msg>
+bool decode_walked(Msg& msg, const void* data, size_t size) noexcept {
+  try {
+    return msg.decode(data, 0, int(size)) >= 0;
+  } catch (const std::exception&) {
+    msg = Msg();
+    return false;
+  }
+}
+
+// Decodes bytes from the bus into msg; false when they are not a Msg: a count or length that does not fit the bytes
+// (checked by wire_fits before lcm-gen's decoder, which would allocate what the count says), or a decoder that throws.
+// Every decode of bus input goes through here.
+template <class Msg>
+bool decode_guarded(Msg& msg, const void* data, size_t size) noexcept {
+  return wire_fits<Msg>(data, size) && decode_walked(msg, data, size);
+}
+
+namespace detail {
+template <auto Handler>
+struct GuardedHandler;
+template <class Obj, class Msg, void (Obj::*Handler)(const lcm::ReceiveBuffer*, const std::string&, const Msg*)>
+struct GuardedHandler<Handler> {
+  static void on(const lcm::ReceiveBuffer* rb, const std::string& channel, Obj* obj) {
+    Msg m;
+    if (decode_guarded(m, rb->data, rb->data_size)) (obj->*Handler)(rb, channel, &m);
+  }
+};
+}  // namespace detail
+
+// lcm::LCM::subscribe(channel, &Obj::handler, obj) for a typed handler, with the decode guarded: bytes that are
+// not a Msg never reach it. Use: subscribe_guarded<&Obj::on_state>(lc, channel, this).
+template <auto Handler, class Obj>
+lcm::Subscription* subscribe_guarded(lcm::LCM& lc, const std::string& channel, Obj* obj) {
+  return lc.subscribeFunction(channel, &detail::GuardedHandler<Handler>::on, obj);
+}
+
+}  // namespace lcm_control

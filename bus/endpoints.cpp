@@ -1,0 +1,38 @@
+#include "bus/endpoints.hpp"
+
+namespace lcm_control {
+
+Endpoints::~Endpoints() {
+  for (auto* s : subs_) lc_.unsubscribe(s);
+  for (const int id : socket_subs_) socket_->unsubscribe(id);
+}
+
+void Endpoints::subscribe_raw(const std::string& channel, std::function<void(const lcm::ReceiveBuffer&)> handler) {
+  handlers_.push_back(std::make_unique<Handler>(Handler{std::move(handler), channel, {}, false}));
+  if (socket_) {
+    Handler* h = handlers_.back().get();
+    socket_subs_.push_back(socket_->subscribe(channel, [h](const lcm::ReceiveBuffer& rb) { h->deliver(rb); }));
+    return;
+  }
+  lcm::Subscription* s = lc_.subscribe(channel, &Handler::on, handlers_.back().get());
+  s->setQueueCapacity(100);
+  subs_.push_back(s);
+}
+
+void Endpoints::divert(const std::string& channel, RawHandler to) {
+  bool first = true;
+  for (auto& h : handlers_) {
+    if (h->channel != channel) continue;
+    h->muted = to && !first;
+    h->diverted = first ? to : RawHandler{};
+    first = false;
+  }
+}
+
+std::vector<std::string> Endpoints::channels() const {
+  std::vector<std::string> out;
+  for (const auto& h : handlers_) out.push_back(h->channel);
+  return out;
+}
+
+}  // namespace lcm_control

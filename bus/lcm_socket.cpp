@@ -1,0 +1,263 @@
+#include "bus/lcm_socket.hpp"
+
+#include <arpa/inet.h>
+#include <fmt/format.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <sys/time.h>
+#include <sys/uio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+
+#include "bus/bus.hpp"
+#include "bus/wire_check.hpp"
+
+namespace lcm_control {
+
+namespace {
+constexpr uint8_t kShort[4] = {0x4c, 0x43, 0x30, 0x32};     // "LC02": a whole message
+constexpr uint8_t kFragment[4] = {0x4c, 0x43, 0x30, 0x33};  // "LC03": one fragment of a longer one
+constexpr int kShortHeader = 8;                              // magic, sequence number
+constexpr int kFragmentHeader = 20;  // magic, sequence number, size, offset, fragment number (u16), fragments (u16)
+
+int read_int(const std::string& url, const std::string& text, const char* what) {
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || errno != 0 || v < 0 || v > (1L << 30))
+    throw BusError(fmt::format("LCM URL '{}': {} '{}' is not a number", url, what, text));
+  return int(v);
+}
+}  // namespace
+
+UdpmAddress parse_udpm_url(const std::string& url) {
+  const std::string scheme = "udpm://";
+  if (url.rfind(scheme, 0) != 0)
+    throw BusError(fmt::format("'{}' is not a udpm:// URL (udpm://GROUP:PORT?ttl=N, LCM's UDP multicast)", url));
+  UdpmAddress a;
+  const size_t q = url.find('?');
+  const std::string host_port = url.substr(scheme.size(), q == std::string::npos ? q : q - scheme.size());
+  const size_t colon = host_port.find(':');
+  if (!host_port.substr(0, colon).empty()) a.group = host_port.substr(0, colon);
+  if (colon != std::string::npos) a.port = read_int(url, host_port.substr(colon + 1), "port");
+  if (a.port <= 0 || a.port > 65535) throw BusError(fmt::format("LCM URL '{}': port {} is out of range", url, a.port));
+  in_addr group{};
+  if (inet_pton(AF_INET, a.group.c_str(), &group) != 1 || !IN_MULTICAST(ntohl(group.s_addr)))
+    throw BusError(fmt::format("LCM URL '{}': '{}' is not an IPv4 multicast group (224.0.0.0 to 239.255.255.255)",
+                               url, a.group));
+  if (q == std::string::npos) return a;
+  std::string options = url.substr(q + 1);
+  for (size_t start = 0; start <= options.size();) {
+    const size_t amp = std::min(options.find('&', start), options.size());
+    const std::string kv = options.substr(start, amp - start);
+    start = amp + 1;
+    const size_t eq = kv.find('=');
+    const std::string key = kv.substr(0, eq), value = eq == std::string::npos ? "" : kv.substr(eq + 1);
+    if (key == "recv_buf_size") a.recv_buf_size = read_int(url, value, "recv_buf_size");
+    if (key == "ttl") a.ttl = read_int(url, value, "ttl");
+  }
+  return a;
+}
+
+LcmSocket::LcmSocket(const std::string& url) : url_(url) {
+  const UdpmAddress a = parse_udpm_url(url);
+  fd_ = socket(AF_INET, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+  if (fd_ < 0) throw BusError(fmt::format("cannot open a UDP socket for {}: {}", url, std::strerror(errno)));
+  auto fail = [&](const char* what) {
+    const std::string why = std::strerror(errno);
+    close(fd_);
+    fd_ = -1;
+    throw BusError(fmt::format(
+        "cannot read {} directly ({} failed: {}): for udpm:// on this host, loopback needs a multicast route: run as "
+        "root `ip link set lo multicast on; ip route add 224.0.0.0/4 dev lo` (scripts/setup does this), or give "
+        "--hardware-reader lcm",
+        url, what, why));
+  };
+  const int one = 1;
+  if (setsockopt(fd_, SOL_SOCKET, SO_REUSEADDR, &one, sizeof(one)) != 0) fail("SO_REUSEADDR");
+  setsockopt(fd_, SOL_SOCKET, SO_TIMESTAMP, &one, sizeof(one));  // recv_utime as LCM gives it: when it arrived
+  if (a.recv_buf_size > 0) setsockopt(fd_, SOL_SOCKET, SO_RCVBUF, &a.recv_buf_size, sizeof(a.recv_buf_size));
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_ANY);
+  addr.sin_port = htons(uint16_t(a.port));
+  if (bind(fd_, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) != 0) fail("bind");
+  ip_mreq m{};
+  inet_pton(AF_INET, a.group.c_str(), &m.imr_multiaddr);
+  m.imr_interface.s_addr = htonl(INADDR_ANY);
+  if (setsockopt(fd_, IPPROTO_IP, IP_ADD_MEMBERSHIP, &m, sizeof(m)) != 0) fail("joining the group");
+}
+
+LcmSocket::~LcmSocket() {
+  if (fd_ >= 0) close(fd_);
+}
+
+int LcmSocket::subscribe(const std::string& channel, Handler handler) {
+  static std::atomic<int> next_id{1};
+  const int id = next_id++;
+  subscribers_.push_back(Entry{id, channel, std::move(handler)});
+  return id;
+}
+
+void LcmSocket::unsubscribe(int id) {
+  subscribers_.erase(std::remove_if(subscribers_.begin(), subscribers_.end(), [id](const Entry& e) { return e.id == id; }),
+                     subscribers_.end());
+}
+
+bool LcmSocket::subscribed(std::string_view channel) const {
+  return std::any_of(subscribers_.begin(), subscribers_.end(), [&](const Entry& e) { return e.channel == channel; });
+}
+
+bool LcmSocket::parse(int n, const sockaddr_in& from, std::string_view* channel, const uint8_t** payload, int* size) {
+  const uint8_t* b = buf_.data();
+  if (n >= kFragmentHeader && std::memcmp(b, kFragment, 4) == 0) return fragment(n, from, channel, payload, size);
+  if (n < kShortHeader + 1 || std::memcmp(b, kShort, 4) != 0) {
+    ++not_lcm_;
+    return false;
+  }
+  const auto* name = reinterpret_cast<const char*>(b + kShortHeader);
+  const void* nul = std::memchr(name, 0, size_t(n - kShortHeader));
+  if (!nul) {
+    ++not_lcm_;
+    return false;
+  }
+  *channel = std::string_view(name, size_t(static_cast<const char*>(nul) - name));
+  *payload = static_cast<const uint8_t*>(nul) + 1;
+  *size = int(b + n - *payload);
+  return true;
+}
+
+// LCM's reassembly: one message in progress per sender (a newer sequence number from it drops the unfinished one),
+// a few senders at once (the least recently heard one gives way).
+bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* channel, const uint8_t** payload,
+                         int* size) {
+  const uint8_t* b = buf_.data();
+  const uint32_t seqno = read_be<uint32_t>(b + 4), total = read_be<uint32_t>(b + 8), offset = read_be<uint32_t>(b + 12);
+  const uint16_t number = read_be<uint16_t>(b + 16), count = read_be<uint16_t>(b + 18);
+  const uint8_t* chunk = b + kFragmentHeader;
+  uint32_t chunk_size = uint32_t(n - kFragmentHeader);
+  if (count == 0 || number >= count || total > kMaxMessageBytes) {
+    ++not_lcm_;
+    return false;
+  }
+  Partial* p = nullptr;
+  for (Partial& q : partials_)
+    if (q.active && q.addr == from.sin_addr.s_addr && q.port == from.sin_port) p = &q;
+  if (p && (p->seqno != seqno || p->total != total || p->count != count)) {
+    ++incomplete_;  // the sender moved on: its unfinished message is lost, as LCM loses it
+    p->active = false;
+  }
+  if (!p || !p->active) {
+    if (!p) {
+      p = &partials_[0];
+      for (Partial& q : partials_)
+        if (!q.active || q.heard_us < p->heard_us) p = &q;
+      if (p->active) ++incomplete_;
+    }
+    p->active = true;
+    p->addr = from.sin_addr.s_addr;
+    p->port = from.sin_port;
+    p->seqno = seqno;
+    p->total = total;
+    p->count = count;
+    p->received = 0;
+    p->wanted = true;
+    p->named = false;
+  }
+  p->heard_us = monotonic_us();
+  if (number == 0) {
+    const void* nul = std::memchr(chunk, 0, chunk_size);
+    if (!nul) {
+      ++not_lcm_;
+      p->active = false;
+      return false;
+    }
+    const size_t name_size = size_t(static_cast<const uint8_t*>(nul) - chunk);
+    p->channel.assign(reinterpret_cast<const char*>(chunk), name_size);
+    p->named = true;
+    p->wanted = subscribed(p->channel);
+    chunk += name_size + 1;
+    chunk_size -= uint32_t(name_size + 1);
+  }
+  if (uint64_t(offset) + chunk_size > total) {
+    ++not_lcm_;
+    p->active = false;
+    return false;
+  }
+  if (p->wanted) {
+    if (p->data.size() < total) p->data.resize(total);
+    std::memcpy(p->data.data() + offset, chunk, chunk_size);
+  }
+  if (++p->received < p->count) return false;
+  p->active = false;
+  if (!p->named || !p->wanted) return false;
+  ++reassembled_;
+  *channel = p->channel;
+  *payload = p->data.data();
+  *size = int(total);
+  return true;
+}
+
+bool LcmSocket::receive(ssize_t* n, std::string_view* channel, const uint8_t** payload, int* size) {
+  sockaddr_in from{};
+  iovec iov{buf_.data(), buf_.size()};
+  alignas(cmsghdr) char control[CMSG_SPACE(sizeof(timeval))];
+  msghdr msg{};
+  msg.msg_name = &from;
+  msg.msg_namelen = sizeof(from);
+  msg.msg_iov = &iov;
+  msg.msg_iovlen = 1;
+  msg.msg_control = control;
+  msg.msg_controllen = sizeof(control);
+  *n = recvmsg(fd_, &msg, MSG_DONTWAIT);
+  if (*n < 0) return false;
+  arrived_us_ = -1;
+  for (cmsghdr* c = CMSG_FIRSTHDR(&msg); c; c = CMSG_NXTHDR(&msg, c))
+    if (c->cmsg_level == SOL_SOCKET && c->cmsg_type == SCM_TIMESTAMP) {
+      timeval tv{};
+      std::memcpy(&tv, CMSG_DATA(c), sizeof(tv));
+      arrived_us_ = int64_t(tv.tv_sec) * 1000000 + tv.tv_usec;
+    }
+  return parse(int(*n), from, channel, payload, size);
+}
+
+int LcmSocket::handle_queued(int max) {
+  int read = 0;
+  for (; read < max; ++read) {
+    ssize_t n = 0;
+    std::string_view channel;
+    const uint8_t* payload = nullptr;
+    int size = 0;
+    const bool complete = receive(&n, &channel, &payload, &size);
+    if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR ? read : -1;
+    if (!complete) continue;
+    const lcm::ReceiveBuffer rb{const_cast<uint8_t*>(payload), uint32_t(size), arrived_us_ >= 0 ? arrived_us_ : wall_us()};
+    for (const Entry& e : subscribers_)
+      if (e.channel == channel) e.handler(rb);
+  }
+  return read;
+}
+
+const uint8_t* LcmSocket::wait_for(std::string_view channel, int timeout_ms, int* size) {
+  const int64_t end = monotonic_us() + int64_t(timeout_ms) * 1000;
+  for (;;) {
+    const int64_t left_us = end - monotonic_us();
+    pollfd p{fd_, POLLIN, 0};
+    if (left_us < 0 || poll(&p, 1, int((left_us + 999) / 1000)) <= 0) return nullptr;
+    ssize_t n = 0;
+    std::string_view got;
+    const uint8_t* payload = nullptr;
+    int bytes = 0;
+    if (!receive(&n, &got, &payload, &bytes) || got != channel) continue;
+    if (size) *size = bytes;
+    return payload;
+  }
+}
+
+}  // namespace lcm_control

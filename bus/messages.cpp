@@ -1,0 +1,100 @@
+#include "bus/messages.hpp"
+
+#include <fmt/format.h>
+
+namespace lcm_control {
+
+namespace {
+template <class V>
+bool sized(const V& v, int n) {
+  return n >= 0 && static_cast<int>(v.size()) == n;
+}
+}  // namespace
+
+std::string check(const joint_state_t& m) {
+  const int n = m.num_joints;
+  if (!sized(m.name, n) || !sized(m.position, n) || !sized(m.velocity, n) || !sized(m.effort, n))
+    return fmt::format("num_joints {} does not match the arrays ({} names, {} positions, {} velocities, {} efforts)", n,
+                       m.name.size(), m.position.size(), m.velocity.size(), m.effort.size());
+  return "";
+}
+
+std::string check(const hardware_state_t& m) {
+  const int n = m.num_actuators;
+  if (!sized(m.name, n) || !sized(m.mode, n) || !sized(m.position, n) || !sized(m.velocity, n) || !sized(m.effort, n))
+    return fmt::format("num_actuators {} does not match the arrays", n);
+  if (!all_finite(m.position) || !all_finite(m.velocity) || !all_finite(m.effort)) return "contains NaN or Inf";
+  return "";
+}
+
+std::string check(const hardware_command_t& m) {
+  const int n = m.num_actuators;
+  if (!sized(m.name, n) || !sized(m.mode, n) || !sized(m.command, n))
+    return fmt::format("num_actuators {} does not match the arrays", n);
+  for (int k = 0; k < n; ++k) {
+    if (m.mode[k] < hardware_command_t::MODE_NONE || m.mode[k] > hardware_command_t::MODE_EFFORT)
+      return fmt::format("actuator '{}' has unknown mode {}", m.name[k], int(m.mode[k]));
+    if (m.mode[k] != hardware_command_t::MODE_NONE && !std::isfinite(m.command[k]))
+      return fmt::format("actuator '{}' command is NaN or Inf", m.name[k]);
+  }
+  return "";
+}
+
+std::string check(const float64_array_t& m) {
+  if (!sized(m.data, m.size)) return fmt::format("size {} does not match data ({} values)", m.size, m.data.size());
+  if (!all_finite(m.data)) return "contains NaN or Inf";
+  return "";
+}
+
+void resize(joint_state_t& m, int n) {
+  m.num_joints = n;
+  m.name.resize(n);
+  m.position.resize(n);
+  m.velocity.resize(n);
+  m.effort.resize(n);
+}
+
+void resize(hardware_state_t& m, int n) {
+  m.num_actuators = n;
+  m.name.resize(n);
+  m.mode.resize(n);
+  m.position.resize(n);
+  m.velocity.resize(n);
+  m.effort.resize(n);
+}
+
+void resize(hardware_command_t& m, int n) {
+  m.num_actuators = n;
+  m.name.resize(n);
+  m.mode.resize(n);
+  m.command.resize(n);
+}
+
+PidGains gains_of(const pid_gains_t& m) {
+  return PidGains{m.p, m.i, m.d, m.i_clamp_min, m.i_clamp_max, m.antiwindup != 0};
+}
+
+void set_gains(pid_gains_t& m, const PidGains& g) {
+  m.p = g.p;
+  m.i = g.i;
+  m.d = g.d;
+  m.i_clamp_min = g.i_clamp_min;
+  m.i_clamp_max = g.i_clamp_max;
+  m.antiwindup = g.antiwindup;
+}
+
+cm_request_t cm_request(int8_t op, std::vector<std::string> names, std::vector<std::string> start,
+                        std::vector<std::string> stop, int8_t strictness) {
+  cm_request_t r{};
+  r.op = op;
+  r.num_names = int32_t(names.size());
+  r.names = std::move(names);
+  r.num_start = int32_t(start.size());
+  r.start = std::move(start);
+  r.num_stop = int32_t(stop.size());
+  r.stop = std::move(stop);
+  r.strictness = strictness;
+  return r;
+}
+
+}  // namespace lcm_control

@@ -1,0 +1,114 @@
+// What every program's main() shares: the --lcm-url/--namespace/--package-path
+// flags, and one clear line (no exception trace) plus a non-zero exit on failure.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "bus/bus.hpp"
+#include "description/robot_model.hpp"
+#include "description/substitution.hpp"
+
+namespace lcm_control {
+
+struct BusFlags {
+  std::string lcm_url;  // "" = LCM_DEFAULT_URL
+  std::string ns;
+  std::string hardware_lcm_url;  // "" = lcm_url; "auto" or a URL (hardware_url_for)
+  std::string hardware_reader = "direct";  // hardware_reader_named()
+};
+
+inline void add_bus_flags(CLI::App& app, BusFlags& f) {
+  app.add_option("--lcm-url", f.lcm_url, "LCM URL (default: $LCM_DEFAULT_URL, else LCM's default)");
+  app.add_option("--namespace", f.ns, "prefix every channel with NS/ (one robot per namespace)");
+}
+
+// For the programs on the hardware loop (sim_server, controller_manager, launch, turret-cmd --sim-time).
+inline void add_hardware_url_flag(CLI::App& app, BusFlags& f) {
+  app.add_option("--hardware-lcm-url", f.hardware_lcm_url,
+                 "LCM URL of this robot's hardware loop (hardware/state, hardware/command) when it is not the "
+                 "--lcm-url: `auto` moves it to a port of the shared group picked by the namespace, so that N robots "
+                 "on one bus cost each process O(1) (default: the --lcm-url)");
+}
+
+// For the two loop processes (sim_server, controller_manager).
+inline void add_hardware_reader_flag(CLI::App& app, BusFlags& f) {
+  app.add_option("--hardware-reader", f.hardware_reader,
+                 "how this process receives on udpm:// URLs: `direct` reads LCM's datagrams on the loop's own "
+                 "thread (the hardware loop, and the shared bus too when the loop travels on it: no receive thread, "
+                 "a faster hand-off, the order sent kept); `lcm` through LCM's receive thread (default: direct)")
+      ->check(CLI::IsMember({"direct", "lcm"}));
+}
+
+// ", hardware loop on URL", ", read directly" or "" for a program's ready line.
+inline std::string hardware_note(Bus& bus) {
+  std::string note = bus.hardware_apart() ? ", hardware loop on " + bus.hardware_url() : "";
+  return note + (bus.hardware_socket() ? ", hardware read directly" : "");
+}
+
+inline void add_package_path_flag(CLI::App& app, std::vector<std::string>& dirs) {
+  app.add_option("--package-path", dirs,
+                 "folders searched for package://NAME/ and $(find NAME) (default: $LCM_CONTROL_PACKAGE_PATH, "
+                 "$ROS_PACKAGE_PATH)")
+      ->delimiter(':');
+}
+
+// --arg NAME=VALUE (repeatable): values for $(arg NAME) in the ros_control YAML.
+inline void add_arg_flag(CLI::App& app, std::vector<std::string>& assignments) {
+  app.add_option("--arg", assignments,
+                 "NAME=VALUE for $(arg NAME) in the YAML, as roslaunch's <rosparam subst_value=\"true\"> fills it "
+                 "(repeatable; NAME:=VALUE works too)")
+      ->check([](const std::string& v) {
+        try {
+          parse_arg(v);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      });
+}
+
+// How the robot's files are read, from the flags every program that loads them shares.
+inline LoadOptions load_options(const std::vector<std::string>& package_path, const BusFlags& bus,
+                                const std::vector<std::string>& arg_assignments) {
+  LoadOptions o;
+  o.package_path = package_path;
+  o.ns = bus.ns;
+  for (const auto& a : arg_assignments) o.args.push_back(parse_arg(a));
+  return o;
+}
+
+enum ExitCode { kExitOk = 0, kExitFailure = 1, kExitUsage = 2, kExitBadInput = 3, kExitBus = 4 };
+
+// Parses flags and runs body(); every error becomes "<program>: error: ..." lines on stderr.
+template <class Body>
+int run_program(CLI::App& app, int argc, char** argv, Body&& body) {
+  const std::string program = app.get_name();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? kExitOk : kExitUsage;  // --help is a ParseError that exits 0
+  }
+  try {
+    return body();
+  } catch (const ModelError& e) {
+    for (const auto& p : e.problems()) std::fprintf(stderr, "%s: error: %s\n", program.c_str(), p.c_str());
+    return kExitBadInput;
+  } catch (const BusError& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    return kExitBus;
+  } catch (const CLI::ValidationError& e) {  // an argument found wrong after parsing
+    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    return kExitUsage;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    return kExitFailure;
+  }
+}
+
+}  // namespace lcm_control

@@ -1,0 +1,113 @@
+#include "description/robot_model.hpp"
+
+#include <fmt/format.h>
+
+#include "description/control_config.hpp"
+#include "description/model_check.hpp"
+#include "description/text.hpp"
+#include "description/urdf_reader.hpp"
+
+namespace lcm_control {
+
+ModelError::ModelError(const std::vector<std::string>& problems)
+    : std::runtime_error(join(problems, "\n")), problems_(problems) {}
+
+const char* to_string(JointType t) {
+  switch (t) {
+    case JointType::Revolute: return "revolute";
+    case JointType::Continuous: return "continuous";
+    case JointType::Prismatic: return "prismatic";
+    case JointType::Fixed: return "fixed";
+    case JointType::Floating: return "floating";
+    case JointType::Planar: return "planar";
+  }
+  return "?";
+}
+
+const char* to_string(Interface i) {
+  switch (i) {
+    case Interface::Position: return "PositionJointInterface";
+    case Interface::Velocity: return "VelocityJointInterface";
+    case Interface::Effort: return "EffortJointInterface";
+  }
+  return "?";
+}
+
+std::optional<Interface> parse_interface(const std::string& raw) {
+  std::string n = trim(raw);
+  const std::string prefix = "hardware_interface/";
+  if (n.rfind(prefix, 0) == 0) n = n.substr(prefix.size());
+  if (n == "PositionJointInterface") return Interface::Position;
+  if (n == "VelocityJointInterface") return Interface::Velocity;
+  if (n == "EffortJointInterface") return Interface::Effort;
+  return std::nullopt;
+}
+
+const Joint* RobotModel::joint(const std::string& n) const {
+  for (const auto& j : joints)
+    if (j.name == n) return &j;
+  return nullptr;
+}
+const Link* RobotModel::link(const std::string& n) const {
+  for (const auto& l : links)
+    if (l.name == n) return &l;
+  return nullptr;
+}
+const TransmissionSpec* RobotModel::transmission_for_joint(const std::string& j) const {
+  for (const auto& t : transmissions)
+    if (t.joint == j) return &t;
+  return nullptr;
+}
+const ControllerSpec* RobotModel::controller(const std::string& n) const {
+  for (const auto& c : controllers)
+    if (c.name == n) return &c;
+  return nullptr;
+}
+std::vector<std::string> RobotModel::actuated_joints() const {
+  std::vector<std::string> v;
+  for (const auto& t : transmissions) v.push_back(t.joint);
+  return v;
+}
+
+std::string normalize_namespace(const std::string& ns) {
+  std::string out;
+  for (size_t k = 0; k < ns.size(); ++k)
+    if (ns[k] != '/' || (!out.empty() && out.back() != '/')) out += ns[k];
+  while (!out.empty() && out.back() == '/') out.pop_back();
+  return out;
+}
+
+std::string robot_namespace(const std::string& given, const std::string& plugin_namespace) {
+  return normalize_namespace(given.empty() ? plugin_namespace : given);
+}
+
+RobotModel load_robot_model(const std::string& urdf_path, const std::string& config_path, const LoadOptions& options) {
+  RobotModel model;
+  model.options = options;
+  std::vector<std::string> problems;
+  bool parsed = true;
+  try {
+    read_urdf(model, urdf_path, options, problems);
+  } catch (const ModelError& e) {
+    parsed = false;
+    problems.insert(problems.end(), e.problems().begin(), e.problems().end());
+  }
+  model.ns = robot_namespace(options.ns, model.gazebo_plugin_namespace);
+  if (options.ns.empty() && !model.ns.empty())
+    model.notes.push_back(fmt::format("{}: namespace '{}' from the gazebo_ros_control plugin's <robotNamespace>; "
+                                      "channels are {}/... (give the tools --namespace {})",
+                                      urdf_path, model.ns, model.ns, model.ns));
+  if (!config_path.empty()) {
+    try {
+      load_control_config_into(model, config_path);
+    } catch (const ModelError& e) {
+      parsed = false;
+      problems.insert(problems.end(), e.problems().begin(), e.problems().end());
+    }
+  }
+  if (parsed) check_model(model, problems);
+  if (!problems.empty()) throw ModelError(problems);
+  return model;
+}
+
+}  // namespace lcm_control

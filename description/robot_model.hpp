@@ -1,0 +1,162 @@
+// The robot as both processes see it: URDF kinematics and dynamics, the
+// transmissions that say which interface each joint takes, and the ros_control
+// YAML (controllers and gazebo_ros_control pid_gains), loaded and validated once
+// into plain structs.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <map>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+#include <yaml-cpp/yaml.h>
+
+#include "control/joint_limits.hpp"
+#include "control/pid.hpp"
+#include "control/transmission.hpp"
+
+namespace lcm_control {
+
+// A user-caused problem with the inputs. what() is one line per problem, each
+// naming the file and the key, joint or link at fault and what to do.
+class ModelError : public std::runtime_error {
+ public:
+  explicit ModelError(const std::vector<std::string>& problems);
+  explicit ModelError(const std::string& problem) : ModelError(std::vector<std::string>{problem}) {}
+  const std::vector<std::string>& problems() const { return problems_; }
+
+ private:
+  std::vector<std::string> problems_;
+};
+
+enum class JointType { Revolute, Continuous, Prismatic, Fixed, Floating, Planar };
+const char* to_string(JointType t);
+
+enum class Interface { Position, Velocity, Effort };
+const char* to_string(Interface i);  // "PositionJointInterface", ...
+// Accepts "hardware_interface/PositionJointInterface" and "PositionJointInterface".
+std::optional<Interface> parse_interface(const std::string& name);
+
+struct Geometry {
+  enum class Type { Box, Cylinder, Sphere, Mesh } type = Type::Box;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // in the link frame
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();            // box
+  double radius = 0, length = 0;                             // cylinder (along z), sphere
+  std::string mesh_uri;                                      // as written in the URDF
+  std::string mesh_path;                                     // resolved file, "" if not found
+  Eigen::Vector3d scale = Eigen::Vector3d::Ones();
+};
+
+struct Inertial {
+  double mass = 0;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // COM frame in the link frame
+  Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();         // about the COM, in the COM frame
+};
+
+struct Link {
+  std::string name;
+  std::optional<Inertial> inertial;
+  std::vector<Geometry> collisions;
+  std::vector<Geometry> visuals;
+  std::string parent_joint;  // "" for the root
+  std::optional<double> friction;  // <gazebo reference="LINK"><mu1>: contact friction coefficient (default 1)
+};
+
+// <mimic joint= multiplier= offset=>: position = multiplier * the other joint's position + offset.
+struct Mimic {
+  std::string joint;
+  double multiplier = 1, offset = 0;
+};
+
+struct Joint {
+  std::string name;
+  JointType type = JointType::Fixed;
+  std::string parent_link, child_link;
+  Eigen::Isometry3d origin = Eigen::Isometry3d::Identity();  // child frame in the parent link frame
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();
+  bool has_position_limits = false;  // revolute and prismatic
+  double lower = 0, upper = 0;
+  double effort_limit = 0, velocity_limit = 0;  // 0 only for fixed joints (validated)
+  double damping = 0, friction = 0;
+  std::optional<SoftLimits> soft;  // <safety_controller>
+  std::optional<Mimic> mimic;      // driven by another joint through a gear in the simulation; takes no transmission
+  JointLimits limits() const {     // as joint_limits_interface reads them from the URDF
+    JointLimits l;
+    l.has_position = has_position_limits;
+    l.lower = lower;
+    l.upper = upper;
+    l.max_velocity = velocity_limit;
+    l.max_effort = effort_limit;
+    return l;
+  }
+};
+
+struct TransmissionSpec {
+  std::string name;
+  std::string type;  // "transmission_interface/SimpleTransmission"
+  std::string joint;
+  std::vector<Interface> interfaces;  // first one is the one the hardware takes
+  std::string actuator;
+  SimpleTransmission map;
+  std::vector<Interface> skipped_interfaces;  // of the joint's other transmissions, skipped (the first drives it)
+};
+
+struct ControllerSpec {
+  std::string name;
+  std::string type;
+  YAML::Node params;  // the whole YAML entry, `type` included
+};
+
+struct LoadOptions {
+  // Folders searched for `package://NAME/...`: DIR/NAME/... and, if DIR's own
+  // name is NAME, DIR/... . Defaults to $LCM_CONTROL_PACKAGE_PATH and
+  // $ROS_PACKAGE_PATH (colon-separated) when empty.
+  std::vector<std::string> package_path;
+  // The robot's namespace from --namespace; "" takes the gazebo_ros_control plugin's <robotNamespace>.
+  std::string ns;
+  // Values for $(arg NAME) in the YAML (roslaunch's subst_value), from --arg NAME=VALUE.
+  std::vector<std::pair<std::string, std::string>> args;
+};
+
+struct RobotModel {
+  std::string name;
+  std::string urdf_path, config_path;
+  LoadOptions options;                          // as loaded (a reload reads the config again with them)
+  std::string root_link;
+  std::vector<Link> links;                     // URDF order
+  std::vector<Joint> joints;                   // URDF order
+  std::vector<TransmissionSpec> transmissions;  // URDF order = actuator order on the wire
+  bool self_collide = false;  // <gazebo><self_collide>true: links collide with the robot's other links (not the adjacent ones)
+  bool has_gazebo_ros_control_plugin = false;
+  std::string gazebo_plugin_namespace;         // <robotNamespace>, if given
+  // The robot's namespace ("" none, "rrbot", "lab/rrbot"): the channel prefix and where the YAML is read.
+  std::string ns;
+  std::string config_section;                  // the YAML key the controllers were read under, "" for the top level
+  std::vector<ControllerSpec> controllers;     // YAML order
+  std::map<std::string, PidGains> pid_gains;   // gazebo_ros_control/pid_gains/<joint>
+  std::vector<std::string> notes;              // what was resolved and how, one INFO line each
+  std::vector<std::string> warnings;           // non-fatal findings, one line each
+  std::vector<std::string> hints;              // valid, but often not what was meant (doctor prints them)
+
+  const Joint* joint(const std::string& name) const;
+  const Link* link(const std::string& name) const;
+  const TransmissionSpec* transmission_for_joint(const std::string& joint) const;
+  const ControllerSpec* controller(const std::string& name) const;
+  // Joints that have a transmission, in transmission order (the hardware's joints).
+  std::vector<std::string> actuated_joints() const;
+};
+
+// Loads and validates: the URDF (common/urdf_reader), the namespace, the YAML
+// (common/control_config), then the cross-checks (common/model_check).
+// Throws ModelError naming the file and culprit of every problem.
+RobotModel load_robot_model(const std::string& urdf_path, const std::string& config_path,
+                            const LoadOptions& options = {});
+
+// A namespace as written in ROS ("/rrbot/", "rrbot") as our channel prefix ("rrbot"); "" for "/" or "".
+std::string normalize_namespace(const std::string& ns);
+// The robot's namespace: the one given (--namespace), else the gazebo_ros_control plugin's <robotNamespace>.
+std::string robot_namespace(const std::string& given, const std::string& plugin_namespace);
+
+}  // namespace lcm_control

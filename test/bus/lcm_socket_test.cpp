@@ -1,0 +1,270 @@
+// common/lcm_socket: LCM's datagrams read on the calling thread (the loops' --hardware-reader direct), against
+// what lcm::LCM itself publishes on a real udpm:// URL.
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
+#include <cstring>
+
+#include "bus/bus.hpp"
+#include "bus/lcm_socket.hpp"
+#include "test/support/lcm_test.hpp"
+
+using namespace lcm_control;
+namespace lt = lcm_control::testing;
+
+namespace {
+struct Got {
+  std::vector<std::vector<uint8_t>> payloads;
+  int64_t recv_utime = 0;
+};
+
+// Handles until `done` or timeout_s; false on timeout.
+template <class Done>
+bool pump(LcmSocket& s, Done done, double timeout_s = 2) {
+  const int64_t end = monotonic_us() + int64_t(timeout_s * 1e6);
+  while (!done()) {
+    pollfd p{s.fd(), POLLIN, 0};
+    if (monotonic_us() > end) return false;
+    poll(&p, 1, 20);
+    if (s.handle_queued() < 0) return false;
+  }
+  return true;
+}
+
+// Datagrams sent to the URL's group and port from one socket (one sender, as LCM's reassembly sees senders).
+class RawSender {
+ public:
+  explicit RawSender(const std::string& url) : fd_(socket(AF_INET, SOCK_DGRAM, 0)) {
+    const UdpmAddress a = parse_udpm_url(url);
+    to_.sin_family = AF_INET;
+    to_.sin_port = htons(uint16_t(a.port));
+    inet_pton(AF_INET, a.group.c_str(), &to_.sin_addr);
+    const unsigned char ttl = 0;
+    setsockopt(fd_, IPPROTO_IP, IP_MULTICAST_TTL, &ttl, sizeof(ttl));
+  }
+  ~RawSender() { close(fd_); }
+  template <size_t N>
+  void send(const uint8_t (&bytes)[N]) {
+    EXPECT_EQ(sendto(fd_, bytes, N, 0, reinterpret_cast<sockaddr*>(&to_), sizeof(to_)), ssize_t(N));
+  }
+
+ private:
+  int fd_;
+  sockaddr_in to_{};
+};
+}  // namespace
+
+TEST(UdpmUrl, TakesLcmsDefaultsPortAndReceiveBufferAndNamesWhatIsWrong) {
+  UdpmAddress a = parse_udpm_url("udpm://");
+  EXPECT_EQ(a.group, "239.255.76.67");
+  EXPECT_EQ(a.port, 7667);
+  EXPECT_EQ(a.recv_buf_size, 0);
+  a = parse_udpm_url("udpm://239.1.2.3:9001?ttl=0&recv_buf_size=4194304");
+  EXPECT_EQ(a.group, "239.1.2.3");
+  EXPECT_EQ(a.port, 9001);
+  EXPECT_EQ(a.recv_buf_size, 4194304);
+  EXPECT_EQ(a.ttl, 0);
+  EXPECT_EQ(parse_udpm_url("udpm://239.1.2.3:9001?ttl=1").ttl, 1);
+  for (const auto& [url, says] : std::vector<std::pair<std::string, std::string>>{
+           {"memq://", "not a udpm:// URL"},
+           {"udpm://10.0.0.1:7667", "not an IPv4 multicast group"},
+           {"udpm://239.255.76.67:70000", "out of range"},
+           {"udpm://239.255.76.67:x", "port 'x' is not a number"},
+           {"udpm://239.255.76.67:7667?recv_buf_size=big", "recv_buf_size 'big'"}}) {
+    try {
+      parse_udpm_url(url);
+      ADD_FAILURE() << url << " was accepted";
+    } catch (const BusError& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(url), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(LcmSocket, DeliversLcmsOwnBytesOnSubscribedChannelsOnly) {
+  const std::string url = lt::unique_lcm_url();
+  LcmSocket socket(url);
+  lcm::LCM lc(url);
+  ASSERT_TRUE(lc.good());
+  Got state, command;
+  const int state_id = socket.subscribe("r0/hardware/state", [&](const lcm::ReceiveBuffer& rb) {
+    const auto* b = static_cast<const uint8_t*>(rb.data);
+    state.payloads.emplace_back(b, b + rb.data_size);
+    state.recv_utime = rb.recv_utime;
+  });
+  socket.subscribe("r0/hardware/command", [&](const lcm::ReceiveBuffer& rb) {
+    const auto* b = static_cast<const uint8_t*>(rb.data);
+    command.payloads.emplace_back(b, b + rb.data_size);
+  });
+  std::vector<uint8_t> bytes(3000);
+  for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = uint8_t(i * 7);
+  const int64_t before = wall_us();
+  lc.publish("r0/hardware/state_x", bytes.data(), 10);  // a longer name with the same start
+  lc.publish("r0/hardware/stat", bytes.data(), 10);     // and a shorter one
+  lc.publish("r0/hardware/state", bytes.data(), unsigned(bytes.size()));
+  lc.publish("r0/hardware/command", bytes.data(), 0u);  // an empty payload is a message too
+  ASSERT_TRUE(pump(socket, [&] { return state.payloads.size() == 1 && command.payloads.size() == 1; }));
+  EXPECT_EQ(state.payloads[0], bytes);
+  EXPECT_TRUE(command.payloads[0].empty());
+  EXPECT_GE(state.recv_utime, before);
+  EXPECT_LE(state.recv_utime, wall_us());
+
+  socket.unsubscribe(state_id);
+  lc.publish("r0/hardware/state", bytes.data(), 10);
+  lc.publish("r0/hardware/command", bytes.data(), 5);
+  ASSERT_TRUE(pump(socket, [&] { return command.payloads.size() == 2; }));
+  pump(socket, [] { return false; }, 0.1);
+  EXPECT_EQ(state.payloads.size(), 1u);
+  EXPECT_EQ(socket.not_lcm(), 0);
+}
+
+TEST(LcmSocket, RecvUtimeIsWhenTheDatagramArrivedAsLcmGivesIt) {
+  const std::string url = lt::unique_lcm_url();
+  LcmSocket socket(url);
+  lcm::LCM lc(url);
+  ASSERT_TRUE(lc.good());
+  Got got;
+  socket.subscribe("state", [&](const lcm::ReceiveBuffer& rb) { got.recv_utime = rb.recv_utime; });
+  const uint8_t byte = 1;
+  const int64_t before = wall_us();
+  lc.publish("state", &byte, 1);
+  usleep(50000);  // read well after it arrived
+  const int64_t read_from = wall_us();
+  ASSERT_TRUE(pump(socket, [&] { return got.recv_utime != 0; }));
+  EXPECT_GE(got.recv_utime, before);
+  EXPECT_LT(got.recv_utime, read_from - 40000) << "recv_utime is when it was read, not when it arrived";
+}
+
+TEST(LcmSocket, CountsWhatIsNotLcmAndDeliversNoneOfIt) {
+  const std::string url = lt::unique_lcm_url();
+  LcmSocket socket(url);
+  lcm::LCM lc(url);
+  int delivered = 0;
+  socket.subscribe("hardware/state", [&](const lcm::ReceiveBuffer&) { ++delivered; });
+
+  RawSender raw(url);
+  const uint8_t garbage[] = "not LCM at all";
+  raw.send(garbage);
+  const uint8_t no_nul[] = {0x4c, 0x43, 0x30, 0x32, 0, 0, 0, 1, 'h', 'a', 'r', 'd'};  // LC02, name never ends
+  raw.send(no_nul);
+  const uint8_t header_only[] = {0x4c, 0x43, 0x30, 0x32, 0, 0, 0, 1};
+  raw.send(header_only);
+  // LC03 fragments that cannot be: fragment 2 of 2, and a 1 GB message.
+  const uint8_t past_count[] = {0x4c, 0x43, 0x30, 0x33, 0, 0, 0, 9, 0, 0, 0, 4, 0, 0, 0, 0, 0, 2, 0, 2, 1, 2, 3, 4};
+  raw.send(past_count);
+  const uint8_t huge[] = {0x4c, 0x43, 0x30, 0x33, 0, 0, 0, 9, 0x40, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 'h', 0, 3, 4};
+  raw.send(huge);
+  // A fragment whose data runs past the message's size.
+  const uint8_t overrun[] = {0x4c, 0x43, 0x30, 0x33, 0, 0, 0, 9, 0, 0, 0, 2, 0, 0, 0, 0, 0, 1, 0, 2, 1, 2, 3, 4};
+  raw.send(overrun);
+  lc.publish("hardware/state", garbage, 8u);  // and a message after them still arrives
+  ASSERT_TRUE(pump(socket, [&] { return delivered == 1; }));
+  EXPECT_EQ(socket.not_lcm(), 6);
+  EXPECT_EQ(socket.reassembled(), 0);
+}
+
+TEST(LcmSocket, PutsFragmentedMessagesTogetherAsLcmSendsThem) {
+  const std::string url = lt::unique_lcm_url();
+  LcmSocket socket(url);
+  lcm::LCM lc(url);
+  std::vector<std::vector<uint8_t>> got;
+  socket.subscribe("goal", [&](const lcm::ReceiveBuffer& rb) {
+    const auto* b = static_cast<const uint8_t*>(rb.data);
+    got.emplace_back(b, b + rb.data_size);
+  });
+  std::vector<uint8_t> big(300000), bigger(700000);
+  for (size_t i = 0; i < big.size(); ++i) big[i] = uint8_t(i * 13 + 1);
+  for (size_t i = 0; i < bigger.size(); ++i) bigger[i] = uint8_t(i * 5 + 2);
+  lc.publish("not_subscribed", big.data(), unsigned(big.size()));  // skipped, not kept
+  lc.publish("goal", big.data(), unsigned(big.size()));
+  lc.publish("goal", bigger.data(), unsigned(bigger.size()));
+  lc.publish("goal", big.data(), 100u);  // a whole one after them
+  ASSERT_TRUE(pump(socket, [&] { return got.size() == 3; }));
+  EXPECT_EQ(got[0], big);
+  EXPECT_EQ(got[1], bigger);
+  EXPECT_EQ(got[2], std::vector<uint8_t>(big.begin(), big.begin() + 100));
+  EXPECT_EQ(socket.reassembled(), 2);
+  EXPECT_EQ(socket.incomplete(), 0);
+
+  // A sender that moves on before its message is complete loses that message, and only that one.
+  RawSender raw(url);
+  const uint8_t first_of_two[] = {0x4c, 0x43, 0x30, 0x33, 0, 0, 0, 7, 0, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 2,
+                                  'g', 'o', 'a', 'l', 0, 1, 2};
+  raw.send(first_of_two);
+  const uint8_t whole_of_one[] = {0x4c, 0x43, 0x30, 0x33, 0, 0, 0, 8, 0, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 1,
+                                  'g', 'o', 'a', 'l', 0, 5, 6};
+  raw.send(whole_of_one);
+  ASSERT_TRUE(pump(socket, [&] { return got.size() == 4; }));
+  EXPECT_EQ(got[3], (std::vector<uint8_t>{5, 6}));
+  EXPECT_EQ(socket.incomplete(), 1);
+}
+
+TEST(LcmSocket, WaitForSkipsOtherChannelsAndTimesOut) {
+  const std::string url = lt::unique_lcm_url();
+  LcmSocket socket(url);
+  lcm::LCM lc(url);
+  const uint8_t b[3] = {1, 2, 3};
+  lc.publish("other", b, 3u);
+  lc.publish("wanted", b, 2u);
+  int size = -1;
+  const uint8_t* got = socket.wait_for("wanted", 2000, &size);
+  ASSERT_NE(got, nullptr);
+  EXPECT_EQ(size, 2);
+  EXPECT_EQ(got[1], 2);
+  const int64_t t0 = monotonic_us();
+  EXPECT_EQ(socket.wait_for("wanted", 50), nullptr);
+  EXPECT_GE(monotonic_us() - t0, 45000);
+}
+
+TEST(HardwareReader, DirectReadsTheHardwareLoopOnItsOwnSocketOnUdpmOnly) {
+  EXPECT_EQ(hardware_reader_named("direct"), HardwareReader::Direct);
+  EXPECT_EQ(hardware_reader_named("lcm"), HardwareReader::Lcm);
+  EXPECT_THROW(hardware_reader_named("fast"), BusError);
+
+  const std::string shared = lt::unique_lcm_url(), hw = lt::unique_lcm_url();
+  {
+    SCOPED_TRACE("on a URL of its own: the shared bus stays with LCM's thread");
+    Bus robot(shared, "r0", hw, HardwareReader::Direct);
+    ASSERT_NE(robot.hardware_socket(), nullptr);
+    EXPECT_EQ(robot.shared_socket(), nullptr);
+    ASSERT_EQ(robot.fds().size(), 2u);
+    EXPECT_EQ(robot.fds()[1], robot.hardware_socket()->fd());
+    int states = 0;
+    robot.hardware_socket()->subscribe("r0/hardware/state", [&](const lcm::ReceiveBuffer&) { ++states; });
+    lcm::LCM other(hw);
+    const uint8_t b[4] = {};
+    other.publish("r0/hardware/state", b, 4u);
+    for (int i = 0; i < 100 && states == 0; ++i) robot.handle(20);
+    EXPECT_EQ(states, 1);
+  }
+  {
+    SCOPED_TRACE("on the shared bus: one socket for both, in the order sent");
+    Bus robot(shared, "r0", "", HardwareReader::Direct);
+    ASSERT_NE(robot.shared_socket(), nullptr);
+    EXPECT_EQ(robot.hardware_socket(), robot.shared_socket());
+    ASSERT_EQ(robot.fds().size(), 1u);
+    EXPECT_EQ(robot.fds()[0], robot.shared_socket()->fd());
+    std::string order;
+    robot.shared_socket()->subscribe("r0/e_stop", [&](const lcm::ReceiveBuffer&) { order += 'e'; });
+    robot.hardware_socket()->subscribe("r0/hardware/command", [&](const lcm::ReceiveBuffer&) { order += 'c'; });
+    lcm::LCM other(shared);
+    const uint8_t b[4] = {};
+    for (int k = 0; k < 50; ++k) {
+      other.publish("r0/e_stop", b, 4u);
+      other.publish("r0/hardware/command", b, 4u);
+    }
+    for (int i = 0; i < 100 && order.size() < 100; ++i) robot.handle(20, 1000);
+    std::string expected;
+    for (int k = 0; k < 50; ++k) expected += "ec";
+    EXPECT_EQ(order, expected);
+  }
+  Bus lcm_reader(shared, "r0", hw, HardwareReader::Lcm);
+  EXPECT_EQ(lcm_reader.hardware_socket(), nullptr);
+  Bus memq("memq://", "r0", "", HardwareReader::Direct);
+  EXPECT_EQ(memq.hardware_socket(), nullptr);
+  EXPECT_EQ(memq.fds().size(), 1u);
+}
