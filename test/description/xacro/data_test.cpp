@@ -49,7 +49,7 @@ TEST(XacroDemoArm, EveryCommandExpandsAsExpected) {
   }
 }
 
-TEST(XacroDemoArm, FilesReadInOrderOnce) {
+TEST(XacroDemoArm, FilesReadInReadOrderOnce) {
   const Expansion e = expand_file(kData + "/pkgs/demo_description/urdf/demo_arm.urdf.xacro", data_options());
   const std::string u = kData + "/pkgs/demo_description/urdf/";
   EXPECT_EQ(e.files_read, (std::vector<std::string>{
@@ -57,8 +57,8 @@ TEST(XacroDemoArm, FilesReadInOrderOnce) {
                               u + "demo_arm_macro.xacro",
                               u + "inc/common.xacro",
                               u + "demo.ros2_control.xacro",
+                              kData + "/pkgs/demo_description/config/links.yaml",  // lazy_eval="false": first
                               kData + "/pkgs/demo_description/config/limits.yaml",
-                              kData + "/pkgs/demo_description/config/links.yaml",
                               u + "../config/limits.yaml",
                           }));
 }

@@ -95,11 +95,13 @@ TEST(XacroProperty, DefaultAndRemove) {
 }
 
 TEST(XacroMacro, ParamsDefaultsAndQuotedDefaults) {
-  EXPECT_EQ(expand_text(robot(R"(<xacro:macro name="m" params="a b:=2 c:='x y' d:=${a*3} e:=''">)"
-                              R"(<m a="${a}" b="${b}" c="${c}" d="${d}" e="[${e}]"/></xacro:macro>)"
+  // A default is evaluated in the scope of the call, not among the macro's own parameters: d sees the global a.
+  EXPECT_EQ(expand_text(robot(R"(<xacro:property name="a" value="10"/>)"
+                              R"(<xacro:macro name="m" params="a b:=2 c:='x y' d:=${a*3} f:=''">)"
+                              R"(<m a="${a}" b="${b}" c="${c}" d="${d}" f="[${f}]"/></xacro:macro>)"
                               R"(<xacro:m a="1"/><xacro:m a="2" b="hello" c="z"/>)")),
-            "<robot name=\"r\">\n  <m a=\"1\" b=\"2\" c=\"x y\" d=\"3\" e=\"[]\"/>\n"
-            "  <m a=\"2\" b=\"hello\" c=\"z\" d=\"6\" e=\"[]\"/>\n</robot>\n");
+            "<robot name=\"r\">\n  <m a=\"1\" b=\"2\" c=\"x y\" d=\"30\" f=\"[]\"/>\n"
+            "  <m a=\"2\" b=\"hello\" c=\"z\" d=\"30\" f=\"[]\"/>\n</robot>\n");
 }
 
 TEST(XacroMacro, BlockParamsSingleAndMulti) {

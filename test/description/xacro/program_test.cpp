@@ -46,8 +46,8 @@ TEST(XacroProgram, DepsListsTheFilesReadBesidesTheInput) {
   EXPECT_EQ(r.code, 0) << r.output;
   const std::string u = kData + "/pkgs/demo_description/urdf/";
   EXPECT_EQ(r.output, u + "demo_arm_macro.xacro " + u + "inc/common.xacro " + u + "demo.ros2_control.xacro " + kData +
-                          "/pkgs/demo_description/config/limits.yaml " + kData +
-                          "/pkgs/demo_description/config/links.yaml " + u + "../config/limits.yaml");
+                          "/pkgs/demo_description/config/links.yaml " + kData +
+                          "/pkgs/demo_description/config/limits.yaml " + u + "../config/limits.yaml");
 }
 
 TEST(XacroProgram, OutputFile) {
