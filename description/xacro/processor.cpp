@@ -980,7 +980,11 @@ class Processor {
       if (args.size() != 1) throw EvalError("TypeError", "load_yaml() takes exactly one argument (the file name)");
       const std::string filename = join_path(dirname(filestack_.back()), str(args[0]));
       files_read_.push_back(filename);
-      return load_yaml_file(filename);
+      auto cached = yaml_cache_.find(filename);  // values are immutable: a file read again is the same value
+      if (cached != yaml_cache_.end()) return cached->second;
+      Value v = load_yaml_file(filename);
+      yaml_cache_.emplace(filename, v);
+      return v;
     });
     add("abs_filename", [this](const List& args, const Kwargs&) {
       if (args.size() != 1) throw EvalError("TypeError", "abs_filename() takes exactly one argument");
@@ -1049,6 +1053,7 @@ class Processor {
   std::vector<std::string> filestack_;
   std::vector<std::string> files_read_;
   std::vector<Frame> frames_;
+  std::unordered_map<std::string, Value> yaml_cache_;
   Node* marker_ = nullptr;
   const Node* current_ = nullptr;
   Value xacro_;
