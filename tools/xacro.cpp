@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   app.add_flag("--deps", deps, "print the files the expansion reads (includes, YAML), space-separated, not the XML");
   app.add_flag("--inorder,-i", inorder, "accepted for compatibility (in-order processing is the only one)");
   add_package_path_flag(app, package_path);
+  app.get_option("--package-path")->allow_extra_args(false);  // NAME:=VALUE after it stays an argument
   return run_program(app, argc, argv, [&] {
     std::string input;
     xacro::Options options;
