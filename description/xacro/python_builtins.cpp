@@ -69,6 +69,22 @@ int64_t float_to_int(double d) {
   return static_cast<int64_t>(d);
 }
 
+// Python's int()/float() accept single underscores between digits: "1_000".
+std::optional<std::string> without_digit_underscores(const std::string& s) {
+  if (s.find('_') == std::string::npos) return s;
+  std::string out;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] != '_') {
+      out += s[i];
+      continue;
+    }
+    const bool between = i > 0 && i + 1 < s.size() && std::isxdigit(static_cast<unsigned char>(s[i - 1])) &&
+                         std::isxdigit(static_cast<unsigned char>(s[i + 1]));
+    if (!between) return std::nullopt;
+  }
+  return out;
+}
+
 // ---- format() ---------------------------------------------------------------------------------------------------
 
 struct Spec {
@@ -713,7 +729,8 @@ Value int_builtin(const List& args, const Kwargs& kwargs) {
         raise("ValueError", fmt::format("invalid literal for int() with base {}: {}", b, repr(x)));
       return Value::integer(v);
     }
-    if (auto v = python_int(x.as_str())) return Value::integer(*v);
+    if (auto clean = without_digit_underscores(x.as_str()))
+      if (auto v = python_int(*clean)) return Value::integer(*v);
     raise("ValueError", fmt::format("invalid literal for int() with base 10: {}", repr(x)));
   }
   if (base) raise("TypeError", "int() can't convert non-string with explicit base");
@@ -729,7 +746,8 @@ Value float_builtin(const List& args, const Kwargs& kwargs) {
   if (args.empty()) return Value::floating(0.0);
   const Value& x = args[0];
   if (x.kind() == Kind::Str) {
-    if (auto d = python_float(x.as_str())) return Value::floating(*d);
+    if (auto clean = without_digit_underscores(x.as_str()))
+      if (auto d = python_float(*clean)) return Value::floating(*d);
     raise("ValueError", fmt::format("could not convert string to float: {}", repr(x)));
   }
   if (x.is_number()) return Value::floating(x.as_double());

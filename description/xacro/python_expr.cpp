@@ -58,7 +58,7 @@ int64_t floor_div(int64_t a, int64_t b) {
 }
 
 int64_t floor_mod(int64_t a, int64_t b) {
-  if (b == 0) raise("ZeroDivisionError", "integer division or modulo by zero");
+  if (b == 0) raise("ZeroDivisionError", "integer modulo by zero");
   if (b == -1) return 0;
   int64_t m = a % b;
   if (m != 0 && ((m < 0) != (b < 0))) m += b;

@@ -287,6 +287,11 @@ class Parser {
     const Token& t = peek(ahead);
     return t.kind == Tok::Name && t.text == kw;
   }
+  const Token& opening() {
+    const Token& t = next();
+    open_.push_back(&t);
+    return t;
+  }
   bool accept_op(const char* op) {
     if (!is_op(op)) return false;
     next();
@@ -298,13 +303,18 @@ class Parser {
     return true;
   }
   void expect_op(const char* op, const Token* opener = nullptr) {
-    if (accept_op(op)) return;
+    if (accept_op(op)) {
+      if (opener && !open_.empty() && open_.back() == opener) open_.pop_back();
+      return;
+    }
     if (opener && peek().kind == Tok::End)
       syntax_error(fmt::format("'{}' was never closed (column {})", opener->text, opener->column));
     unexpected();
   }
   [[noreturn]] void unexpected() const {
     const Token& t = peek();
+    if (t.kind == Tok::End && !open_.empty())
+      syntax_error(fmt::format("'{}' was never closed (column {})", open_.back()->text, open_.back()->column));
     switch (t.kind) {
       case Tok::End: syntax_error(fmt::format("invalid syntax: unexpected end of expression at column {}", t.column));
       case Tok::Op:
@@ -351,7 +361,8 @@ class Parser {
     if (!is_kw("if")) return body;
     next();
     NodePtr cond = or_test();
-    if (!accept_kw("else")) unexpected();
+    if (!accept_kw("else"))
+      syntax_error(fmt::format("expected 'else' after 'if' expression (column {})", peek().column));
     auto n = node(Op::IfElse, column);
     n->kids = {body, cond, test()};
     return n;
@@ -504,11 +515,9 @@ class Parser {
         a->kids.push_back(n);
         n = a;
       } else if (is_op("(")) {
-        const Token& open = next();
-        n = call(n, open);
+        n = call(n, opening());
       } else if (is_op("[")) {
-        const Token& open = next();
-        n = subscript(n, open);
+        n = subscript(n, opening());
       } else {
         return n;
       }
@@ -632,9 +641,9 @@ class Parser {
         return n;
       }
       case Tok::Op: {
-        if (t.text == "(") return parenthesized(next());
-        if (t.text == "[") return list_display(next());
-        if (t.text == "{") return dict_display(next());
+        if (t.text == "(") return parenthesized(opening());
+        if (t.text == "[") return list_display(opening());
+        if (t.text == "{") return dict_display(opening());
         unexpected();
       }
       case Tok::End: unexpected();
@@ -643,14 +652,20 @@ class Parser {
   }
 
   NodePtr parenthesized(const Token& open) {
-    if (accept_op(")")) return node(Op::TupleLit, open.column);
+    if (is_op(")")) {
+      expect_op(")", &open);
+      return node(Op::TupleLit, open.column);
+    }
     NodePtr first = test();
     if (is_kw("for")) {
       NodePtr gen = comprehension(first, nullptr, "gen", open.column);
       expect_op(")", &open);
       return gen;
     }
-    if (accept_op(")")) return first;
+    if (is_op(")")) {
+      expect_op(")", &open);
+      return first;
+    }
     auto tuple = node(Op::TupleLit, open.column);
     tuple->kids.push_back(first);
     while (accept_op(",")) {
@@ -663,7 +678,10 @@ class Parser {
 
   NodePtr list_display(const Token& open) {
     auto n = node(Op::ListLit, open.column);
-    if (accept_op("]")) return n;
+    if (is_op("]")) {
+      expect_op("]", &open);
+      return n;
+    }
     NodePtr first = test();
     if (is_kw("for")) {
       NodePtr comp = comprehension(first, nullptr, "list", open.column);
@@ -681,7 +699,10 @@ class Parser {
 
   NodePtr dict_display(const Token& open) {
     auto n = node(Op::DictLit, open.column);
-    if (accept_op("}")) return n;
+    if (is_op("}")) {
+      expect_op("}", &open);
+      return n;
+    }
     NodePtr key = test();
     if (!is_op(":")) syntax_error(fmt::format("set displays are not supported (column {})", open.column));
     next();
@@ -779,6 +800,7 @@ class Parser {
 
   std::vector<Token> toks_;
   size_t pos_ = 0;
+  std::vector<const Token*> open_;
 };
 
 }  // namespace
