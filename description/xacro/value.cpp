@@ -239,7 +239,13 @@ std::string repr(const Value& v) {
       }
       return out + "}";
     }
-    case Value::Kind::Callable: return "<built-in function " + v.as_callable().name + ">";
+    case Value::Kind::Callable: {
+      const std::string& name = v.as_callable().name;
+      static const char* const types[] = {"int", "float", "str", "bool", "list", "tuple", "dict", "type", "NoneType"};
+      for (const char* t : types)
+        if (name == t) return "<class '" + name + "'>";
+      return "<built-in function " + name + ">";
+    }
   }
   return "";
 }
