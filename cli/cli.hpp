@@ -73,13 +73,30 @@ inline void add_arg_flag(CLI::App& app, std::vector<std::string>& assignments) {
       });
 }
 
+// --xacro-arg NAME:=VALUE (repeatable): the arguments of a .xacro robot file, as `xacro FILE NAME:=VALUE` takes them.
+inline void add_xacro_arg_flag(CLI::App& app, std::vector<std::string>& assignments) {
+  app.add_option("--xacro-arg", assignments,
+                 "NAME:=VALUE for <xacro:arg name=\"NAME\"> when the robot file is a .xacro, expanded by our own "
+                 "xacro as `xacro FILE NAME:=VALUE` would (repeatable; NAME=VALUE works too)")
+      ->check([](const std::string& v) {
+        try {
+          parse_arg(v);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      });
+}
+
 // How the robot's files are read, from the flags every program that loads them shares.
 inline LoadOptions load_options(const std::vector<std::string>& package_path, const BusFlags& bus,
-                                const std::vector<std::string>& arg_assignments) {
+                                const std::vector<std::string>& arg_assignments,
+                                const std::vector<std::string>& xacro_arg_assignments = {}) {
   LoadOptions o;
   o.package_path = package_path;
   o.ns = bus.ns;
   for (const auto& a : arg_assignments) o.args.push_back(parse_arg(a));
+  for (const auto& a : xacro_arg_assignments) o.xacro_args.push_back(parse_arg(a));
   return o;
 }
 

@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> package_path;
   double silence_s = 0.25;
   std::string log_level;
-  app.add_option("--urdf", urdf, "robot URDF with <transmission> tags")->required();
+  app.add_option("--urdf", urdf, "robot URDF (or .urdf.xacro: --xacro-arg gives its arguments) with <transmission> tags")->required();
   app.add_option("--config", config, "ros_control YAML (controllers as top-level keys)")->required();
   add_bus_flags(app, bus_flags);
   add_hardware_url_flag(app, bus_flags);
@@ -41,6 +41,8 @@ int main(int argc, char** argv) {
   add_package_path_flag(app, package_path);
   std::vector<std::string> args;
   add_arg_flag(app, args);
+  std::vector<std::string> xacro_args;
+  add_xacro_arg_flag(app, xacro_args);
   add_scheduling_flags(app, sched);
   app.add_option("--silence-timeout", silence_s,
                  "seconds without hardware/state after which controllers are not updated and switches apply at once")
@@ -61,7 +63,7 @@ int main(int argc, char** argv) {
       scheduling += fmt::format("{}spinning {} us around each real-time state", scheduling.empty() ? "" : ", ", spin_us);
     }
     setup_logging("controller_manager", log_level);
-    RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
+    RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
     for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
     Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url, hardware_reader_named(bus_flags.hardware_reader));

@@ -5,6 +5,8 @@
 #include <fmt/format.h>
 
 #include <condition_variable>
+#include <cstdlib>
+#include <cstring>
 #include <cstdio>
 #include <deque>
 #include <filesystem>
@@ -18,6 +20,7 @@
 #include "cli/cli.hpp"
 #include "control/expression.hpp"
 #include "description/packages.hpp"
+#include "description/robot_file.hpp"
 #include "rt/scheduling.hpp"
 #include "dashboard/requests.hpp"
 #include "dashboard/throttle.hpp"
@@ -183,10 +186,48 @@ std::string relative(const std::string& channel, const std::string& prefix) {
 struct Options {
   BusFlags bus;
   std::string bind = "127.0.0.1", web_root, urdf;
-  std::vector<std::string> package_path;
+  std::vector<std::string> package_path, xacro_args;
   int port = 8080, nice = 10;
   double rate_hz = 30, duration_s = 0, timeout_s = 5;
   bool read_only = false;
+};
+
+// The name the page asks for: the file's own, or for a .xacro the URDF it expands to (robot.urdf.xacro -> robot.urdf).
+std::string served_urdf_name(const std::string& urdf) {
+  const std::string name = fs::path(urdf).filename().string();
+  if (!is_xacro_file(urdf)) return name;
+  std::string stem = name;
+  for (const char* ext : {".urdf.xacro", ".xacro.urdf", ".xacro"})
+    if (stem.size() > std::strlen(ext) && stem.compare(stem.size() - std::strlen(ext), std::string::npos, ext) == 0) {
+      stem.resize(stem.size() - std::strlen(ext));
+      break;
+    }
+  return stem + ".urdf";
+}
+
+// A .xacro robot file expanded once into a private folder of its own, served in place of the file; removed on exit.
+class ExpandedUrdf {
+ public:
+  ExpandedUrdf(const std::string& urdf, const LoadOptions& options) {
+    std::string dir = (fs::temp_directory_path() / "lcm_control_dashboard_XXXXXX").string();
+    if (!::mkdtemp(dir.data())) throw std::runtime_error(fmt::format("cannot make a folder in {}", dir));
+    dir_ = dir;
+    path_ = (fs::path(dir_) / served_urdf_name(urdf)).string();
+    std::FILE* f = std::fopen(path_.c_str(), "w");
+    const std::string xml = read_robot_file(urdf, options);
+    if (!f || std::fwrite(xml.data(), 1, xml.size(), f) != xml.size() || std::fclose(f) != 0)
+      throw std::runtime_error(fmt::format("cannot write the expanded URDF {}", path_));
+  }
+  ~ExpandedUrdf() {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  ExpandedUrdf(const ExpandedUrdf&) = delete;
+  ExpandedUrdf& operator=(const ExpandedUrdf&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string dir_, path_;
 };
 
 class Dashboard {
@@ -206,7 +247,7 @@ class Dashboard {
   void hello(int conn) {
     json h = {{"kind", "hello"}, {"namespace", bus_.ns()}, {"lcm_url", bus_.url()}, {"read_only", o_.read_only},
               {"rate_hz", o_.rate_hz}, {"urdf", nullptr}, {"schema", tools::schema_json()}};
-    if (!o_.urdf.empty()) h["urdf"] = "/robot/" + fs::path(o_.urdf).filename().string();
+    if (!o_.urdf.empty()) h["urdf"] = "/robot/" + served_urdf_name(o_.urdf);
     web_.send(conn, dump(h));
     const std::string list = cm_ ? cm_->last_list() : "";
     if (!list.empty()) web_.send(conn, list);
@@ -432,12 +473,17 @@ int run(Options& o) {
   lower_priority(o.nice);  // before any thread: LCM's and civetweb's threads inherit it
   tools::install_stop_signals();
   Bus bus(o.bus.lcm_url, o.bus.ns);
-  const auto package_path = o.package_path.empty() ? default_package_path() : o.package_path;
+  const auto package_path = package_path_for(o.urdf, o.package_path);
+  std::unique_ptr<ExpandedUrdf> expanded;
+  if (!o.urdf.empty() && is_xacro_file(o.urdf))
+    expanded = std::make_unique<ExpandedUrdf>(o.urdf, load_options(o.package_path, o.bus, {}, o.xacro_args));
   Inbox opened, sent, closed;  // outlive the server, whose threads fill them
   WebServer web(o.bind, o.port, o.web_root,
                 {[&](int id) { opened.push(id, ""); }, [&](int id, const std::string& text) { sent.push(id, text); },
                  [&](int id) { closed.push(id, ""); }});
-  web.route("/robot/", [&](const std::string& rest) { return WebServer::file_under(urdf_dir, rest); });
+  web.route("/robot/", [&](const std::string& rest) {
+    return expanded && rest == served_urdf_name(o.urdf) ? expanded->path() : WebServer::file_under(urdf_dir, rest);
+  });
   web.route("/package/", [&](const std::string& rest) {
     const size_t slash = rest.find('/');
     if (slash == std::string::npos) return std::string();
@@ -467,7 +513,10 @@ int main(int argc, char** argv) {
   dashboard::Options o;
   add_bus_flags(app, o.bus);
   add_package_path_flag(app, o.package_path);
-  app.add_option("--urdf", o.urdf, "the robot's URDF, for the 3D view (meshes from package:// or beside it)");
+  app.add_option("--urdf", o.urdf,
+                 "the robot's URDF or .urdf.xacro (with --xacro-arg), for the 3D view (meshes from package:// or "
+                 "beside it)");
+  add_xacro_arg_flag(app, o.xacro_args);
   app.add_option("--port", o.port, "TCP port of the page (0: one the system picks; the URL is printed)")
       ->check(CLI::Range(0, 65535));
   app.add_option("--bind", o.bind,

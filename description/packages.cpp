@@ -21,6 +21,23 @@ std::vector<std::string> default_package_path() {
   return out;
 }
 
+std::string enclosing_packages_dir(const std::string& file) {
+  if (file.empty()) return "";
+  std::error_code ec;
+  const fs::path start = fs::absolute(file, ec).lexically_normal().parent_path();
+  if (ec) return "";
+  for (fs::path dir = start; dir.has_relative_path(); dir = dir.parent_path())
+    if (fs::is_regular_file(dir / "package.xml", ec)) return dir.parent_path().string();
+  return "";
+}
+
+std::vector<std::string> package_path_for(const std::string& file, const std::vector<std::string>& package_path) {
+  std::vector<std::string> out = package_path.empty() ? default_package_path() : package_path;
+  const std::string own = enclosing_packages_dir(file);
+  if (!own.empty()) out.push_back(own);
+  return out;
+}
+
 std::string find_package_dir(const std::string& name, const std::vector<std::string>& package_path) {
   std::error_code ec;
   for (const auto& dir : package_path) {

@@ -118,6 +118,8 @@ struct LoadOptions {
   std::string ns;
   // Values for $(arg NAME) in the YAML (roslaunch's subst_value), from --arg NAME=VALUE.
   std::vector<std::pair<std::string, std::string>> args;
+  // Arguments of a .xacro robot file (name:=value), from --xacro-arg or a launch file's `xacro_args:`.
+  std::vector<std::pair<std::string, std::string>> xacro_args;
 };
 
 struct RobotModel {

@@ -14,7 +14,7 @@
 #include <map>
 #include <sstream>
 
-#include "description/input_file.hpp"
+#include "description/robot_file.hpp"
 #include "description/packages.hpp"
 #include "description/text.hpp"
 
@@ -375,7 +375,7 @@ void check_numeric_attributes(const tinyxml2::XMLElement* e, const std::string& 
 void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOptions& options,
                std::vector<std::string>& problems) {
   model.urdf_path = urdf_path;
-  const std::string text = read_input_file(urdf_path, "URDF", "--urdf");
+  const std::string text = read_robot_file(urdf_path, options);
 
   tinyxml2::XMLDocument doc;
   if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS) {
@@ -412,8 +412,7 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
 
   model.name = urdf->getName();
   model.root_link = urdf->getRoot() ? urdf->getRoot()->name : "";
-  const std::vector<std::string> package_path =
-      options.package_path.empty() ? default_package_path() : options.package_path;
+  const std::vector<std::string> package_path = package_path_for(urdf_path, options.package_path);
   const std::string base_dir = fs::absolute(urdf_path).parent_path().string();
 
   MissingMeshes missing_collision{"collision", urdf_path, base_dir, package_path, {}, {}},

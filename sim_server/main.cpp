@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   sim::SimulationRates rates;
   sim::StepperOptions opt;
   double clock_hz = 100;
-  app.add_option("--urdf", urdf, "URDF with <transmission> tags")->required();
+  app.add_option("--urdf", urdf, "URDF (or .urdf.xacro, with --xacro-arg) with <transmission> tags")->required();
   app.add_option("--config", config, "ros_control YAML (gazebo_ros_control/pid_gains); none: every joint direct");
   std::string mode = "realtime";
   app.add_option("--mode", mode,
@@ -107,6 +107,8 @@ int main(int argc, char** argv) {
   add_package_path_flag(app, package_path);
   std::vector<std::string> args;
   add_arg_flag(app, args);
+  std::vector<std::string> xacro_args;
+  add_xacro_arg_flag(app, xacro_args);
   add_scheduling_flags(app, sched);
 
   return run_program(app, argc, argv, [&] {
@@ -119,7 +121,7 @@ int main(int argc, char** argv) {
     if (!opt.lockstep && opt.spin_us > 0)
       scheduling += fmt::format("{}spinning {} us before each deadline", scheduling.empty() ? "" : ", ", opt.spin_us);
     setup_logging("sim_server", log_level);
-    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
+    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
     for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
     InitialPositions start;

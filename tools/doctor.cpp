@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> package_path, args;
   BusFlags bus_flags;
   bool strict = false;
-  app.add_option("--urdf", urdf, "URDF file with <transmission> tags")->required();
+  app.add_option("--urdf", urdf, "URDF file (or .urdf.xacro, with --xacro-arg) with <transmission> tags")->required();
   app.add_option("--config", config, "ros_control YAML (controllers, gazebo_ros_control/pid_gains)");
   app.add_option("--namespace", bus_flags.ns,
                  "the robot's namespace (default: the gazebo_ros_control plugin's <robotNamespace>); the YAML is read "
@@ -48,8 +48,10 @@ int main(int argc, char** argv) {
   app.add_flag("--strict", strict, "treat warnings as errors (exit 3)");
   add_package_path_flag(app, package_path);
   add_arg_flag(app, args);
+  std::vector<std::string> xacro_args;
+  add_xacro_arg_flag(app, xacro_args);
   return run_program(app, argc, argv, [&] {
-    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
+    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
     std::fputs(describe(model).c_str(), stdout);
     for (const auto& n : model.notes) std::printf("note: %s\n", n.c_str());
 

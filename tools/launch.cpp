@@ -85,6 +85,7 @@ std::string robot_namespace_of(const LaunchPlan& plan, const std::string& flag, 
   if (!given.empty()) return normalize_namespace(given);
   LoadOptions o;
   o.package_path = path;
+  o.xacro_args = plan.xacro_args;
   RobotModel urdf;
   try {
     load_urdf_into(urdf, plan.urdf, o);
@@ -226,6 +227,8 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   app.add_flag("--dry-run", dry_run, "print what would be started and exit");
   add_package_path_flag(app, package_path);
+  std::vector<std::string> xacro_args;
+  add_xacro_arg_flag(app, xacro_args);
   add_bus_flags(app, bus_flags);
   add_hardware_url_flag(app, bus_flags);
   int robots = 0;
@@ -247,6 +250,7 @@ int main(int argc, char** argv) {
       throw CLI::ValidationError("--dashboard", "one dashboard shows one robot: with several, start one per robot "
                                                 "(dashboard --namespace r0 --port 8080 --urdf FILE, r1 on 8081, ...)");
     if (!mode.empty()) plan.mode = mode;
+    for (const auto& a : xacro_args) plan.xacro_args.push_back(parse_arg(a));  // after the file's: the flag wins
     if (paused) plan.paused = true;
     if (!cpu.empty()) plan.cpu = cpu;
     if (rt_priority >= 0) plan.rt_priority = rt_priority;
@@ -268,6 +272,7 @@ int main(int argc, char** argv) {
       pass("--stop-timeout", fmt::format("{:g}", stop_timeout));
       if (duration > 0) pass("--duration", fmt::format("{:g}", duration));
       if (!package_path.empty()) pass("--package-path", fmt::format("{}", fmt::join(package_path, ":")));
+      for (const auto& a : xacro_args) pass("--xacro-arg", a);
       pass("--lcm-url", bus_flags.lcm_url);
       const std::string hw = !bus_flags.hardware_lcm_url.empty() ? bus_flags.hardware_lcm_url
                              : !plan.hardware_lcm_url.empty()   ? plan.hardware_lcm_url
@@ -282,10 +287,14 @@ int main(int argc, char** argv) {
     const std::string hw_flag = !bus_flags.hardware_lcm_url.empty() ? bus_flags.hardware_lcm_url : plan.hardware_lcm_url;
     const std::string hw_url = hardware_url_for(hw_flag, effective_url(bus_flags.lcm_url), ns);
     const bool hw_apart = hw_url != effective_url(bus_flags.lcm_url);
-    std::vector<std::string> yaml_args;
-    for (const auto& [name, value] : plan.args) yaml_args.insert(yaml_args.end(), {"--arg", name + "=" + value});
+    std::vector<std::string> file_args;
+    for (const auto& [name, value] : plan.args) file_args.insert(file_args.end(), {"--arg", name + "=" + value});
+    std::vector<std::string> urdf_args;  // a .xacro urdf's arguments, for every process that reads the robot file
+    for (const auto& [name, value] : plan.xacro_args)
+      urdf_args.insert(urdf_args.end(), {"--xacro-arg", name + ":=" + value});
+    file_args.insert(file_args.end(), urdf_args.begin(), urdf_args.end());
     std::vector<std::string> sim{"sim_server", "--urdf", plan.urdf, "--config", plan.config};
-    sim.insert(sim.end(), yaml_args.begin(), yaml_args.end());
+    sim.insert(sim.end(), file_args.begin(), file_args.end());
     for (const auto& [joint, q] : plan.initial_positions)
       sim.insert(sim.end(), {"--initial-position", fmt::format("{}={}", joint, q)});
     if (plan.mode == "lockstep") sim.insert(sim.end(), {"--mode", "lockstep"});
@@ -295,7 +304,7 @@ int main(int argc, char** argv) {
     sim.insert(sim.end(), plan.sim_args.begin(), plan.sim_args.end());
     if (duration > 0) sim.insert(sim.end(), {"--duration", fmt::format("{:g}", duration)});
     std::vector<std::string> cm{"controller_manager", "--urdf", plan.urdf, "--config", plan.config};
-    cm.insert(cm.end(), yaml_args.begin(), yaml_args.end());
+    cm.insert(cm.end(), file_args.begin(), file_args.end());
     cm.insert(cm.end(), plan.cm_args.begin(), plan.cm_args.end());
     // In lockstep the two loop processes take turns; on one CPU each hand-over is a cheaper wake-up (bench/README.md).
     int pin = -1;
@@ -320,8 +329,9 @@ int main(int argc, char** argv) {
     if (plan.sim && plan.mode == "lockstep") spawner.push_back("--hardware-later");  // the sim starts after it
     spawner.insert(spawner.end(), plan.spawner_args.begin(), plan.spawner_args.end());
     std::vector<std::string> rsp{"state-publisher", "--urdf", plan.urdf, "--config", plan.config};
-    rsp.insert(rsp.end(), yaml_args.begin(), yaml_args.end());
-    const std::vector<std::string> dash{"dashboard", "--urdf", plan.urdf, "--port", std::to_string(dashboard_port)};
+    rsp.insert(rsp.end(), file_args.begin(), file_args.end());
+    std::vector<std::string> dash{"dashboard", "--urdf", plan.urdf, "--port", std::to_string(dashboard_port)};
+    dash.insert(dash.end(), urdf_args.begin(), urdf_args.end());
 
     if (dry_run) {
       if (plan.sim) fmt::print("{}: {}\n", plan.sim_name, fmt::join(with_ns(sim, ns), " "));

@@ -71,16 +71,18 @@ int main(int argc, char** argv) {
   double max_rate = 0;
   std::vector<std::string> package_path;
   BusFlags bus_flags;
-  app.add_option("--urdf", urdf, "the robot's URDF")->required();
+  app.add_option("--urdf", urdf, "the robot's URDF (or .urdf.xacro, with --xacro-arg)")->required();
   app.add_option("--config", config, "ros_control YAML, checked together with the URDF (optional)");
   app.add_option("--max-rate", max_rate, "publish at most this many times per second (default: every joint_states)")
       ->check(CLI::NonNegativeNumber);
   add_package_path_flag(app, package_path);
   std::vector<std::string> args;
   add_arg_flag(app, args);
+  std::vector<std::string> xacro_args;
+  add_xacro_arg_flag(app, xacro_args);
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
-    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args));
+    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
     install_stop_signals();
     Bus bus(bus_flags.lcm_url, model.ns);
     StatePublisher pub(bus, model, max_rate);

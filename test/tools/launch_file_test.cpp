@@ -293,3 +293,41 @@ TEST(LaunchFile, RosSpawnerNamespaceArgsAndSpawnModelJ) {
   });
   EXPECT_NE(p.find("y.launch:4: <node name=\"s\">: -J j1 high: the position must be a number"), std::string::npos) << p;
 }
+
+// robot_description from xacro, as ROS launch files load it: the file and its arguments go to our own xacro;
+// --inorder is accepted; anything else on xacro's command line is named.
+TEST(LaunchFile, XacroCommandOfRobotDescriptionAndXacroArgsKey) {
+  const std::string dir = lt::temp_dir("launch_xacro");
+  const std::string body = R"L(
+  <rosparam command="load" file="$(find turret_bot)/config/config.yaml"/>
+  <node name="urdf_spawner" pkg="gazebo_ros" type="spawn_model" args="-urdf -param robot_description -model x"/>
+</launch>)L";
+  const std::string xacro = lt::source("config/turret_bot_description/urdf/turret_bot.urdf.xacro");
+  const std::string file = write(dir, "x.launch",
+                                 "<launch>\n  <arg name=\"iface\" default=\"Effort\"/>\n  <param name=\"robot_description\" "
+                                 "command=\"$(find xacro)/xacro --inorder " +
+                                     xacro + " interface:=$(arg iface) extra:=1\"/>" + body);
+  const LaunchPlan plan = read_launch_file(file, {lt::source("test/tools/data")});
+  EXPECT_EQ(plan.urdf, xacro);
+  EXPECT_EQ(plan.xacro_args, (std::vector<std::pair<std::string, std::string>>{{"interface", "Effort"}, {"extra", "1"}}));
+
+  const std::string rosrun = write(dir, "r.launch",
+                                   "<launch>\n  <param name=\"robot_description\" command=\"rosrun xacro xacro " + xacro +
+                                       " -o out.urdf\"/>" + body);
+  EXPECT_NE(problems_of([&] { read_launch_file(rosrun, {lt::source("test/tools/data")}); })
+                .find("xacro argument '-o' is not supported (FILE, NAME:=VALUE and --inorder are)"),
+            std::string::npos);
+  const std::string other = write(dir, "o.launch",
+                                  "<launch>\n  <param name=\"robot_description\" command=\"cat robot.urdf\"/>" + body);
+  EXPECT_NE(problems_of([&] { read_launch_file(other, {lt::source("test/tools/data")}); }).find("is not a xacro call"),
+            std::string::npos);
+
+  const std::string yaml = write(dir, "x.launch.yaml",
+                                 "urdf: " + xacro + "\nconfig: " + lt::source("config/turret_bot.yaml") +
+                                     "\nxacro_args: {interface: Velocity, prefix: ''}\n");
+  const LaunchPlan y = read_launch_file(yaml, {});
+  EXPECT_EQ(y.xacro_args, (std::vector<std::pair<std::string, std::string>>{{"interface", "Velocity"}, {"prefix", ""}}));
+  const std::string bad = write(dir, "bad.launch.yaml", "urdf: " + xacro + "\nxacro_args: [interface]\n");
+  EXPECT_NE(problems_of([&] { read_launch_file(bad, {}); }).find("'xacro_args' must be a map NAME: VALUE"),
+            std::string::npos);
+}

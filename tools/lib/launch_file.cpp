@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 #include <sstream>
 
@@ -126,7 +127,7 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
                                        "controller_manager_args", "controllers", "spawner_args",
                                        "state_publisher", "processes",  "commands", "namespace", "args",
                                        "initial_positions", "paused", "robots", "hardware_lcm_url",
-                                       "rt_priority", "spin_us"};
+                                       "rt_priority", "spin_us", "xacro_args"};
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
     const YAML::Node& v = kv.second;
@@ -201,6 +202,15 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
         for (const auto& a : v) {
           const std::string name = a.first.as<std::string>();
           plan.args.emplace_back(name, str(a.second, "args." + name));
+        }
+      } else if (key == "xacro_args") {
+        if (!v.IsMap()) {
+          problems.push_back(where(v, key) + " must be a map NAME: VALUE (the <xacro:arg> values of a .xacro urdf)");
+          continue;
+        }
+        for (const auto& a : v) {
+          const std::string name = a.first.as<std::string>();
+          plan.xacro_args.emplace_back(name, str(a.second, "xacro_args." + name));
         }
       } else if (key == "initial_positions") {
         if (!v.IsMap()) {
@@ -298,6 +308,7 @@ struct RosReader {
   LaunchPlan& plan;
   Args args;
   std::vector<std::pair<std::string, std::string>> textfile_params;  // name -> file
+  std::map<std::string, std::vector<std::pair<std::string, std::string>>> xacro_params;  // name -> its xacro args
   bool gazebo = false, spawn_model = false, unpause = false;
   std::string spawn_param;
   int rosparam_files = 0;
@@ -396,6 +407,43 @@ struct RosReader {
     }
   }
 
+  // <param command="$(find xacro)/xacro FILE [--inorder] [NAME:=VALUE ...]"/> (also xacro.py, rosrun xacro xacro):
+  // the file and its arguments, which our own xacro expands.
+  void xacro_command(const tinyxml2::XMLElement* e, const std::string& name) {
+    std::string cmd = e->Attribute("command");
+    for (const char* program : {"$(find xacro)/xacro.py", "$(find xacro)/xacro", "rosrun xacro xacro.py",
+                                "rosrun xacro xacro"}) {
+      const std::string p = program;
+      if (trim(cmd).rfind(p, 0) == 0) {
+        cmd = "xacro" + trim(cmd).substr(p.size());
+        break;
+      }
+    }
+    const auto words = split_words(substitute(cmd, Substitutions{package_path, args, kLaunchArgFix}, where(e)));
+    const bool is_xacro = !words.empty() && (words[0] == "xacro" || words[0] == "xacro.py");
+    std::string file;
+    std::vector<std::pair<std::string, std::string>> xacro_args;
+    for (size_t k = 1; is_xacro && k < words.size(); ++k) {
+      if (words[k] == "--inorder") continue;
+      if (words[k].find(":=") != std::string::npos)
+        xacro_args.push_back(parse_arg(words[k]));
+      else if (file.empty() && words[k].rfind("-", 0) != 0)
+        file = words[k];
+      else
+        return (void)problems.push_back(fmt::format("{}: xacro argument '{}' is not supported (FILE, NAME:=VALUE "
+                                                    "and --inorder are)",
+                                                    where(e), words[k]));
+    }
+    if (file.empty())
+      return (void)problems.push_back(fmt::format(
+          "{}: command=\"{}\" is not a xacro call; give the URDF with textfile= or the xacro with command=\"$(find "
+          "xacro)/xacro FILE NAME:=VALUE ...\"",
+          where(e), e->Attribute("command")));
+    textfile_params.emplace_back(name, file);
+    xacro_params[name] = xacro_args;
+    plan.notes.push_back(where(e) + ": xacro " + file + " is expanded by lcm_control's own xacro");
+  }
+
   void element(const tinyxml2::XMLElement* e) {
     if (!enabled(e)) return;
     const std::string tag = e->Name();
@@ -408,7 +456,7 @@ struct RosReader {
       if (e->Attribute("textfile")) {
         textfile_params.emplace_back(name, attr(e, "textfile"));
       } else if (e->Attribute("command")) {
-        problems.push_back(where(e) + ": command= (xacro) is not supported; run xacro once and use textfile=");
+        xacro_command(e, name);
       } else {
         plan.notes.push_back(where(e) + ": a plain parameter; ignored (controllers read the <rosparam> YAML)");
       }
@@ -474,7 +522,7 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
                                  doc.ErrorStr() ? trim(doc.ErrorStr()) : "parse error"));
   const tinyxml2::XMLElement* root = doc.FirstChildElement("launch");
   if (!root) throw ModelError(fmt::format("{}: no <launch> element; is this a ROS launch file?", path));
-  RosReader r{path, package_path, plan, {}, {}, false, false, false, "", 0, {}, ""};
+  RosReader r{path, package_path, plan};
   for (auto* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
     try {
       r.element(e);
@@ -486,9 +534,13 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
   if (plan.urdf.empty()) {
     const std::string want = r.spawn_param.empty() ? "robot_description" : r.spawn_param;
     for (const auto& [name, file] : r.textfile_params)
-      if (name == want) plan.urdf = file;
+      if (name == want) {
+        plan.urdf = file;
+        const auto x = r.xacro_params.find(name);
+        plan.xacro_args = x == r.xacro_params.end() ? decltype(plan.xacro_args){} : x->second;
+      }
     if (plan.urdf.empty() && !earlier)
-      r.problems.push_back(fmt::format("{}: no URDF: expected <param name=\"{}\" textfile=\"...\"/>", path, want));
+      r.problems.push_back(fmt::format("{}: no URDF: expected <param name=\"{}\" textfile=\"...\"/> or command=\"$(find xacro)/xacro ...\"", path, want));
   }
   if (plan.config.empty() && !earlier)
     r.problems.push_back(fmt::format("{}: no ros_control YAML: expected <rosparam command=\"load\" file=\"...\"/>", path));

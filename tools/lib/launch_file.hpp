@@ -58,6 +58,7 @@ struct LaunchPlan {
   std::vector<std::string> robots;
   std::string hardware_lcm_url;  // `hardware_lcm_url:` (hardware_url_for); "": the shared bus
   std::vector<std::pair<std::string, std::string>> args;         // $(arg) values for the YAML (`args:`, <arg>)
+  std::vector<std::pair<std::string, std::string>> xacro_args;   // a .xacro urdf's arguments (`xacro_args:`, xacro command=)
   std::vector<std::pair<std::string, double>> initial_positions;  // `initial_positions:`, spawn_model's -J
 };
 

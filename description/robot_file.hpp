@@ -1,0 +1,24 @@
+// The URDF text of the robot file a user names: read as it is, or, when its name says xacro (`.urdf.xacro`,
+// `.xacro.urdf`), expanded by our own xacro first (its arguments from --xacro-arg / a launch file's `xacro_args:`,
+// `$(find PKG)` through the package path), so every program takes a xacro wherever it takes a URDF.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "description/robot_model.hpp"
+
+namespace lcm_control {
+
+bool is_xacro_file(const std::string& path);
+
+// Throws ModelError naming the file (for a xacro: the line, and the chain of macros and includes that led there).
+// `files_read`, if given, receives every file read (for a xacro: `path`, then its includes and YAML files).
+std::string read_robot_file(const std::string& path, const LoadOptions& options,
+                            std::vector<std::string>* files_read = nullptr);
+// `path` expanded as a xacro whatever its name (the xacro program's job), with its arguments
+// (options.xacro_args) and the package lookup every program uses.
+std::string expand_xacro(const std::string& path, const LoadOptions& options,
+                         std::vector<std::string>* files_read = nullptr);
+
+}  // namespace lcm_control

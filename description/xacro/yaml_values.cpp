@@ -1,0 +1,169 @@
+// xacro.load_yaml: YAML to expression values with PyYAML safe_load's typing (see yaml_values.hpp).
+#include "description/xacro/yaml_values.hpp"
+
+#include "description/xacro/source_file.hpp"
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <regex>
+#include <sstream>
+
+#include "description/xacro/process_error.hpp"
+#include "description/xacro/python_expr.hpp"
+
+namespace lcm_control::xacro {
+
+namespace {
+
+class NoNames : public Names {
+ public:
+  std::optional<Value> lookup(const std::string&) const override { return std::nullopt; }
+};
+
+std::string without_underscores(const std::string& s) {
+  std::string out;
+  for (char c : s)
+    if (c != '_') out += c;
+  return out;
+}
+
+// PyYAML's YAML 1.1 implicit resolvers for a plain scalar.
+Value plain_scalar(const std::string& s) {
+  static const std::regex bool_re("yes|Yes|YES|no|No|NO|true|True|TRUE|false|False|FALSE|on|On|ON|off|Off|OFF");
+  static const std::regex int_re(
+      "[-+]?0b[0-1_]+|[-+]?0[0-7_]+|[-+]?(?:0|[1-9][0-9_]*)|[-+]?0x[0-9a-fA-F_]+|[-+]?[1-9][0-9_]*(?::[0-5]?[0-9])+");
+  static const std::regex float_re(
+      "[-+]?(?:[0-9][0-9_]*)\\.[0-9_]*(?:[eE][-+][0-9]+)?|\\.[0-9][0-9_]*(?:[eE][-+][0-9]+)?|"
+      "[-+]?[0-9][0-9_]*(?::[0-5]?[0-9])+\\.[0-9_]*|[-+]?\\.(?:inf|Inf|INF)|\\.(?:nan|NaN|NAN)");
+  if (s.empty() || s == "~" || s == "null" || s == "Null" || s == "NULL") return Value::none();
+  const char c0 = s[0];
+  if (std::string("yYnNtTfFoO").find(c0) != std::string::npos && std::regex_match(s, bool_re)) {
+    const char c = static_cast<char>(std::tolower(static_cast<unsigned char>(c0)));
+    return Value::boolean(c == 'y' || c == 't' || (c == 'o' && (s[1] == 'n' || s[1] == 'N')));
+  }
+  if (std::string("-+0123456789.").find(c0) == std::string::npos) return Value::string(s);
+  if (std::regex_match(s, int_re)) {
+    std::string v = without_underscores(s);
+    int sign = 1;
+    if (v[0] == '-' || v[0] == '+') {
+      if (v[0] == '-') sign = -1;
+      v = v.substr(1);
+    }
+    int64_t result = 0;
+    if (v == "0") {
+      result = 0;
+    } else if (v.rfind("0b", 0) == 0) {
+      result = std::stoll(v.substr(2), nullptr, 2);
+    } else if (v.rfind("0x", 0) == 0) {
+      result = std::stoll(v.substr(2), nullptr, 16);
+    } else if (v[0] == '0') {
+      result = std::stoll(v, nullptr, 8);
+    } else if (v.find(':') != std::string::npos) {
+      int64_t base = 1;
+      std::vector<int64_t> digits;
+      std::stringstream parts(v);
+      std::string part;
+      while (std::getline(parts, part, ':')) digits.push_back(std::stoll(part));
+      for (auto it = digits.rbegin(); it != digits.rend(); ++it, base *= 60) result += *it * base;
+    } else {
+      try {
+        result = std::stoll(v);
+      } catch (const std::out_of_range&) {
+        return Value::floating(sign * std::stod(v));
+      }
+    }
+    return Value::integer(sign * result);
+  }
+  if (std::regex_match(s, float_re)) {
+    std::string v = without_underscores(s);
+    for (char& c : v) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    double sign = 1;
+    if (v[0] == '-' || v[0] == '+') {
+      if (v[0] == '-') sign = -1;
+      v = v.substr(1);
+    }
+    if (v == ".inf") return Value::floating(sign * std::numeric_limits<double>::infinity());
+    if (v == ".nan") return Value::floating(std::numeric_limits<double>::quiet_NaN());
+    if (v.find(':') != std::string::npos) {
+      double base = 1, result = 0;
+      std::vector<std::string> parts;
+      std::stringstream ss(v);
+      std::string part;
+      while (std::getline(ss, part, ':')) parts.push_back(part);
+      for (auto it = parts.rbegin(); it != parts.rend(); ++it, base *= 60) result += std::stod(*it) * base;
+      return Value::floating(sign * result);
+    }
+    return Value::floating(sign * std::strtod(v.c_str(), nullptr));
+  }
+  return Value::string(s);
+}
+
+double unit_expression(const YAML::Node& node) {
+  const std::string text = node.Scalar();
+  try {
+    return evaluate(text, NoNames()).as_double();
+  } catch (const EvalError& e) {
+    throw ProcessError(fmt::format("invalid expression: {} ({}, YAML line {})", text, e.what(), node.Mark().line + 1));
+  }
+}
+
+Value convert(const YAML::Node& node) {
+  switch (node.Type()) {
+    case YAML::NodeType::Undefined:
+    case YAML::NodeType::Null: return Value::none();
+    case YAML::NodeType::Scalar: {
+      const std::string& tag = node.Tag();
+      if (tag == "!radians") return Value::floating(unit_expression(node));
+      if (tag == "!degrees") return Value::floating(unit_expression(node) * (M_PI / 180.0));
+      if (tag == "?") return plain_scalar(node.Scalar());
+      if (tag == "tag:yaml.org,2002:int" || tag == "tag:yaml.org,2002:float" || tag == "tag:yaml.org,2002:bool" ||
+          tag == "tag:yaml.org,2002:null") {
+        Value v = plain_scalar(node.Scalar());
+        if (tag == "tag:yaml.org,2002:float" && v.kind() == Value::Kind::Int)
+          return Value::floating(static_cast<double>(v.as_int()));
+        return v;
+      }
+      if (tag == "!" || tag == "tag:yaml.org,2002:str" || tag.empty()) return Value::string(node.Scalar());
+      throw ProcessError(fmt::format("could not determine a constructor for the tag '{}' (YAML line {})", tag,
+                                     node.Mark().line + 1));
+    }
+    case YAML::NodeType::Sequence: {
+      List items;
+      items.reserve(node.size());
+      for (const YAML::Node& item : node) items.push_back(convert(item));
+      return Value::list(std::move(items));
+    }
+    case YAML::NodeType::Map: {
+      Dict d;
+      d.attribute_access = true;
+      for (const auto& kv : node) d.set(convert(kv.first), convert(kv.second));
+      return Value::dict(std::move(d));
+    }
+  }
+  return Value::none();
+}
+
+}  // namespace
+
+Value load_yaml_text(const std::string& text) {
+  try {
+    return convert(YAML::Load(text));
+  } catch (const YAML::Exception& e) {
+    throw ProcessError(fmt::format("YAML error: {}", e.what()));
+  }
+}
+
+Value load_yaml_file(const std::string& path) {
+  const std::string text = read_source_file(path);
+  try {
+    return convert(YAML::Load(text));
+  } catch (const YAML::Exception& e) {
+    throw ProcessError(fmt::format("YAML error in {}: {}", path, e.what()));
+  }
+}
+
+}  // namespace lcm_control::xacro
