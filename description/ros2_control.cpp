@@ -94,13 +94,15 @@ std::vector<Ros2Interface> read_interfaces(const tinyxml2::XMLElement* parent, c
   return out;
 }
 
-Ros2Component read_component(const tinyxml2::XMLElement* e, const std::string& where_block, const char* kind,
-                             std::vector<std::string>& problems, std::vector<std::string>& warnings) {
+Ros2Component read_component(const tinyxml2::XMLElement* e, const std::string& file, const std::string& block,
+                             const char* kind, std::vector<std::string>& problems, std::vector<std::string>& warnings) {
   Ros2Component c;
   c.name = attr(e, "name");
   c.line = e->GetLineNum();
-  const std::string where = fmt::format("{} {} '{}'", where_block, kind, c.name);
-  if (c.name.empty()) problems.push_back(fmt::format("{} <{}> has no name attribute; add name=\"...\"", where_block, kind));
+  const std::string where = fmt::format("{}:{}: ros2_control '{}': {} '{}'", file, c.line, block, kind, c.name);
+  if (c.name.empty())
+    problems.push_back(fmt::format("{}:{}: ros2_control '{}': a <{}> has no name attribute; add name=\"...\"", file,
+                                   c.line, block, kind));
   c.command_interfaces = read_interfaces(e, "command_interface", where, problems, warnings);
   c.state_interfaces = read_interfaces(e, "state_interface", where, problems, warnings);
   c.params = read_params(e);
@@ -110,7 +112,7 @@ Ros2Component read_component(const tinyxml2::XMLElement* e, const std::string& w
 // Narrows the joint's URDF limits by a command interface's min/max (ros2_control's update_interface_limits: the
 // stricter wins); says what changed in `notes`.
 void merge_limits(Joint& j, const Ros2Interface& i, const std::string& where, std::vector<std::string>& notes) {
-  if (!i.min && !i.max) return;
+  if ((!i.min && !i.max) || (i.min && i.max && *i.min > *i.max)) return;  // none, or refused already
   if (i.name == "position") {
     if (j.type == JointType::Continuous) {
       notes.push_back(fmt::format("{}: position command limits [{:g}, {:g}] recorded for the commands (ros2_control "
@@ -263,7 +265,7 @@ void read_ros2_control(RobotModel& model, const tinyxml2::XMLElement* robot, con
     }
 
     for (auto* je = b->FirstChildElement("joint"); je; je = je->NextSiblingElement("joint")) {
-      Ros2Component c = read_component(je, where, "joint", problems, model.warnings);
+      Ros2Component c = read_component(je, file, block.name, "joint", problems, model.warnings);
       const std::string jwhere = fmt::format("{}:{}: ros2_control '{}': joint '{}'", file, c.line, block.name, c.name);
       if (c.name.empty()) continue;
       if (const auto it = listed.find(c.name); it != listed.end()) {
@@ -297,9 +299,9 @@ void read_ros2_control(RobotModel& model, const tinyxml2::XMLElement* robot, con
       block.joints.push_back(std::move(c));
     }
     for (auto* se = b->FirstChildElement("sensor"); se; se = se->NextSiblingElement("sensor"))
-      block.sensors.push_back(read_component(se, where, "sensor", problems, model.warnings));
+      block.sensors.push_back(read_component(se, file, block.name, "sensor", problems, model.warnings));
     for (auto* ge = b->FirstChildElement("gpio"); ge; ge = ge->NextSiblingElement("gpio"))
-      block.gpios.push_back(read_component(ge, where, "gpio", problems, model.warnings));
+      block.gpios.push_back(read_component(ge, file, block.name, "gpio", problems, model.warnings));
     for (auto* te = b->FirstChildElement("transmission"); te; te = te->NextSiblingElement("transmission"))
       read_block_transmission(block, te, file, problems, model.warnings);
 
@@ -358,8 +360,9 @@ void read_ros2_control(RobotModel& model, const tinyxml2::XMLElement* robot, con
       }
       if (!unsimulated.empty())
         model.warnings.push_back(fmt::format("{}: command interface {} is read but not simulated (position, velocity "
-                                             "and effort are)",
-                                             jwhere, join(unsimulated)));
+                                             "and effort are){}",
+                                             jwhere, join(unsimulated),
+                                             t.interfaces.empty() ? "; the joint is not actuated" : ""));
       if (t.interfaces.empty()) {
         if (c.command_interfaces.empty())
           model.notes.push_back(fmt::format("{}: {}: it is not actuated (its state is reported)", jwhere,

@@ -40,7 +40,7 @@ std::string substitute(const std::string& text, const Substitutions& subs, const
       for (const auto& [k, v] : subs.args)
         if (k == words[1]) value = &v;
       if (!value)
-        throw ModelError(fmt::format("{}: $(arg {}) has no value; {}", where, words[1],
+        throw ModelError(fmt::format("{}: $({} {}) has no value; {}", where, kind, words[1],
                                      fmt::format(fmt::runtime(subs.missing_arg_fix), words[1])));
       out += *value;
     } else if ((kind == "env" && words.size() == 2) || (kind == "optenv" && words.size() >= 2)) {
