@@ -217,6 +217,9 @@ std::optional<HardwareKind> hardware_kind(const std::string& plugin) {
   static const std::set<std::string> mocks = {"mock_components/GenericSystem", "fake_components/GenericSystem"};
   if (simulators.count(plugin)) return HardwareKind::Simulator;
   if (mocks.count(plugin)) return HardwareKind::Mock;
+  // ros2_control_demos' example hardware (ros2_control_demo_example_N/RRBotSystem...): stand-ins whose state follows
+  // the command, played as mock hardware.
+  if (plugin.rfind("ros2_control_demo_", 0) == 0) return HardwareKind::Mock;
   return std::nullopt;
 }
 

@@ -362,6 +362,7 @@ TEST(Ros2Control, EveryKnownSimulatorAndMockPluginIsAccepted) {
   EXPECT_EQ(hardware_kind("gazebo_ros2_control/GazeboSystem"), HardwareKind::Simulator);
   EXPECT_EQ(hardware_kind("mock_components/GenericSystem"), HardwareKind::Mock);
   EXPECT_EQ(hardware_kind("fake_components/GenericSystem"), HardwareKind::Mock);
+  EXPECT_EQ(hardware_kind("ros2_control_demo_example_1/RRBotSystemPositionOnlyHardware"), HardwareKind::Mock);
   EXPECT_EQ(hardware_kind("robotiq_driver/RobotiqGripperHardwareInterface"), std::nullopt);
   EXPECT_EQ(hardware_kind("topic_based_ros2_control/TopicBasedSystem"), std::nullopt);
 }

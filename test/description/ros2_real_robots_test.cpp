@@ -215,8 +215,10 @@ TEST(Ros2RealRobots, RrbotGazeboAndExample1YamlWithVar) {
   EXPECT_EQ(fwd->params["joints"][1].as<std::string>(), "joint2");
   EXPECT_EQ(ex1.model.controller("joint_state_broadcaster")->params["update_rate"].as<int>(), 50);
 
-  for (const char* vendor : {"rrbot9_mock.urdf", "rrbot1.urdf"})
-    EXPECT_NE(load_error("rrbot9", vendor).find("RRBotSystemPositionOnlyHardware' is neither a simulator nor mock"),
-              std::string::npos)
-        << vendor;
+  // ros2_control_demos' example hardware is played as mock hardware (example_1 runs with it, as a mock).
+  for (const char* demo : {"rrbot9_mock.urdf", "rrbot1.urdf"}) {
+    const Robot r = load("rrbot9", demo, "example_1/rrbot_controllers.yaml", {{"joint_prefix", "joint"}});
+    ASSERT_EQ(r.model.ros2_control.size(), 1u) << demo;
+    EXPECT_EQ(r.model.ros2_control[0].kind, HardwareKind::Mock) << demo;
+  }
 }
