@@ -6,6 +6,7 @@
 #include <set>
 
 #include "description/input_file.hpp"
+#include "description/ros2_params.hpp"
 #include "description/substitution.hpp"
 #include "description/text.hpp"
 
@@ -131,6 +132,8 @@ void parse_control_config(RobotModel& model, const YAML::Node& doc, const std::s
   if (!doc.IsMap())
     throw ModelError(fmt::format("{}: expected a map of controllers at the top level (like `j1_controller: {{type: ...}}`)",
                                  file));
+  model.update_rate_hz.reset();  // the file's own (a reload reads it again)
+  if (is_ros2_parameter_file(doc)) return parse_ros2_params(model, doc, file);  // controller_manager: ros__parameters:
   const YAML::Node root = select_section(model, doc, file);
   const std::string prefix = model.config_section.empty() ? "" : model.config_section + "/";
   for (const auto& kv : root) {

@@ -211,7 +211,7 @@ void check_model(RobotModel& model, std::vector<std::string>& problems) {
   for (const auto& ctl : model.controllers)
     if (!names.insert(ctl.name).second)
       problems.push_back(fmt::format("{}: controller '{}' is defined twice", c, ctl.name));
-  if (!model.transmissions.empty() && !model.has_gazebo_ros_control_plugin)
+  if (!model.transmissions.empty() && !model.has_gazebo_ros_control_plugin && model.ros2_control.empty())
     model.warnings.push_back(fmt::format("{}: no <gazebo><plugin filename=\"libgazebo_ros_control.so\"/>; not needed "
                                          "here, but ROS would not start ros_control without it",
                                          u));

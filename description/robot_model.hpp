@@ -16,6 +16,8 @@
 #include "control/joint_limits.hpp"
 #include "control/pid.hpp"
 #include "control/transmission.hpp"
+#include "description/initial_positions.hpp"
+#include "description/ros2_control.hpp"
 
 namespace lcm_control {
 
@@ -138,6 +140,14 @@ struct RobotModel {
   std::string config_section;                  // the YAML key the controllers were read under, "" for the top level
   std::vector<ControllerSpec> controllers;     // YAML order
   std::map<std::string, PidGains> pid_gains;   // gazebo_ros_control/pid_gains/<joint>
+  // ROS 2 (description/ros2_control.hpp, description/ros2_params.hpp): the <ros2_control> blocks in file order
+  // (when there are any, `transmissions` are their joints' actuators), the gz_ros2_control plugin tag, the start
+  // pose their initial_values give, and the controller_manager's update_rate from the parameter file.
+  std::vector<HardwareBlock> ros2_control;
+  Ros2ControlPlugin ros2_control_plugin;
+  InitialPositions initial_positions;               // joint -> initial_value of its position interface
+  std::map<std::string, double> initial_velocities;  // joint -> initial_value of its velocity interface
+  std::optional<double> update_rate_hz;             // controller_manager: ros__parameters: update_rate
   std::vector<std::string> notes;              // what was resolved and how, one INFO line each
   std::vector<std::string> warnings;           // non-fatal findings, one line each
   std::vector<std::string> hints;              // valid, but often not what was meant (doctor prints them)

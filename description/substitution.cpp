@@ -35,12 +35,12 @@ std::string substitute(const std::string& text, const Substitutions& subs, const
             "--package-path DIR or LCM_CONTROL_PACKAGE_PATH",
             where, words[1], words[1], path.empty() ? "empty" : fmt::format("{}", fmt::join(path, ":"))));
       out += fs::absolute(dir).string();
-    } else if (kind == "arg" && words.size() == 2) {
+    } else if ((kind == "arg" || kind == "var") && words.size() == 2) {  // $(var): ROS 2 launch's name for it
       const std::string* value = nullptr;
       for (const auto& [k, v] : subs.args)
         if (k == words[1]) value = &v;
       if (!value)
-        throw ModelError(fmt::format("{}: $(arg {}) has no value; {}", where, words[1],
+        throw ModelError(fmt::format("{}: $({} {}) has no value; {}", where, kind, words[1],
                                      fmt::format(fmt::runtime(subs.missing_arg_fix), words[1])));
       out += *value;
     } else if ((kind == "env" && words.size() == 2) || (kind == "optenv" && words.size() >= 2)) {
@@ -52,8 +52,8 @@ std::string substitute(const std::string& text, const Substitutions& subs, const
       else
         throw ModelError(fmt::format("{}: $(env {}): the environment variable is not set", where, words[1]));
     } else {
-      throw ModelError(fmt::format("{}: '{}' is not supported (supported: $(find PKG), $(arg NAME), $(env VAR), "
-                                   "$(optenv VAR [default]))",
+      throw ModelError(fmt::format("{}: '{}' is not supported (supported: $(find PKG), $(arg NAME), $(var NAME), "
+                                   "$(env VAR), $(optenv VAR [default]))",
                                    where, text.substr(start, end - start + 1)));
     }
     pos = end + 1;

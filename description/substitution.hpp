@@ -1,6 +1,6 @@
 // roslaunch's substitution args in launch files and in ros_control YAML
 // (rosparam's subst_value): $(find PKG), $(arg NAME), $(env VAR),
-// $(optenv VAR [default]).
+// $(optenv VAR [default]); and ROS 2 launch's $(var NAME), read as $(arg NAME).
 #pragma once
 
 #include <string>

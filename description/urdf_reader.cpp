@@ -481,8 +481,12 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
     if (uj->mimic) j.mimic = Mimic{uj->mimic->joint_name, uj->mimic->multiplier, uj->mimic->offset};
     model.joints.push_back(std::move(j));
   }
-  parse_transmissions(model, robot, urdf_path, problems);
+  if (has_ros2_control(robot))
+    read_ros2_control(model, robot, urdf_path, problems);  // ROS 2: the blocks, not <transmission> tags
+  else
+    parse_transmissions(model, robot, urdf_path, problems);
   parse_gazebo_plugin(model, robot);
+  read_ros2_control_plugin(model, robot);
 }
 
 

@@ -1,10 +1,82 @@
 #include "tools/model_report.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <iterator>
 
 namespace lcm_control {
+
+namespace {
+
+std::string interfaces(const std::vector<Ros2Interface>& v) {
+  std::vector<std::string> items;
+  for (const auto& i : v) {
+    std::vector<std::string> extra;
+    if (!i.data_type.empty()) extra.push_back(i.data_type);
+    if (i.min) extra.push_back(fmt::format("min {:g}", *i.min));
+    if (i.max) extra.push_back(fmt::format("max {:g}", *i.max));
+    if (i.initial_value) extra.push_back(fmt::format("initial_value {:g}", *i.initial_value));
+    items.push_back(extra.empty() ? i.name : fmt::format("{} ({})", i.name, fmt::join(extra, ", ")));
+  }
+  return fmt::format("[{}]", fmt::join(items, ", "));
+}
+
+// The <ros2_control> blocks: hardware, per-joint interfaces, sensors and gpios, the start pose, the plugin tag.
+void describe_ros2_control(const RobotModel& m, std::string& s) {
+  auto out = std::back_inserter(s);
+  fmt::format_to(out, "\nros2_control hardware ({}):\n", m.ros2_control.size());
+  for (const HardwareBlock& b : m.ros2_control) {
+    fmt::format_to(out, "  {} ({}): {} -> {}\n", b.name, b.type.empty() ? "system" : b.type, b.plugin,
+                   b.kind == HardwareKind::Mock ? "mock hardware" : "simulated");
+    for (const auto& [k, v] : b.params) fmt::format_to(out, "    param {} = {}\n", k, v);
+    for (const Ros2Component& c : b.joints) {
+      fmt::format_to(out, "    joint {:<20}", c.name);
+      const Joint* j = m.joint(c.name);
+      if (c.mimic && j && j->mimic)
+        fmt::format_to(out, " mimics {} (x {:g}, offset {:g});", j->mimic->joint, j->mimic->multiplier,
+                       j->mimic->offset);
+      else if (c.command_interfaces.empty())
+        fmt::format_to(out, " not actuated;");
+      if (!c.command_interfaces.empty()) fmt::format_to(out, " command {}", interfaces(c.command_interfaces));
+      fmt::format_to(out, " state {}\n", interfaces(c.state_interfaces));
+    }
+    for (const Ros2Component& c : b.sensors)
+      fmt::format_to(out, "    sensor {:<19} state {}{} (read, not simulated yet)\n", c.name,
+                     interfaces(c.state_interfaces),
+                     c.params.empty() ? "" : fmt::format(", params {}", [&] {
+                       std::vector<std::string> p;
+                       for (const auto& [k, v] : c.params) p.push_back(k + "=" + v);
+                       return fmt::format("{}", fmt::join(p, " "));
+                     }()));
+    for (const Ros2Component& c : b.gpios)
+      fmt::format_to(out, "    gpio {:<21} command {} state {} (read, not simulated yet)\n", c.name,
+                     interfaces(c.command_interfaces), interfaces(c.state_interfaces));
+    for (const Ros2Transmission& t : b.transmissions)
+      fmt::format_to(out, "    transmission {}: joint {}, actuator {}, reduction {:g}, offset {:g}\n", t.name, t.joint,
+                     t.actuator, t.reduction, t.offset);
+  }
+  if (!m.initial_positions.empty() || !m.initial_velocities.empty()) {
+    std::vector<std::string> p;
+    for (const Joint& j : m.joints) {
+      const auto q = m.initial_positions.find(j.name);
+      const auto v = m.initial_velocities.find(j.name);
+      if (q != m.initial_positions.end()) p.push_back(fmt::format("{} {:g}", j.name, q->second));
+      if (v != m.initial_velocities.end() && v->second != 0)
+        p.push_back(fmt::format("{} velocity {:g}", j.name, v->second));
+    }
+    fmt::format_to(out, "start pose (initial_value): {}\n", fmt::join(p, ", "));
+  }
+  const Ros2ControlPlugin& g = m.ros2_control_plugin;
+  if (g.present)
+    fmt::format_to(out, "gz_ros2_control plugin tag: {}{}{}\n", g.filename,
+                   g.parameters.empty() ? "" : fmt::format(", parameters {}", fmt::join(g.parameters, ", ")),
+                   g.ns.empty() ? "" : ", namespace " + g.ns);
+  else
+    fmt::format_to(out, "gz_ros2_control plugin tag: no\n");
+}
+
+}  // namespace
 
 std::string describe(const RobotModel& m) {
   std::string s;
@@ -60,8 +132,12 @@ std::string describe(const RobotModel& m) {
       fmt::format_to(out, "  -> {} direct (no pid_gains)\n",
                      i == Interface::Position ? "position set kinematically" : "velocity motor");
   }
-  fmt::format_to(out, "gazebo_ros_control plugin tag: {}{}\n", m.has_gazebo_ros_control_plugin ? "yes" : "no",
-                 m.gazebo_plugin_namespace.empty() ? "" : ", robotNamespace " + m.gazebo_plugin_namespace);
+  if (m.ros2_control.empty())
+    fmt::format_to(out, "gazebo_ros_control plugin tag: {}{}\n", m.has_gazebo_ros_control_plugin ? "yes" : "no",
+                   m.gazebo_plugin_namespace.empty() ? "" : ", robotNamespace " + m.gazebo_plugin_namespace);
+  else
+    describe_ros2_control(m, s);
+  if (m.update_rate_hz) fmt::format_to(out, "\nupdate_rate: {:g} Hz (controller_manager)\n", *m.update_rate_hz);
   fmt::format_to(out, "\ncontrollers ({}):\n", m.controllers.size());
   for (const auto& c : m.controllers) fmt::format_to(out, "  {:<24} {}\n", c.name, c.type);
   if (!m.warnings.empty()) {
