@@ -303,6 +303,8 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
 namespace {
 
 struct RosReader {
+  RosReader(const std::string& file, const std::vector<std::string>& packages, LaunchPlan& out)
+      : path(file), package_path(packages), plan(out) {}
   const std::string& path;
   const std::vector<std::string>& package_path;
   LaunchPlan& plan;
@@ -522,7 +524,7 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
                                  doc.ErrorStr() ? trim(doc.ErrorStr()) : "parse error"));
   const tinyxml2::XMLElement* root = doc.FirstChildElement("launch");
   if (!root) throw ModelError(fmt::format("{}: no <launch> element; is this a ROS launch file?", path));
-  RosReader r{path, package_path, plan};
+  RosReader r(path, package_path, plan);
   for (auto* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
     try {
       r.element(e);
