@@ -1,9 +1,14 @@
 // A robot given as a .urdf.xacro (config/turret_bot_description: macros, a YAML of link dimensions, $(find), an
 // argument for the hardware interface), taken as it is by doctor, sim_server, controller_manager and launch: the
 // tutorial's demo from the xacro runs bit for bit as from config/turret_bot.urdf, its arguments reach every
-// process, and a mistake in it stops the programs with the file, line and macro named.
+// process, and a mistake in it stops the programs with the file, line and macro named. The real ROS 2 robots of
+// ../shared/ros2_robots go to doctor, sim_server and launch as their xacros, with their arguments, when present.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -84,4 +89,76 @@ TEST(XacroRobot, AMistakeStopsEveryProgramNamingTheFileLineAndMacro) {
     EXPECT_NE(p.output().find("mass"), std::string::npos) << program << ": " << p.output();
     EXPECT_NE(p.output().find("box_link"), std::string::npos) << program << ": " << p.output();
   }
+}
+
+// Every xacro command of ../shared/ros2_robots (the official xacro's arguments, $(find) through the robot's pkgs/)
+// given to doctor, sim_server (0.2 s of real time) and launch (--dry-run, the arguments as `xacro_args:`) as it is;
+// the one whose block names Robotiq's real driver (its launch file's) is refused, naming the plugin.
+TEST(XacroRobot, RealRos2RobotsGoToDoctorSimServerAndLaunchAsTheirXacros) {
+  namespace fs = std::filesystem;
+  const fs::path shared = lt::source("../shared/ros2_robots");
+  if (!fs::exists(shared)) GTEST_SKIP() << "no " << shared.string() << " beside the checkout";
+  int robots = 0, refused = 0;
+  for (const auto& dir : fs::directory_iterator(shared)) {
+    const fs::path commands = dir.path() / "expected/xacro_commands.json";
+    if (!fs::exists(commands)) continue;
+    std::vector<std::string> configs;
+    for (const auto& y : fs::directory_iterator(dir.path() / "config"))
+      if (y.path().extension() == ".yaml") configs.push_back(y.path().string());
+    std::sort(configs.begin(), configs.end());
+    ASSERT_FALSE(configs.empty()) << dir.path();
+    const nlohmann::json list = nlohmann::json::parse(std::ifstream(commands));
+    for (const auto& c : list["commands"]) {
+      const std::string root = dir.path().string(), urdf = root + "/" + c["input"].get<std::string>();
+      const std::string expected = c["expected"].get<std::string>();
+      std::string config = configs.front();  // the one whose variant (position, velocity, ...) the file names
+      for (const auto& y : configs) {
+        const std::string stem = fs::path(y).stem().string(), variant = stem.substr(stem.rfind('_') + 1);
+        if (expected.find(variant) != std::string::npos) config = y;
+      }
+      std::vector<std::string> xacro_args;
+      std::string launch_args;
+      for (const auto& a : c["args"]) {
+        std::string arg = a.get<std::string>();
+        for (size_t p; (p = arg.find("$R")) != std::string::npos;) arg.replace(p, 2, root);
+        xacro_args.insert(xacro_args.end(), {"--xacro-arg", arg});
+        const size_t eq = arg.find(":=");
+        launch_args += "  " + arg.substr(0, eq) + ": '" + arg.substr(eq + 2) + "'\n";
+      }
+      SCOPED_TRACE(urdf + " (" + expected + ")");
+      auto with = [&](std::vector<std::string> argv) {
+        argv.insert(argv.end(), xacro_args.begin(), xacro_args.end());
+        argv.insert(argv.end(), {"--package-path", root + "/pkgs"});  // $(find PKG) as the official run had it
+        return argv;
+      };
+      // The description alone (the controllers' ROS 2 types and parameters are another matter).
+      lt::ChildProcess doctor(with({lt::bin("doctor"), "--urdf", urdf}));
+      const int doctor_exit = doctor.wait(30);
+      const bool driver = doctor.output().find("is neither a simulator nor mock hardware") != std::string::npos;
+      if (driver) {  // a real driver's block (Robotiq's launch file): refused, naming the plugin
+        EXPECT_EQ(doctor_exit, 3) << doctor.output();
+        ++refused;
+      } else {
+        EXPECT_EQ(doctor_exit, 0) << doctor.output();
+        EXPECT_NE(doctor.output().find("ros2_control hardware"), std::string::npos) << doctor.output();
+      }
+
+      lt::ChildProcess sim(with({lt::bin("sim_server"), "--urdf", urdf, "--config", config, "--duration", "0.2",
+                                 "--lcm-url", lt::unique_lcm_url()}));
+      EXPECT_EQ(sim.wait(30), driver ? 3 : 0) << sim.output();
+
+      const std::string file = lt::temp_dir("ros2_xacro_launch") + "/robot.launch.yaml";
+      std::ofstream(file) << "urdf: " << urdf << "\nconfig: " << config << "\nxacro_args:\n" << launch_args;
+      lt::ChildProcess launch({lt::bin("launch"), file, "--dry-run", "--package-path", root + "/pkgs"});
+      EXPECT_EQ(launch.wait(30), 0) << launch.output();
+      EXPECT_NE(launch.output().find(fs::path(urdf).filename().string() + " --config"), std::string::npos)
+          << launch.output();
+      if (!xacro_args.empty()) {
+        EXPECT_NE(launch.output().find("--xacro-arg " + xacro_args[1]), std::string::npos) << launch.output();
+      }
+      ++robots;
+    }
+  }
+  EXPECT_EQ(robots, 13);
+  EXPECT_EQ(refused, 1);
 }

@@ -327,6 +327,9 @@ TEST(LaunchFile, XacroCommandOfRobotDescriptionAndXacroArgsKey) {
                                      "\nxacro_args: {interface: Velocity, prefix: ''}\n");
   const LaunchPlan y = read_launch_file(yaml, {});
   EXPECT_EQ(y.xacro_args, (std::vector<std::pair<std::string, std::string>>{{"interface", "Velocity"}, {"prefix", ""}}));
+  const std::string empty = write(dir, "e.launch.yaml", "urdf: " + xacro + "\nconfig: " +
+                                                         lt::source("config/turret_bot.yaml") + "\nxacro_args:\n");
+  EXPECT_TRUE(read_launch_file(empty, {}).xacro_args.empty());
   const std::string bad = write(dir, "bad.launch.yaml", "urdf: " + xacro + "\nxacro_args: [interface]\n");
   EXPECT_NE(problems_of([&] { read_launch_file(bad, {}); }).find("'xacro_args' must be a map NAME: VALUE"),
             std::string::npos);

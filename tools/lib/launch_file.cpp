@@ -204,6 +204,7 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
           plan.args.emplace_back(name, str(a.second, "args." + name));
         }
       } else if (key == "xacro_args") {
+        if (v.IsNull()) continue;  // `xacro_args:` with nothing under it
         if (!v.IsMap()) {
           problems.push_back(where(v, key) + " must be a map NAME: VALUE (the <xacro:arg> values of a .xacro urdf)");
           continue;
