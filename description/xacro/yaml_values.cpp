@@ -6,10 +6,12 @@
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <initializer_list>
 #include <fstream>
 #include <limits>
-#include <regex>
 #include <sstream>
 
 #include "description/xacro/process_error.hpp"
@@ -31,22 +33,81 @@ std::string without_underscores(const std::string& s) {
   return out;
 }
 
-// PyYAML's YAML 1.1 implicit resolvers for a plain scalar.
+// PyYAML's YAML 1.1 implicit resolvers for a plain scalar, matched by hand (std::regex would cost more than the
+// rest of an expansion): its bool, int and float patterns, alternative by alternative.
+bool is_one_of(const std::string& s, std::initializer_list<const char*> words) {
+  for (const char* w : words)
+    if (s == w) return true;
+  return false;
+}
+
+// s[i..] is at least one character, each in `chars`.
+bool run_of(const std::string& s, size_t i, const char* chars) {
+  return i < s.size() && s.find_first_not_of(chars, i) == std::string::npos;
+}
+
+const char* const kDigitsOrUnderscore = "0123456789_";
+
+// [-+]?0b[0-1_]+ | [-+]?0[0-7_]+ | [-+]?(0|[1-9][0-9_]*) | [-+]?0x[0-9a-fA-F_]+ | [-+]?[1-9][0-9_]*(:[0-5]?[0-9])+
+bool yaml_int(const std::string& s) {
+  const size_t i = !s.empty() && (s[0] == '-' || s[0] == '+') ? 1 : 0;
+  if (i >= s.size()) return false;
+  if (s.compare(i, 2, "0b") == 0) return run_of(s, i + 2, "01_");
+  if (s.compare(i, 2, "0x") == 0) return run_of(s, i + 2, "0123456789abcdefABCDEF_");
+  if (s[i] == '0') return i + 1 == s.size() || run_of(s, i + 1, "01234567_");
+  if (s[i] < '1' || s[i] > '9') return false;
+  size_t j = s.find_first_not_of(kDigitsOrUnderscore, i + 1);
+  if (j == std::string::npos) return true;
+  if (s[j] != ':') return false;
+  while (j < s.size()) {  // (:[0-5]?[0-9])+ to the end
+    if (s[j] != ':') return false;
+    const size_t k = s.find(':', j + 1), n = (k == std::string::npos ? s.size() : k) - j - 1;
+    if (n == 1 ? !std::isdigit(static_cast<unsigned char>(s[j + 1]))
+               : n != 2 || s[j + 1] < '0' || s[j + 1] > '5' || !std::isdigit(static_cast<unsigned char>(s[j + 2])))
+      return false;
+    j += n + 1;
+  }
+  return true;
+}
+
+// ([eE][-+][0-9]+)? up to the end, from i.
+bool optional_exponent(const std::string& s, size_t i) {
+  if (i == s.size()) return true;
+  return (s[i] == 'e' || s[i] == 'E') && i + 1 < s.size() && (s[i + 1] == '-' || s[i + 1] == '+') &&
+         run_of(s, i + 2, "0123456789");
+}
+
+// [-+]?[0-9][0-9_]*\.[0-9_]*([eE][-+][0-9]+)? | \.[0-9][0-9_]*([eE][-+][0-9]+)? |
+// [-+]?[0-9][0-9_]*(:[0-5]?[0-9])+\.[0-9_]* | [-+]?\.(inf|Inf|INF) | \.(nan|NaN|NAN)
+bool yaml_float(const std::string& s) {
+  if (is_one_of(s, {".nan", ".NaN", ".NAN"})) return true;
+  const size_t i = !s.empty() && (s[0] == '-' || s[0] == '+') ? 1 : 0;
+  if (i >= s.size()) return false;
+  if (is_one_of(s.substr(i), {".inf", ".Inf", ".INF"})) return true;
+  if (s[i] == '.') {
+    if (i != 0 || i + 1 >= s.size() || !std::isdigit(static_cast<unsigned char>(s[i + 1]))) return false;
+    return optional_exponent(s, std::min(s.find_first_not_of(kDigitsOrUnderscore, i + 1), s.size()));
+  }
+  if (!std::isdigit(static_cast<unsigned char>(s[i]))) return false;
+  size_t j = s.find_first_not_of(kDigitsOrUnderscore, i);
+  if (j == std::string::npos) return false;
+  if (s[j] == '.') return optional_exponent(s, std::min(s.find_first_not_of(kDigitsOrUnderscore, j + 1), s.size()));
+  if (s[j] != ':') return false;
+  const size_t dot = s.find('.', j);
+  return dot != std::string::npos && yaml_int("1" + s.substr(j, dot - j)) &&
+         (dot + 1 == s.size() || run_of(s, dot + 1, kDigitsOrUnderscore));
+}
+
 Value plain_scalar(const std::string& s) {
-  static const std::regex bool_re("yes|Yes|YES|no|No|NO|true|True|TRUE|false|False|FALSE|on|On|ON|off|Off|OFF");
-  static const std::regex int_re(
-      "[-+]?0b[0-1_]+|[-+]?0[0-7_]+|[-+]?(?:0|[1-9][0-9_]*)|[-+]?0x[0-9a-fA-F_]+|[-+]?[1-9][0-9_]*(?::[0-5]?[0-9])+");
-  static const std::regex float_re(
-      "[-+]?(?:[0-9][0-9_]*)\\.[0-9_]*(?:[eE][-+][0-9]+)?|\\.[0-9][0-9_]*(?:[eE][-+][0-9]+)?|"
-      "[-+]?[0-9][0-9_]*(?::[0-5]?[0-9])+\\.[0-9_]*|[-+]?\\.(?:inf|Inf|INF)|\\.(?:nan|NaN|NAN)");
   if (s.empty() || s == "~" || s == "null" || s == "Null" || s == "NULL") return Value::none();
   const char c0 = s[0];
-  if (std::string("yYnNtTfFoO").find(c0) != std::string::npos && std::regex_match(s, bool_re)) {
+  if (is_one_of(s, {"yes", "Yes", "YES", "no", "No", "NO", "true", "True", "TRUE", "false", "False", "FALSE", "on",
+                    "On", "ON", "off", "Off", "OFF"})) {
     const char c = static_cast<char>(std::tolower(static_cast<unsigned char>(c0)));
     return Value::boolean(c == 'y' || c == 't' || (c == 'o' && (s[1] == 'n' || s[1] == 'N')));
   }
   if (std::string("-+0123456789.").find(c0) == std::string::npos) return Value::string(s);
-  if (std::regex_match(s, int_re)) {
+  if (yaml_int(s)) {
     std::string v = without_underscores(s);
     int sign = 1;
     if (v[0] == '-' || v[0] == '+') {
@@ -78,7 +139,7 @@ Value plain_scalar(const std::string& s) {
     }
     return Value::integer(sign * result);
   }
-  if (std::regex_match(s, float_re)) {
+  if (yaml_float(s)) {
     std::string v = without_underscores(s);
     for (char& c : v) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     double sign = 1;
