@@ -58,19 +58,22 @@ inline void add_package_path_flag(CLI::App& app, std::vector<std::string>& dirs)
       ->delimiter(':');
 }
 
+// "" if `v` is NAME=VALUE or NAME:=VALUE, else what is wrong with it (a CLI11 check).
+inline std::string check_assignment(const std::string& v) {
+  try {
+    parse_arg(v);
+    return std::string();
+  } catch (const std::invalid_argument& e) {
+    return std::string(e.what());
+  }
+}
+
 // --arg NAME=VALUE (repeatable): values for $(arg NAME) in the ros_control YAML.
 inline void add_arg_flag(CLI::App& app, std::vector<std::string>& assignments) {
   app.add_option("--arg", assignments,
                  "NAME=VALUE for $(arg NAME) in the YAML, as roslaunch's <rosparam subst_value=\"true\"> fills it "
                  "(repeatable; NAME:=VALUE works too)")
-      ->check([](const std::string& v) {
-        try {
-          parse_arg(v);
-          return std::string();
-        } catch (const std::invalid_argument& e) {
-          return std::string(e.what());
-        }
-      });
+      ->check(check_assignment);
 }
 
 // --xacro-arg NAME:=VALUE (repeatable): the arguments of a .xacro robot file, as `xacro FILE NAME:=VALUE` takes them.
@@ -78,14 +81,7 @@ inline void add_xacro_arg_flag(CLI::App& app, std::vector<std::string>& assignme
   app.add_option("--xacro-arg", assignments,
                  "NAME:=VALUE for <xacro:arg name=\"NAME\"> when the robot file is a .xacro, expanded by our own "
                  "xacro as `xacro FILE NAME:=VALUE` would (repeatable; NAME=VALUE works too)")
-      ->check([](const std::string& v) {
-        try {
-          parse_arg(v);
-          return std::string();
-        } catch (const std::invalid_argument& e) {
-          return std::string(e.what());
-        }
-      });
+      ->check(check_assignment);
 }
 
 // How the robot's files are read, from the flags every program that loads them shares.

@@ -8,23 +8,12 @@
 #include <sstream>
 
 #include "description/xacro/xacro.hpp"
+#include "test/description/xacro/xacro_test_util.hpp"
 
 namespace lcm_control::xacro {
 namespace {
 
 const std::string kData = XACRO_TEST_DATA;
-
-std::string read(const std::string& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string replace_all(std::string s, const std::string& from, const std::string& to) {
-  for (size_t p = 0; (p = s.find(from, p)) != std::string::npos; p += to.size()) s.replace(p, from.size(), to);
-  return s;
-}
 
 Options data_options() {
   Options o;
@@ -44,7 +33,7 @@ TEST(XacroDemoArm, EveryCommandExpandsAsExpected) {
     Options o = data_options();
     for (const auto& a : c.at("args")) o.args.push_back(parse_arg(a.get<std::string>()));
     const Expansion e = expand_file(kData + "/" + c.at("input").get<std::string>(), o);
-    const std::string expected = replace_all(read(kData + "/" + c.at("expected").get<std::string>()), "@DATA_DIR@", kData);
+    const std::string expected = testing::replace_all(testing::read(kData + "/" + c.at("expected").get<std::string>()), "@DATA_DIR@", kData);
     EXPECT_EQ(e.xml, expected) << c.at("expected");
   }
 }

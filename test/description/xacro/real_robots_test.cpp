@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "description/xacro/xacro.hpp"
+#include "test/description/xacro/xacro_test_util.hpp"
 #include "description/xacro/xml_dom.hpp"
 
 namespace lcm_control::xacro {
@@ -54,18 +55,6 @@ std::vector<Command> commands() {
     }
   }
   return out;
-}
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-std::string replace_all(std::string s, const std::string& from, const std::string& to) {
-  for (size_t p = 0; (p = s.find(from, p)) != std::string::npos; p += to.size()) s.replace(p, from.size(), to);
-  return s;
 }
 
 bool blank(const std::string& s) { return s.find_first_not_of(" \t\r\n") == std::string::npos; }
@@ -114,14 +103,14 @@ TEST_P(RealRobots, ExpandsAsTheOfficialXacro) {
   if (c.name == "absent") GTEST_SKIP() << kRobots << " is absent (the real robots sit beside the checkout in CI)";
   const std::string robot = c.robot.string();
   Options options;
-  for (const std::string& a : c.args) options.args.push_back(parse_arg(replace_all(a, "$R", robot)));
+  for (const std::string& a : c.args) options.args.push_back(parse_arg(testing::replace_all(a, "$R", robot)));
   options.find_package = [robot](const std::string& pkg) {
     const std::string dir = robot + "/pkgs/" + pkg;
     return fs::is_directory(dir) ? dir : std::string();
   };
   options.message = [](const std::string& line) { ADD_FAILURE() << "unexpected message: " << line; };
   const Expansion e = expand_file(robot + "/" + c.input, options);
-  const std::string expected = replace_all(read(c.robot / c.expected), "@ROBOT_DIR@", robot);
+  const std::string expected = testing::replace_all(testing::read((c.robot / c.expected).string()), "@ROBOT_DIR@", robot);
 
   dom::Arena arena;
   const std::string got_file = "expanded", want_file = c.expected;
