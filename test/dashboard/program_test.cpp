@@ -48,6 +48,23 @@ TEST(DashboardProgram, ServesTheUrdfItsMeshesAndPackagesButNothingOutside) {
   dash.stop();
 }
 
+// A .urdf.xacro is expanded once (with --xacro-arg) and served under the URDF's name; its meshes are found as a
+// URDF's are.
+TEST(DashboardProgram, ServesAXacroAsTheUrdfItExpandsTo) {
+  ChildProcess dash({bin("dashboard"), "--urdf", source("config/turret_bot_description/urdf/turret_bot.urdf.xacro"),
+                     "--xacro-arg", "interface:=Effort", "--port", "0", "--lcm-url", testing::unique_lcm_url(),
+                     "--duration", "20"});
+  ASSERT_TRUE(dash.wait_for_output("dashboard: http", 10)) << dash.output();
+  const int port = port_of(dash.output());
+  ASSERT_GT(port, 0) << dash.output();
+  const auto urdf = http_get(port, "/robot/turret_bot.urdf");
+  EXPECT_EQ(urdf.status, 200);
+  EXPECT_NE(urdf.body.find("hardware_interface/EffortJointInterface"), std::string::npos) << urdf.body;
+  EXPECT_EQ(urdf.body.find("xacro:"), std::string::npos) << urdf.body;
+  EXPECT_EQ(http_get(port, "/robot/turret_bot_macros.xacro").status, 200);  // the folder's files, as for a URDF
+  dash.stop();
+}
+
 TEST(DashboardProgram, SaysWhatToDoWhenItCannotStart) {
   ChildProcess first({bin("dashboard"), "--port", "0", "--lcm-url", testing::unique_lcm_url(), "--duration", "20"});
   ASSERT_TRUE(first.wait_for_output("dashboard: http", 10)) << first.output();
