@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <unordered_set>
 
 #include "cli/cli.hpp"
 #include "description/robot_file.hpp"
