@@ -9,9 +9,15 @@
 #include <vector>
 
 #include "description/robot_model.hpp"
-#include "controller_manager/controller.hpp"
 
 namespace lcm_control::cm {
+
+// The joints a controller commands and the interface it needs; no interface
+// for state readers (joint_state_controller), which claim nothing.
+struct Claim {
+  std::optional<Interface> interface;
+  std::vector<std::string> joints;
+};
 
 // "" when `joint` can be commanded on `needed`, else a message naming the
 // controller, the joint, the interface needed and the interfaces offered.

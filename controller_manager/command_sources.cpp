@@ -10,7 +10,6 @@
 #include <string_view>
 
 #include "controller_manager/loop.hpp"
-#include "controller_manager/manager.hpp"
 
 namespace lcm_control::cm {
 

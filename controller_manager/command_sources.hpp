@@ -22,6 +22,7 @@
 #include "rt/log.hpp"
 #include "control/expression.hpp"
 #include "controller_manager/controller.hpp"
+#include "controller_manager/reply.hpp"
 #include "bus/endpoints.hpp"
 #include "lcm_control/cm_response_t.hpp"
 #include "lcm_control/command_source_t.hpp"
@@ -32,7 +33,6 @@ namespace lcm_control::cm {
 
 struct ControllerSlot;
 class Loop;
-struct Reply;
 
 class CommandSources {
  public:

@@ -15,6 +15,7 @@
 #include "bus/bus.hpp"
 #include "control/pid.hpp"
 #include "description/robot_model.hpp"
+#include "controller_manager/claims.hpp"
 #include "controller_manager/hardware.hpp"
 #include "controller_manager/params.hpp"
 #include "bus/endpoints.hpp"
@@ -24,13 +25,6 @@ namespace lcm_control::cm {
 struct Time {
   int64_t utime = 0;  // hardware clock
   double seconds() const { return static_cast<double>(utime) * 1e-6; }
-};
-
-// The joints a controller commands and the interface it needs; no interface
-// for state readers (joint_state_controller), which claim nothing.
-struct Claim {
-  std::optional<Interface> interface;
-  std::vector<std::string> joints;
 };
 
 // A controller's numbers on `<name>/command`: one float64_t (width 1), or a float64_array_t of `width` values

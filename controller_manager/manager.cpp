@@ -15,6 +15,8 @@
 #include "controller_manager/ros_catalog.hpp"
 #include "controller_manager/switch_plan.hpp"
 #include "lcm_control/cm_request_t.hpp"
+#include "lcm_control/float64_array_t.hpp"
+#include "lcm_control/float64_t.hpp"
 
 namespace lcm_control::cm {
 
@@ -28,6 +30,24 @@ std::unique_ptr<lcm::LCM> outbox_lcm(const Bus& bus) {
   auto lc = std::make_unique<lcm::LCM>(bus.url());
   if (!lc->good()) throw std::runtime_error("cannot open LCM at " + bus.url() + " to send the controllers' messages");
   return lc;
+}
+// What its type declares it takes and publishes; for a type that declares nothing, the numbers it takes
+// (ControllerContext::take_commands).
+void describe_command(const ControllerTypeInfo* info, const Controller& controller, controller_info_t& out) {
+  out.command_width = 0;
+  if (info && !info->command.type.empty()) {
+    const CommandInfo& c = info->command;
+    out.command_type = c.type;
+    out.command_channel = c.channel;
+    out.command_width = c.width == CommandInfo::kOnePerJoint ? out.num_joints : c.width;
+    out.command_quantity = c.quantity;
+  } else if (const CommandInput* in = controller.command_input()) {
+    out.command_type = in->array ? float64_array_t::getTypeName() : float64_t::getTypeName();
+    out.command_channel = "command";
+    out.command_width = static_cast<int32_t>(in->width);
+  }
+  if (info) out.publishes = info->publishes;
+  out.num_publishes = static_cast<int32_t>(out.publishes.size());
 }
 }  // namespace
 
@@ -111,7 +131,8 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
   }
   c.notes = std::move(ctx.notes);
   if (params.has("plugin")) params.node("plugin");  // the controller library, loaded before (plugins.hpp)
-  const auto& known = ros_parameters_of(spec.type);
+  const ControllerTypeInfo* info = registry_.info(spec.type);
+  const std::vector<std::string> known = info ? parameter_names(*info) : std::vector<std::string>{};
   for (const auto& k : params.unused()) {
     const std::string where = fmt::format("{}: {}/{}", model_.config_path, yaml_key(spec.name), k);
     if (std::find(known.begin(), known.end(), k) != known.end()) {
@@ -286,6 +307,7 @@ std::vector<controller_info_t> ControllerManager::list() const {
     i.hardware_interface = c.interface ? to_string(*c.interface) : "";
     i.joints = c.joints;
     i.num_joints = static_cast<int32_t>(i.joints.size());
+    describe_command(registry_.info(s->type), *s->controller, i);
     out.push_back(i);
   }
   return out;

@@ -20,17 +20,12 @@
 #include "controller_manager/hardware_status.hpp"
 #include "controller_manager/loop.hpp"
 #include "controller_manager/registry.hpp"
+#include "controller_manager/reply.hpp"
 #include "lcm_control/controller_info_t.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/loop_stats_t.hpp"
 
 namespace lcm_control::cm {
-
-struct Reply {
-  bool ok = false;
-  std::string message;
-};
-using Done = std::function<void(const Reply&)>;
 
 // What loading one configured controller gives, found without loading it.
 struct ControllerCheck {

@@ -10,24 +10,25 @@
 
 namespace lcm_control::cm {
 
+// One line per type; each is declared in its family's file in controllers/.
 void register_builtin(Registry& r) {
   using I = Interface;
-  r.add("joint_state_controller/JointStateController", make_joint_state_controller);
-  r.add("franka_control/FrankaStateController", make_joint_state_controller);
-  r.add("position_controllers/JointPositionController", forward_command_controller(I::Position, false));
-  r.add("velocity_controllers/JointVelocityController", forward_command_controller(I::Velocity, false));
-  r.add("effort_controllers/JointEffortController", forward_command_controller(I::Effort, false));
-  r.add("position_controllers/JointGroupPositionController", forward_command_controller(I::Position, true));
-  r.add("velocity_controllers/JointGroupVelocityController", forward_command_controller(I::Velocity, true));
-  r.add("effort_controllers/JointGroupEffortController", forward_command_controller(I::Effort, true));
-  r.add("effort_controllers/JointPositionController", pid_controller(I::Effort, PidTarget::Position));
-  r.add("effort_controllers/JointVelocityController", pid_controller(I::Effort, PidTarget::Velocity));
-  r.add("velocity_controllers/JointPositionController", pid_controller(I::Velocity, PidTarget::Position));
-  r.add("effort_controllers/JointGroupPositionController", group_position_pid_controller());
-  r.add("position_controllers/JointTrajectoryController", joint_trajectory_controller(I::Position));
-  r.add("effort_controllers/JointTrajectoryController", joint_trajectory_controller(I::Effort));
-  r.add("velocity_controllers/JointTrajectoryController", joint_trajectory_controller(I::Velocity));
-  r.add("diff_drive_controller/DiffDriveController", make_diff_drive_controller);
+  r.add(joint_state_controller());
+  r.add(franka_state_controller());
+  r.add(forward_command_controller(I::Position, false));
+  r.add(forward_command_controller(I::Velocity, false));
+  r.add(forward_command_controller(I::Effort, false));
+  r.add(forward_command_controller(I::Position, true));
+  r.add(forward_command_controller(I::Velocity, true));
+  r.add(forward_command_controller(I::Effort, true));
+  r.add(pid_controller(I::Effort, PidTarget::Position));
+  r.add(pid_controller(I::Effort, PidTarget::Velocity));
+  r.add(pid_controller(I::Velocity, PidTarget::Position));
+  r.add(group_position_pid_controller());
+  r.add(joint_trajectory_controller(I::Position));
+  r.add(joint_trajectory_controller(I::Effort));
+  r.add(joint_trajectory_controller(I::Velocity));
+  r.add(diff_drive_controller());
 }
 
 const Registry& builtin_registry() {
@@ -39,20 +40,35 @@ const Registry& builtin_registry() {
   return r;
 }
 
-void Registry::add(const std::string& type, Factory factory) { factories_[type] = std::move(factory); }
+void Registry::add(ControllerType type) {
+  const std::string name = type.info.name;
+  types_[name] = std::move(type);
+}
+
+void Registry::add(const std::string& type, Factory factory) {
+  ControllerType t;
+  t.info.name = type;
+  t.factory = std::move(factory);
+  add(std::move(t));
+}
 
 void Registry::merge(Registry&& other) {
-  for (auto& [t, f] : other.factories_) factories_[t] = std::move(f);
+  for (auto& [n, t] : other.types_) types_[n] = std::move(t);
 }
 
 std::unique_ptr<Controller> Registry::create(const std::string& type) const {
-  auto it = factories_.find(type);
-  return it == factories_.end() ? nullptr : it->second(type);
+  auto it = types_.find(type);
+  return it == types_.end() ? nullptr : it->second.factory(type);
+}
+
+const ControllerTypeInfo* Registry::info(const std::string& type) const {
+  auto it = types_.find(type);
+  return it == types_.end() ? nullptr : &it->second.info;
 }
 
 std::vector<std::string> Registry::types() const {
   std::vector<std::string> v;
-  for (const auto& [t, f] : factories_) v.push_back(t);
+  for (const auto& [t, x] : types_) v.push_back(t);
   return v;
 }
 
@@ -60,7 +76,7 @@ std::string Registry::closest(const std::string& type) const {
   std::string best;
   size_t best_d = SIZE_MAX;
   const bool bare = type.find('/') == std::string::npos;
-  for (const auto& [t, f] : factories_) {
+  for (const auto& [t, x] : types_) {
     size_t d = edit_distance(type, t);
     if (bare) d = std::min(d, edit_distance(type, t.substr(t.find('/') + 1)));
     if (d < best_d) best_d = d, best = t;

@@ -4,25 +4,25 @@
 // valid types and the closest one by edit distance.
 #pragma once
 
-#include <functional>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "controller_manager/controller.hpp"
+#include "controller_manager/controller_type.hpp"
 
 namespace lcm_control::cm {
 
-// Creates a controller of `type` (one factory may serve a family of types).
-using Factory = std::function<std::unique_ptr<Controller>(const std::string& type)>;
-
 class Registry {
  public:
+  void add(ControllerType type);
+  // A type that says nothing of itself but its name.
   void add(const std::string& type, Factory factory);
   void merge(Registry&& other);  // adds other's types
-  bool has(const std::string& type) const { return factories_.count(type) > 0; }
+  bool has(const std::string& type) const { return types_.count(type) > 0; }
   std::unique_ptr<Controller> create(const std::string& type) const;  // nullptr if unknown
+  const ControllerTypeInfo* info(const std::string& type) const;      // nullptr if unknown
   std::vector<std::string> types() const;                             // sorted
   // The registered type nearest to `type` (edit distance; a bare class name
   // such as "JointPositionControler" is compared with the class part too).
@@ -32,7 +32,7 @@ class Registry {
   std::string unknown_type_message(const std::string& type) const;
 
  private:
-  std::map<std::string, Factory> factories_;
+  std::map<std::string, ControllerType> types_;
 };
 
 // Every built-in type (see registry.cpp for the list).

@@ -71,25 +71,6 @@ const std::map<std::string, std::string>& known_packages() {
   return packages;
 }
 
-const std::vector<std::string> kNone;
-const std::vector<std::string> kJointStateParams = {"publish_rate", "joints", "extra_joints"};
-const std::vector<std::string> kOneJointParams = {"joint"};
-const std::vector<std::string> kOneJointPidParams = {"joint", "pid"};
-const std::vector<std::string> kGroupParams = {"joints"};
-const std::vector<std::string> kDiffDriveParams = {
-    "left_wheel", "right_wheel", "wheel_separation", "wheel_radius", "wheel_separation_multiplier",
-    "wheel_radius_multiplier", "left_wheel_radius_multiplier", "right_wheel_radius_multiplier", "publish_rate",
-    "cmd_vel_timeout", "base_frame_id", "odom_frame_id", "enable_odom_tf", "open_loop", "velocity_rolling_window_size",
-    "linear", "angular", "pose_covariance_diagonal", "twist_covariance_diagonal", "allow_multiple_cmd_vel_publishers",
-    "publish_cmd", "publish_wheel_joint_controller_state", "estimate_velocity_from_position"};
-const std::vector<std::string> kTrajectoryParams = {
-    "joints", "gains", "velocity_ff", "constraints", "state_publish_rate", "action_monitor_rate",
-    "stop_trajectory_duration", "allow_partial_joints_goal", "hold_trajectory_duration",
-    // ros2_controllers
-    "command_joints", "command_interfaces", "state_interfaces", "allow_integration_in_goal_trajectories",
-    "open_loop_control", "interpolation_method", "allow_nonzero_velocity_at_trajectory_end", "cmd_timeout",
-    "set_last_command_interface_value_as_state_on_activation", "interface_name"};
-
 }  // namespace
 
 std::string ros_origin_of_type(const std::string& type) {
@@ -121,22 +102,6 @@ std::string ros_alternative_to(const std::string& type) {
   };
   const auto it = alternatives.find(type);
   return it == alternatives.end() ? "" : it->second;
-}
-
-const std::vector<std::string>& ros_parameters_of(const std::string& type) {
-  const auto slash = type.find('/');
-  const std::string cls = slash == std::string::npos ? type : type.substr(slash + 1);
-  if (cls == "JointStateController") return kJointStateParams;
-  if (cls == "JointTrajectoryController") return kTrajectoryParams;
-  if (cls == "DiffDriveController") return kDiffDriveParams;
-  if (cls == "JointGroupPositionController" && type.rfind("effort_controllers/", 0) == 0) return kGroupParams;
-  if (cls.rfind("JointGroup", 0) == 0) return kGroupParams;
-  if (type == "effort_controllers/JointPositionController" || type == "effort_controllers/JointVelocityController" ||
-      type == "velocity_controllers/JointPositionController")
-    return kOneJointPidParams;
-  if (cls == "JointPositionController" || cls == "JointVelocityController" || cls == "JointEffortController")
-    return kOneJointParams;
-  return kNone;
 }
 
 }  // namespace lcm_control::cm

@@ -67,7 +67,9 @@ json controller_list_json(const cm_response_t& r) {
   json list = json::array();
   for (const auto& c : r.controllers)
     list.push_back({{"name", c.name}, {"type", c.type}, {"state", c.state}, {"interface", c.hardware_interface},
-                    {"joints", c.joints}});
+                    {"joints", c.joints}, {"command_type", c.command_type}, {"command_channel", c.command_channel},
+                    {"command_width", c.command_width}, {"command_quantity", c.command_quantity},
+                    {"publishes", c.publishes}});
   return {{"kind", "controllers"}, {"ok", true}, {"controllers", list}, {"hardware", r.hardware},
           {"hardware_age_us", r.hardware_age_us}};
 }

@@ -171,8 +171,8 @@ void parse_control_config(RobotModel& model, const YAML::Node& doc, const std::s
       continue;
     }
     if (!v["type"].IsScalar() || trim(v["type"].Scalar()).empty()) {
-      problems.push_back(fmt::format("{}: {}{}/type: expected a controller type name such as "
-                                     "position_controllers/JointPositionController",
+      problems.push_back(fmt::format("{}: {}{}/type: expected a controller type name (`cmctl list-types` lists "
+                                     "them)",
                                      file, prefix, key));
       continue;
     }

@@ -58,7 +58,9 @@ class CurrentPositions {
       seen_.erase(channel_);
       std::string publisher;
       for (const auto& c : listed)
-        if (c.type == "joint_state_controller/JointStateController" && c.state == "running") publisher = c.name;
+        if (std::find(c.publishes.begin(), c.publishes.end(), channels::kJointStates) != c.publishes.end() &&
+            c.state == "running")
+          publisher = c.name;
       throw NoAnswer(fmt::format(
           "--relative needs the current positions, but no valid joint_state_t came on '{}' within {}{} ({}); {}",
           channel_, seconds_text(timeout_s), invalid_.empty() ? "" : ", only invalid ones: " + invalid_,

@@ -260,8 +260,48 @@ class DiffDriveController : public Controller {
 
 }  // namespace
 
-std::unique_ptr<Controller> make_diff_drive_controller(const std::string&) {
-  return std::make_unique<DiffDriveController>();
+ControllerType diff_drive_controller() {
+  ControllerTypeInfo t;
+  t.name = "diff_drive_controller/DiffDriveController";
+  t.ros2_names = {"diff_drive_controller/DiffDriveController"};
+  t.doc = "a twist_t on <name>/cmd_vel to wheel velocities; odometry_t on <name>/odom";
+  t.claims = {Interface::Velocity, {"left_wheel", "right_wheel"}};
+  t.command = {"twist_t", "cmd_vel", 0, ""};
+  auto ignored = [](const char* name, const char* type) {
+    return ParameterInfo{name, type, "", name, "", "read and not used", true};
+  };
+  t.parameters = {
+      {"left_wheel", "strings", "", "left_wheel", "", "the left wheel joint(s): a name or a list"},
+      {"right_wheel", "strings", "", "right_wheel", "", "the right wheel joint(s): a name or a list"},
+      {"wheel_separation", "number", "", "wheel_separation", "wheel_separation",
+       "m (default: the wheel joints' distance apart in the URDF)"},
+      {"wheel_radius", "number", "", "wheel_radius", "wheel_radius",
+       "m (default: the left wheel's collision cylinder or sphere)"},
+      {"wheel_separation_multiplier", "number", "1", "wheel_separation_multiplier", "wheel_separation_multiplier",
+       "times wheel_separation"},
+      {"wheel_radius_multiplier", "number", "1", "wheel_radius_multiplier", "", "times wheel_radius"},
+      {"left_wheel_radius_multiplier", "number", "1", "left_wheel_radius_multiplier", "left_wheel_radius_multiplier",
+       "times the left wheels' radius"},
+      {"right_wheel_radius_multiplier", "number", "1", "right_wheel_radius_multiplier",
+       "right_wheel_radius_multiplier", "times the right wheels' radius"},
+      {"publish_rate", "number", "50", "publish_rate", "publish_rate", "Hz of <name>/odom"},
+      {"cmd_vel_timeout", "number", "0.5", "cmd_vel_timeout", "cmd_vel_timeout", "s without a command: wheels stop"},
+      {"base_frame_id", "string", "base_link", "base_frame_id", "base_frame_id", "odometry's child frame"},
+      {"odom_frame_id", "string", "odom", "odom_frame_id", "odom_frame_id", "odometry's frame"},
+      ignored("enable_odom_tf", "bool"),
+      {"open_loop", "bool", "false", "open_loop", "open_loop", "odometry from the commands instead of the wheels"},
+      {"velocity_rolling_window_size", "number", "10", "velocity_rolling_window_size", "velocity_rolling_window_size",
+       "samples averaged into the odometry's velocity"},
+      {"linear", "map", "", "linear", "linear", "x: {has_velocity_limits, max_velocity, ...} of the linear speed"},
+      {"angular", "map", "", "angular", "angular", "z: {has_velocity_limits, max_velocity, ...} of the turn rate"},
+      ignored("pose_covariance_diagonal", "list"),
+      ignored("twist_covariance_diagonal", "list"),
+      ignored("allow_multiple_cmd_vel_publishers", "bool"),
+      ignored("publish_cmd", "bool"),
+      ignored("publish_wheel_joint_controller_state", "bool"),
+      {"estimate_velocity_from_position", "bool", "", "estimate_velocity_from_position", "", "not implemented", false},
+  };
+  return {t, [](const std::string&) { return std::make_unique<DiffDriveController>(); }};
 }
 
 }  // namespace lcm_control::cm

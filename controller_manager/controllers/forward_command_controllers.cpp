@@ -4,6 +4,8 @@
 // A group (`joints`, float64_array_t, one value per joint, wrong size dropped
 // and counted): the three JointGroup*Controller types.
 // On start a position command holds the current position; velocity and effort start at 0.
+#include <fmt/format.h>
+
 #include "controller_manager/controllers/factories.hpp"
 
 namespace lcm_control::cm {
@@ -43,8 +45,32 @@ class ForwardCommandController : public Controller {
 
 }  // namespace
 
-Factory forward_command_controller(Interface command, bool group) {
-  return [command, group](const std::string&) { return std::make_unique<ForwardCommandController>(command, group); };
+ControllerType forward_command_controller(Interface command, bool group) {
+  ControllerTypeInfo t;
+  const char* quantity = "";
+  switch (command) {
+    case Interface::Position:
+      t.name = group ? "position_controllers/JointGroupPositionController" : "position_controllers/JointPositionController";
+      quantity = "position";
+      break;
+    case Interface::Velocity:
+      t.name = group ? "velocity_controllers/JointGroupVelocityController" : "velocity_controllers/JointVelocityController";
+      quantity = "velocity";
+      break;
+    case Interface::Effort:
+      t.name = group ? "effort_controllers/JointGroupEffortController" : "effort_controllers/JointEffortController";
+      quantity = "effort";
+      break;
+  }
+  if (group) t.ros2_names = {"forward_command_controller/ForwardCommandController"};
+  t.doc = fmt::format("the {} command of {} as it comes", quantity, group ? "each joint of `joints`" : "`joint`");
+  t.claims = {command, {group ? "joints" : "joint"}};
+  t.command = {group ? "float64_array_t" : "float64_t", "command", group ? CommandInfo::kOnePerJoint : 1, quantity};
+  if (group)
+    t.parameters = {{"joints", "strings", "", "joints", "joints", "the joints, in the order of the command's values"}};
+  else
+    t.parameters = {{"joint", "string", "", "joint", "", "the joint"}};
+  return {t, [command, group](const std::string&) { return std::make_unique<ForwardCommandController>(command, group); }};
 }
 
 }  // namespace lcm_control::cm

@@ -136,8 +136,31 @@ class JointStateController : public Controller {
 
 }  // namespace
 
-std::unique_ptr<Controller> make_joint_state_controller(const std::string& type) {
-  return std::make_unique<JointStateController>(type == "franka_control/FrankaStateController");
+ControllerType joint_state_controller() {
+  ControllerTypeInfo t;
+  t.name = "joint_state_controller/JointStateController";
+  t.ros2_names = {"joint_state_broadcaster/JointStateBroadcaster"};
+  t.doc = "publishes joint_states of the joints at publish_rate on the hardware clock";
+  t.publishes = {channels::kJointStates};
+  t.parameters = {
+      {"publish_rate", "number", "", "publish_rate", "", "Hz on the hardware clock"},
+      {"joints", "strings", "", "", "joints", "which joints and in what order (default: every actuated joint, then the mimic joints)"},
+      {"extra_joints", "list", "", "extra_joints", "", "fixed {name, position, velocity, effort} appended"},
+  };
+  return {t, [](const std::string&) { return std::make_unique<JointStateController>(false); }};
+}
+
+ControllerType franka_state_controller() {
+  ControllerTypeInfo t;
+  t.name = "franka_control/FrankaStateController";
+  t.doc = "joint_states of joint_names at publish_rate (franka_states has no equivalent here)";
+  t.publishes = {channels::kJointStates};
+  t.parameters = {
+      {"publish_rate", "number", "", "publish_rate", "", "Hz on the hardware clock"},
+      {"joint_names", "strings", "", "joint_names", "", "which joints and in what order"},
+      {"arm_id", "string", "", "arm_id", "", "read and not used (franka_states is not published)"},
+  };
+  return {t, [](const std::string&) { return std::make_unique<JointStateController>(true); }};
 }
 
 }  // namespace lcm_control::cm

@@ -437,8 +437,48 @@ class JointTrajectoryController : public Controller {
 
 }  // namespace
 
-Factory joint_trajectory_controller(Interface command) {
-  return [command](const std::string&) { return std::make_unique<JointTrajectoryController>(command); };
+ControllerType joint_trajectory_controller(Interface command) {
+  ControllerTypeInfo t;
+  switch (command) {
+    case Interface::Position: t.name = "position_controllers/JointTrajectoryController"; break;
+    case Interface::Velocity: t.name = "velocity_controllers/JointTrajectoryController"; break;
+    case Interface::Effort: t.name = "effort_controllers/JointTrajectoryController"; break;
+  }
+  t.ros2_names = {"joint_trajectory_controller/JointTrajectoryController"};
+  t.doc = fmt::format("follows joint_trajectory_t goals through splines on {}", to_string(command));
+  t.claims = {command, {"joints"}};
+  t.command = {"joint_trajectory_t", "command", 0, ""};
+  const bool pid = command != Interface::Position;
+  const char* with_pid = pid ? "" : "; not used with PositionJointInterface";
+  t.parameters = {
+      {"joints", "strings", "", "joints", "joints", "the joints a goal must name"},
+      {"gains", "map", "", "gains", "gains", std::string("<joint>: {p, i, d, i_clamp}, required") + with_pid},
+      {"velocity_ff", "map", "", "velocity_ff", "", std::string("<joint>: factor on the desired velocity") + with_pid},
+      {"constraints", "map", "", "constraints", "constraints",
+       "goal_time, stopped_velocity_tolerance, <joint>: {trajectory, goal} (0: not checked)"},
+      {"state_publish_rate", "number", "50", "state_publish_rate", "state_publish_rate", "Hz of <name>/state (0: never)"},
+      {"action_monitor_rate", "number", "20", "action_monitor_rate", "action_monitor_rate", "Hz of <name>/feedback"},
+      {"stop_trajectory_duration", "number", "0", "stop_trajectory_duration", "",
+       "seconds of the ramp to rest on start, on a path error and on an empty goal"},
+      {"allow_partial_joints_goal", "bool", "false", "allow_partial_joints_goal", "allow_partial_joints_goal",
+       "goals may leave joints out (they hold)"},
+      {"hold_trajectory_duration", "number", "", "hold_trajectory_duration", "", "not implemented", false},
+      {"command_joints", "strings", "", "", "command_joints", "not implemented", false},
+      {"command_interfaces", "strings", "", "", "command_interfaces", "not implemented (the type's name says it)",
+       false},
+      {"state_interfaces", "strings", "", "", "state_interfaces", "not implemented", false},
+      {"allow_integration_in_goal_trajectories", "bool", "", "", "allow_integration_in_goal_trajectories",
+       "not implemented", false},
+      {"open_loop_control", "bool", "", "", "open_loop_control", "not implemented", false},
+      {"interpolation_method", "string", "", "", "interpolation_method", "not implemented (splines)", false},
+      {"allow_nonzero_velocity_at_trajectory_end", "bool", "", "", "allow_nonzero_velocity_at_trajectory_end",
+       "not implemented", false},
+      {"cmd_timeout", "number", "", "", "cmd_timeout", "not implemented", false},
+      {"set_last_command_interface_value_as_state_on_activation", "bool", "", "",
+       "set_last_command_interface_value_as_state_on_activation", "not implemented", false},
+      {"interface_name", "string", "", "", "interface_name", "not implemented", false},
+  };
+  return {t, [command](const std::string&) { return std::make_unique<JointTrajectoryController>(command); }};
 }
 
 }  // namespace lcm_control::cm

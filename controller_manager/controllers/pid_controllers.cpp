@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "control/angles.hpp"
 #include "controller_manager/controllers/factories.hpp"
@@ -173,12 +174,35 @@ class GroupPositionPid : public Controller {
 
 }  // namespace
 
-Factory pid_controller(Interface out, PidTarget target) {
-  return [out, target](const std::string&) { return std::make_unique<PidController>(out, target == PidTarget::Position); };
+ControllerType pid_controller(Interface out, PidTarget target) {
+  ControllerTypeInfo t;
+  const bool position = target == PidTarget::Position;
+  if (out == Interface::Effort)
+    t.name = position ? "effort_controllers/JointPositionController" : "effort_controllers/JointVelocityController";
+  else if (out == Interface::Velocity && position)
+    t.name = "velocity_controllers/JointPositionController";
+  else
+    throw std::invalid_argument("pid_controller: no such type (a PID to a position command)");
+  const char* quantity = position ? "position" : "velocity";
+  t.doc = fmt::format("a PID from a {} set point to the {} command of `joint`", quantity,
+                      out == Interface::Effort ? "effort" : "velocity");
+  t.claims = {out, {"joint"}};
+  t.command = {"float64_t", "command", 1, quantity};
+  t.parameters = {
+      {"joint", "string", "", "joint", "", "the joint"},
+      {"pid", "map", "", "pid", "", "{p, i, d, i_clamp, antiwindup}, p required"},
+  };
+  return {t, [out, position](const std::string&) { return std::make_unique<PidController>(out, position); }};
 }
 
-Factory group_position_pid_controller() {
-  return [](const std::string&) { return std::make_unique<GroupPositionPid>(); };
+ControllerType group_position_pid_controller() {
+  ControllerTypeInfo t;
+  t.name = "effort_controllers/JointGroupPositionController";
+  t.doc = "a PID per joint from position set points to efforts";
+  t.claims = {Interface::Effort, {"joints"}};
+  t.command = {"float64_array_t", "command", CommandInfo::kOnePerJoint, "position"};
+  t.parameters = {{"joints", "strings", "", "joints", "", "the joints, each with `<joint>: {pid: {p, i, d}}`"}};
+  return {t, [](const std::string&) { return std::make_unique<GroupPositionPid>(); }};
 }
 
 }  // namespace lcm_control::cm

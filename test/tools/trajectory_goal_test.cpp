@@ -238,20 +238,21 @@ TEST(TrajectoryGoal, ControllerNamesAsRosUsersWriteThem) {
 }
 
 TEST(TrajectoryGoal, TheControllerMustBeARunningTrajectoryController) {
-  auto info = [](std::string name, std::string type, std::string state) {
+  auto info = [](std::string name, std::string type, std::string state, std::string command_type) {
     controller_info_t c{};
     c.name = std::move(name);
     c.type = std::move(type);
     c.state = std::move(state);
     c.joints = {"j1", "j2"};
     c.num_joints = 2;
+    c.command_type = std::move(command_type);
     return c;
   };
   const std::vector<controller_info_t> listed = {
-      info("joint_state_controller", "joint_state_controller/JointStateController", "running"),
-      info("trajectory_controller", "position_controllers/JointTrajectoryController", "running"),
-      info("idle_trajectory", "effort_controllers/JointTrajectoryController", "initialized"),
-      info("j1_controller", "position_controllers/JointPositionController", "running")};
+      info("joint_state_controller", "joint_state_controller/JointStateController", "running", ""),
+      info("trajectory_controller", "position_controllers/JointTrajectoryController", "running", "joint_trajectory_t"),
+      info("idle_trajectory", "effort_controllers/JointTrajectoryController", "initialized", "joint_trajectory_t"),
+      info("j1_controller", "position_controllers/JointPositionController", "running", "float64_t")};
   EXPECT_EQ(trajectory_controller(listed, "trajectory_controller").joints, (std::vector<std::string>{"j1", "j2"}));
   auto error_of = [&](const std::string& name) {
     try {

@@ -326,8 +326,7 @@ const controller_info_t& trajectory_controller(const std::vector<controller_info
       names.push_back(c.name);
       continue;
     }
-    const std::string kind = "/JointTrajectoryController";
-    if (c.type.size() < kind.size() || c.type.compare(c.type.size() - kind.size(), kind.size(), kind) != 0)
+    if (c.command_type != joint_trajectory_t::getTypeName())
       throw std::runtime_error(fmt::format("'{}' is a {}, not a JointTrajectoryController: send it commands with "
                                            "turret-cmd {} VALUE...",
                                            name, c.type, name));

@@ -50,8 +50,8 @@ void add_offsets(TrajectoryGoal& goal, const std::vector<double>& start);
 
 joint_trajectory_t to_message(const TrajectoryGoal& goal, int64_t goal_id, int64_t utime);
 
-// `name` among the controllers the manager lists, if it is a running JointTrajectoryController;
-// else std::runtime_error saying what to do (spawner, cmctl start, turret-cmd for other types).
+// `name` among the controllers the manager lists, if it is running and takes joint_trajectory_t goals (a
+// JointTrajectoryController); else std::runtime_error saying what to do (spawner, cmctl start, turret-cmd for others).
 const controller_info_t& trajectory_controller(const std::vector<controller_info_t>& listed, const std::string& name);
 
 // The controller a ROS user names: "/arm_controller", "/arm_controller/command" -> "arm_controller".

@@ -1,13 +1,21 @@
 import { el } from './dom.js';
 
 // Command channels of the running controllers (rqt's message publisher): a slider per joint within its URDF limits,
-// and an expression in i and t streamed by the server at a rate, like turret-cmd.
-const SINGLE = /^(position|velocity|effort)_controllers\/Joint(Position|Velocity|Effort)Controller$/;
-const GROUP = /^(position|velocity|effort)_controllers\/JointGroup(Position|Velocity|Effort)Controller$/;
+// and an expression in i and t streamed by the server at a rate, like turret-cmd. What a controller takes is what its
+// type declares (the controller manager's list): numbers, one (float64_t) or one per joint (float64_array_t), each a
+// position, velocity or effort set point.
 
-function kindOf(type) {
-  const m = type.match(SINGLE) || type.match(GROUP);
-  return m ? m[2].toLowerCase() : null;
+// The set point a controller's sliders give ("position", "velocity", "effort", or "value" when its type does not
+// say), or null when it does not take one number per joint.
+export function commandKind(c) {
+  const numbers = (c.command_type === 'float64_t' && c.command_width === 1 && c.joints.length === 1) ||
+    (c.command_type === 'float64_array_t' && c.command_width === c.joints.length && c.joints.length > 0);
+  return numbers ? c.command_quantity || 'value' : null;
+}
+
+// The controllers that get sliders.
+export function commandable(controllers) {
+  return controllers.filter((c) => c.state === 'running' && commandKind(c));
 }
 
 function range(kind, j) {
@@ -15,7 +23,7 @@ function range(kind, j) {
     if (!j || j.type === 'continuous' || !(j.upper > j.lower)) return [-Math.PI, Math.PI];
     return [j.lower, j.upper];
   }
-  const limit = kind === 'velocity' ? j?.velocity : j?.effort;
+  const limit = kind === 'velocity' ? j?.velocity : kind === 'effort' ? j?.effort : 0;
   return limit > 0 ? [-limit, limit] : [-10, 10];
 }
 
@@ -37,18 +45,19 @@ export class Commands {
 
   update(controllers) {
     this.controllers = controllers;
-    const commandable = controllers.filter((c) => c.state === 'running' && kindOf(c.type));
-    const key = JSON.stringify(commandable.map((c) => [c.name, c.type, c.joints])) + Object.keys(this.joints).join();
+    const shown = commandable(controllers);
+    const key = JSON.stringify(shown.map((c) => [c.name, c.type, c.joints, c.command_type, c.command_quantity])) +
+      Object.keys(this.joints).join();
     if (key === this.key) return;
     this.key = key;
-    this.el.replaceChildren(...(commandable.length ? [] : [el('p', { class: 'hint' }, 'no running position, velocity or effort controller')]));
-    for (const c of commandable) this.el.appendChild(this.block(c));
+    this.el.replaceChildren(...(shown.length ? [] : [el('p', { class: 'hint' }, 'no running position, velocity or effort controller')]));
+    for (const c of shown) this.el.appendChild(this.block(c));
   }
 
   block(c) {
-    const kind = kindOf(c.type);
-    const group = GROUP.test(c.type);
-    const channel = `${c.name}/command`;
+    const kind = commandKind(c);
+    const group = c.command_type === 'float64_array_t';
+    const channel = `${c.name}/${c.command_channel || 'command'}`;
     const div = document.createElement('div');
     div.className = 'command';
     div.append(el('h3', {}, c.name, ' ', el('small', {}, `${kind} → ${channel}`)));

@@ -40,7 +40,7 @@ export class Gains {
   }
 
   // Owners: sim_server with every joint, and each running controller that commands joints (its answer says when it
-  // has no PID of its own, as a position_controllers/ one does not).
+  // has no PID of its own, as a forwarding controller does not).
   update(controllers, joints) {
     const owners = { sim_server: Object.keys(joints) };
     for (const c of controllers) if (c.state === 'running' && c.interface && c.joints.length) owners[c.name] = c.joints;

@@ -1,0 +1,15 @@
+#include "controller_manager/controller_type.hpp"
+
+#include <algorithm>
+
+namespace lcm_control::cm {
+
+std::vector<std::string> parameter_names(const ControllerTypeInfo& info) {
+  std::vector<std::string> names;
+  for (const ParameterInfo& p : info.parameters)
+    for (const std::string* n : {&p.name, &p.ros1, &p.ros2})
+      if (!n->empty() && std::find(names.begin(), names.end(), *n) == names.end()) names.push_back(*n);
+  return names;
+}
+
+}  // namespace lcm_control::cm

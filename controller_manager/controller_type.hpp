@@ -1,0 +1,69 @@
+// What a controller type says about itself, declared next to its factory: the ROS names it answers to, the joints it
+// claims, what it takes on its command channel and its parameters. Plain data: the ROS catalog, doctor, `cmctl list`
+// and the dashboard read it instead of parsing type names.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "description/robot_model.hpp"
+
+namespace lcm_control::cm {
+
+class Controller;
+
+// The joints a type claims: on `interface`, the ones its parameters `joint_params` name ("joint", "joints",
+// "left_wheel" and "right_wheel"). No interface: it reads joints and claims none.
+struct ClaimInfo {
+  std::optional<Interface> interface;
+  std::vector<std::string> joint_params;
+};
+
+// What it takes on `<name>/<channel>`: a message type of lcmtypes/ ("float64_t", "float64_array_t",
+// "joint_trajectory_t", "twist_t"; "" for nothing) and, for numbers, how many and what each one sets.
+struct CommandInfo {
+  static constexpr int kOnePerJoint = -1;
+  std::string type;
+  std::string channel = "command";
+  int width = 0;         // numbers per message: 1, kOnePerJoint or a fixed count; 0 when the message is not numbers
+  std::string quantity;  // "position", "velocity" or "effort": the set point each number is; "" when not numbers
+};
+
+// One YAML key. `ros1`, `ros2`: what ROS 1's and ROS 2's controller call it ("" when they have no such key); a key
+// ROS has and this type does not read is listed with `implemented` false, to be named as such, not as a misspelling.
+struct ParameterInfo {
+  std::string name;
+  std::string type;           // "number", "bool", "string", "strings" (a list of names), "map", "list"
+  std::string default_value;  // as YAML; "" when required or worked out (the doc says how)
+  std::string ros1, ros2;
+  std::string doc;            // one line
+  bool implemented = true;
+};
+
+struct ControllerTypeInfo {
+  std::string name;                     // the type name it is registered as (ROS 1's class name)
+  std::vector<std::string> ros2_names;  // ROS 2 class names it will answer to (not registered yet)
+  std::string doc;                      // one line
+  ClaimInfo claims;
+  CommandInfo command;
+  std::vector<std::string> publishes;   // channels outside `<name>/` it publishes (e.g. joint_states)
+  std::vector<ParameterInfo> parameters;
+};
+
+// Every key a YAML entry of the type may hold as ROS knows it (read here or not): the names and the ROS 1 and
+// ROS 2 names of its parameters, in declaration order, each once.
+std::vector<std::string> parameter_names(const ControllerTypeInfo& info);
+
+// Creates a controller of `type` (one factory may serve a family of types).
+using Factory = std::function<std::unique_ptr<Controller>(const std::string& type)>;
+
+// A type as registered: what it says about itself and how to make one.
+struct ControllerType {
+  ControllerTypeInfo info;
+  Factory factory;
+};
+
+}  // namespace lcm_control::cm

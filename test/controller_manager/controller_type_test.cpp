@@ -1,0 +1,184 @@
+// Controller types describe themselves (controller_type.hpp): a type nobody here knows is one file (this one) and one
+// registration line, and doctor's checks, `cmctl list-types`, `cmctl list` (what the dashboard's command panel reads)
+// and send-trajectory's check see it from its declaration alone; the built-in types' declarations give the ROS
+// catalog's parameter names of before.
+#include "controller_manager/controller_type.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "bus/messages.hpp"
+#include "controller_manager/registry.hpp"
+#include "controller_manager/services.hpp"
+#include "test/controller_manager/rig.hpp"
+#include "test/support/lcm_test.hpp"
+#include "tools/lib/trajectory_goal.hpp"
+
+using namespace lcm_control;
+using namespace lcm_control::cm;
+using lcm_control::testing::Recorder;
+using lcm_control::testing::Rig;
+using lcm_control::tools::trajectory_controller;
+
+namespace {
+
+// The new type's file: an effort per joint of `joints`, times `scale`.
+class TinyEffort : public Controller {
+ public:
+  void init(ControllerContext& ctx) override {
+    Params& p = ctx.params();
+    for (const auto& n : p.strings("joints")) joints_.push_back(ctx.claim(n, Interface::Effort));
+    scale_ = p.number("scale", 1.0);
+    efforts_.assign(joints_.size(), 0.0);
+    ctx.take_commands(true, joints_.size(), [this](const double* v) {
+      for (size_t k = 0; k < efforts_.size(); ++k) efforts_[k] = v[k];
+    });
+  }
+  void starting(const Time&) override { std::fill(efforts_.begin(), efforts_.end(), 0.0); }
+  void update(const Time&, double) override {
+    for (size_t k = 0; k < joints_.size(); ++k) joints_[k]->command = scale_ * efforts_[k];
+  }
+
+ private:
+  std::vector<JointData*> joints_;
+  std::vector<double> efforts_;
+  double scale_ = 1;
+};
+
+ControllerType tiny_effort_controller() {
+  ControllerTypeInfo t;
+  t.name = "test_controllers/TinyEffortController";
+  t.ros2_names = {"tiny_controllers/TinyEffortController"};
+  t.doc = "scale times the effort of each joint";
+  t.claims = {Interface::Effort, {"joints"}};
+  t.command = {"float64_array_t", "command", CommandInfo::kOnePerJoint, "effort"};
+  t.parameters = {
+      {"joints", "strings", "", "joints", "joints", "the joints"},
+      {"scale", "number", "1", "scale", "gain", "times the command"},
+      {"ros_only", "bool", "", "ros_only", "", "what ROS's has and this one does not", false},
+  };
+  return {t, [](const std::string&) { return std::make_unique<TinyEffort>(); }};
+}
+
+Registry with_tiny() {
+  Registry r;
+  register_builtin(r);
+  r.add(tiny_effort_controller());  // the one registration line
+  return r;
+}
+
+bool has(const std::vector<std::string>& lines, const std::string& text) {
+  return std::any_of(lines.begin(), lines.end(), [&](const std::string& l) { return l.find(text) != std::string::npos; });
+}
+
+}  // namespace
+
+TEST(ControllerTypes, ANewTypeIsOneFileAndOneLineAndDoctorChecksItsParameters) {
+  const Registry registry = with_tiny();
+  Rig rig(registry, lcm_control::testing::data("test_bot.urdf"), lcm_control::testing::data("tiny_bot.yaml"));
+  const auto checks = rig.cm->check_configured();
+  const auto tiny = std::find_if(checks.begin(), checks.end(), [](const ControllerCheck& c) { return c.name == "tiny"; });
+  ASSERT_NE(tiny, checks.end());
+  EXPECT_EQ(tiny->outcome, ControllerCheck::Loads) << tiny->message;
+  EXPECT_TRUE(has(tiny->notes, "tiny/scael: not a parameter of test_controllers/TinyEffortController; ignored (did "
+                               "you mean 'scale'?)"))
+      << ::testing::PrintToString(tiny->notes);
+  EXPECT_TRUE(has(tiny->notes, "tiny/ros_only: known ROS parameter of test_controllers/TinyEffortController, not "
+                               "supported yet; ignored"))
+      << ::testing::PrintToString(tiny->notes);
+  EXPECT_EQ(parameter_names(*registry.info("test_controllers/TinyEffortController")),
+            (std::vector<std::string>{"joints", "scale", "gain", "ros_only"}));
+}
+
+TEST(ControllerTypes, ANewTypeIsListedWithWhatItTakes) {
+  const Registry registry = with_tiny();
+  Rig rig(registry, lcm_control::testing::data("test_bot.urdf"), lcm_control::testing::data("tiny_bot.yaml"));
+  Services services(*rig.cm, rig.bus);
+  Recorder<cm_response_t> responses(rig.bus.lcm(), "controller_manager/response");
+  cm_request_t types = cm_request(cm_request_t::LIST_TYPES, {}, {}, {});
+  types.request_id = 1;
+  rig.publish("controller_manager/request", types);
+  ASSERT_EQ(responses.messages.size(), 1u);
+  EXPECT_EQ(responses.messages[0].num_types, 17);
+  const auto& listed_types = responses.messages[0].types;
+  EXPECT_NE(std::find(listed_types.begin(), listed_types.end(), "test_controllers/TinyEffortController"),
+            listed_types.end());
+
+  for (const char* name : {"joint_state_controller", "tiny", "trajectory"}) ASSERT_TRUE(rig.load(name).ok) << name;
+  ASSERT_TRUE(rig.switch_({"joint_state_controller", "tiny", "trajectory"}, {}).ok);
+  const std::vector<controller_info_t> listed = rig.cm->list();
+  ASSERT_EQ(listed.size(), 3u);
+  const controller_info_t& jsc = listed[0];
+  EXPECT_EQ(jsc.command_type, "");
+  EXPECT_EQ(jsc.command_width, 0);
+  EXPECT_EQ(jsc.publishes, (std::vector<std::string>{"joint_states"}));
+  const controller_info_t& tiny = listed[1];
+  EXPECT_EQ(tiny.hardware_interface, "EffortJointInterface");
+  EXPECT_EQ(tiny.command_type, "float64_array_t");
+  EXPECT_EQ(tiny.command_channel, "command");
+  EXPECT_EQ(tiny.command_width, 2);
+  EXPECT_EQ(tiny.command_quantity, "effort");
+  EXPECT_EQ(tiny.num_publishes, 0);
+  EXPECT_EQ(listed[2].command_type, "joint_trajectory_t");
+  EXPECT_EQ(listed[2].command_width, 0);
+
+  // send-trajectory's check: what takes joint_trajectory_t, whatever its type's name.
+  EXPECT_EQ(trajectory_controller(listed, "trajectory").name, "trajectory");
+  try {
+    trajectory_controller(listed, "tiny");
+    ADD_FAILURE() << "tiny taken for a trajectory controller";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()), "'tiny' is a test_controllers/TinyEffortController, not a "
+                                     "JointTrajectoryController: send it commands with turret-cmd tiny VALUE...");
+  }
+}
+
+// The names each built-in type answers to as ROS parameters are the ROS catalog's lists of before the types
+// described themselves, in the same order (the closest one is suggested for a misspelt key).
+TEST(ControllerTypes, BuiltinDeclarationsGiveTheRosParameterNames) {
+  const Registry& r = builtin_registry();
+  auto names = [&](const std::string& type) {
+    const ControllerTypeInfo* info = r.info(type);
+    EXPECT_NE(info, nullptr) << type;
+    return info ? parameter_names(*info) : std::vector<std::string>{};
+  };
+  using V = std::vector<std::string>;
+  EXPECT_EQ(names("joint_state_controller/JointStateController"), (V{"publish_rate", "joints", "extra_joints"}));
+  for (const char* t : {"position_controllers/JointPositionController", "velocity_controllers/JointVelocityController",
+                        "effort_controllers/JointEffortController"})
+    EXPECT_EQ(names(t), V{"joint"}) << t;
+  for (const char* t : {"position_controllers/JointGroupPositionController",
+                        "velocity_controllers/JointGroupVelocityController",
+                        "effort_controllers/JointGroupEffortController", "effort_controllers/JointGroupPositionController"})
+    EXPECT_EQ(names(t), V{"joints"}) << t;
+  for (const char* t : {"effort_controllers/JointPositionController", "effort_controllers/JointVelocityController",
+                        "velocity_controllers/JointPositionController"})
+    EXPECT_EQ(names(t), (V{"joint", "pid"})) << t;
+  const V trajectory = {"joints", "gains", "velocity_ff", "constraints", "state_publish_rate", "action_monitor_rate",
+                        "stop_trajectory_duration", "allow_partial_joints_goal", "hold_trajectory_duration",
+                        "command_joints", "command_interfaces", "state_interfaces",
+                        "allow_integration_in_goal_trajectories", "open_loop_control", "interpolation_method",
+                        "allow_nonzero_velocity_at_trajectory_end", "cmd_timeout",
+                        "set_last_command_interface_value_as_state_on_activation", "interface_name"};
+  for (const char* t : {"position_controllers/JointTrajectoryController",
+                        "velocity_controllers/JointTrajectoryController", "effort_controllers/JointTrajectoryController"})
+    EXPECT_EQ(names(t), trajectory) << t;
+  EXPECT_EQ(names("diff_drive_controller/DiffDriveController"),
+            (V{"left_wheel", "right_wheel", "wheel_separation", "wheel_radius", "wheel_separation_multiplier",
+               "wheel_radius_multiplier", "left_wheel_radius_multiplier", "right_wheel_radius_multiplier",
+               "publish_rate", "cmd_vel_timeout", "base_frame_id", "odom_frame_id", "enable_odom_tf", "open_loop",
+               "velocity_rolling_window_size", "linear", "angular", "pose_covariance_diagonal",
+               "twist_covariance_diagonal", "allow_multiple_cmd_vel_publishers", "publish_cmd",
+               "publish_wheel_joint_controller_state", "estimate_velocity_from_position"}));
+  // Every built-in type declares its command and, when it claims joints, the parameters that name them.
+  for (const auto& t : r.types()) {
+    const ControllerTypeInfo& info = *r.info(t);
+    EXPECT_EQ(info.name, t);
+    if (info.claims.interface) {
+      EXPECT_FALSE(info.claims.joint_params.empty()) << t;
+      EXPECT_FALSE(info.command.type.empty()) << t;
+    }
+    for (const auto& p : info.parameters) EXPECT_FALSE(p.doc.empty()) << t << " " << p.name;
+  }
+}

@@ -1,0 +1,37 @@
+// The page's command panel (dashboard/page/src/commands.js) gives sliders from what a controller's type declares in
+// the controller manager's list (command_type, command_width, command_quantity), never from its type's name: a type
+// the page has never heard of gets them, a built-in one that takes no numbers does not. Run by ctest with node:
+// node commands_test.mjs <path of commands.js> <path of dom.js>.
+import assert from 'node:assert/strict';
+import { readFileSync } from 'node:fs';
+
+const moduleUrl = (text) => `data:text/javascript,${encodeURIComponent(text)}`;
+const dom = moduleUrl(readFileSync(process.argv[3], 'utf8'));
+const src = readFileSync(process.argv[2], 'utf8').replace("'./dom.js'", `"${dom}"`);
+const { commandKind, commandable } = await import(moduleUrl(src));
+
+const controller = (name, type, command_type, command_width, command_quantity, joints, state = 'running') =>
+  ({ name, type, state, interface: '', joints, command_type, command_channel: command_type ? 'command' : '',
+     command_width, command_quantity, publishes: [] });
+
+const listed = [
+  controller('joint_state_controller', 'joint_state_controller/JointStateController', '', 0, '', []),
+  controller('j1', 'position_controllers/JointPositionController', 'float64_t', 1, 'position', ['j1']),
+  controller('arm', 'effort_controllers/JointGroupPositionController', 'float64_array_t', 2, 'position', ['a', 'b']),
+  controller('pid', 'effort_controllers/JointVelocityController', 'float64_t', 1, 'velocity', ['j2']),
+  controller('trajectory', 'position_controllers/JointTrajectoryController', 'joint_trajectory_t', 0, '', ['a', 'b']),
+  controller('base', 'diff_drive_controller/DiffDriveController', 'twist_t', 0, '', ['l', 'r']),
+  controller('stopped', 'position_controllers/JointPositionController', 'float64_t', 1, 'position', ['j3'], 'stopped'),
+  // A type nobody here knows, declared in one file: its declaration is all the page needs.
+  controller('tiny', 'test_controllers/TinyEffortController', 'float64_array_t', 3, 'effort', ['x', 'y', 'z']),
+  // Numbers whose quantity its type does not declare (a plugin that says only what take_commands says).
+  controller('plain', 'my_controllers/Sine', 'float64_t', 1, '', ['j4']),
+];
+
+assert.deepEqual(commandable(listed).map((c) => c.name), ['j1', 'arm', 'pid', 'tiny', 'plain']);
+assert.deepEqual(commandable(listed).map(commandKind), ['position', 'position', 'velocity', 'effort', 'value']);
+// A width that does not fit the joints (a malformed list) gets no sliders.
+assert.equal(commandKind(controller('odd', 'x/Y', 'float64_array_t', 2, 'position', ['a', 'b', 'c'])), null);
+assert.equal(commandKind(controller('old', 'position_controllers/JointPositionController', undefined, undefined,
+  undefined, ['j1'])), null);
+console.log('commands.js: ok');
