@@ -92,7 +92,7 @@ CommandSources::CommandSources(Loop& loop, Bus& bus)
 CommandSources::~CommandSources() = default;
 
 void CommandSources::answer(int64_t request_id, const Reply& reply) {
-  cm_response_t m;
+  cm_response_t m{};  // every field zero: a field added to the type is never sent uninitialised
   m.utime = wall_us();
   m.request_id = request_id;
   m.op = cm_response_t::OP_COMMAND_SOURCE;

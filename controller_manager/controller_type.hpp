@@ -16,10 +16,12 @@ namespace lcm_control::cm {
 class Controller;
 
 // The joints a type claims: on `interface`, the ones its parameters `joint_params` name ("joint", "joints",
-// "left_wheel" and "right_wheel"). No interface: it reads joints and claims none.
+// "left_wheel" and "right_wheel"). No interface: it reads joints and claims none, unless `interface_param` names
+// the parameter that chooses it (ROS 2's `interface_name`, `command_interfaces`).
 struct ClaimInfo {
   std::optional<Interface> interface;
   std::vector<std::string> joint_params;
+  std::string interface_param;
 };
 
 // What it takes on `<name>/<channel>`: a message type of lcmtypes/ ("float64_t", "float64_array_t",
@@ -30,6 +32,7 @@ struct CommandInfo {
   std::string channel = "command";
   int width = 0;         // numbers per message: 1, kOnePerJoint or a fixed count; 0 when the message is not numbers
   std::string quantity;  // "position", "velocity" or "effort": the set point each number is; "" when not numbers
+                         // or when ClaimInfo::interface_param chooses it (then it is the claimed interface's)
 };
 
 // One YAML key. `ros1`, `ros2`: what ROS 1's and ROS 2's controller call it ("" when they have no such key); a key
@@ -43,9 +46,14 @@ struct ParameterInfo {
   bool implemented = true;
 };
 
+// Whose class name a type's name is: ros_controllers' (ROS 1), ros2_controllers' (ROS 2) or both (the same name
+// with either's parameters, e.g. diff_drive_controller/DiffDriveController).
+enum class RosVersion { Ros1, Ros2, Both };
+const char* to_string(RosVersion v);  // "ROS 1", "ROS 2", "ROS 1 and ROS 2"
+
 struct ControllerTypeInfo {
-  std::string name;                     // the type name it is registered as (ROS 1's class name)
-  std::vector<std::string> ros2_names;  // ROS 2 class names it will answer to (not registered yet)
+  std::string name;  // the type name it is registered as (a ROS class name)
+  RosVersion ros = RosVersion::Ros1;
   std::string doc;                      // one line
   ClaimInfo claims;
   CommandInfo command;

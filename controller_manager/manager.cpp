@@ -41,6 +41,8 @@ void describe_command(const ControllerTypeInfo* info, const Controller& controll
     out.command_channel = c.channel;
     out.command_width = c.width == CommandInfo::kOnePerJoint ? out.num_joints : c.width;
     out.command_quantity = c.quantity;
+    if (c.quantity.empty() && c.width != 0 && controller.claim().interface)
+      out.command_quantity = quantity_of(*controller.claim().interface);
   } else if (const CommandInput* in = controller.command_input()) {
     out.command_type = in->array ? float64_array_t::getTypeName() : float64_t::getTypeName();
     out.command_channel = "command";
@@ -309,6 +311,33 @@ std::vector<controller_info_t> ControllerManager::list() const {
     i.num_joints = static_cast<int32_t>(i.joints.size());
     describe_command(registry_.info(s->type), *s->controller, i);
     out.push_back(i);
+  }
+  return out;
+}
+
+std::vector<joint_interfaces_t> ControllerManager::interfaces() const {
+  std::vector<joint_interfaces_t> out;
+  for (const JointData& j : hw_.joints()) {
+    joint_interfaces_t i;
+    i.joint = j.name;
+    for (Interface x : j.offered) i.command.push_back(quantity_of(x));
+    const Ros2Component* c = nullptr;
+    for (const HardwareBlock& b : model_.ros2_control)
+      if (!c) c = b.joint(j.name);
+    if (c)
+      for (const Ros2Interface& s : c->state_interfaces) i.state.push_back(s.name);
+    else
+      i.state = {"position", "velocity", "effort"};
+    for (const auto& s : loop_.slots())
+      if (s->running && s->controller->claim().interface)
+        for (const auto& n : s->controller->claim().joints)
+          if (n == j.name) {
+            i.claimed = quantity_of(*s->controller->claim().interface);
+            i.claimed_by = s->name;
+          }
+    i.num_command = static_cast<int32_t>(i.command.size());
+    i.num_state = static_cast<int32_t>(i.state.size());
+    out.push_back(std::move(i));
   }
   return out;
 }

@@ -23,6 +23,7 @@
 #include "controller_manager/reply.hpp"
 #include "lcm_control/controller_info_t.hpp"
 #include "lcm_control/hardware_command_t.hpp"
+#include "lcm_control/joint_interfaces_t.hpp"
 #include "lcm_control/loop_stats_t.hpp"
 
 namespace lcm_control::cm {
@@ -67,6 +68,9 @@ class ControllerManager {
   // Unloads everything (with force: stops the running ones first) and re-reads the config file.
   void reload(bool force, Done done);
   std::vector<controller_info_t> list() const;
+  // Every actuated joint's command and state interfaces and which running controller claims it.
+  std::vector<joint_interfaces_t> interfaces() const;
+  bool from_ros2() const { return model_.from_ros2(); }
   // Tries every configured controller without loading it (doctor, start-up).
   std::vector<ControllerCheck> check_configured();
   std::vector<std::string> types() const { return registry_.types(); }

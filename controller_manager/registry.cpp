@@ -14,6 +14,7 @@ namespace lcm_control::cm {
 void register_builtin(Registry& r) {
   using I = Interface;
   r.add(joint_state_controller());
+  r.add(joint_state_broadcaster());
   r.add(franka_state_controller());
   r.add(forward_command_controller(I::Position, false));
   r.add(forward_command_controller(I::Velocity, false));
@@ -21,6 +22,8 @@ void register_builtin(Registry& r) {
   r.add(forward_command_controller(I::Position, true));
   r.add(forward_command_controller(I::Velocity, true));
   r.add(forward_command_controller(I::Effort, true));
+  r.add(ros2_forward_command_controller(false));
+  r.add(ros2_forward_command_controller(true));
   r.add(pid_controller(I::Effort, PidTarget::Position));
   r.add(pid_controller(I::Effort, PidTarget::Velocity));
   r.add(pid_controller(I::Velocity, PidTarget::Position));
@@ -28,6 +31,7 @@ void register_builtin(Registry& r) {
   r.add(joint_trajectory_controller(I::Position));
   r.add(joint_trajectory_controller(I::Effort));
   r.add(joint_trajectory_controller(I::Velocity));
+  r.add(ros2_joint_trajectory_controller());
   r.add(diff_drive_controller());
 }
 
@@ -88,9 +92,11 @@ std::string Registry::unknown_type_message(const std::string& type) const {
   const std::string origin = ros_origin_of_type(type);
   if (!origin.empty()) {
     const std::string instead = ros_alternative_to(type);
-    return fmt::format("controller type '{}' ({}) is not implemented here{} (`cmctl list-types` lists the {} "
+    const bool vendor = origin != "ros_controllers" && origin != "ros2_controllers";
+    return fmt::format("controller type '{}' ({}{}) is not {} here{} (`cmctl list-types` lists the {} "
                        "implemented types)",
-                       type, origin, instead.empty() ? "" : "; use " + instead, types().size());
+                       type, vendor ? "a vendor's controller, " : "", origin, vendor ? "available" : "implemented",
+                       instead.empty() ? "" : "; use " + instead, types().size());
   }
   return fmt::format("controller type '{}' does not exist; did you mean '{}'? Valid types: {}", type, closest(type),
                      join(types()));

@@ -84,13 +84,6 @@ std::string ros_origin_of_type(const std::string& type) {
 
 std::string ros_alternative_to(const std::string& type) {
   static const std::map<std::string, std::string> alternatives = {
-      {"joint_state_broadcaster/JointStateBroadcaster", "joint_state_controller/JointStateController (ROS 1 name)"},
-      {"joint_trajectory_controller/JointTrajectoryController",
-       "position_controllers/, velocity_controllers/ or effort_controllers/JointTrajectoryController (ROS 1 names, "
-       "one per command interface)"},
-      {"forward_command_controller/ForwardCommandController",
-       "position_controllers/JointGroupPositionController, velocity_controllers/JointGroupVelocityController or "
-       "effort_controllers/JointGroupEffortController (ROS 1 names)"},
       {"pos_vel_controllers/JointTrajectoryController", "position_controllers/JointTrajectoryController"},
       {"pos_vel_acc_controllers/JointTrajectoryController", "position_controllers/JointTrajectoryController"},
       {"franka_example_controllers/JointPositionExampleController", "position_controllers/JointGroupPositionController"},

@@ -60,7 +60,7 @@ Services::Services(ControllerManager& cm, Bus& bus)
 }
 
 void Services::answer(const cm_request_t& req, const Reply& reply, bool with_types, bool with_hardware) {
-  cm_response_t m;
+  cm_response_t m{};  // every field zero: a field added to the type is never sent uninitialised
   m.utime = wall_us();
   m.request_id = req.request_id;
   m.op = req.op;
@@ -73,6 +73,9 @@ void Services::answer(const cm_request_t& req, const Reply& reply, bool with_typ
   const int64_t now = monotonic_us();
   m.hardware = with_hardware ? cm_.hardware_summary(now) : "";
   m.hardware_age_us = with_hardware ? cm_.hardware_age_us(now) : -1;
+  m.ros2 = cm_.from_ros2();
+  if (with_hardware) m.joints = cm_.interfaces();
+  m.num_joints = static_cast<int32_t>(m.joints.size());
   pub_.publish(m);
   if (req.request_id < 0) return;
   const std::string line = fmt::format("request {}{}: {} -> {}: {}", req.request_id,

@@ -133,7 +133,8 @@ void parse_control_config(RobotModel& model, const YAML::Node& doc, const std::s
     throw ModelError(fmt::format("{}: expected a map of controllers at the top level (like `j1_controller: {{type: ...}}`)",
                                  file));
   model.update_rate_hz.reset();  // the file's own (a reload reads it again)
-  if (is_ros2_parameter_file(doc)) return parse_ros2_params(model, doc, file);  // controller_manager: ros__parameters:
+  model.ros2_parameter_file = is_ros2_parameter_file(doc);
+  if (model.ros2_parameter_file) return parse_ros2_params(model, doc, file);  // controller_manager: ros__parameters:
   const YAML::Node root = select_section(model, doc, file);
   const std::string prefix = model.config_section.empty() ? "" : model.config_section + "/";
   for (const auto& kv : root) {

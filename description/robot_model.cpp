@@ -43,6 +43,21 @@ std::optional<Interface> parse_interface(const std::string& raw) {
   return std::nullopt;
 }
 
+const char* quantity_of(Interface i) {
+  switch (i) {
+    case Interface::Position: return "position";
+    case Interface::Velocity: return "velocity";
+    case Interface::Effort: return "effort";
+  }
+  return "?";
+}
+
+std::optional<Interface> interface_of_quantity(const std::string& name) {
+  for (Interface i : {Interface::Position, Interface::Velocity, Interface::Effort})
+    if (name == quantity_of(i)) return i;
+  return std::nullopt;
+}
+
 const Joint* RobotModel::joint(const std::string& n) const {
   for (const auto& j : joints)
     if (j.name == n) return &j;

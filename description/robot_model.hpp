@@ -40,6 +40,9 @@ enum class Interface { Position, Velocity, Effort };
 const char* to_string(Interface i);  // "PositionJointInterface", ...
 // Accepts "hardware_interface/PositionJointInterface" and "PositionJointInterface".
 std::optional<Interface> parse_interface(const std::string& name);
+// ROS 2's name of the quantity: "position", "velocity", "effort"; and back (nullopt for any other name).
+const char* quantity_of(Interface i);
+std::optional<Interface> interface_of_quantity(const std::string& name);
 
 struct Geometry {
   enum class Type { Box, Cylinder, Sphere, Mesh } type = Type::Box;
@@ -148,6 +151,8 @@ struct RobotModel {
   InitialPositions initial_positions;               // joint -> initial_value of its position interface
   std::map<std::string, double> initial_velocities;  // joint -> initial_value of its velocity interface
   std::optional<double> update_rate_hz;             // controller_manager: ros__parameters: update_rate
+  bool ros2_parameter_file = false;                 // the config is a ROS 2 parameter file
+  bool from_ros2() const { return !ros2_control.empty() || ros2_parameter_file; }  // ROS 2 users' files
   std::vector<std::string> notes;              // what was resolved and how, one INFO line each
   std::vector<std::string> warnings;           // non-fatal findings, one line each
   std::vector<std::string> hints;              // valid, but often not what was meant (doctor prints them)

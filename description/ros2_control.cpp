@@ -40,13 +40,6 @@ std::string moving_joints(const RobotModel& model) {
   return n.empty() ? "none" : join(n);
 }
 
-std::optional<Interface> standard_command(const std::string& name) {
-  if (name == "position") return Interface::Position;
-  if (name == "velocity") return Interface::Velocity;
-  if (name == "effort") return Interface::Effort;
-  return std::nullopt;
-}
-
 std::string interface_names(const std::vector<Ros2Interface>& v) {
   std::vector<std::string> n;
   for (const auto& i : v) n.push_back(i.name);
@@ -354,7 +347,7 @@ void read_ros2_control(RobotModel& model, const tinyxml2::XMLElement* robot, con
       t.actuator = c.name + "_actuator";
       std::vector<std::string> unsimulated;
       for (const Ros2Interface& i : c.command_interfaces) {
-        if (const auto std_i = standard_command(i.name)) {
+        if (const auto std_i = interface_of_quantity(i.name)) {
           if (std::find(t.interfaces.begin(), t.interfaces.end(), *std_i) == t.interfaces.end())
             t.interfaces.push_back(*std_i);
         } else {

@@ -1,8 +1,10 @@
 // cmctl: the controller_manager command line (list, list-types, load, unload,
-// start, stop, switch, reload) over controller_manager/request and /response,
-// and the simulation's (pause, resume, step, reset, sim-status) over
-// sim_server/request and /response.
+// start, stop, switch, reload, and ROS 2's `ros2 control` verbs beside them)
+// over controller_manager/request and /response, and the simulation's (pause,
+// resume, step, reset, sim-status) over sim_server/request and /response.
 #include <fmt/ranges.h>
+
+#include <optional>
 
 #include "cli/cli.hpp"
 #include "tools/lib/cm_client.hpp"
@@ -20,6 +22,9 @@ int main(int argc, char** argv) {
       "  cmctl load j1_controller && cmctl start j1_controller\n"
       "  cmctl switch --start j2_effort_controller --stop j2_controller\n"
       "  cmctl --namespace robot1 list-types\n"
+      "  cmctl set-controller-state arm_controller active      (ROS 2's words: ros2 control ...)\n"
+      "  cmctl switch-controllers --activate vel --deactivate pos\n"
+      "  cmctl list-hardware-interfaces\n"
       "  cmctl pause && cmctl step 100 && cmctl resume\n"
       "  cmctl reset -J j1=0.5",
       "cmctl"};
@@ -31,14 +36,21 @@ int main(int argc, char** argv) {
   app.fallthrough();  // `cmctl list --lcm-url URL` as well as `cmctl --lcm-url URL list`
   std::vector<std::string> names, start, stop;
   bool best_effort = false, force = false;
-  auto* list = app.add_subcommand("list", "controllers with type, state, joints and interface");
-  auto* types = app.add_subcommand("list-types", "controller types this manager can load");
-  auto* load = app.add_subcommand("load", "load (configure) controllers from the YAML");
-  auto* unload = app.add_subcommand("unload", "unload stopped controllers");
+  auto* list = app.add_subcommand("list", "controllers with type, state, joints and interface")->alias("list-controllers");
+  auto* types = app.add_subcommand("list-types", "controller types this manager can load")->alias("list-controller-types");
+  auto* interfaces = app.add_subcommand("list-hardware-interfaces",
+                                        "each joint's command interfaces (available, claimed by whom) and state ones");
+  auto* load = app.add_subcommand("load", "load (configure) controllers from the YAML")->alias("load-controller");
+  auto* unload = app.add_subcommand("unload", "unload stopped controllers")->alias("unload-controller");
+  auto* set_state = app.add_subcommand("set-controller-state", "ROS 2: NAME inactive (stop; loads it if needed) or "
+                                                               "active (start; loads it if needed)")
+                        ->alias("set-state");
   auto* start_cmd = app.add_subcommand("start", "start controllers (one strict switch)");
   auto* stop_cmd = app.add_subcommand("stop", "stop controllers (one strict switch)");
   auto* sw = app.add_subcommand("switch", "stop some and start others in one switch");
-  auto* reload = app.add_subcommand("reload", "reload_controller_libraries: unload all and re-read the config");
+  sw->alias("switch-controllers");
+  auto* reload = app.add_subcommand("reload", "reload_controller_libraries: unload all and re-read the config")
+                     ->alias("reload-controller-libraries");
   auto* pause = app.add_subcommand("pause", "sim_server: hold sim time (Gazebo's pause_physics); switching still works");
   auto* resume = app.add_subcommand("resume", "sim_server: run again from where it paused");
   auto* step_cmd = app.add_subcommand("step", "sim_server, paused: advance exactly N control steps, then pause again");
@@ -57,10 +69,18 @@ int main(int argc, char** argv) {
                     "other joints go back to sim_server's -J (or 0)")
       ->check(initial_position_problem);
   for (auto* sc : {load, unload, start_cmd, stop_cmd}) sc->add_option("NAME", names, "controller names")->required();
-  sw->add_option("--start", start, "controllers to start");
-  sw->add_option("--stop", stop, "controllers to stop");
+  std::string load_state, wanted_state, state_name;
+  load->add_option("--set-state", load_state, "ROS 2: then make it inactive (loaded) or active (started)")
+      ->check(CLI::IsMember({"inactive", "active"}));
+  set_state->add_option("NAME", state_name, "controller name")->required();
+  set_state->add_option("STATE", wanted_state, "inactive or active")
+      ->required()
+      ->check(CLI::IsMember({"inactive", "active"}));
+  sw->add_option("--start,--activate", start, "controllers to start (ROS 2: activate)");
+  sw->add_option("--stop,--deactivate", stop, "controllers to stop (ROS 2: deactivate)");
   sw->add_flag("--best-effort", best_effort, "start/stop what can be, skip what cannot (default: strict, all or none)");
-  reload->add_flag("--force", force, "stop and unload running controllers first");
+  sw->add_flag("--strict", "all or none (the default; ROS 2's flag, accepted)");
+  reload->add_flag("--force,--force-kill", force, "stop and unload running controllers first");
   return run_program(app, argc, argv, [&] {
     install_stop_signals();
     Bus bus(bus_flags.lcm_url, bus_flags.ns);
@@ -86,11 +106,39 @@ int main(int argc, char** argv) {
     }
     CmClient cm(bus, "cmctl");
     cm_response_t r;
+    // The state `name` is in ("" when not loaded).
+    auto state_of = [&](const std::string& name) {
+      const cm_response_t l = cm.list(timeout);
+      for (const auto& c : l.controllers)
+        if (c.name == name) return c.state;
+      return std::string();
+    };
     if (list->parsed()) {
       r = cm.list(timeout);
       if (r.ok) {
-        fmt::print("{}", r.controllers.empty() ? "no controllers loaded\n" : controller_table(r.controllers));
+        fmt::print("{}", r.controllers.empty() ? "no controllers loaded\n" : controller_table(r.controllers, r.ros2));
         if (!r.hardware.empty()) fmt::print("hardware: {}\n", r.hardware);
+      }
+    } else if (interfaces->parsed()) {
+      r = cm.list(timeout);
+      if (r.ok) fmt::print("{}", hardware_interfaces_text(r.joints));
+    } else if (set_state->parsed() || (load->parsed() && !load_state.empty())) {
+      const std::string state = set_state->parsed() ? wanted_state : load_state;
+      if (set_state->parsed()) names = {state_name};
+      for (const auto& name : names) {
+        std::string now = state_of(name);
+        if (now.empty()) {
+          r = cm.load({name}, timeout);
+          if (!r.ok) break;
+          now = "initialized";
+        }
+        if ((now == "running") != (state == "active"))
+          r = state == "active" ? cm.switch_controllers({name}, {}, true, timeout)
+                                : cm.switch_controllers({}, {name}, true, timeout);
+        else
+          r.ok = true;
+        if (!r.ok) break;
+        r.message = fmt::format("{} is {}", name, ros2_state(state_of(name)));
       }
     } else if (types->parsed()) {
       r = cm.list_types(timeout);
@@ -111,7 +159,7 @@ int main(int argc, char** argv) {
       r = cm.reload(force, timeout);
     }
     if (!r.ok) throw std::runtime_error(r.message.empty() ? "refused (no reason given)" : r.message);
-    if (!list->parsed() && !types->parsed()) fmt::print("{}\n", r.message.empty() ? "ok" : r.message);
+    if (!list->parsed() && !types->parsed() && !interfaces->parsed()) fmt::print("{}\n", r.message.empty() ? "ok" : r.message);
     return int(kExitOk);
   });
 }

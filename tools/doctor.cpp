@@ -20,7 +20,7 @@ using lcm_control::cm::ControllerCheck;
 const char* verdict(ControllerCheck::Outcome o) {
   switch (o) {
     case ControllerCheck::Loads: return "loads";
-    case ControllerCheck::NotImplemented: return "not implemented here";
+    case ControllerCheck::NotImplemented: return "not available here";
     case ControllerCheck::InterfaceMismatch: return "will not load with this URDF's transmissions";
     case ControllerCheck::Refused: return "REFUSED";
   }

@@ -6,6 +6,8 @@
 // arcs), publishing odometry_t on `<controller>/odom` at publish_rate.
 // wheel_radius and wheel_separation default to the URDF's (the wheel link's
 // collision cylinder or sphere, and the wheel joints' distance apart).
+// ROS 2's parameters (left_wheel_names, right_wheel_names, and limits that hold
+// once a max_*/min_* is given, without has_*_limits) are read too.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -35,7 +37,8 @@ struct SpeedLimits {
   }
 };
 
-SpeedLimits read_limits(const Params& p, const char* group, const char* axis) {
+// ros2: a limit given (max_* or min_*) holds without has_*_limits, as in ROS 2 since Jazzy.
+SpeedLimits read_limits(const Params& p, const char* group, const char* axis, bool ros2) {
   SpeedLimits l;
   const YAML::Node n = p.node(group);
   if (!n) return l;
@@ -53,15 +56,16 @@ SpeedLimits read_limits(const Params& p, const char* group, const char* axis) {
       throw ControllerError(fmt::format("{}/{}: '{}' is not a number", where, key, a[key].Scalar()));
     }
   };
-  auto flag = [&](const char* key) {
+  auto flag = [&](const char* key, const char* max_key, const char* min_key) {
+    if (ros2 && !a[key]) return a[max_key] || a[min_key];
     try {
       return a[key] && a[key].as<bool>();
     } catch (const YAML::Exception&) {
       throw ControllerError(fmt::format("{}/{}: '{}' is not true or false", where, key, a[key].Scalar()));
     }
   };
-  l.has_velocity = flag("has_velocity_limits");
-  l.has_acceleration = flag("has_acceleration_limits");
+  l.has_velocity = flag("has_velocity_limits", "max_velocity", "min_velocity");
+  l.has_acceleration = flag("has_acceleration_limits", "max_acceleration", "min_acceleration");
   l.max_velocity = num("max_velocity", 0);
   l.min_velocity = num("min_velocity", -l.max_velocity);
   l.max_acceleration = num("max_acceleration", 0);
@@ -92,8 +96,10 @@ class DiffDriveController : public Controller {
       if (n && n.IsScalar()) return std::vector<std::string>{p.string(key)};
       return p.strings(key);
     };
-    for (const auto& n : wheels("left_wheel")) left_.push_back(ctx.claim(n, Interface::Velocity));
-    for (const auto& n : wheels("right_wheel")) right_.push_back(ctx.claim(n, Interface::Velocity));
+    const bool ros2 = p.has("left_wheel_names") || p.has("right_wheel_names");
+    for (const auto& n : wheels(ros2 ? "left_wheel_names" : "left_wheel")) left_.push_back(ctx.claim(n, Interface::Velocity));
+    for (const auto& n : wheels(ros2 ? "right_wheel_names" : "right_wheel"))
+      right_.push_back(ctx.claim(n, Interface::Velocity));
     const RobotModel& m = ctx.model();
     double radius = p.has("wheel_radius") ? p.number("wheel_radius") : wheel_radius_of(m, left_[0]->name);
     double separation = 0;
@@ -120,13 +126,14 @@ class DiffDriveController : public Controller {
     timeout_ = p.number("cmd_vel_timeout", 0.5);
     open_loop_ = p.boolean("open_loop", false);
     speeds_.assign(static_cast<size_t>(std::max(1.0, p.number("velocity_rolling_window_size", 10))), {0.0, 0.0});
-    linear_ = read_limits(p, "linear", "x");
-    angular_ = read_limits(p, "angular", "z");
+    linear_ = read_limits(p, "linear", "x", ros2);
+    angular_ = read_limits(p, "angular", "z", ros2);
     odom_.frame_id = p.has("odom_frame_id") ? p.string("odom_frame_id") : "odom";
     odom_.child_frame_id = p.has("base_frame_id") ? p.string("base_frame_id") : "base_link";
     for (const char* ignored : {"enable_odom_tf", "pose_covariance_diagonal", "twist_covariance_diagonal",
                                 "allow_multiple_cmd_vel_publishers", "publish_cmd",
-                                "publish_wheel_joint_controller_state"})
+                                "publish_wheel_joint_controller_state", "wheels_per_side", "use_stamped_vel",
+                                "tf_frame_prefix_enable", "tf_frame_prefix"})
       if (p.has(ignored)) p.node(ignored);
     const std::string name = ctx.name();
     auto bad = [this, name](const std::string& why) {
@@ -263,16 +270,16 @@ class DiffDriveController : public Controller {
 ControllerType diff_drive_controller() {
   ControllerTypeInfo t;
   t.name = "diff_drive_controller/DiffDriveController";
-  t.ros2_names = {"diff_drive_controller/DiffDriveController"};
+  t.ros = RosVersion::Both;
   t.doc = "a twist_t on <name>/cmd_vel to wheel velocities; odometry_t on <name>/odom";
-  t.claims = {Interface::Velocity, {"left_wheel", "right_wheel"}};
+  t.claims = {Interface::Velocity, {"left_wheel", "right_wheel"}, ""};
   t.command = {"twist_t", "cmd_vel", 0, ""};
-  auto ignored = [](const char* name, const char* type) {
-    return ParameterInfo{name, type, "", name, "", "read and not used", true};
+  auto ignored = [](const char* name, const char* type, bool ros1 = true, bool ros2 = false) {
+    return ParameterInfo{name, type, "", ros1 ? name : "", ros2 ? name : "", "read and not used", true};
   };
   t.parameters = {
-      {"left_wheel", "strings", "", "left_wheel", "", "the left wheel joint(s): a name or a list"},
-      {"right_wheel", "strings", "", "right_wheel", "", "the right wheel joint(s): a name or a list"},
+      {"left_wheel", "strings", "", "left_wheel", "left_wheel_names", "the left wheel joint(s): a name or a list"},
+      {"right_wheel", "strings", "", "right_wheel", "right_wheel_names", "the right wheel joint(s): a name or a list"},
       {"wheel_separation", "number", "", "wheel_separation", "wheel_separation",
        "m (default: the wheel joints' distance apart in the URDF)"},
       {"wheel_radius", "number", "", "wheel_radius", "wheel_radius",
@@ -288,14 +295,19 @@ ControllerType diff_drive_controller() {
       {"cmd_vel_timeout", "number", "0.5", "cmd_vel_timeout", "cmd_vel_timeout", "s without a command: wheels stop"},
       {"base_frame_id", "string", "base_link", "base_frame_id", "base_frame_id", "odometry's child frame"},
       {"odom_frame_id", "string", "odom", "odom_frame_id", "odom_frame_id", "odometry's frame"},
-      ignored("enable_odom_tf", "bool"),
+      ignored("enable_odom_tf", "bool", true, true),
+      ignored("wheels_per_side", "number", false, true),
+      ignored("use_stamped_vel", "bool", false, true),
+      ignored("tf_frame_prefix_enable", "bool", false, true),
+      ignored("tf_frame_prefix", "string", false, true),
+      {"position_feedback", "bool", "true", "", "position_feedback", "odometry from wheel velocities", false},
       {"open_loop", "bool", "false", "open_loop", "open_loop", "odometry from the commands instead of the wheels"},
       {"velocity_rolling_window_size", "number", "10", "velocity_rolling_window_size", "velocity_rolling_window_size",
        "samples averaged into the odometry's velocity"},
       {"linear", "map", "", "linear", "linear", "x: {has_velocity_limits, max_velocity, ...} of the linear speed"},
       {"angular", "map", "", "angular", "angular", "z: {has_velocity_limits, max_velocity, ...} of the turn rate"},
-      ignored("pose_covariance_diagonal", "list"),
-      ignored("twist_covariance_diagonal", "list"),
+      ignored("pose_covariance_diagonal", "list", true, true),
+      ignored("twist_covariance_diagonal", "list", true, true),
       ignored("allow_multiple_cmd_vel_publishers", "bool"),
       ignored("publish_cmd", "bool"),
       ignored("publish_wheel_joint_controller_state", "bool"),

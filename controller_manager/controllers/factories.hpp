@@ -9,14 +9,18 @@
 namespace lcm_control::cm {
 
 ControllerType joint_state_controller();
+ControllerType joint_state_broadcaster();  // ROS 2
 ControllerType franka_state_controller();
 // `command` on one joint (a float64_t) or, with `group`, on `joints` (a float64_array_t).
 ControllerType forward_command_controller(Interface command, bool group);
+// ROS 2's: the interface from interface_name (`joints`) or interface_names (one, on `joint`).
+ControllerType ros2_forward_command_controller(bool multi_interface);
 // A PID from a position or a velocity set point to the `out` command of one joint.
 enum class PidTarget { Position, Velocity };
 ControllerType pid_controller(Interface out, PidTarget target);
 ControllerType group_position_pid_controller();  // position set points to efforts, one PID per joint
 ControllerType joint_trajectory_controller(Interface command);
+ControllerType ros2_joint_trajectory_controller();  // the interface from command_interfaces
 ControllerType diff_drive_controller();
 
 }  // namespace lcm_control::cm

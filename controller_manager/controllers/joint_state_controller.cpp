@@ -9,7 +9,14 @@
 // joint_states of `joint_names` at publish_rate (franka_states and `arm_id`
 // have no equivalent here; a note says so), so franka_gazebo's YAML gives
 // joint_states unchanged.
+// joint_state_broadcaster/JointStateBroadcaster (ROS 2) publishes every cycle
+// (or at its own `update_rate`), every joint unless both `joints` and
+// `interfaces` are given (ROS 2's rule); an interface left out is NaN; its
+// `extra_joints` are names, published at 0.
 #include <fmt/format.h>
+
+#include <array>
+#include <limits>
 
 #include "bus/messages.hpp"
 #include "controller_manager/controllers/factories.hpp"
@@ -19,20 +26,27 @@ namespace lcm_control::cm {
 
 namespace {
 
+enum class Flavour { Ros1, Franka, Ros2 };
+
 class JointStateController : public Controller {
  public:
-  explicit JointStateController(bool franka) : franka_(franka) {}
+  explicit JointStateController(Flavour flavour) : flavour_(flavour) {}
 
   void init(ControllerContext& ctx) override {
     Params& p = ctx.params();
-    rate_ = p.number("publish_rate");
-    if (rate_ <= 0) throw p.error("publish_rate", fmt::format("{} Hz: must be > 0", rate_));
-    const char* joints_key = franka_ ? "joint_names" : "joints";
-    if (franka_) {
+    const bool franka = flavour_ == Flavour::Franka, ros2 = flavour_ == Flavour::Ros2;
+    const char* rate_key = ros2 ? "update_rate" : "publish_rate";
+    if (!ros2 || p.has(rate_key)) {
+      rate_ = p.number(rate_key);
+      if (rate_ <= 0) throw p.error(rate_key, fmt::format("{} Hz: must be > 0", rate_));
+    }
+    const char* joints_key = franka ? "joint_names" : "joints";
+    if (franka) {
       if (p.has("arm_id")) p.node("arm_id");
       ctx.notes.push_back(p.where() + ": publishes joint_states only (franka_states has no equivalent here)");
     }
-    const bool listed = p.has(joints_key);
+    bool listed = p.has(joints_key);
+    if (ros2) read_interfaces(ctx, listed);
     std::vector<std::string> names = listed ? p.strings(joints_key) : ctx.actuated_joints();
     std::vector<std::string> mimic_names;
     for (const auto& n : names) {
@@ -58,9 +72,10 @@ class JointStateController : public Controller {
       for (size_t k = 0; k < extra.size(); ++k) {
         const YAML::Node e = extra[k];
         const std::string where = fmt::format("{}/extra_joints[{}]", p.where(), k);
-        if (!e.IsMap() || !e["name"] || !e["name"].IsScalar())
-          throw ControllerError(where + ": expected a map with at least `name`");
-        const std::string n = e["name"].Scalar();
+        const bool bare_name = ros2 && e.IsScalar();  // ROS 2: a name, published at 0
+        if (!bare_name && (!e.IsMap() || !e["name"] || !e["name"].IsScalar()))
+          throw ControllerError(where + (ros2 ? ": expected a joint name" : ": expected a map with at least `name`"));
+        const std::string n = bare_name ? e.Scalar() : e["name"].Scalar();
         bool dup = false;
         for (const auto& x : names) dup = dup || x == n;
         if (dup) {
@@ -69,7 +84,7 @@ class JointStateController : public Controller {
         }
         Extra x{n, 0, 0, 0};
         for (auto [key, out] : {std::pair{"position", &x.position}, {"velocity", &x.velocity}, {"effort", &x.effort}})
-          if (e[key]) {
+          if (!bare_name && e[key]) {
             try {
               *out = e[key].as<double>();
             } catch (const YAML::Exception&) {
@@ -85,26 +100,30 @@ class JointStateController : public Controller {
     pub_ = ctx.endpoints().publisher<joint_state_t>(ctx.root_channel(channels::kJointStates));
   }
 
-  void starting(const Time& now) override { last_ = now.seconds() - 1.001 / rate_; }
+  void starting(const Time& now) override {
+    if (rate_ > 0) last_ = now.seconds() - 1.001 / rate_;
+  }
 
   void update(const Time& now, double) override {
-    const double t = now.seconds(), dt = 1.0 / rate_;
-    if (t < last_) last_ = t - 1.001 * dt;
-    if (!(last_ + dt < t)) return;
-    last_ += dt;
-    if (t - last_ > dt) last_ = t;  // fell behind (time jump, slow loop): no burst to catch up
+    if (rate_ > 0) {
+      const double t = now.seconds(), dt = 1.0 / rate_;
+      if (t < last_) last_ = t - 1.001 * dt;
+      if (!(last_ + dt < t)) return;
+      last_ += dt;
+      if (t - last_ > dt) last_ = t;  // fell behind (time jump, slow loop): no burst to catch up
+    }
     msg_.utime = now.utime;
     size_t k = 0;
     for (const JointData* j : joints_) {
-      msg_.position[k] = j->position;
-      msg_.velocity[k] = j->velocity;
-      msg_.effort[k] = j->effort;
+      msg_.position[k] = show_[0] ? j->position : kNotPublished;
+      msg_.velocity[k] = show_[1] ? j->velocity : kNotPublished;
+      msg_.effort[k] = show_[2] ? j->effort : kNotPublished;
       ++k;
     }
     for (const MimicJoint& m : mimics_) {  // as joint_state_publisher does: from the joint it follows
-      msg_.position[k] = m.multiplier * m.leader->position + m.offset;
-      msg_.velocity[k] = m.multiplier * m.leader->velocity;
-      msg_.effort[k] = 0;  // not measured
+      msg_.position[k] = show_[0] ? m.multiplier * m.leader->position + m.offset : kNotPublished;
+      msg_.velocity[k] = show_[1] ? m.multiplier * m.leader->velocity : kNotPublished;
+      msg_.effort[k] = show_[2] ? 0 : kNotPublished;  // not measured
       ++k;
     }
     for (const Extra& e : extra_) {
@@ -117,6 +136,38 @@ class JointStateController : public Controller {
   }
 
  private:
+  static constexpr double kNotPublished = std::numeric_limits<double>::quiet_NaN();
+
+  // ROS 2's `interfaces` (with `joints`: both given pick, else every joint and interface).
+  void read_interfaces(ControllerContext& ctx, bool& joints_listed) {
+    Params& p = ctx.params();
+    if (!p.has("interfaces")) {
+      if (joints_listed) {
+        p.node("joints");
+        ctx.notes.push_back(p.where() + ": joints without interfaces: every joint is published, as ROS 2's "
+                                        "joint_state_broadcaster does (give interfaces too to pick joints)");
+        joints_listed = false;
+      }
+      return;
+    }
+    const std::vector<std::string> names = p.strings("interfaces");
+    if (!joints_listed) {
+      ctx.notes.push_back(p.where() + ": interfaces without joints: every interface of every joint is published, as "
+                                      "ROS 2's joint_state_broadcaster does");
+      return;
+    }
+    show_ = {false, false, false};
+    for (const auto& n : names) {
+      const auto i = interface_of_quantity(n);
+      if (!i) {
+        ctx.notes.push_back(fmt::format("{}/interfaces: '{}' is not in joint_states (position, velocity, effort); "
+                                        "not published", p.where(), n));
+        continue;
+      }
+      show_[static_cast<int>(*i)] = true;
+    }
+  }
+
   struct Extra {
     std::string name;
     double position, velocity, effort;
@@ -125,8 +176,9 @@ class JointStateController : public Controller {
     const JointData* leader;
     double multiplier, offset;
   };
-  bool franka_;
-  double rate_ = 0, last_ = 0;
+  Flavour flavour_;
+  std::array<bool, 3> show_{true, true, true};  // position, velocity, effort published (else NaN)
+  double rate_ = 0, last_ = 0;                  // rate 0: every cycle
   std::vector<const JointData*> joints_;
   std::vector<MimicJoint> mimics_;
   std::vector<Extra> extra_;
@@ -139,7 +191,6 @@ class JointStateController : public Controller {
 ControllerType joint_state_controller() {
   ControllerTypeInfo t;
   t.name = "joint_state_controller/JointStateController";
-  t.ros2_names = {"joint_state_broadcaster/JointStateBroadcaster"};
   t.doc = "publishes joint_states of the joints at publish_rate on the hardware clock";
   t.publishes = {channels::kJointStates};
   t.parameters = {
@@ -147,7 +198,27 @@ ControllerType joint_state_controller() {
       {"joints", "strings", "", "", "joints", "which joints and in what order (default: every actuated joint, then the mimic joints)"},
       {"extra_joints", "list", "", "extra_joints", "", "fixed {name, position, velocity, effort} appended"},
   };
-  return {t, [](const std::string&) { return std::make_unique<JointStateController>(false); }};
+  return {t, [](const std::string&) { return std::make_unique<JointStateController>(Flavour::Ros1); }};
+}
+
+ControllerType joint_state_broadcaster() {
+  ControllerTypeInfo t;
+  t.name = "joint_state_broadcaster/JointStateBroadcaster";
+  t.ros = RosVersion::Ros2;
+  t.doc = "publishes joint_states of the joints every cycle (or at update_rate) on the hardware clock";
+  t.publishes = {channels::kJointStates};
+  t.parameters = {
+      {"update_rate", "number", "", "", "update_rate", "Hz on the hardware clock (default: every cycle)"},
+      {"joints", "strings", "", "", "joints", "with interfaces: which joints and in what order (else every joint)"},
+      {"interfaces", "strings", "", "", "interfaces", "with joints: which of position, velocity, effort (others NaN)"},
+      {"extra_joints", "strings", "", "", "extra_joints", "names appended, published at 0"},
+      {"use_local_topics", "bool", "false", "", "use_local_topics", "joint_states under the controller's name", false},
+      {"map_interface_to_joint_state", "map", "", "", "map_interface_to_joint_state",
+       "other interfaces published as position, velocity or effort", false},
+      {"use_urdf_to_filter", "bool", "true", "", "use_urdf_to_filter", "only joints the URDF has", false},
+      {"frame_id", "string", "base_link", "", "frame_id", "header frame of joint_states", false},
+  };
+  return {t, [](const std::string&) { return std::make_unique<JointStateController>(Flavour::Ros2); }};
 }
 
 ControllerType franka_state_controller() {
@@ -160,7 +231,7 @@ ControllerType franka_state_controller() {
       {"joint_names", "strings", "", "joint_names", "", "which joints and in what order"},
       {"arm_id", "string", "", "arm_id", "", "read and not used (franka_states is not published)"},
   };
-  return {t, [](const std::string&) { return std::make_unique<JointStateController>(true); }};
+  return {t, [](const std::string&) { return std::make_unique<JointStateController>(Flavour::Franka); }};
 }
 
 }  // namespace lcm_control::cm

@@ -13,12 +13,23 @@
 // points stops). Feedback on `<name>/feedback`, one result per goal on
 // `<name>/result` (trajectory_status_t), naming the joint and the error when
 // a tolerance is violated.
+// joint_trajectory_controller/JointTrajectoryController (ROS 2) is the same
+// controller with ROS 2's parameters: `command_interfaces` chooses the
+// interface ([position], [position, velocity(, acceleration)] and
+// [position, effort] command positions: the hardware takes one command per
+// joint; [velocity], [effort] use `gains` (default 0, as ROS 2, with
+// ff_velocity_scale), or with open_loop_control and [velocity] the desired
+// velocity as it is), `state_interfaces` are checked, `interpolation_method:
+// none` steps from waypoint to waypoint, and `cmd_timeout` (> goal_time) holds
+// the measured position that long after a trajectory's end.
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <optional>
 
 #include "control/angles.hpp"
 #include "controller_manager/controllers/factories.hpp"
@@ -41,18 +52,84 @@ double non_negative(const YAML::Node& x, const std::string& where) {
   }
 }
 
+// ROS 2's `command_interfaces` as the one interface the hardware takes.
+Interface ros2_command_interface(Params& p, std::vector<std::string>& notes) {
+  const std::vector<std::string> c = p.strings("command_interfaces");
+  auto is = [&c](std::initializer_list<const char*> set) {
+    if (c.size() != set.size()) return false;
+    for (const char* x : set)
+      if (std::find(c.begin(), c.end(), x) == c.end()) return false;
+    return true;
+  };
+  if (is({"position"})) return Interface::Position;
+  if (is({"velocity"})) return Interface::Velocity;
+  if (is({"effort"})) return Interface::Effort;
+  if (is({"position", "velocity"}) || is({"position", "velocity", "acceleration"}) || is({"position", "effort"})) {
+    notes.push_back(fmt::format("{}/command_interfaces: [{}]: the joints are commanded in position (the hardware "
+                                "takes one command per joint; the others are not sent)",
+                                p.where(), fmt::join(c, ", ")));
+    return Interface::Position;
+  }
+  throw p.error("command_interfaces", fmt::format("[{}] is not a combination ROS 2 allows; use [position], [velocity], "
+                                                  "[effort], [position, velocity], [position, velocity, acceleration] "
+                                                  "or [position, effort]",
+                                                  fmt::join(c, ", ")));
+}
+
+// ROS 2's `gains/<joint>`: p, i, d default 0; ff_velocity_scale is the velocity feed-forward; u_clamp_* clamp the
+// command; angle_wraparound and normalize_error are what continuous joints do here anyway.
+PidGains ros2_gains(const YAML::Node& node, const std::string& where, double& ff, double& u_min, double& u_max) {
+  if (!node.IsMap()) throw ControllerError(where + ": expected a map {p, i, d, i_clamp, ff_velocity_scale}");
+  YAML::Node g = YAML::Clone(node);
+  auto take = [&](const char* key, double& out) {
+    if (!g[key]) return;
+    try {
+      out = g[key].as<double>();
+    } catch (const YAML::Exception&) {
+      throw ControllerError(fmt::format("{}/{}: '{}' is not a number", where, key, g[key].Scalar()));
+    }
+    g.remove(key);
+  };
+  take("ff_velocity_scale", ff);
+  take("u_clamp_min", u_min);
+  take("u_clamp_max", u_max);
+  for (const char* ignored : {"angle_wraparound", "normalize_error", "antiwindup_strategy", "tracking_time_constant",
+                              "error_deadband", "saturation"})
+    g.remove(ignored);
+  if (!g["p"]) g["p"] = 0.0;
+  return Params::pid_from(g, where);
+}
+
 class JointTrajectoryController : public Controller {
  public:
-  explicit JointTrajectoryController(Interface iface) : iface_(iface) {}
+  // No `iface`: ROS 2's controller, whose command_interfaces choose it.
+  explicit JointTrajectoryController(std::optional<Interface> iface)
+      : iface_(iface.value_or(Interface::Position)), ros2_(!iface) {}
 
   void init(ControllerContext& ctx) override {
     Params& p = ctx.params();
     name_ = ctx.name();
     names_ = p.strings("joints");
+    if (ros2_) read_ros2_interfaces(p, ctx.notes);
     for (const auto& n : names_) joints_.push_back(ctx.claim(n, iface_));
     const size_t n = names_.size();
     read_constraints(p);
-    if (iface_ != Interface::Position) {
+    u_min_.assign(n, -std::numeric_limits<double>::infinity());
+    u_max_.assign(n, std::numeric_limits<double>::infinity());
+    if (ros2_ && iface_ != Interface::Position) {
+      pids_.resize(n);
+      velocity_ff_.assign(n, 0.0);
+      const YAML::Node gains = p.node("gains");
+      if (gains && !gains.IsMap()) throw p.error("gains", "expected a map {<joint>: {p, i, d, ff_velocity_scale}}");
+      if (!open_loop_ && (!gains || gains.size() == 0))
+        ctx.notes.push_back(fmt::format("{}: no gains: every gain is 0, so the {} command is 0, as in ROS 2 (give "
+                                        "gains: {{<joint>: {{p, i, d, ff_velocity_scale}}}})",
+                                        p.where(), quantity_of(iface_)));
+      for (size_t k = 0; k < n && gains; ++k)
+        if (gains[names_[k]])
+          pids_[k].set_gains(ros2_gains(gains[names_[k]], p.where() + "/gains/" + names_[k], velocity_ff_[k],
+                                        u_min_[k], u_max_[k]));
+    } else if (iface_ != Interface::Position) {
       const YAML::Node gains = p.node("gains");
       if (!gains || !gains.IsMap())
         throw p.error("gains", fmt::format("missing (required for {}): gains: {{<joint>: {{p, i, d}}}} per joint",
@@ -76,7 +153,8 @@ class JointTrajectoryController : public Controller {
         }
       }
     } else if (p.has("gains") || p.has("velocity_ff")) {
-      ctx.notes.push_back(fmt::format("{}: gains and velocity_ff are not used with PositionJointInterface", name_));
+      ctx.notes.push_back(fmt::format("{}: gains{} are not used with the position interface", name_,
+                                      ros2_ ? "" : " and velocity_ff"));
       p.node("gains");
       p.node("velocity_ff");
     }
@@ -87,6 +165,7 @@ class JointTrajectoryController : public Controller {
     stop_duration_ = p.number("stop_trajectory_duration", 0.0);
     if (stop_duration_ < 0) throw p.error("stop_trajectory_duration", "must be >= 0 seconds");
     allow_partial_ = p.boolean("allow_partial_joints_goal", false);
+    if (ros2_) read_ros2_options(p, ctx.notes);
 
     desired_.resize(n);
     rest_from_.resize(n);
@@ -163,8 +242,11 @@ class JointTrajectoryController : public Controller {
       state_.error_velocity[k] = e_dot;
       if (iface_ == Interface::Position) {
         j.command = desired_[k].pos;
+      } else if (open_loop_) {
+        j.command = desired_[k].vel;
       } else {
-        double u = velocity_ff_[k] * desired_[k].vel + pids_[k].compute(e, e_dot, period);
+        double u = std::clamp(velocity_ff_[k] * desired_[k].vel + pids_[k].compute(e, e_dot, period), u_min_[k],
+                              u_max_[k]);
         const double limit = !j.urdf                          ? 0
                              : iface_ == Interface::Effort   ? j.urdf->effort_limit
                                                              : j.urdf->velocity_limit;
@@ -178,6 +260,13 @@ class JointTrajectoryController : public Controller {
       }
     }
     publish_state(now);
+    if (cmd_timeout_ > 0 && current_ == &active_ && t > current_->end_time() + cmd_timeout_) {
+      if (goal_active_) finish(now, trajectory_status_t::ABORTED, "command timeout: cmd_timeout passed after the end");
+      for (size_t k = 0; k < joints_.size(); ++k) hold_pos_[k] = joints_[k]->position;
+      hold_.set_hold(t, hold_pos_.data());
+      current_ = &hold_;
+      return;
+    }
     if (!goal_active_) return;
     if (worst_excess > 0) {
       std::snprintf(text_, sizeof text_,
@@ -202,6 +291,35 @@ class JointTrajectoryController : public Controller {
   }
 
  private:
+  void read_ros2_interfaces(Params& p, std::vector<std::string>& notes) {
+    iface_ = ros2_command_interface(p, notes);
+    if (p.has("state_interfaces")) {
+      const std::vector<std::string> s = p.strings("state_interfaces");
+      const std::vector<std::string> order = {"position", "velocity", "acceleration"};
+      bool ok = s.size() <= order.size();
+      for (size_t k = 0; ok && k < s.size(); ++k) ok = s[k] == order[k];
+      if (!ok)
+        throw p.error("state_interfaces", fmt::format("[{}]: use [position], [position, velocity] or [position, "
+                                                      "velocity, acceleration]",
+                                                      fmt::join(s, ", ")));
+    }
+    open_loop_ = p.boolean("open_loop_control", false) && iface_ == Interface::Velocity;
+  }
+
+  void read_ros2_options(Params& p, std::vector<std::string>& notes) {
+    const std::string method = p.has("interpolation_method") ? p.string("interpolation_method") : "splines";
+    if (method != "splines" && method != "none")
+      throw p.error("interpolation_method", fmt::format("'{}': use splines or none", method));
+    interpolate_ = method == "splines";
+    cmd_timeout_ = p.number("cmd_timeout", 0.0);
+    if (cmd_timeout_ > 0 && cmd_timeout_ <= goal_time_) {
+      notes.push_back(fmt::format("{}/cmd_timeout: {:g} s is not more than constraints/goal_time {:g} s, so it is off "
+                                  "(as in ROS 2)",
+                                  p.where(), cmd_timeout_, goal_time_));
+      cmd_timeout_ = 0;
+    }
+  }
+
   void read_constraints(Params& p) {
     const size_t n = names_.size();
     path_tol_.assign(n, 0.0);
@@ -273,7 +391,7 @@ class JointTrajectoryController : public Controller {
                     static_cast<long long>(goal_id_), std::abs(status_.error[wf]), names_[wf].c_str(),
                     max_path_err_[wp], names_[wp].c_str());
       finish(now, trajectory_status_t::SUCCEEDED, text_);
-    } else if (t > current_->end_time() + goal_time_) {
+    } else if (!(ros2_ && goal_time_ == 0) && t > current_->end_time() + goal_time_) {  // ROS 2: 0 waits
       std::snprintf(text_, sizeof text_,
                     "goal tolerance violated on joint '%s': error %.6f (tolerance %.6f), velocity %.6f (stopped "
                     "tolerance %.6f), %.3f s after the trajectory end (goal_time %.3f)",
@@ -400,7 +518,7 @@ class JointTrajectoryController : public Controller {
         for (auto& w : points) w.pos[k] -= shift;
       }
     }
-    Trajectory next = Trajectory::build(last_t_, start, points);
+    Trajectory next = Trajectory::build(last_t_, start, points, interpolate_);
     if (goal_active_) {
       std::snprintf(text_, sizeof text_, "replaced by goal %lld", static_cast<long long>(g.goal_id));
       finish(Time{static_cast<int64_t>(last_t_ * 1e6)}, trajectory_status_t::PREEMPTED, text_);
@@ -422,6 +540,9 @@ class JointTrajectoryController : public Controller {
   double goal_time_ = 0, stopped_vel_tol_ = 0.01, monitor_rate_ = 20, state_rate_ = 50, stop_duration_ = 0;
   double last_t_ = 0, last_feedback_ = 0, last_state_ = -1e9;
   bool allow_partial_ = false;
+  bool ros2_ = false, open_loop_ = false, interpolate_ = true;
+  double cmd_timeout_ = 0;
+  std::vector<double> u_min_, u_max_;
   std::vector<Pid> pids_;
   std::vector<SplineState> desired_, rest_from_;
   Trajectory hold_, active_;
@@ -435,6 +556,16 @@ class JointTrajectoryController : public Controller {
   Publisher<joint_trajectory_controller_state_t> state_pub_;
 };
 
+// ROS 2's keys not read here.
+std::vector<ParameterInfo> ros2_only_parameters() {
+  std::vector<ParameterInfo> v;
+  for (const char* key : {"command_joints", "allow_integration_in_goal_trajectories",
+                          "allow_nonzero_velocity_at_trajectory_end", "interpolate_from_desired_state",
+                          "set_last_command_interface_value_as_state_on_activation", "speed_scaling_topic_name"})
+    v.push_back({key, "", "", "", key, "not implemented", false});
+  return v;
+}
+
 }  // namespace
 
 ControllerType joint_trajectory_controller(Interface command) {
@@ -444,9 +575,8 @@ ControllerType joint_trajectory_controller(Interface command) {
     case Interface::Velocity: t.name = "velocity_controllers/JointTrajectoryController"; break;
     case Interface::Effort: t.name = "effort_controllers/JointTrajectoryController"; break;
   }
-  t.ros2_names = {"joint_trajectory_controller/JointTrajectoryController"};
   t.doc = fmt::format("follows joint_trajectory_t goals through splines on {}", to_string(command));
-  t.claims = {command, {"joints"}};
+  t.claims = {command, {"joints"}, ""};
   t.command = {"joint_trajectory_t", "command", 0, ""};
   const bool pid = command != Interface::Position;
   const char* with_pid = pid ? "" : "; not used with PositionJointInterface";
@@ -463,22 +593,44 @@ ControllerType joint_trajectory_controller(Interface command) {
       {"allow_partial_joints_goal", "bool", "false", "allow_partial_joints_goal", "allow_partial_joints_goal",
        "goals may leave joints out (they hold)"},
       {"hold_trajectory_duration", "number", "", "hold_trajectory_duration", "", "not implemented", false},
-      {"command_joints", "strings", "", "", "command_joints", "not implemented", false},
-      {"command_interfaces", "strings", "", "", "command_interfaces", "not implemented (the type's name says it)",
-       false},
-      {"state_interfaces", "strings", "", "", "state_interfaces", "not implemented", false},
-      {"allow_integration_in_goal_trajectories", "bool", "", "", "allow_integration_in_goal_trajectories",
-       "not implemented", false},
-      {"open_loop_control", "bool", "", "", "open_loop_control", "not implemented", false},
-      {"interpolation_method", "string", "", "", "interpolation_method", "not implemented (splines)", false},
-      {"allow_nonzero_velocity_at_trajectory_end", "bool", "", "", "allow_nonzero_velocity_at_trajectory_end",
-       "not implemented", false},
-      {"cmd_timeout", "number", "", "", "cmd_timeout", "not implemented", false},
-      {"set_last_command_interface_value_as_state_on_activation", "bool", "", "",
-       "set_last_command_interface_value_as_state_on_activation", "not implemented", false},
-      {"interface_name", "string", "", "", "interface_name", "not implemented", false},
   };
+  for (const char* key : {"command_interfaces", "state_interfaces", "open_loop_control", "interpolation_method",
+                          "cmd_timeout", "interface_name"})
+    t.parameters.push_back({key, "", "", "", key,
+                            "ROS 2's; not read by this ROS 1 type (joint_trajectory_controller/JointTrajectoryController "
+                            "reads ROS 2's parameters)",
+                            false});
+  for (const auto& x : ros2_only_parameters()) t.parameters.push_back(x);
   return {t, [command](const std::string&) { return std::make_unique<JointTrajectoryController>(command); }};
+}
+
+ControllerType ros2_joint_trajectory_controller() {
+  ControllerTypeInfo t;
+  t.name = "joint_trajectory_controller/JointTrajectoryController";
+  t.ros = RosVersion::Ros2;
+  t.doc = "follows joint_trajectory_t goals through splines on the interface command_interfaces names";
+  t.claims.joint_params = {"joints"};
+  t.claims.interface_param = "command_interfaces";
+  t.command = {"joint_trajectory_t", "command", 0, ""};
+  auto ros2 = [](const char* name, const char* type, const char* fallback, const char* doc, bool implemented = true) {
+    return ParameterInfo{name, type, fallback, "", name, doc, implemented};
+  };
+  t.parameters = {
+      ros2("joints", "strings", "", "the joints a goal must name"),
+      ros2("command_interfaces", "strings", "",
+           "[position], [velocity], [effort]; [position, velocity(, acceleration)], [position, effort] command position"),
+      ros2("state_interfaces", "strings", "[position, velocity]", "position(, velocity(, acceleration)), checked"),
+      ros2("gains", "map", "", "<joint>: {p, i, d, i_clamp, ff_velocity_scale, u_clamp_min/max}, [velocity] and [effort]"),
+      ros2("constraints", "map", "", "goal_time, stopped_velocity_tolerance, <joint>: {trajectory, goal} (0: not checked)"),
+      ros2("state_publish_rate", "number", "50", "Hz of <name>/state (0: never)"),
+      ros2("action_monitor_rate", "number", "20", "Hz of <name>/feedback"),
+      ros2("allow_partial_joints_goal", "bool", "false", "goals may leave joints out (they hold)"),
+      ros2("interpolation_method", "string", "splines", "splines, or none: from waypoint to waypoint"),
+      ros2("cmd_timeout", "number", "0", "s after a trajectory's end: hold the measured position (0: never)"),
+      ros2("open_loop_control", "bool", "false", "[velocity]: the desired velocity as it is, no PID"),
+  };
+  for (const auto& x : ros2_only_parameters()) t.parameters.push_back(x);
+  return {t, [](const std::string&) { return std::make_unique<JointTrajectoryController>(std::nullopt); }};
 }
 
 }  // namespace lcm_control::cm

@@ -31,10 +31,12 @@ Trajectory::Segment Trajectory::quintic(double t0, double t1, const SplineState&
   return s;
 }
 
-Trajectory Trajectory::build(double t0, const std::vector<SplineState>& start, const std::vector<Waypoint>& points) {
+Trajectory Trajectory::build(double t0, const std::vector<SplineState>& start, const std::vector<Waypoint>& points,
+                             bool interpolate) {
   Trajectory tr;
   tr.t0_ = t0;
   tr.t1_ = points.empty() ? t0 : points.back().time;
+  tr.steps_ = !interpolate;
   const size_t n = start.size();
   tr.segments_.resize(n);
   for (size_t j = 0; j < n; ++j) {
@@ -120,6 +122,13 @@ void Trajectory::sample(double t, size_t joint, SplineState& out) const {
   s = &*it;
   tau = std::max(0.0, t - s->t0);
   const double* c = s->c;
+  if (steps_) {  // the start state in the first segment, then the waypoint each segment ends at
+    tau = it == segs.begin() ? 0.0 : s->t1 - s->t0;
+    out.pos = c[0] + tau * (c[1] + tau * (c[2] + tau * (c[3] + tau * (c[4] + tau * c[5]))));
+    out.vel = 0;
+    out.acc = 0;
+    return;
+  }
   out.pos = c[0] + tau * (c[1] + tau * (c[2] + tau * (c[3] + tau * (c[4] + tau * c[5]))));
   out.vel = c[1] + tau * (2 * c[2] + tau * (3 * c[3] + tau * (4 * c[4] + tau * 5 * c[5])));
   out.acc = 2 * c[2] + tau * (6 * c[3] + tau * (12 * c[4] + tau * 20 * c[5]));

@@ -1,8 +1,11 @@
 // Joint-space splines for the trajectory controllers. Per joint and segment a
 // polynomial: cubic when waypoints give positions (velocities then estimated,
 // monotone, 0 at the last point) or positions and velocities, quintic when
-// accelerations are given too. Before its start a trajectory holds its first
-// state, after its end the last position. sample() does not allocate.
+// accelerations are given too; or, without interpolation (ROS 2's
+// interpolation_method: none), the next waypoint's position from each
+// waypoint's time on (the start state until the first). Before its start a
+// trajectory holds its first state, after its end the last position. sample()
+// does not allocate.
 #pragma once
 
 #include <cstddef>
@@ -23,7 +26,8 @@ class Trajectory {
  public:
   // Starts at t0 in `start` (one state per joint) and passes every waypoint
   // (times strictly increasing, after t0; validated by the caller).
-  static Trajectory build(double t0, const std::vector<SplineState>& start, const std::vector<Waypoint>& points);
+  static Trajectory build(double t0, const std::vector<SplineState>& start, const std::vector<Waypoint>& points,
+                          bool interpolate = true);
   // Holding still at `pos` from t0; set_hold() reuses the storage of a hold trajectory.
   static Trajectory hold(double t0, const std::vector<double>& pos);
   void set_hold(double t0, const double* pos);
@@ -46,6 +50,7 @@ class Trajectory {
   static Segment quintic(double t0, double t1, const SplineState& a, const SplineState& b);
   std::vector<std::vector<Segment>> segments_;
   double t0_ = 0, t1_ = 0;
+  bool steps_ = false;  // no interpolation
 };
 
 }  // namespace lcm_control::cm

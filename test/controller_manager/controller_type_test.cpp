@@ -49,9 +49,9 @@ class TinyEffort : public Controller {
 ControllerType tiny_effort_controller() {
   ControllerTypeInfo t;
   t.name = "test_controllers/TinyEffortController";
-  t.ros2_names = {"tiny_controllers/TinyEffortController"};
+  t.ros = RosVersion::Both;
   t.doc = "scale times the effort of each joint";
-  t.claims = {Interface::Effort, {"joints"}};
+  t.claims = {Interface::Effort, {"joints"}, ""};
   t.command = {"float64_array_t", "command", CommandInfo::kOnePerJoint, "effort"};
   t.parameters = {
       {"joints", "strings", "", "joints", "joints", "the joints"},
@@ -100,7 +100,7 @@ TEST(ControllerTypes, ANewTypeIsListedWithWhatItTakes) {
   types.request_id = 1;
   rig.publish("controller_manager/request", types);
   ASSERT_EQ(responses.messages.size(), 1u);
-  EXPECT_EQ(responses.messages[0].num_types, 17);
+  EXPECT_EQ(responses.messages[0].num_types, 21);
   const auto& listed_types = responses.messages[0].types;
   EXPECT_NE(std::find(listed_types.begin(), listed_types.end(), "test_controllers/TinyEffortController"),
             listed_types.end());
@@ -150,24 +150,30 @@ TEST(ControllerTypes, BuiltinDeclarationsGiveTheRosParameterNames) {
     EXPECT_EQ(names(t), V{"joint"}) << t;
   for (const char* t : {"position_controllers/JointGroupPositionController",
                         "velocity_controllers/JointGroupVelocityController",
-                        "effort_controllers/JointGroupEffortController", "effort_controllers/JointGroupPositionController"})
-    EXPECT_EQ(names(t), V{"joints"}) << t;
+                        "effort_controllers/JointGroupEffortController"})
+    EXPECT_EQ(names(t), (V{"joints", "interface_name"})) << t;
+  EXPECT_EQ(names("effort_controllers/JointGroupPositionController"), V{"joints"});
+  EXPECT_EQ(names("forward_command_controller/ForwardCommandController"), (V{"joints", "interface_name"}));
+  EXPECT_EQ(names("forward_command_controller/MultiInterfaceForwardCommandController"),
+            (V{"joint", "interface_names"}));
   for (const char* t : {"effort_controllers/JointPositionController", "effort_controllers/JointVelocityController",
                         "velocity_controllers/JointPositionController"})
     EXPECT_EQ(names(t), (V{"joint", "pid"})) << t;
   const V trajectory = {"joints", "gains", "velocity_ff", "constraints", "state_publish_rate", "action_monitor_rate",
                         "stop_trajectory_duration", "allow_partial_joints_goal", "hold_trajectory_duration",
-                        "command_joints", "command_interfaces", "state_interfaces",
-                        "allow_integration_in_goal_trajectories", "open_loop_control", "interpolation_method",
-                        "allow_nonzero_velocity_at_trajectory_end", "cmd_timeout",
-                        "set_last_command_interface_value_as_state_on_activation", "interface_name"};
+                        "command_interfaces", "state_interfaces", "open_loop_control", "interpolation_method",
+                        "cmd_timeout", "interface_name", "command_joints", "allow_integration_in_goal_trajectories",
+                        "allow_nonzero_velocity_at_trajectory_end", "interpolate_from_desired_state",
+                        "set_last_command_interface_value_as_state_on_activation", "speed_scaling_topic_name"};
   for (const char* t : {"position_controllers/JointTrajectoryController",
                         "velocity_controllers/JointTrajectoryController", "effort_controllers/JointTrajectoryController"})
     EXPECT_EQ(names(t), trajectory) << t;
   EXPECT_EQ(names("diff_drive_controller/DiffDriveController"),
-            (V{"left_wheel", "right_wheel", "wheel_separation", "wheel_radius", "wheel_separation_multiplier",
-               "wheel_radius_multiplier", "left_wheel_radius_multiplier", "right_wheel_radius_multiplier",
-               "publish_rate", "cmd_vel_timeout", "base_frame_id", "odom_frame_id", "enable_odom_tf", "open_loop",
+            (V{"left_wheel", "left_wheel_names", "right_wheel", "right_wheel_names", "wheel_separation", "wheel_radius",
+               "wheel_separation_multiplier", "wheel_radius_multiplier", "left_wheel_radius_multiplier",
+               "right_wheel_radius_multiplier", "publish_rate", "cmd_vel_timeout", "base_frame_id", "odom_frame_id",
+               "enable_odom_tf", "wheels_per_side", "use_stamped_vel", "tf_frame_prefix_enable", "tf_frame_prefix",
+               "position_feedback", "open_loop",
                "velocity_rolling_window_size", "linear", "angular", "pose_covariance_diagonal",
                "twist_covariance_diagonal", "allow_multiple_cmd_vel_publishers", "publish_cmd",
                "publish_wheel_joint_controller_state", "estimate_velocity_from_position"}));
@@ -175,7 +181,7 @@ TEST(ControllerTypes, BuiltinDeclarationsGiveTheRosParameterNames) {
   for (const auto& t : r.types()) {
     const ControllerTypeInfo& info = *r.info(t);
     EXPECT_EQ(info.name, t);
-    if (info.claims.interface) {
+    if (info.claims.interface || !info.claims.interface_param.empty()) {
       EXPECT_FALSE(info.claims.joint_params.empty()) << t;
       EXPECT_FALSE(info.command.type.empty()) << t;
     }

@@ -6,7 +6,7 @@ using namespace lcm_control::cm;
 
 TEST(ControllerManagerRegistry, EveryBuiltinTypeCanBeCreated) {
   const auto& r = builtin_registry();
-  EXPECT_EQ(r.types().size(), 16u);
+  EXPECT_EQ(r.types().size(), 20u);
   for (const auto& t : r.types()) EXPECT_NE(r.create(t), nullptr) << t;
   EXPECT_EQ(r.create("nope/Nope"), nullptr);
 }
@@ -24,17 +24,33 @@ TEST(ControllerManagerRegistry, ClosestMatchByEditDistance) {
 TEST(ControllerManagerRegistry, KnownRosTypesAreNotImplementedNeverMissing) {
   const auto& r = builtin_registry();
   for (const char* t : {"franka_example_controllers/ModelExampleController", "ackermann_steering_controller/AckermannSteeringController",
-                        "position_controllers/GripperActionController", "joint_state_broadcaster/JointStateBroadcaster",
+                        "position_controllers/GripperActionController", "imu_sensor_broadcaster/IMUSensorBroadcaster",
                         "franka_example_controllers/CartesianImpedanceExampleController"}) {
     const std::string m = r.unknown_type_message(t);
-    EXPECT_NE(m.find("is not implemented here"), std::string::npos) << m;
-    EXPECT_NE(m.find("`cmctl list-types` lists the 16 implemented types"), std::string::npos) << m;
+    const bool vendor = std::string(t).rfind("franka_", 0) == 0;
+    EXPECT_NE(m.find(vendor ? "(a vendor's controller, franka_ros (Franka Emika)) is not available here"
+                            : "is not implemented here"),
+              std::string::npos)
+        << m;
+    EXPECT_NE(m.find("`cmctl list-types` lists the 20 implemented types"), std::string::npos) << m;
     EXPECT_EQ(m.find("does not exist"), std::string::npos) << m;
   }
   const std::string typo = r.unknown_type_message("position_controllers/JointPositonController");
   EXPECT_NE(typo.find("does not exist; did you mean 'position_controllers/JointPositionController'?"),
             std::string::npos)
       << typo;
+}
+
+TEST(ControllerManagerRegistry, TheRos2TypesOfTheGzDemosAndUrAreBuiltIn) {
+  const auto& r = builtin_registry();
+  for (const char* t : {"joint_state_broadcaster/JointStateBroadcaster", "joint_trajectory_controller/JointTrajectoryController",
+                        "forward_command_controller/ForwardCommandController",
+                        "forward_command_controller/MultiInterfaceForwardCommandController",
+                        "diff_drive_controller/DiffDriveController", "velocity_controllers/JointGroupVelocityController"}) {
+    ASSERT_TRUE(r.has(t)) << t;
+    EXPECT_NE(r.info(t)->ros, RosVersion::Ros1) << t;
+  }
+  EXPECT_EQ(r.info("joint_state_controller/JointStateController")->ros, RosVersion::Ros1);
 }
 
 TEST(ControllerManagerRegistry, TheTypesIiwaStackAndUrShipAreBuiltIn) {

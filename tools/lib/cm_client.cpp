@@ -203,10 +203,24 @@ cm_response_t CmClient::wait_for_manager(double timeout_s, const std::function<v
   throw CmTimeout(no_answer("list", timeout_s));
 }
 
-std::string controller_table(const std::vector<controller_info_t>& controllers) {
+std::string ros2_state(const std::string& state) { return state == "running" ? "active" : "inactive"; }
+
+std::string hardware_interfaces_text(const std::vector<joint_interfaces_t>& joints) {
+  std::string out = "command interfaces\n";
+  for (const auto& j : joints)
+    for (const auto& c : j.command)
+      out += fmt::format("\t{}/{} [available] [{}]\n", j.joint, c,
+                         c == j.claimed ? "claimed by " + j.claimed_by : "unclaimed");
+  out += "state interfaces\n";
+  for (const auto& j : joints)
+    for (const auto& s : j.state) out += fmt::format("\t{}/{}\n", j.joint, s);
+  return out;
+}
+
+std::string controller_table(const std::vector<controller_info_t>& controllers, bool ros2) {
   std::vector<std::vector<std::string>> rows = {{"NAME", "TYPE", "STATE", "JOINTS", "INTERFACE"}};
   for (const auto& c : controllers)
-    rows.push_back({c.name, c.type, c.state, c.joints.empty() ? "-" : fmt::format("{}", fmt::join(c.joints, ",")),
+    rows.push_back({c.name, c.type, ros2 ? ros2_state(c.state) : c.state, c.joints.empty() ? "-" : fmt::format("{}", fmt::join(c.joints, ",")),
                     c.hardware_interface.empty() ? "-" : c.hardware_interface});
   std::vector<size_t> width(5, 0);
   for (const auto& r : rows)

@@ -79,7 +79,13 @@ class CmClient {
   static constexpr double kResendS = 0.5;
 };
 
-// "name  type  state  joints  interface" as an aligned table, one controller a line.
-std::string controller_table(const std::vector<controller_info_t>& controllers);
+// "name  type  state  joints  interface" as an aligned table, one controller a line; with ros2, states as ROS 2
+// names them (ros2_state).
+std::string controller_table(const std::vector<controller_info_t>& controllers, bool ros2 = false);
+// ROS 2's name of a controller state: running -> active, initialized and stopped -> inactive.
+std::string ros2_state(const std::string& state);
+// ROS 2's `list_hardware_interfaces`: "command interfaces" then "state interfaces", one JOINT/INTERFACE a line,
+// command ones marked [available] and [claimed].
+std::string hardware_interfaces_text(const std::vector<joint_interfaces_t>& joints);
 
 }  // namespace lcm_control::tools

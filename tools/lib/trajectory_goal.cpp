@@ -360,6 +360,7 @@ std::string status_name(int8_t status) {
     case trajectory_status_t::PATH_TOLERANCE_VIOLATED: return "PATH_TOLERANCE_VIOLATED";
     case trajectory_status_t::GOAL_TOLERANCE_VIOLATED: return "GOAL_TOLERANCE_VIOLATED";
     case trajectory_status_t::PREEMPTED: return "PREEMPTED";
+    case trajectory_status_t::ABORTED: return "ABORTED";
     default: return fmt::format("status {}", int(status));
   }
 }
