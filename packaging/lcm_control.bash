@@ -12,7 +12,9 @@ _lcm_control() {
   if [[ $cur == -* ]]; then
     words=$(grep -oE -- '--[a-zA-Z0-9][a-zA-Z0-9-]*' <<<"$help" | sort -u)
   else
-    words=$(awk '/^Subcommands:/ { s = 1; next } s && /^  [a-z]/ { print $1 }' <<<"$help")
+    # "  name, alias, ...   description": every name and alias
+    words=$(awk '/^Subcommands:/ { s = 1; next }
+                 s && /^  [a-z]/ { for (i = 1; i <= NF; i++) { n = $i; a = sub(/,$/, "", n); print n; if (!a) break } }' <<<"$help")
   fi
   if [[ -z $words ]]; then
     COMPREPLY=($(compgen -f -- "$cur"))
