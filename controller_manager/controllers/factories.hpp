@@ -18,5 +18,7 @@ ControllerType pid_controller(Interface out, PidTarget target);
 ControllerType group_position_pid_controller();  // position set points to efforts, one PID per joint
 ControllerType joint_trajectory_controller(Interface command);
 ControllerType diff_drive_controller();
+// gripper_command_t goals on `joint`: position or effort (ROS 1 / gripper_controllers), or ROS 2's parallel gripper.
+ControllerType gripper_action_controller(Interface command, bool parallel);
 
 }  // namespace lcm_control::cm
