@@ -71,7 +71,7 @@ class GripperActionController : public Controller {
                                         "command)",
                                         name_));
       }
-      if (max_effort_ > 0)
+      if (max_effort_ > 0 && p.has("max_effort"))
         ctx.notes.push_back(fmt::format("{}/max_effort: {} limits nothing on PositionJointInterface (as in ROS); it "
                                         "is reported in the results. The URDF's effort limit and sim_server's "
                                         "pid_gains set how hard the gripper squeezes",
