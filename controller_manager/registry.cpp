@@ -33,6 +33,9 @@ void register_builtin(Registry& r) {
   r.add(joint_trajectory_controller(I::Velocity));
   r.add(ros2_joint_trajectory_controller());
   r.add(diff_drive_controller());
+  r.add(gripper_action_controller(I::Position, false));
+  r.add(gripper_action_controller(I::Effort, false));
+  r.add(gripper_action_controller(I::Position, true));  // parallel_gripper_action_controller/GripperActionController
 }
 
 const Registry& builtin_registry() {

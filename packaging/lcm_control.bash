@@ -22,5 +22,5 @@ _lcm_control() {
     COMPREPLY=($(compgen -W "$words" -- "$cur"))
   fi
 }
-complete -F _lcm_control sim_server controller_manager launch spawner cmctl turret-cmd send-trajectory \
+complete -F _lcm_control sim_server controller_manager launch spawner cmctl turret-cmd send-trajectory gripper \
   state-logger state-publisher log2csv plotter tune doctor tracking-summary bus drive

@@ -22,5 +22,7 @@ ControllerType group_position_pid_controller();  // position set points to effor
 ControllerType joint_trajectory_controller(Interface command);
 ControllerType ros2_joint_trajectory_controller();  // the interface from command_interfaces
 ControllerType diff_drive_controller();
+// gripper_command_t goals on `joint`: position or effort (ROS 1 / gripper_controllers), or ROS 2's parallel gripper.
+ControllerType gripper_action_controller(Interface command, bool parallel);
 
 }  // namespace lcm_control::cm

@@ -100,7 +100,7 @@ TEST(ControllerTypes, ANewTypeIsListedWithWhatItTakes) {
   types.request_id = 1;
   rig.publish("controller_manager/request", types);
   ASSERT_EQ(responses.messages.size(), 1u);
-  EXPECT_EQ(responses.messages[0].num_types, 21);
+  EXPECT_EQ(responses.messages[0].num_types, static_cast<int32_t>(builtin_registry().types().size() + 1));
   const auto& listed_types = responses.messages[0].types;
   EXPECT_NE(std::find(listed_types.begin(), listed_types.end(), "test_controllers/TinyEffortController"),
             listed_types.end());

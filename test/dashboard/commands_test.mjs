@@ -8,7 +8,7 @@ import { readFileSync } from 'node:fs';
 const moduleUrl = (text) => `data:text/javascript,${encodeURIComponent(text)}`;
 const dom = moduleUrl(readFileSync(process.argv[3], 'utf8'));
 const src = readFileSync(process.argv[2], 'utf8').replace("'./dom.js'", `"${dom}"`);
-const { commandKind, commandable } = await import(moduleUrl(src));
+const { commandKind, commandable, gripperGoal } = await import(moduleUrl(src));
 
 const controller = (name, type, command_type, command_width, command_quantity, joints, state = 'running') =>
   ({ name, type, state, interface: '', joints, command_type, command_channel: command_type ? 'command' : '',
@@ -26,10 +26,16 @@ const listed = [
   controller('tiny', 'test_controllers/TinyEffortController', 'float64_array_t', 3, 'effort', ['x', 'y', 'z']),
   // Numbers whose quantity its type does not declare (a plugin that says only what take_commands says).
   controller('plain', 'my_controllers/Sine', 'float64_t', 1, '', ['j4']),
+  // Gripper goals (gripper_command_t): a position slider that sends a goal.
+  controller('hand', 'parallel_gripper_action_controller/GripperActionController', 'gripper_command_t', 0, '',
+    ['finger']),
 ];
 
-assert.deepEqual(commandable(listed).map((c) => c.name), ['j1', 'arm', 'pid', 'tiny', 'plain']);
-assert.deepEqual(commandable(listed).map(commandKind), ['position', 'position', 'velocity', 'effort', 'value']);
+assert.deepEqual(commandable(listed).map((c) => c.name), ['j1', 'arm', 'pid', 'tiny', 'plain', 'hand']);
+assert.deepEqual(commandable(listed).map(commandKind), ['position', 'position', 'velocity', 'effort', 'value',
+  'gripper']);
+assert.deepEqual(gripperGoal(0.02, 5, 7), { goal_id: 7, position: 0.02, max_effort: 5 });
+assert.deepEqual(gripperGoal(0.02, NaN, 8), { goal_id: 8, position: 0.02, max_effort: 0 });
 // A width that does not fit the joints (a malformed list) gets no sliders.
 assert.equal(commandKind(controller('odd', 'x/Y', 'float64_array_t', 2, 'position', ['a', 'b', 'c'])), null);
 assert.equal(commandKind(controller('old', 'position_controllers/JointPositionController', undefined, undefined,

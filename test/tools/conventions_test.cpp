@@ -13,7 +13,7 @@ namespace {
 const std::vector<std::string> kPrograms = {
     "sim_server", "controller_manager", "launch",  "spawner",          "cmctl",           "turret-cmd",
     "send-trajectory", "state-logger", "state-publisher", "log2csv", "plotter", "tune", "doctor",
-    "tracking-summary", "bus", "drive"};
+    "tracking-summary", "bus", "drive", "gripper"};
 
 struct Outcome {
   int rc;
@@ -72,6 +72,7 @@ TEST(Conventions, NoAnswerOnTheBusExits4NamingTheChannel) {
       {"spawner", "j1_controller", "--timeout", "0.5"},
       {"tune", "j1", "--p", "1", "--timeout", "0.5"},
       {"send-trajectory", "c", "--point", "1:0", "--timeout", "0.5"},
+      {"gripper", "c", "--position", "0.01", "--cm-timeout", "0.5"},
       {"turret-cmd", "j1_controller", "1", "--sim-time", "--timeout", "0.5"},
       {"state-logger", "joint_states", "--duration", "0.5", "--output", dir + "/js.csv"},
       {"plotter", "joint_states/position[0]", "--duration", "0.5", "--output", dir + "/p.png"},

@@ -3,11 +3,13 @@ import { el } from './dom.js';
 // Command channels of the running controllers (rqt's message publisher): a slider per joint within its URDF limits,
 // and an expression in i and t streamed by the server at a rate, like turret-cmd. What a controller takes is what its
 // type declares (the controller manager's list): numbers, one (float64_t) or one per joint (float64_array_t), each a
-// position, velocity or effort set point.
+// position, velocity or effort set point; or a gripper goal (gripper_command_t, a GripperActionController): a slider
+// for its joint's position that sends one goal when released, with the goal's max_effort.
 
 // The set point a controller's sliders give ("position", "velocity", "effort", or "value" when its type does not
-// say), or null when it does not take one number per joint.
+// say; "gripper" for a gripper goal), or null when it does not take one number per joint.
 export function commandKind(c) {
+  if (c.command_type === 'gripper_command_t') return c.joints.length === 1 ? 'gripper' : null;
   const numbers = (c.command_type === 'float64_t' && c.command_width === 1 && c.joints.length === 1) ||
     (c.command_type === 'float64_array_t' && c.command_width === c.joints.length && c.joints.length > 0);
   return numbers ? c.command_quantity || 'value' : null;
@@ -18,8 +20,14 @@ export function commandable(controllers) {
   return controllers.filter((c) => c.state === 'running' && commandKind(c));
 }
 
+// The message a gripper slider sends: a goal with a fresh id (the result comes on <name>/result; the `gripper`
+// tool waits for it).
+export function gripperGoal(position, maxEffort, goalId) {
+  return { goal_id: goalId, position, max_effort: maxEffort > 0 ? maxEffort : 0 };
+}
+
 function range(kind, j) {
-  if (kind === 'position') {
+  if (kind === 'position' || kind === 'gripper') {
     if (!j || j.type === 'continuous' || !(j.upper > j.lower)) return [-Math.PI, Math.PI];
     return [j.lower, j.upper];
   }
@@ -62,6 +70,7 @@ export class Commands {
     div.className = 'command';
     div.append(el('h3', {}, c.name, ' ', el('small', {}, `${kind} → ${channel}`)));
     const values = (this.values[c.name] ||= c.joints.map(() => 0));
+    if (kind === 'gripper') return this.gripperBlock(c, div, channel, values);
     c.joints.forEach((joint, k) => {
       const [lo, hi] = range(kind, this.joints[joint]);
       const row = document.createElement('label');
@@ -114,6 +123,39 @@ export class Commands {
     };
     expr.append(text, ' at ', rate, ' Hz ', start, stop, msg);
     div.appendChild(expr);
+    return div;
+  }
+
+  // One slider for the gripper joint: a goal when it is released (not while it moves: each goal preempts the last).
+  gripperBlock(c, div, channel, values) {
+    const joint = c.joints[0];
+    const [lo, hi] = range('gripper', this.joints[joint]);
+    const row = document.createElement('label');
+    row.className = 'slider';
+    const slider = document.createElement('input');
+    slider.type = 'range';
+    slider.id = `slider-${c.name}-${joint}`;
+    slider.min = lo;
+    slider.max = hi;
+    slider.step = (hi - lo) / 1000;
+    slider.value = Math.min(hi, Math.max(lo, values[0]));
+    const out = document.createElement('output');
+    out.textContent = Number(slider.value).toFixed(4);
+    const effort = document.createElement('input');
+    effort.type = 'number';
+    effort.min = 0;
+    effort.value = 0;
+    effort.id = `effort-${c.name}`;
+    effort.title = "max_effort of the goal (0: the controller's max_effort, else the URDF's limit)";
+    slider.oninput = () => { out.textContent = Number(slider.value).toFixed(4); };
+    slider.onchange = () => {
+      values[0] = Number(slider.value);
+      this.conn.send({ op: 'publish', channel, type: 'gripper_command_t',
+        msg: gripperGoal(values[0], Number(effort.value), Date.now()) });
+    };
+    row.append(`${joint} `, slider, out, ' max effort ', effort);
+    div.append(row, el('p', { class: 'hint' },
+      `a goal on release; its result on ${c.name}/result (the gripper tool waits for it: gripper ${c.name} --position X)`));
     return div;
   }
 

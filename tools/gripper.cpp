@@ -1,0 +1,181 @@
+// gripper: one goal to a GripperActionController (what a control_msgs/GripperCommand action client does in ROS:
+// rqt's action client, MoveIt's gripper controller handle); waits for the result: exit 0 on SUCCEEDED, 1 with the
+// controller's reason on anything else, 4 without a result.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <optional>
+
+#include "cli/cli.hpp"
+#include "lcm_control/gripper_command_t.hpp"
+#include "lcm_control/gripper_status_t.hpp"
+#include "tools/lib/cm_client.hpp"
+#include "tools/lib/gripper_goal.hpp"
+#include "tools/lib/support.hpp"
+#include "tools/lib/trajectory_goal.hpp"
+
+namespace lcm_control::tools {
+namespace {
+
+struct Options {
+  std::string target;
+  double position = NAN, max_effort = 0, timeout = 10, cm_timeout = 3;
+  bool verbose = false;
+};
+
+// No result (or no controller manager) in time: exit code kExitBus, as for every unanswered request.
+class NoAnswer : public BusError {
+ public:
+  using BusError::BusError;
+};
+
+// The result of one goal on `<controller>/result`, and its feedback (printed with --verbose).
+class GoalWatch {
+ public:
+  GoalWatch(Bus& bus, const std::string& controller, int64_t goal_id, bool verbose)
+      : goal_id_(goal_id), verbose_(verbose) {
+    subscribe_guarded<&GoalWatch::on_result>(bus.lcm(), bus.channel(controller + "/result"), this)->setQueueCapacity(100);
+    subscribe_guarded<&GoalWatch::on_feedback>(bus.lcm(), bus.channel(controller + "/feedback"), this);
+  }
+  const std::optional<gripper_status_t>& result() const { return result_; }
+  size_t feedback() const { return feedback_; }
+
+ private:
+  void on_result(const lcm::ReceiveBuffer*, const std::string&, const gripper_status_t* m) {
+    if (m->goal_id == goal_id_ && !result_) result_ = *m;
+  }
+  // At most 4 lines per second of the controller's time.
+  void on_feedback(const lcm::ReceiveBuffer*, const std::string&, const gripper_status_t* m) {
+    if (m->goal_id != goal_id_) return;
+    if (feedback_++ == 0) first_us_ = m->utime;
+    if (!verbose_ || (printed_us_ >= 0 && m->utime - printed_us_ < 250000)) return;
+    printed_us_ = m->utime;
+    fmt::print("feedback {:.2f} s: {} position {:.6f} (goal {:.6f}) effort {:.6f}\n", double(m->utime - first_us_) * 1e-6,
+               m->joint, m->position, m->goal_position, m->effort);
+    std::fflush(stdout);
+  }
+
+  int64_t goal_id_;
+  bool verbose_;
+  std::optional<gripper_status_t> result_;
+  size_t feedback_ = 0;
+  int64_t first_us_ = 0, printed_us_ = -1;
+};
+
+std::string without_prefix(const std::string& message, const std::string& controller) {
+  const std::string prefix = controller + ": ";
+  return message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
+}
+
+// Why no result came: what the controller manager says about the controller now.
+std::string no_result(CmClient& cm, const Bus& bus, const std::string& controller, double timeout_s,
+                      size_t feedback) {
+  const std::string head = fmt::format("no result from '{}' on '{}' within {}", controller,
+                                       bus.channel(controller + "/result"), seconds_text(timeout_s));
+  try {
+    for (const auto& c : cm.list(1.0).controllers) {
+      if (c.name != controller) continue;
+      if (c.state != "running")
+        return fmt::format("{}: the controller manager now lists it as {}, not running (cmctl list)", head, c.state);
+      if (feedback > 0)
+        return fmt::format("{}: it is running and sent {} feedback messages for this goal (still moving, or "
+                           "stall_timeout is longer); give a longer --timeout",
+                           head, feedback);
+      return fmt::format("{}: it is running but sent no feedback for this goal on '{}': does its time advance? (is "
+                         "sim_server running and stepping?)",
+                         head, bus.channel(controller + "/feedback"));
+    }
+    return fmt::format("{}: the controller manager no longer lists it (cmctl list)", head);
+  } catch (const CmTimeout&) {
+    return fmt::format("{}, and the controller manager no longer answers on '{}': is it running? (cmctl list)", head,
+                       cm.request_channel());
+  }
+}
+
+int run(const Options& o, const BusFlags& bus_flags) {
+  const std::string controller = controller_name(o.target);
+  if (controller.empty())
+    throw std::runtime_error("CONTROLLER is empty: give the controller's name, e.g. gripper_controller");
+  install_stop_signals();
+  Bus bus(bus_flags.lcm_url, bus_flags.ns);
+  CmClient cm(bus, "gripper");
+  gripper_controller(cm.list(o.cm_timeout).controllers, controller);
+
+  const int64_t goal_id = new_request_id();
+  GoalWatch watch(bus, controller, goal_id, o.verbose);  // listening before the goal goes out
+  gripper_command_t goal{};
+  goal.utime = wall_us();
+  goal.goal_id = goal_id;
+  goal.position = o.position;
+  goal.max_effort = o.max_effort;
+  bus.publish(controller + "/command", goal);
+  if (o.verbose)
+    fmt::print("sent goal {} on '{}': position {:g}, max_effort {:g}; waiting up to {} for the result\n", goal_id,
+               bus.channel(controller + "/command"), o.position, o.max_effort, seconds_text(o.timeout));
+  std::fflush(stdout);
+
+  pump_until(bus, [&] { return watch.result().has_value(); }, o.timeout);
+  if (const auto& r = watch.result()) {
+    const std::string message = without_prefix(r->message, controller);
+    const std::string figures = fmt::format("{}: position {:.6f}, effort {:.6f}{}{}", r->joint, r->position, r->effort,
+                                            r->stalled ? ", stalled" : "", r->reached_goal ? ", reached goal" : "");
+    if (r->status != gripper_status_t::SUCCEEDED)
+      throw std::runtime_error(
+          fmt::format("{}: {}: {} ({})", controller, gripper_status_name(r->status), message, figures));
+    fmt::print("{}: SUCCEEDED: {} ({})\n", controller, message, figures);
+    return kExitOk;
+  }
+  if (stop_requested()) {
+    const int sig = clear_stop();
+    fmt::print(stderr,
+               "gripper: interrupted: goal {} keeps running in '{}' (send another goal to change it)\n", goal_id,
+               controller);
+    return 128 + sig;
+  }
+  throw NoAnswer(no_result(cm, bus, controller, o.timeout, watch.feedback()));
+}
+
+}  // namespace
+}  // namespace lcm_control::tools
+
+int main(int argc, char** argv) {
+  using namespace lcm_control;
+  using namespace lcm_control::tools;
+  CLI::App app{
+      "Send one goal to a GripperActionController and wait for its result (a control_msgs/GripperCommand action "
+      "client: rqt, MoveIt's gripper handle). The gripper joint goes to --position; the goal ends SUCCEEDED within "
+      "the controller's goal_tolerance, or when it stalls (a grasp) with allow_stalling; ABORTED when it stalls "
+      "without; PREEMPTED when another goal replaces it.\n"
+      "Examples:\n"
+      "  gripper gripper_controller --position 0.02\n"
+      "  gripper gripper_controller --position 0.05 --max-effort 20 --timeout 5\n"
+      "Exit codes: 0 SUCCEEDED (one line on stdout), 1 any other result (status and the controller's reason on "
+      "stderr) or a controller that is not a running GripperActionController, 2 usage, 4 no answer (no result within "
+      "--timeout, no controller manager), 130 Ctrl-C (the goal keeps running).",
+      "gripper"};
+  Options o;
+  BusFlags bus_flags;
+  app.add_option("CONTROLLER", o.target, "the GripperActionController (ROS's /NAME and /NAME/command work too)")
+      ->required();
+  app.add_option("--position", o.position, "where the gripper joint goes (m or rad, within its URDF limits)")
+      ->required();
+  app.add_option("--max-effort", o.max_effort,
+                 "effort limit of an effort_controllers/GripperActionController (N or N*m; 0: the controller's "
+                 "max_effort, else the URDF's limit); a position interface only reports it")
+      ->capture_default_str();
+  app.add_option("--timeout", o.timeout, "seconds to wait for the result")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--cm-timeout", o.cm_timeout, "seconds to wait for the controller manager's answer")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_flag("-v,--verbose", o.verbose, "print the goal sent and the controller's feedback while it runs");
+  add_bus_flags(app, bus_flags);
+  return run_program(app, argc, argv, [&] {
+    if (!std::isfinite(o.position) || !std::isfinite(o.max_effort)) {
+      fmt::print(stderr, "gripper: error: --position and --max-effort must be finite numbers\n");
+      return int(kExitUsage);
+    }
+    return run(o, bus_flags);
+  });
+}
