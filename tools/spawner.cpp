@@ -14,7 +14,8 @@ int main(int argc, char** argv) {
       "naming the controller and the reason, with nothing left loaded.\n"
       "Examples:\n"
       "  spawner joint_state_controller j1_controller j2_controller\n"
-      "  spawner j2_effort_controller --stopped      # load only; start later with cmctl start",
+      "  spawner j2_effort_controller --stopped      # load only; start later with cmctl start\n"
+      "  spawner arm_controller --inactive -c /robot1/controller_manager   # ROS 2's flags",
       "spawner"};
   std::vector<std::string> names;
   SpawnOptions o;
@@ -22,9 +23,18 @@ int main(int argc, char** argv) {
   bool hardware_later = false;
   BusFlags bus_flags;
   app.add_option("NAME", names, "controllers (top-level keys of the ros_control YAML)")->required();
-  app.add_flag("--stopped", o.stopped, "load only, do not start");
-  app.add_option("--timeout", o.timeout_s, "seconds to wait for the controller manager and for each answer")
+  app.add_flag("--stopped,--inactive,--load-only", o.stopped, "load only, do not start (ROS 2: --inactive)");
+  app.add_option("--timeout,--controller-manager-timeout", o.timeout_s,
+                 "seconds to wait for the controller manager and for each answer")
       ->check(CLI::PositiveNumber);
+  std::string manager, param_file;
+  app.add_option("-c,--controller-manager", manager,
+                 "ROS 2: the controller manager's node name (/NS/controller_manager): its namespace is --namespace");
+  app.add_option("-p,--param-file", param_file,
+                 "ROS 2: the controllers' parameter file; here the controller manager reads them from its --config");
+  app.add_flag("--activate-as-group,--unload-on-kill,-u",
+               "ROS 2's flags, accepted: this spawner always starts its controllers in one switch and unloads them "
+               "when stopped");
   app.add_option("--shutdown-timeout", shutdown_timeout, "seconds for stopping and unloading at exit")
       ->check(CLI::PositiveNumber);
   // launch in lockstep starts the simulator after the spawner: no warning about its missing state then.
@@ -32,6 +42,17 @@ int main(int argc, char** argv) {
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
     install_stop_signals();
+    if (!manager.empty()) {
+      const std::string ns = ros2_manager_namespace(manager);
+      if (!bus_flags.ns.empty() && ns != bus_flags.ns)
+        throw std::runtime_error(fmt::format("--controller-manager {} is in namespace '{}' but --namespace is '{}'; "
+                                             "give one of them",
+                                             manager, ns, bus_flags.ns));
+      bus_flags.ns = ns;
+    }
+    if (!param_file.empty())
+      fmt::print(stderr, "spawner: note: --param-file {}: the controller manager reads the parameters from its own "
+                         "--config (give it that file)\n", param_file);
     o.say = [](const std::string& line) { fmt::print(stderr, "spawner: {}\n", line); };
     Spawner spawner(names, o);
     {

@@ -10,6 +10,21 @@
 
 namespace lcm_control::tools {
 
+std::string ros2_manager_namespace(const std::string& node) {
+  std::string n = node;
+  while (!n.empty() && n.back() == '/') n.pop_back();
+  const auto slash = n.rfind('/');
+  const std::string last = slash == std::string::npos ? n : n.substr(slash + 1);
+  if (last != "controller_manager")
+    throw std::runtime_error(fmt::format("--controller-manager {}: the node here is always 'controller_manager' "
+                                         "(give /NAMESPACE/controller_manager, or --namespace)",
+                                         node));
+  std::string ns = slash == std::string::npos ? "" : n.substr(0, slash);
+  while (!ns.empty() && ns.front() == '/') ns.erase(0, 1);
+  return ns;
+}
+
+
 Spawner::Spawner(std::vector<std::string> names, SpawnOptions options)
     : names_(std::move(names)), o_(std::move(options)) {}
 

@@ -17,6 +17,10 @@ struct SpawnOptions {
   std::function<void(const std::string&)> say;  // progress lines (may be empty)
 };
 
+// The namespace of a ROS 2 controller manager node name ("/robot1/controller_manager" -> "robot1",
+// "controller_manager" -> ""); any other last name is refused (this controller manager is always that one).
+std::string ros2_manager_namespace(const std::string& node);
+
 class Spawner {
  public:
   Spawner(std::vector<std::string> names, SpawnOptions options);
