@@ -17,7 +17,9 @@ bool Loop::handed_over(const JointData* j) const {
 
 void Loop::start(ControllerSlot& s) {
   for (JointData* j : s.claimed) {
-    if (!handed_over(j)) j->command = j->offered.front() == Interface::Position ? j->position : 0.0;
+    if (!handed_over(j))
+      j->command = s.controller->claim().interface.value_or(j->offered.front()) == Interface::Position ? j->position
+                                                                                                       : 0.0;
     j->owner = s.controller.get();
     j->soft_position.reset();
   }
