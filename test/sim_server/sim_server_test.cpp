@@ -288,8 +288,6 @@ TEST(sim_e2e, MalformedNanWrongSizeAndForeignCommandsAreDroppedAndCounted) {
     bad.session = s.session + 1;
     cm.publish_command(bad);  // another session
     bad.session = s.session;
-    bad.mode[0] = hardware_command_t::MODE_VELOCITY;
-    cm.publish_command(bad);  // wrong mode for a position actuator
     const char garbage[] = "not an lcm message at all, but long enough to be looked at";
     server.lc.publish(cm.command_channel(), garbage, sizeof garbage);
     bad.mode = s.mode;
@@ -301,12 +299,41 @@ TEST(sim_e2e, MalformedNanWrongSizeAndForeignCommandsAreDroppedAndCounted) {
     }
   };
   ASSERT_TRUE(cm.run_until_step(150, 20.0)) << server.output();
-  EXPECT_EQ(dropped_commands(server, stats, 8), 8) << server.output();
+  EXPECT_EQ(dropped_commands(server, stats, 7), 7) << server.output();
   for (const auto& s : cm.states)
     for (int i = 0; i < 2; ++i) ASSERT_TRUE(std::isfinite(s.position[i]) && std::isfinite(s.effort[i])) << s.step;
   EXPECT_NE(server.output().find("dropped a hardware/command"), std::string::npos);
   ASSERT_FALSE(stats.messages.empty());
   EXPECT_EQ(stats.messages.back().process, "sim_server");
+}
+
+// A mode the joint does not offer holds that actuator, is counted and said once; the rest of the command applies.
+TEST(sim_e2e, AModeTheJointDoesNotOfferHoldsThatActuatorAndIsSaidOnce) {
+  SimServerProcess server;
+  std::string why;
+  ASSERT_TRUE(server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) << why;
+  FakeController cm(server.lc);
+  cm.policy = [](const hardware_state_t& s, hardware_command_t& c) {
+    c.command[1] = 1.0;
+    if (s.step >= 100 && s.step < 300) {
+      c.mode[0] = hardware_command_t::MODE_VELOCITY;  // j1 is a position actuator
+      c.command[0] = 5.0;
+    }
+  };
+  ASSERT_TRUE(cm.run_until_step(400, 20.0)) << server.output();
+  const hardware_state_t& at100 = cm.states.at(100);
+  const hardware_state_t& at300 = cm.states.at(300);
+  EXPECT_EQ(at300.mode[0], hardware_command_t::MODE_POSITION);
+  EXPECT_NEAR(at300.position[0], at100.position[0], 1e-6);  // held
+  EXPECT_GT(std::abs(at300.position[1] - at100.position[1]), 0.01);  // j2 kept its commands
+  const std::string out = server.output();
+  const std::string said = "actuator 'a1' (joint 'j1') got a velocity command at step 100, but its joint offers "
+                           "only position";
+  EXPECT_NE(out.find(said), std::string::npos) << out;
+  EXPECT_EQ(out.find(said, out.find(said) + 1), std::string::npos) << "said more than once:\n" << out;
+  server.process->stop(10);
+  EXPECT_NE(server.output().find("0 commands dropped; 200 actuator commands in a mode not offered"), std::string::npos)
+      << server.output();
 }
 
 TEST(sim_e2e, ACommandFromAFutureStepIsDroppedAndGenuineCommandsStillApply) {
