@@ -282,6 +282,10 @@ PidLookup SimIo::pid_lookup() {
       return fmt::format("no actuated joint '{}'; joints with pid_gains: {}", joint,
                          with.empty() ? "none" : fmt::format("{}", fmt::join(with, ", ")));
     }
+    if (sim_.backend() == Backend::Mock)
+      return fmt::format("joint '{}' runs on mock hardware, which has no PID (its state follows the command); run "
+                         "sim_server without --mock-hardware, on a description naming a simulator, for pid_gains",
+                         joint);
     return fmt::format("joint '{}' runs {} (no pid_gains); add gazebo_ros_control/pid_gains/{} to the YAML for a PID",
                        joint, act.mode_name(i), joint);
   };

@@ -4,7 +4,7 @@
 // speed; switching to a position group controller puts them back in position
 // mode and on the commanded positions. (b) mock_arm on mock hardware in
 // lockstep: position commands are the state exactly, the mimic joint follows,
-// and the loop runs faster than real time.
+// the loop runs faster than real time, and a reset returns to initial_value.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -120,6 +120,18 @@ TEST(InterfaceSwitch, MockHardwareInLockstepFollowsCommandsExactlyWithTheMimicJo
   EXPECT_DOUBLE_EQ(joint_state(js.last, "j3"), -2 * -0.4 + 0.1);
   const double rtf = hw.last.real_time_factor;
   EXPECT_GT(rtf, 3.0) << "lockstep over LCM at 1 kHz; sim_server says: " << sim.output();
+
+  // Reset (sim_server/request) is the Bullet backend's: back to the start pose, which the restarted controller holds.
+  ChildProcess reset({bin("cmctl"), "reset"}, env);
+  ASSERT_EQ(reset.wait(20), 0) << reset.output() << sim.output();
+  EXPECT_TRUE(pump_until(
+      lc,
+      [&] {
+        return hw.last.position[0] == 0.5 && hw.last.position[1] == 0.0 && joint_state(js.last, "j3") == 0.1;
+      },
+      10))
+      << hw.last.position[0] << " " << hw.last.position[1] << " j3 " << joint_state(js.last, "j3") << "\n"
+      << sim.output();
   EXPECT_EQ(sim.stop(10), 0) << sim.output();
   EXPECT_EQ(spawner.stop(10), 0) << spawner.output();
   EXPECT_EQ(cm.stop(10), 0) << cm.output();

@@ -459,3 +459,55 @@ TEST(sim_e2e, BadUrdfOrConfigGivesOneClearLineAndANonZeroExit) {
 
 }  // namespace
 }  // namespace lcm_control::sim::testing
+
+namespace lcm_control::sim::testing {
+namespace {
+
+// switch_arm with j2 (a pitch joint, under gravity) effort-first and, when `hold` is false,
+// <hold_joints>false</hold_joints> in the gz_ros2_control plugin tag.
+std::string limp_arm(bool hold) {
+  std::ifstream in(source("test/robots/switch_arm.urdf"));
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string j2 = "<joint name=\"j2\">\n      <command_interface name=\"position\"/>";
+  urdf.replace(urdf.find(j2), j2.size(), "<joint name=\"j2\">\n      <command_interface name=\"effort\"/>");
+  const std::string params = "<parameters>switch_arm.yaml</parameters>";
+  if (!hold) urdf.replace(urdf.find(params), params.size(), params + "<hold_joints>false</hold_joints>");
+  const std::string path = lcm_control::testing::temp_dir("hold_joints") + (hold ? "/held.urdf" : "/limp.urdf");
+  std::ofstream(path) << urdf;
+  return path;
+}
+
+// Where j2 is after a second of nobody commanding it.
+double j2_after_a_second_uncommanded(bool hold, std::string* out) {
+  SimServerProcess server;
+  std::string why;
+  if (!server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1", "-J", "j2=0.5"}, limp_arm(hold), "", &why)) {
+    *out = why;
+    return NAN;
+  }
+  FakeController cm(server.lc);
+  cm.policy = [](const hardware_state_t&, hardware_command_t& c) {
+    for (auto& m : c.mode) m = hardware_command_t::MODE_NONE;
+  };
+  if (!cm.run_until_step(1000, 20.0)) {
+    *out = server.output();
+    return NAN;
+  }
+  *out = server.output();
+  return cm.states.back().position[1];
+}
+
+TEST(sim_e2e, HoldJointsFalseLeavesAnUncommandedEffortJointLimpAndSaysSo) {
+  std::string held_out, limp_out;
+  const double held = j2_after_a_second_uncommanded(true, &held_out);
+  const double limp = j2_after_a_second_uncommanded(false, &limp_out);
+  EXPECT_NEAR(held, 0.5, 1e-3) << held_out;  // hold_joints' default: braked where it is
+  EXPECT_GT(std::abs(limp - 0.5), 0.1) << limp_out;  // gravity takes it
+  EXPECT_NE(limp_out.find("<hold_joints>false</hold_joints>: joints nobody commands are not braked"),
+            std::string::npos)
+      << limp_out;
+  EXPECT_EQ(held_out.find("<hold_joints>"), std::string::npos) << held_out;
+}
+
+}  // namespace
+}  // namespace lcm_control::sim::testing
