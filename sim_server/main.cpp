@@ -145,21 +145,16 @@ int main(int argc, char** argv) {
                        "hardware; name gz_ros2_control/GazeboSimSystem there to simulate it)");
     sim::Simulation sim(model, rates, start, world, mock ? sim::Backend::Mock : sim::Backend::Bullet);
     const bool brakes = !no_brakes && model.ros2_control_plugin.hold_joints;
-    if (mock) {
+    if (mock)
       spdlog::info("mock hardware ({}): no physics; the state follows the command as mock_components/GenericSystem",
                    mock_hardware ? "--mock-hardware" : "every <ros2_control> block names mock hardware");
-      for (int i = 0; i < sim.hardware().size(); ++i) spdlog::info("{}", sim.mock().describe(i));
-    } else {
-      sim.actuators().set_brakes(brakes);
-      if (!no_brakes && !brakes)
-        spdlog::info("{}: <hold_joints>false</hold_joints>: joints nobody commands are not braked (effort and "
-                     "velocity joints go limp, position PIDs hold on their gains), as --no-brakes",
-                     model.urdf_path);
-      for (const auto& w : sim.multibody().warnings()) spdlog::warn("{}", w);
-      for (const auto& w : sim.actuators().warnings()) spdlog::warn("{}", w);
-      for (int i = 0; i < sim.actuators().size(); ++i) spdlog::info("{}", sim.actuators().describe(i));
-    }
-    for (const auto& w : sim.start_warnings()) spdlog::warn("{}", w);
+    if (!mock) sim.actuators().set_brakes(brakes);
+    if (!mock && !no_brakes && !brakes)
+      spdlog::info("{}: <hold_joints>false</hold_joints>: joints nobody commands are not braked (effort and velocity "
+                   "joints go limp, position PIDs hold on their gains), as --no-brakes",
+                   model.urdf_path);
+    for (const auto& w : sim.warnings()) spdlog::warn("{}", w);
+    for (const auto& line : sim.describe()) spdlog::info("{}", line);
     Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url, hardware_reader_named(bus_flags.hardware_reader));
     sim::SimIo io(bus, sim, opt.lockstep, clock_every);
     io.set_max_command_age(std::max<int64_t>(1, std::llround(opt.watchdog_s * rates.control_hz)));

@@ -79,6 +79,22 @@ const std::vector<std::string>& Simulation::start_warnings() const {
   return mock_ ? mock_->start_warnings() : multibody_->start_warnings();
 }
 
+std::vector<std::string> Simulation::describe() const {
+  std::vector<std::string> lines;
+  for (int i = 0; i < hardware().size(); ++i) lines.push_back(mock_ ? mock_->describe(i) : actuators_->describe(i));
+  return lines;
+}
+
+std::vector<std::string> Simulation::warnings() const {
+  std::vector<std::string> lines;
+  if (multibody_) {
+    lines = multibody_->warnings();
+    lines.insert(lines.end(), actuators_->warnings().begin(), actuators_->warnings().end());
+  }
+  lines.insert(lines.end(), start_warnings().begin(), start_warnings().end());
+  return lines;
+}
+
 void Simulation::step() {
   if (mock_) {
     mock_->step(control_period_);

@@ -74,6 +74,10 @@ class Simulation {
   MockHardware& mock() { return *mock_; }
   // Start positions clamped into the limits, one line each.
   const std::vector<std::string>& start_warnings() const;
+  // One INFO line per actuator: how it plays its modes.
+  std::vector<std::string> describe() const;
+  // The WARN lines of building it: the multibody's and actuators' findings, then start_warnings().
+  std::vector<std::string> warnings() const;
 
  private:
   RobotModel model_;  // the multibody points into it
