@@ -27,6 +27,8 @@ std::string check_interface(const RobotModel& model, const std::string& controll
   for (Interface i : t->interfaces) offered.push_back(to_string(i));
   if (t->interfaces.front() == needed) return "";
   for (Interface i : t->interfaces)
+    if (i == needed && t->any_interface) return "";  // a <ros2_control> joint: the hardware switches to it
+  for (Interface i : t->interfaces)
     if (i == needed)
       return fmt::format(
           "controller '{}' needs {} on joint '{}'; transmission '{}' offers {} but the hardware takes "

@@ -19,8 +19,10 @@ struct Claim {
   std::vector<std::string> joints;
 };
 
-// "" when `joint` can be commanded on `needed`, else a message naming the
-// controller, the joint, the interface needed and the interfaces offered.
+// "" when `joint` can be commanded on `needed` (a URDF <transmission>: its first
+// interface, as gazebo_ros_control; a <ros2_control> joint: any of its command
+// interfaces), else a message naming the controller, the joint, the interface
+// needed and the interfaces offered.
 std::string check_interface(const RobotModel& model, const std::string& controller, const std::string& joint,
                             Interface needed);
 

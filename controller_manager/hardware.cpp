@@ -1,6 +1,7 @@
 #include "controller_manager/hardware.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <cmath>
 
@@ -17,6 +18,7 @@ Hardware::Hardware(const RobotModel& model) {
     j.urdf = model.joint(t.joint);
     j.map = t.map;
     j.offered = t.interfaces;
+    j.any_interface = t.any_interface;
     j.continuous = j.urdf && j.urdf->type == JointType::Continuous;
     joints_.push_back(j);
   }
@@ -43,9 +45,17 @@ std::string Hardware::bind(const hardware_state_t& state, hardware_command_t& co
       problems.push_back(fmt::format("actuator '{}' (joint '{}') is missing", j.actuator, j.name));
       continue;
     }
-    if (state.mode[a] != wire_mode(j.offered.front()))
-      problems.push_back(fmt::format("actuator '{}' takes {} commands but the URDF transmission of joint '{}' says {}",
-                                     j.actuator, wire_mode_name(state.mode[a]), j.name, to_string(j.offered.front())));
+    // ROS 1 transmissions: the hardware takes the first interface; a <ros2_control> joint: any it offers.
+    const size_t n_taken = j.any_interface ? j.offered.size() : 1;
+    std::vector<std::string> taken;
+    bool takes = false;
+    for (size_t i = 0; i < n_taken; ++i) {
+      takes = takes || state.mode[a] == wire_mode(j.offered[i]);
+      taken.push_back(to_string(j.offered[i]));
+    }
+    if (!takes)
+      problems.push_back(fmt::format("actuator '{}' takes {} commands but the URDF says joint '{}' takes {}",
+                                     j.actuator, wire_mode_name(state.mode[a]), j.name, fmt::join(taken, " or ")));
   }
   if (!b.repeated.empty()) problems.push_back(b.problem(true));
   if (!problems.empty()) {
@@ -108,7 +118,7 @@ void Hardware::write(const hardware_state_t& s, hardware_command_t& c) const {
     const JointData& j = joints_[k];
     if (!j.owner) continue;
     const int a = actuator_of_joint_[k];
-    const Interface i = j.offered.front();
+    const Interface i = j.owner->claim().interface.value_or(j.offered.front());
     double v = 0;
     switch (i) {
       case Interface::Position:

@@ -23,7 +23,8 @@ struct JointData {
   std::string actuator;
   const Joint* urdf = nullptr;
   SimpleTransmission map;
-  std::vector<Interface> offered;  // from the transmission; offered.front() is what the hardware takes
+  std::vector<Interface> offered;  // from the transmission; offered.front() is what the hardware takes by default
+  bool any_interface = false;      // a <ros2_control> joint: the hardware takes any of `offered`, switching to it
   bool continuous = false;
   double position = 0, velocity = 0, effort = 0;  // joint space, from the last read
   double command = 0;                             // joint space, written by the owning controller

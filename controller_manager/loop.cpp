@@ -5,19 +5,22 @@
 
 namespace lcm_control::cm {
 
-// A joint a controller takes over from one stopped in the same switch keeps that controller's last command
-// (bumpless); any other joint is first commanded to hold where it is, so that the command written in this cycle,
-// before the new controller's first update, is never a stale or zero value.
-bool Loop::handed_over(const JointData* j) const {
+// A joint a controller takes over on the same interface from one stopped in the same switch keeps that controller's
+// last command (bumpless); any other joint (a <ros2_control> joint whose interface changes too: a velocity is no
+// position) is first commanded to hold where it is, so that the command written in this cycle, before the new
+// controller's first update, is never a stale or zero value.
+bool Loop::handed_over(const JointData* j, std::optional<Interface> interface) const {
   for (const ControllerSlot* s : pending_stop_)
     for (const JointData* k : s->claimed)
-      if (k == j) return true;
+      if (k == j) return s->controller->claim().interface == interface;
   return false;
 }
 
 void Loop::start(ControllerSlot& s) {
   for (JointData* j : s.claimed) {
-    if (!handed_over(j)) j->command = j->offered.front() == Interface::Position ? j->position : 0.0;
+    const std::optional<Interface> interface = s.controller->claim().interface;
+    if (!handed_over(j, interface))
+      j->command = interface.value_or(j->offered.front()) == Interface::Position ? j->position : 0.0;
     j->owner = s.controller.get();
     j->soft_position.reset();
   }

@@ -73,7 +73,7 @@ class Loop {
 
  private:
   void apply_switch();
-  bool handed_over(const JointData* j) const;
+  bool handed_over(const JointData* j, std::optional<Interface> interface) const;
   void start(ControllerSlot& s);
   void stop(ControllerSlot& s);
 

@@ -102,7 +102,10 @@ struct TransmissionSpec {
   std::string name;
   std::string type;  // "transmission_interface/SimpleTransmission"
   std::string joint;
-  std::vector<Interface> interfaces;  // first one is the one the hardware takes
+  std::vector<Interface> interfaces;  // first one is the one the hardware takes by default
+  // A <ros2_control> joint: the hardware takes commands in any of `interfaces`, switching at run time to the one the
+  // running controller claims. False (a URDF <transmission>, ROS 1): only the first.
+  bool any_interface = false;
   std::string actuator;
   SimpleTransmission map;
   std::vector<Interface> skipped_interfaces;  // of the joint's other transmissions, skipped (the first drives it)

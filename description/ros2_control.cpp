@@ -345,6 +345,7 @@ void read_ros2_control(RobotModel& model, const tinyxml2::XMLElement* robot, con
       t.type = "transmission_interface/SimpleTransmission";
       t.joint = c.name;
       t.actuator = c.name + "_actuator";
+      t.any_interface = true;
       std::vector<std::string> unsimulated;
       for (const Ros2Interface& i : c.command_interfaces) {
         if (const auto std_i = interface_of_quantity(i.name)) {
@@ -389,7 +390,8 @@ void read_ros2_control(RobotModel& model, const tinyxml2::XMLElement* robot, con
   }
 }
 
-void read_ros2_control_plugin(RobotModel& model, const tinyxml2::XMLElement* robot) {
+void read_ros2_control_plugin(RobotModel& model, const tinyxml2::XMLElement* robot, const std::string& file,
+                              std::vector<std::string>& problems) {
   for (auto* g = robot->FirstChildElement("gazebo"); g; g = g->NextSiblingElement("gazebo"))
     for (auto* p = g->FirstChildElement("plugin"); p; p = p->NextSiblingElement("plugin")) {
       const std::string fn = attr(p, "filename");
@@ -402,6 +404,32 @@ void read_ros2_control_plugin(RobotModel& model, const tinyxml2::XMLElement* rob
         if (!text_of(f).empty()) out.parameters.push_back(text_of(f));
       if (auto* ros = p->FirstChildElement("ros")) out.ns = text_of(ros->FirstChildElement("namespace"));
       out.controller_manager_name = text_of(p->FirstChildElement("controller_manager_name"));
+      if (const auto* h = p->FirstChildElement("hold_joints")) {
+        const std::string v = text_of(h);
+        if (v == "true" || v == "1")
+          out.hold_joints = true;
+        else if (v == "false" || v == "0")
+          out.hold_joints = false;
+        else
+          problems.push_back(fmt::format("{}:{}: <plugin filename=\"{}\">: <hold_joints> '{}' is not a bool; write "
+                                         "true (joints nobody commands are held still, the default) or false",
+                                         file, h->GetLineNum(), fn, v));
+      }
+      if (const auto* k = p->FirstChildElement("position_proportional_gain")) {
+        const std::string v = text_of(k);
+        double gain = 0;
+        if (!parse_double(v, gain)) {
+          problems.push_back(fmt::format("{}:{}: <plugin filename=\"{}\">: <position_proportional_gain> '{}' is not "
+                                         "a number; remove it (it is not used here) or give a number",
+                                         file, k->GetLineNum(), fn, v));
+        } else {
+          out.position_proportional_gain = gain;
+          model.notes.push_back(fmt::format("{}:{}: <position_proportional_gain> {:g} is ignored: a position command "
+                                            "interface here is a servo on the position (direct, or a PID with "
+                                            "pid_gains), not gz's proportional velocity loop",
+                                            file, k->GetLineNum(), gain));
+        }
+      }
     }
 }
 

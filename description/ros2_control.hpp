@@ -77,6 +77,10 @@ struct Ros2ControlPlugin {
   std::vector<std::string> parameters;  // <parameters> files (the controllers YAML), as written
   std::string ns;                       // <ros><namespace>
   std::string controller_manager_name;  // <controller_manager_name>
+  bool hold_joints = true;              // <hold_joints>: an actuated joint nobody commands is held still
+  // <position_proportional_gain>: gz's P gain on the position error; read and reported, not used (our position
+  // interface is a servo, not gz's first-order velocity loop).
+  std::optional<double> position_proportional_gain;
 };
 
 // The kind of hardware a <plugin> names, or nullopt for one that drives real hardware.
@@ -89,7 +93,9 @@ bool has_ros2_control(const tinyxml2::XMLElement* robot);
 // (file:line, block and joint named), findings to model.notes / model.warnings. model.joints must be read.
 void read_ros2_control(RobotModel& model, const tinyxml2::XMLElement* robot, const std::string& file,
                        std::vector<std::string>& problems);
-// Reads the gz_ros2_control / gazebo_ros2_control plugin tag into model.ros2_control_plugin.
-void read_ros2_control_plugin(RobotModel& model, const tinyxml2::XMLElement* robot);
+// Reads the gz_ros2_control / gazebo_ros2_control plugin tag into model.ros2_control_plugin. A <hold_joints> or
+// <position_proportional_gain> that is not a bool / number is appended to `problems` (file:line named).
+void read_ros2_control_plugin(RobotModel& model, const tinyxml2::XMLElement* robot, const std::string& file,
+                              std::vector<std::string>& problems);
 
 }  // namespace lcm_control

@@ -486,7 +486,7 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
   else
     parse_transmissions(model, robot, urdf_path, problems);
   parse_gazebo_plugin(model, robot);
-  read_ros2_control_plugin(model, robot);
+  read_ros2_control_plugin(model, robot, urdf_path, problems);
 }
 
 

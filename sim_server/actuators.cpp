@@ -54,29 +54,33 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
     a.saturation = PositionSaturation(j.limits());
     const auto gains = model.pid_gains.find(t.joint);
     const bool with_gains = gains != model.pid_gains.end();
-    switch (t.interfaces.front()) {
-      case Interface::Position:
-        a.mode = with_gains ? ActuatorMode::PositionPid : ActuatorMode::PositionDirect;
-        break;
-      case Interface::Velocity:
-        a.mode = with_gains ? ActuatorMode::VelocityPid : ActuatorMode::VelocityMotor;
-        break;
-      case Interface::Effort:
-        a.mode = ActuatorMode::Effort;
-        break;
+    const size_t n_offered = t.any_interface ? t.interfaces.size() : 1;  // ROS 1: the hardware takes the first
+    bool brakeable = false;
+    for (size_t k = 0; k < n_offered; ++k) {
+      const Interface i = t.interfaces[k];
+      const int8_t w = lcm_control::wire_mode(i);
+      ActuatorMode m = ActuatorMode::Effort;
+      if (i == Interface::Position) m = with_gains ? ActuatorMode::PositionPid : ActuatorMode::PositionDirect;
+      if (i == Interface::Velocity) m = with_gains ? ActuatorMode::VelocityPid : ActuatorMode::VelocityMotor;
+      a.offered[w] = true;
+      a.mode_for[w] = m;
+      a.has_pid = a.has_pid || m == ActuatorMode::PositionPid || m == ActuatorMode::VelocityPid;
+      // Direct position is kinematic, as in Gazebo (a capped dead-beat motor would overshoot once it saturates);
+      // the velocity motor is capped by the effort limit; a PID with soft gains would let a held joint drift, so
+      // PID and effort modes get a brake.
+      if (m == ActuatorMode::PositionDirect && !a.position_motor)
+        a.position_motor = mb.add_motor(a.link, kUnlimitedEffort * dt);
+      else if (m == ActuatorMode::VelocityMotor && !a.velocity_motor)
+        a.velocity_motor = mb.add_motor(a.link, finite_or(a.effort_limit, kUnlimitedEffort) * dt);
+      else
+        brakeable = true;
     }
-    a.wire_mode = lcm_control::wire_mode(t.interfaces.front());
-    a.has_pid = a.mode == ActuatorMode::PositionPid || a.mode == ActuatorMode::VelocityPid;
+    a.wire_mode = a.next_wire_mode = lcm_control::wire_mode(t.interfaces.front());
+    a.mode = a.mode_for[a.wire_mode];
     if (a.has_pid) a.pid.set_gains(gains->second);
-    // Direct position is kinematic, as in Gazebo (a capped dead-beat motor would overshoot once it saturates);
-    // the velocity motor is capped by the effort limit.
-    if (a.mode == ActuatorMode::PositionDirect)
-      a.motor = mb.add_motor(a.link, kUnlimitedEffort * dt);
-    else if (a.mode == ActuatorMode::VelocityMotor)
-      a.motor = mb.add_motor(a.link, finite_or(a.effort_limit, kUnlimitedEffort) * dt);
-    else if (a.mode == ActuatorMode::Effort || a.mode == ActuatorMode::VelocityPid ||
-             a.mode == ActuatorMode::PositionPid)  // a PID with soft gains would let a held joint drift
-      a.brake = mb.add_motor(a.link, finite_or(a.effort_limit, kUnlimitedEffort) * dt);
+    if (brakeable) a.brake = mb.add_motor(a.link, finite_or(a.effort_limit, kUnlimitedEffort) * dt);
+    a.position_motor_on = a.position_motor != nullptr;
+    a.velocity_motor_on = a.velocity_motor != nullptr;
     a.braking = a.brake != nullptr;
     a.q = a.hold_position = mb.position(a.link);
     a.saturation.reset(a.q);
@@ -105,10 +109,8 @@ Actuators::Passive Actuators::passive_for(const MultibodyJoint& mj, const std::s
   return p;
 }
 
-int Actuators::find_joint(const std::string& joint) const {
-  for (int i = 0; i < size(); ++i)
-    if (actuators_[i].joint == joint) return i;
-  return -1;
+bool Actuators::offers(int i, int8_t wire_mode) const {
+  return wire_mode > 0 && wire_mode < kWireModes && actuators_[i].offered[wire_mode];
 }
 
 std::string Actuators::describe(int i) const {
@@ -133,20 +135,32 @@ std::string Actuators::describe(int i) const {
       how = "effort, applied directly";
       break;
   }
-  return fmt::format("actuator '{}' -> joint '{}': {}; reduction {:g}, offset {:g}, effort limit {:g}, velocity limit "
-                     "{:g}",
-                     a.name, a.joint, how, a.map.reduction, a.map.offset, a.effort_limit, a.velocity_limit);
+  std::string also;
+  for (int8_t w = 1; w < kWireModes; ++w)
+    if (a.offered[w] && w != a.wire_mode)
+      also += fmt::format("{}{} ({})", also.empty() ? "; switches on command to " : ", ", wire_mode_name(w),
+                          to_string(a.mode_for[w]));
+  return fmt::format("actuator '{}' -> joint '{}': {}{}; reduction {:g}, offset {:g}, effort limit {:g}, velocity "
+                     "limit {:g}",
+                     a.name, a.joint, how, also, a.map.reduction, a.map.offset, a.effort_limit, a.velocity_limit);
 }
 
-void Actuators::set_command(int i, int8_t wire_mode, double value) {
+bool Actuators::set_command(int i, int8_t wire_mode, double value) {
   Actuator& a = actuators_[i];
   a.commanded = wire_mode != hardware_command_t::MODE_NONE;
-  if (!a.commanded) return;
-  switch (a.wire_mode) {
+  if (!a.commanded) return true;
+  if (!offers(i, wire_mode)) {
+    a.commanded = false;
+    ++a.rejected;
+    return false;
+  }
+  a.next_wire_mode = wire_mode;
+  switch (wire_mode) {
     case hardware_command_t::MODE_POSITION: a.command = a.map.actuator_to_joint_position(value); break;
     case hardware_command_t::MODE_VELOCITY: a.command = a.map.actuator_to_joint_velocity(value); break;
     default: a.command = a.map.actuator_to_joint_effort(value); break;
   }
+  return true;
 }
 
 void Actuators::set_e_stop(bool engaged) {
@@ -172,14 +186,27 @@ double Actuators::position_goal(Actuator& a, bool hold, double dt) {
   return a.saturation.enforce(a.command, dt);
 }
 
-void Actuators::set_braking(Actuator& a, bool on) {
-  if (!a.brake || on == a.braking) return;
-  // The brake was in the world when the solver buffers were sized, so adding it back does not allocate.
+void Actuators::set_in_world(btMultiBodyJointMotor* motor, bool& in_world, bool on) {
+  if (!motor || on == in_world) return;
+  // The motor was in the world when the solver buffers were sized, so adding it back does not allocate.
   if (on)
-    mb_.world().addMultiBodyConstraint(a.brake);
+    mb_.world().addMultiBodyConstraint(motor);
   else
-    mb_.world().removeMultiBodyConstraint(a.brake);
-  a.braking = on;
+    mb_.world().removeMultiBodyConstraint(motor);
+  in_world = on;
+}
+
+btMultiBodyJointMotor* Actuators::active_motor(const Actuator& a) const {
+  if (a.mode == ActuatorMode::PositionDirect) return a.position_motor;
+  if (a.mode == ActuatorMode::VelocityMotor) return a.velocity_motor;
+  return nullptr;
+}
+
+void Actuators::switch_mode(Actuator& a, int8_t wire_mode) {
+  a.wire_mode = wire_mode;
+  a.mode = a.mode_for[wire_mode];
+  a.pid.reset();
+  a.saturation.reset(a.q);  // a position goal moves from where the joint is, at most at the velocity limit
 }
 
 void Actuators::apply(double dt) {
@@ -188,7 +215,11 @@ void Actuators::apply(double dt) {
     if (hold && !a.holding) a.hold_position = a.q;
     a.holding = hold;
     const double q = a.q = mb_.position(a.link), qd = a.qd = mb_.velocity(a.link);
-    set_braking(a, brakes_ && !e_stop_ && (hold_all_ || !a.commanded));
+    if (a.commanded && a.next_wire_mode != a.wire_mode) switch_mode(a, a.next_wire_mode);
+    set_in_world(a.position_motor, a.position_motor_on, a.mode == ActuatorMode::PositionDirect);
+    set_in_world(a.velocity_motor, a.velocity_motor_on, a.mode == ActuatorMode::VelocityMotor);
+    const bool brakeable_mode = a.mode != ActuatorMode::PositionDirect && a.mode != ActuatorMode::VelocityMotor;
+    set_in_world(a.brake, a.braking, brakeable_mode && brakes_ && !e_stop_ && (hold_all_ || !a.commanded));
     if (a.braking) {
       a.brake->setPositionTarget(a.hold_position, 1.0);
       a.brake->setVelocityTarget(0, 1.0);
@@ -205,8 +236,8 @@ void Actuators::apply(double dt) {
       case ActuatorMode::PositionDirect: {
         double goal = position_goal(a, hold, dt);
         if (a.continuous) goal = q + shortest_angular_distance(q, goal);
-        a.motor->setPositionTarget(goal, 1.0);
-        a.motor->setVelocityTarget(0, 1.0);
+        a.position_motor->setPositionTarget(goal, 1.0);
+        a.position_motor->setVelocityTarget(0, 1.0);
         break;
       }
       case ActuatorMode::VelocityPid: {
@@ -215,8 +246,8 @@ void Actuators::apply(double dt) {
         break;
       }
       case ActuatorMode::VelocityMotor:
-        a.motor->setPositionTarget(0, 0.0);
-        a.motor->setVelocityTarget(hold ? 0.0 : clamp_abs(a.command, a.velocity_limit), 1.0);
+        a.velocity_motor->setPositionTarget(0, 0.0);
+        a.velocity_motor->setVelocityTarget(hold ? 0.0 : clamp_abs(a.command, a.velocity_limit), 1.0);
         break;
       case ActuatorMode::Effort:
         a.effort = hold ? 0.0 : clamp_abs(a.command, e_max);
@@ -236,7 +267,8 @@ void Actuators::read(double dt) {
   for (Actuator& a : actuators_) {
     a.q = mb_.position(a.link);
     a.qd = mb_.velocity(a.link);
-    a.applied = a.motor ? a.motor->getAppliedImpulse(0) / dt : a.effort;
+    btMultiBodyJointMotor* motor = active_motor(a);
+    a.applied = motor ? motor->getAppliedImpulse(0) / dt : a.effort;
     if (a.braking) a.applied += a.brake->getAppliedImpulse(0) / dt;
   }
 }

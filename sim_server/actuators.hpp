@@ -1,5 +1,7 @@
 // The simulated hardware behind each transmission: it takes actuator-space
-// commands in the mode its hardwareInterface declares and turns them, every
+// commands in the mode its hardwareInterface declares (a <ros2_control> joint:
+// in any command interface it offers, switching at the step the mode changes)
+// and turns them, every
 // physics step, into joint torques or motor targets with gazebo_ros_control's
 // semantics (PID to effort with pid_gains, direct without), plus what that
 // plugin leaves out: transmissions, position/velocity/effort limits, URDF
@@ -14,6 +16,7 @@
 #include "control/joint_limits.hpp"
 #include "control/pid.hpp"
 #include "description/robot_model.hpp"
+#include "sim_server/played_hardware.hpp"
 #include "sim_server/multibody_builder.hpp"
 
 namespace lcm_control::sim {
@@ -21,27 +24,33 @@ namespace lcm_control::sim {
 enum class ActuatorMode { PositionPid, PositionDirect, VelocityPid, VelocityMotor, Effort };
 const char* to_string(ActuatorMode m);
 
-class Actuators {
+class Actuators final : public PlayedHardware {
  public:
-  // Reads the transmissions (in URDF order) and pid_gains; adds the motors the direct modes need.
+  // Reads the transmissions (in URDF order) and pid_gains; adds every motor the offered modes need (switching modes
+  // then only takes motors out of the world or puts them back, which does not allocate).
   Actuators(const RobotModel& model, Multibody& multibody);
 
-  int size() const { return int(actuators_.size()); }
-  const std::string& name(int i) const { return actuators_[i].name; }
-  const std::string& joint(int i) const { return actuators_[i].joint; }
+  int size() const override { return int(actuators_.size()); }
+  const std::string& name(int i) const override { return actuators_[i].name; }
+  const std::string& joint(int i) const override { return actuators_[i].joint; }
   ActuatorMode mode(int i) const { return actuators_[i].mode; }
-  int8_t wire_mode(int i) const { return actuators_[i].wire_mode; }  // hardware_command_t::MODE_*
-  int find_joint(const std::string& joint) const;                    // -1 if no actuator drives it
+  int8_t wire_mode(int i) const override { return actuators_[i].wire_mode; }  // hardware_command_t::MODE_*
+  bool offers(int i, int8_t wire_mode) const override;
+  const char* mode_name(int i) const override { return to_string(actuators_[i].mode); }
+  // Commands in a mode the joint does not offer, since the start (each held the actuator for that step).
+  int64_t rejected(int i) const { return actuators_[i].rejected; }
   // One line per actuator for the INFO log: mode, reduction, limits, gains.
   std::string describe(int i) const;
   // Findings worth a WARN (damping capped so the explicit damping torque stays stable).
   const std::vector<std::string>& warnings() const { return warnings_; }
 
-  // Commands in actuator units; MODE_NONE holds. Real-time safe.
-  void set_command(int i, int8_t wire_mode, double value);
+  // Commands in actuator units; MODE_NONE holds. Another offered mode switches the actuator at the next physics
+  // step: a position servo starts from the measured position (rate-limited from there), a PID starts afresh, the
+  // previous mode's motor leaves the world. A mode not offered holds and returns false. Real-time safe.
+  bool set_command(int i, int8_t wire_mode, double value) override;
   // Watchdog or lost controller: every actuator holds while set.
-  void set_hold_all(bool hold) { hold_all_ = hold; }
-  bool hold_all() const { return hold_all_; }
+  void set_hold_all(bool hold) override { hold_all_ = hold; }
+  bool hold_all() const override { return hold_all_; }
   // Brakes (default on): an effort, velocity-PID or position-PID actuator nobody commands, or held by the watchdog,
   // is held at its position by a motor capped at the effort limit, so an arm does not sag before its controllers
   // start and does not drift on soft gains while its controller manager is gone. Off: such a joint is limp (effort,
@@ -49,22 +58,22 @@ class Actuators {
   void set_brakes(bool on) { brakes_ = on; }
   bool brakes() const { return brakes_; }
   // Position actuators latch their position when it engages; velocity and effort get 0.
-  void set_e_stop(bool engaged);
-  bool e_stop() const { return e_stop_; }
+  void set_e_stop(bool engaged) override;
+  bool e_stop() const override { return e_stop_; }
 
-  bool has_pid(int i) const { return actuators_[i].has_pid; }
-  const PidGains& gains(int i) const { return actuators_[i].pid.gains(); }
+  bool has_pid(int i) const override { return actuators_[i].has_pid; }
+  const PidGains& gains(int i) const override { return actuators_[i].pid.gains(); }
   // Joint-space gains of a PID actuator, used from the next physics step on; false for direct modes.
-  bool set_gains(int i, const PidGains& g);
+  bool set_gains(int i, const PidGains& g) override;
 
   // The real-time path, around every physics step: no allocation, logging or locks.
   void apply(double dt);  // torques and motor targets for the coming step
   void read(double dt);   // state and applied effort after it
 
   // State after the last step, in actuator units.
-  double position(int i) const;
-  double velocity(int i) const;
-  double effort(int i) const;
+  double position(int i) const override;
+  double velocity(int i) const override;
+  double effort(int i) const override;
   // The same in joint units.
   double joint_position(int i) const { return actuators_[i].q; }
   double joint_velocity(int i) const { return actuators_[i].qd; }
@@ -77,10 +86,16 @@ class Actuators {
     double damping = 0, friction = 0, friction_speed = 1;
   };
 
+  static constexpr int kWireModes = 4;  // MODE_NONE .. MODE_EFFORT
+
   struct Actuator {
     std::string name, joint;
     ActuatorMode mode = ActuatorMode::Effort;
     int8_t wire_mode = 0;
+    int8_t next_wire_mode = 0;               // the mode of the newest command; apply() switches to it
+    bool offered[kWireModes] = {};           // by wire mode
+    ActuatorMode mode_for[kWireModes] = {};  // how each offered wire mode is played
+    int64_t rejected = 0;
     SimpleTransmission map;
     int link = -1;
     bool continuous = false;
@@ -89,9 +104,11 @@ class Actuators {
     PositionSaturation saturation;
     bool has_pid = false;
     Pid pid;
-    btMultiBodyJointMotor* motor = nullptr;
-    btMultiBodyJointMotor* brake = nullptr;  // in the world only while braking
-    bool braking = false;
+    // Each in the world only while its mode (or braking) uses it; all are there when the solver buffers are sized.
+    btMultiBodyJointMotor* position_motor = nullptr;  // position direct
+    btMultiBodyJointMotor* velocity_motor = nullptr;  // velocity motor
+    btMultiBodyJointMotor* brake = nullptr;
+    bool position_motor_on = false, velocity_motor_on = false, braking = false;
     bool commanded = false;  // false: nobody commands it (MODE_NONE or none yet)
     double command = 0;      // joint units
     bool holding = true;
@@ -100,13 +117,15 @@ class Actuators {
   };
 
   double position_goal(Actuator& a, bool hold, double dt);
+  void switch_mode(Actuator& a, int8_t wire_mode);
+  void set_in_world(btMultiBodyJointMotor* motor, bool& in_world, bool on);
+  btMultiBodyJointMotor* active_motor(const Actuator& a) const;
   Passive passive_for(const MultibodyJoint& j, const std::string& urdf);
   static double passive_torque(const Passive& p, double qd);
 
   Multibody& mb_;
   std::vector<Actuator> actuators_;
   std::vector<Passive> passive_;  // joints without a transmission
-  void set_braking(Actuator& a, bool on);
 
   bool hold_all_ = false, e_stop_ = false, brakes_ = true;
   std::vector<std::string> warnings_;

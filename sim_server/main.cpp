@@ -100,6 +100,10 @@ int main(int argc, char** argv) {
   app.add_flag("--no-brakes", no_brakes,
                "joints nobody commands, or held by the watchdog, are left to their PID (position) or limp (effort, "
                "velocity), as in Gazebo (default: braked where they are)");
+  bool mock_hardware = false;
+  app.add_flag("--mock-hardware", mock_hardware,
+               "play the robot without physics, as ros2_control's mock_components/GenericSystem: the state follows "
+               "the command (the default when every <ros2_control> block names mock_components/GenericSystem)");
   app.add_option("--log-level", log_level, "debug, info, warn or error");
   add_bus_flags(app, bus_flags);
   add_hardware_url_flag(app, bus_flags);
@@ -124,7 +128,7 @@ int main(int argc, char** argv) {
     const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
     for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
-    InitialPositions start;
+    InitialPositions start = model.initial_positions;  // <ros2_control> initial_value; -J overrides
     for (const auto& a : initial) {
       const auto [joint, q] = parse_initial_position(a);
       start[joint] = q;
@@ -134,30 +138,45 @@ int main(int argc, char** argv) {
       world.base_position = {base_pose[0], base_pose[1], base_pose[2]};
       world.base_yaw = base_pose[3];
     }
-    sim::Simulation sim(model, rates, start, world);
-    sim.actuators().set_brakes(!no_brakes);
-    for (const auto& w : sim.multibody().warnings()) spdlog::warn("{}", w);
-    for (const auto& w : sim.multibody().start_warnings()) spdlog::warn("{}", w);
-    for (const auto& w : sim.actuators().warnings()) spdlog::warn("{}", w);
-    for (int i = 0; i < sim.actuators().size(); ++i) spdlog::info("{}", sim.actuators().describe(i));
+    const bool mock = mock_hardware || sim::all_mock_hardware(model);
+    if (mock && world.floating_base)
+      throw CLI::ValidationError("--floating-base", "needs physics, and mock hardware has none: drop --floating-base, or "
+                       "--mock-hardware (a description whose <ros2_control> blocks all name mock hardware runs mock "
+                       "hardware; name gz_ros2_control/GazeboSimSystem there to simulate it)");
+    sim::Simulation sim(model, rates, start, world, mock ? sim::Backend::Mock : sim::Backend::Bullet);
+    const bool brakes = !no_brakes && model.ros2_control_plugin.hold_joints;
+    if (mock)
+      spdlog::info("mock hardware ({}): no physics; the state follows the command as mock_components/GenericSystem",
+                   mock_hardware ? "--mock-hardware" : "every <ros2_control> block names mock hardware");
+    if (!mock) sim.actuators().set_brakes(brakes);
+    if (!mock && !no_brakes && !brakes)
+      spdlog::info("{}: <hold_joints>false</hold_joints>: joints nobody commands are not braked (effort and velocity "
+                   "joints go limp, position PIDs hold on their gains), as --no-brakes",
+                   model.urdf_path);
+    for (const auto& w : sim.warnings()) spdlog::warn("{}", w);
+    for (const auto& line : sim.describe()) spdlog::info("{}", line);
     Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url, hardware_reader_named(bus_flags.hardware_reader));
     sim::SimIo io(bus, sim, opt.lockstep, clock_every);
     io.set_max_command_age(std::max<int64_t>(1, std::llround(opt.watchdog_s * rates.control_hz)));
     sim::Stepper stepper(sim, io, opt);
     std::signal(SIGINT, on_signal);
     std::signal(SIGTERM, on_signal);
-    spdlog::info("ready ({}{}{}, {} actuators, physics {:g} Hz, control {:g} Hz, clock {:g} Hz, lcm {}{}{}, session {}{})",
-                 opt.lockstep ? "lockstep" : "real time", opt.start_paused ? ", paused" : "",
+    spdlog::info("ready ({}{}{}{}, {} actuators, {}control {:g} Hz, clock {:g} Hz, lcm {}{}{}, session {}{})",
+                 opt.lockstep ? "lockstep" : "real time", mock ? ", mock hardware" : "",
+                 opt.start_paused ? ", paused" : "",
                  world.floating_base ? (world.ground ? ", floating base on the ground" : ", floating base") :
                  (world.ground ? ", ground" : ""),
-                 sim.actuators().size(), rates.physics_hz, rates.control_hz,
+                 sim.hardware().size(), mock ? "" : fmt::format("physics {:g} Hz, ", rates.physics_hz),
+                 rates.control_hz,
                  rates.control_hz / clock_every,
                  bus.url(), hardware_note(bus),
                  bus.ns().empty() ? "" : ", namespace " + bus.ns(), io.session(),
                  scheduling.empty() ? "" : ", " + scheduling);
     if (!stepper.run(g_stop)) throw BusError("LCM stopped working (handle failed); is the multicast route still there?");
-    spdlog::info("stopped at step {} (sim time {:.3f} s); {} commands dropped{}", sim.step_count(), sim.time(),
+    spdlog::info("stopped at step {} (sim time {:.3f} s); {} commands dropped{}{}", sim.step_count(), sim.time(),
                  io.dropped(),
+                 io.rejected_modes() ? fmt::format("; {} actuator commands in a mode not offered", io.rejected_modes())
+                                     : "",
                  io.foreign_states() ? fmt::format("; {} hardware/state from another simulator", io.foreign_states())
                                      : "");
     return int(kExitOk);

@@ -43,7 +43,7 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
       base_pub_(endpoints_.publisher<odometry_t>(bus.channel(channels::kBasePose))),
       stats_pub_(endpoints_.publisher<loop_stats_t>(bus.channel(channels::kSimStatistics))),
       response_pub_(endpoints_.publisher<sim_response_t>(bus.channel(channels::kSimResponse))) {
-  const Actuators& act = sim.actuators();
+  const PlayedHardware& act = sim.hardware();
   const int n = act.size();
   resize(state_, n);
   for (int i = 0; i < n; ++i) {
@@ -53,13 +53,14 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
   state_.session = session_;
   state_.lockstep = lockstep;
   state_.period_us = int32_t(std::llround(sim.control_period() * 1e6));
-  floating_base_ = sim.multibody().floating_base();
+  floating_base_ = sim.floating_base();
   if (floating_base_) {
     base_ = odometry_t{};
     base_.frame_id = "world";
     base_.child_frame_id = sim.multibody().root_link();
   }
   resize(cmd_, n);
+  rejected_warned_.assign(n, hardware_command_t::MODE_NONE);
   pending_mode_.assign(n, hardware_command_t::MODE_NONE);
   pending_value_.assign(n, 0.0);
 
@@ -79,12 +80,13 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
 }
 
 void SimIo::publish_state(double real_time_factor, bool clock_again) {
-  const Actuators& act = sim_.actuators();
+  const PlayedHardware& act = sim_.hardware();
   state_.utime = sim_.time_us();
   state_.step = sim_.step_count();
   state_.e_stop = act.e_stop();
   state_.real_time_factor = real_time_factor;
   for (int i = 0; i < act.size(); ++i) {
+    state_.mode[i] = act.wire_mode(i);
     state_.position[i] = act.position(i);
     state_.velocity[i] = act.velocity(i);
     state_.effort[i] = act.effort(i);
@@ -145,16 +147,32 @@ bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_reque
 
 bool SimIo::take_command() {
   if (!has_pending_) return false;
-  Actuators& act = sim_.actuators();
-  for (int i = 0; i < act.size(); ++i) act.set_command(i, pending_mode_[i], pending_value_[i]);
+  PlayedHardware& act = sim_.hardware();
+  for (int i = 0; i < act.size(); ++i)
+    if (!act.set_command(i, pending_mode_[i], pending_value_[i])) reject_mode(i, pending_mode_[i]);
   has_pending_ = false;
   return true;
+}
+
+void SimIo::reject_mode(int i, int8_t mode) {
+  ++rejected_modes_;
+  if (rejected_warned_[i] == mode) return;
+  rejected_warned_[i] = mode;
+  const PlayedHardware& act = sim_.hardware();
+  std::vector<std::string> offered;
+  for (int8_t w = hardware_command_t::MODE_POSITION; w <= hardware_command_t::MODE_EFFORT; ++w)
+    if (act.offers(i, w)) offered.push_back(wire_mode_name(w));
+  spdlog::warn("actuator '{}' (joint '{}') got a {} command at step {}, but its joint offers only {}: it holds while "
+               "such commands come (said once; counted). Claim the joint with a controller of an offered interface, "
+               "or add <command_interface name=\"{}\"/> to the joint in the URDF's <ros2_control> block",
+               act.name(i), act.joint(i), wire_mode_name(mode), sim_.step_count(), fmt::join(offered, ", "),
+               wire_mode_name(mode));
 }
 
 std::string SimIo::why_rejected() {
   std::string problem = check(cmd_);
   if (!problem.empty()) return problem;
-  const Actuators& act = sim_.actuators();
+  const PlayedHardware& act = sim_.hardware();
   if (cmd_.session != session_)
     return fmt::format("session {} is not this sim_server's session {} (answer the latest hardware/state)",
                        cmd_.session, session_);
@@ -167,12 +185,6 @@ std::string SimIo::why_rejected() {
                          fmt::join(state_.name, "', '"));
     bound_names_ = cmd_.name;
     slot_ = b.slot;
-  }
-  for (int i = 0; i < act.size(); ++i) {
-    const int8_t mode = cmd_.mode[slot_[i]];
-    if (mode != hardware_command_t::MODE_NONE && mode != act.wire_mode(i))
-      return fmt::format("actuator '{}' got a {} command but takes {}", act.name(i), wire_mode_name(mode),
-                         wire_mode_name(act.wire_mode(i)));
   }
   return "";
 }
@@ -188,7 +200,7 @@ void SimIo::drop(const std::string& why) {
 }
 
 void SimIo::on_command(const lcm::ReceiveBuffer& rb) {
-  if (const std::string why = check_hardware_command_bytes(rb.data, rb.data_size, sim_.actuators().size());
+  if (const std::string why = check_hardware_command_bytes(rb.data, rb.data_size, sim_.hardware().size());
       !why.empty())
     return drop(why);
   if (!decode_walked(cmd_, rb.data, rb.data_size))
@@ -234,7 +246,7 @@ void SimIo::on_state(const lcm::ReceiveBuffer& rb) {
 
 void SimIo::on_e_stop(const lcm::ReceiveBuffer& rb) {
   if (!decode_guarded(e_stop_msg_, rb.data, rb.data_size)) return drop("e_stop: not an e_stop_t");
-  Actuators& act = sim_.actuators();
+  PlayedHardware& act = sim_.hardware();
   if (e_stop_msg_.engaged != act.e_stop()) {
     const std::string who = e_stop_msg_.source.empty() ? "" : fmt::format(" by '{}'", clip(e_stop_msg_.source));
     if (e_stop_msg_.engaged)
@@ -252,26 +264,30 @@ void SimIo::on_e_stop(const lcm::ReceiveBuffer& rb) {
 PidLookup SimIo::pid_lookup() {
   PidLookup l;
   l.joints = [this] {
-    const Actuators& act = sim_.actuators();
+    const PlayedHardware& act = sim_.hardware();
     std::vector<std::string> joints;
     for (int k = 0; k < act.size(); ++k)
       if (act.has_pid(k)) joints.push_back(act.joint(k));
     return joints;
   };
-  l.get = [this](const std::string& joint) { return sim_.actuators().gains(sim_.actuators().find_joint(joint)); };
+  l.get = [this](const std::string& joint) { return sim_.hardware().gains(sim_.hardware().find_joint(joint)); };
   l.set = [this](const std::string& joint, const PidGains& g) {
-    sim_.actuators().set_gains(sim_.actuators().find_joint(joint), g);
+    sim_.hardware().set_gains(sim_.hardware().find_joint(joint), g);
   };
   l.why_none = [this, joints = l.joints](const std::string& joint) {
-    const Actuators& act = sim_.actuators();
+    const PlayedHardware& act = sim_.hardware();
     const int i = act.find_joint(joint);
     if (i < 0) {
       const std::vector<std::string> with = joints();
       return fmt::format("no actuated joint '{}'; joints with pid_gains: {}", joint,
                          with.empty() ? "none" : fmt::format("{}", fmt::join(with, ", ")));
     }
+    if (sim_.backend() == Backend::Mock)
+      return fmt::format("joint '{}' runs on mock hardware, which has no PID (its state follows the command); run "
+                         "sim_server without --mock-hardware, on a description naming a simulator, for pid_gains",
+                         joint);
     return fmt::format("joint '{}' runs {} (no pid_gains); add gazebo_ros_control/pid_gains/{} to the YAML for a PID",
-                       joint, to_string(act.mode(i)), joint);
+                       joint, act.mode_name(i), joint);
   };
   return l;
 }
@@ -313,6 +329,7 @@ void SimIo::answer(const sim_response_t& a) {
 
 void SimIo::after_reset(int64_t previous_step) {
   has_pending_ = false;
+  std::fill(rejected_warned_.begin(), rejected_warned_.end(), hardware_command_t::MODE_NONE);
   last_step_ = -1;
   clock_step_ = -1;
   expected_step_ = 0;

@@ -3,7 +3,8 @@
 // base's ground truth (sim_server/base_pose) at the clock's rate, from
 // preallocated buffers; takes
 // hardware/command (checked, and dropped and counted when malformed, NaN,
-// wrong-size, from another session or in the wrong mode), e_stop,
+// wrong-size or from another session; an actuator commanded in a mode its
+// joint does not offer holds, counted and said once), e_stop,
 // sim_server/gains/set and sim_server/request (queued for the stepper, a
 // repeated request_id answered again, not queued twice); publishes the gains in
 // force, the answers and the statistics.
@@ -78,7 +79,8 @@ class SimIo {
   // monotonic_us() when the newest command was accepted, -1 before the first.
   int64_t last_command_us() const { return last_command_us_; }
 
-  int64_t dropped() const { return dropped_; }  // malformed, NaN, wrong size, session or mode
+  int64_t dropped() const { return dropped_; }  // malformed, NaN, wrong size or session
+  int64_t rejected_modes() const { return rejected_modes_; }  // actuator commands in a mode not offered (held)
   int64_t stale() const { return stale_; }      // well-formed but for another step
   int64_t foreign_states() const { return foreign_states_; }  // hardware/state of another simulator on our channel
 
@@ -89,6 +91,7 @@ class SimIo {
   void on_request(const lcm::ReceiveBuffer& rb);
   std::string why_rejected();
   void drop(const std::string& why);
+  void reject_mode(int i, int8_t mode);
   PidLookup pid_lookup();
   void publish_base_pose();
 
@@ -117,6 +120,8 @@ class SimIo {
   std::vector<std::string> bound_names_;  // the actuator list of the commands being taken, as matched
   std::vector<int> slot_;                 // our actuator i is the command's slot_[i]
   std::vector<int8_t> pending_mode_;
+  std::vector<int8_t> rejected_warned_;  // per actuator: the refused mode last said
+  int64_t rejected_modes_ = 0;
   std::vector<double> pending_value_;
   bool has_pending_ = false;
   int64_t expected_step_ = -1, last_step_ = -1, last_command_us_ = -1;

@@ -30,13 +30,17 @@ int clock_every_for(double control_hz, double clock_hz) {
 }
 
 Simulation::Simulation(const RobotModel& model, const SimulationRates& rates, const InitialPositions& initial,
-                       const WorldOptions& world)
+                       const WorldOptions& world, Backend backend)
     : model_(model),
       initial_(initial),
       world_(world),
       control_period_(1.0 / rates.control_hz),
       control_hz_(rates.control_hz),
       substeps_(substeps_for(rates)) {
+  if (backend == Backend::Mock) {
+    mock_ = std::make_unique<MockHardware>(model_, initial_);
+    return;
+  }
   multibody_ = std::make_unique<Multibody>(model_, 1.0 / rates.physics_hz, initial_, world_);
   actuators_ = std::make_unique<Actuators>(model_, *multibody_);
   multibody_->size_solver_buffers();
@@ -46,6 +50,15 @@ Simulation::Simulation(const RobotModel& model, const SimulationRates& rates, co
 std::vector<std::string> Simulation::reset(const InitialPositions& changes) {
   InitialPositions initial = initial_;
   for (const auto& [joint, q] : changes) initial[joint] = q;
+  if (mock_) {
+    auto mock = std::make_unique<MockHardware>(model_, initial);
+    mock->set_hold_all(mock_->hold_all());
+    mock->set_e_stop(mock_->e_stop());
+    mock_ = std::move(mock);
+    initial_ = std::move(initial);
+    steps_ = 0;
+    return mock_->start_warnings();
+  }
   auto multibody = std::make_unique<Multibody>(model_, multibody_->dt(), initial, world_);
   auto actuators = std::make_unique<Actuators>(model_, *multibody);
   for (int i = 0; i < actuators->size(); ++i)
@@ -62,7 +75,32 @@ std::vector<std::string> Simulation::reset(const InitialPositions& changes) {
   return multibody_->start_warnings();
 }
 
+const std::vector<std::string>& Simulation::start_warnings() const {
+  return mock_ ? mock_->start_warnings() : multibody_->start_warnings();
+}
+
+std::vector<std::string> Simulation::describe() const {
+  std::vector<std::string> lines;
+  for (int i = 0; i < hardware().size(); ++i) lines.push_back(mock_ ? mock_->describe(i) : actuators_->describe(i));
+  return lines;
+}
+
+std::vector<std::string> Simulation::warnings() const {
+  std::vector<std::string> lines;
+  if (multibody_) {
+    lines = multibody_->warnings();
+    lines.insert(lines.end(), actuators_->warnings().begin(), actuators_->warnings().end());
+  }
+  lines.insert(lines.end(), start_warnings().begin(), start_warnings().end());
+  return lines;
+}
+
 void Simulation::step() {
+  if (mock_) {
+    mock_->step(control_period_);
+    ++steps_;
+    return;
+  }
   const double dt = multibody_->dt();
   for (int s = 0; s < substeps_; ++s) {
     actuators_->apply(dt);

@@ -1,7 +1,8 @@
-// The simulated robot in one object: the multibody and its actuators, advanced
-// one control period (one or more physics steps) at a time, and put back to its
-// start by reset(). step() is the real-time path: no allocation, logging, locks
-// or wall-clock input.
+// The simulated robot in one object: the multibody and its actuators (or, for
+// Backend::Mock, mock hardware without physics), advanced one control period
+// (one or more physics steps) at a time, and put back to its start by reset().
+// step() is the real-time path: no allocation, logging, locks or wall-clock
+// input.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +13,7 @@
 
 #include "description/robot_model.hpp"
 #include "sim_server/actuators.hpp"
+#include "sim_server/mock_hardware.hpp"
 #include "sim_server/multibody_builder.hpp"
 
 namespace lcm_control::sim {
@@ -28,12 +30,16 @@ int substeps_for(const SimulationRates& rates);
 // 0 means every control step. Throws std::invalid_argument for a negative or non-finite rate.
 int clock_every_for(double control_hz, double clock_hz);
 
+// Bullet: the multibody and its actuators. Mock: mock_components/GenericSystem's state-follows-command, one update
+// per control step, no physics (world options and the physics rate do not apply).
+enum class Backend { Bullet, Mock };
+
 class Simulation {
  public:
   // Throws ModelError for a robot Bullet cannot take or a bad initial position, std::invalid_argument for bad
   // rates.
   Simulation(const RobotModel& model, const SimulationRates& rates, const InitialPositions& initial = {},
-             const WorldOptions& world = {});
+             const WorldOptions& world = {}, Backend backend = Backend::Bullet);
 
   // One control period: substeps() times (actuators -> physics step -> read back).
   void step();
@@ -51,13 +57,27 @@ class Simulation {
   int64_t step_count() const { return steps_; }                  // control steps taken
   int64_t time_us() const;                                       // sim time of step_count()
   double time() const { return double(steps_) * control_period_; }
-  double physics_dt() const { return multibody_->dt(); }
+  double physics_dt() const { return multibody_ ? multibody_->dt() : control_period_; }
   double control_period() const { return control_period_; }
-  int substeps() const { return substeps_; }
+  int substeps() const { return multibody_ ? substeps_ : 1; }
 
+  Backend backend() const { return mock_ ? Backend::Mock : Backend::Bullet; }
+  bool floating_base() const { return multibody_ && multibody_->floating_base(); }
+  // What the LCM side drives, either backend.
+  PlayedHardware& hardware() { return mock_ ? static_cast<PlayedHardware&>(*mock_) : *actuators_; }
+  const PlayedHardware& hardware() const { return mock_ ? static_cast<const PlayedHardware&>(*mock_) : *actuators_; }
+  // Backend::Bullet only.
   Multibody& multibody() { return *multibody_; }
   Actuators& actuators() { return *actuators_; }
   const Actuators& actuators() const { return *actuators_; }
+  // Backend::Mock only.
+  MockHardware& mock() { return *mock_; }
+  // Start positions clamped into the limits, one line each.
+  const std::vector<std::string>& start_warnings() const;
+  // One INFO line per actuator: how it plays its modes.
+  std::vector<std::string> describe() const;
+  // The WARN lines of building it: the multibody's and actuators' findings, then start_warnings().
+  std::vector<std::string> warnings() const;
 
  private:
   RobotModel model_;  // the multibody points into it
@@ -65,6 +85,7 @@ class Simulation {
   WorldOptions world_;
   std::unique_ptr<Multibody> multibody_;
   std::unique_ptr<Actuators> actuators_;
+  std::unique_ptr<MockHardware> mock_;
   double control_period_;
   double control_hz_;
   int substeps_;

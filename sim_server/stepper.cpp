@@ -100,7 +100,7 @@ void Stepper::watchdog(int64_t now) {
   const bool lost = last >= 0 && double(now - last) > opt_.watchdog_s * 1e6;
   if (lost == watchdog_holding_) return;
   watchdog_holding_ = lost;
-  sim_.actuators().set_hold_all(lost);
+  sim_.hardware().set_hold_all(lost);
   if (lost)
     spdlog::warn("no hardware/command for {:g} ms (watchdog): every actuator holds at step {}", opt_.watchdog_s * 1e3,
                  sim_.step_count());
@@ -304,7 +304,7 @@ void Stepper::serve(const sim_request_t& req) {
       w_.start_step -= previous;
       rebase(now);
       resumed_us_ = now;
-      watchdog_holding_ = sim_.actuators().hold_all();
+      watchdog_holding_ = sim_.hardware().hold_all();
       publish(real_time_factor());
       std::string pose;
       for (const auto& [joint, q] : sim_.initial_positions()) pose += fmt::format("{}{}={:g}", pose.empty() ? "" : " ", joint, q);

@@ -69,9 +69,10 @@ void describe_ros2_control(const RobotModel& m, std::string& s) {
   }
   const Ros2ControlPlugin& g = m.ros2_control_plugin;
   if (g.present)
-    fmt::format_to(out, "gz_ros2_control plugin tag: {}{}{}\n", g.filename,
+    fmt::format_to(out, "gz_ros2_control plugin tag: {}{}{}{}\n", g.filename,
                    g.parameters.empty() ? "" : fmt::format(", parameters {}", fmt::join(g.parameters, ", ")),
-                   g.ns.empty() ? "" : ", namespace " + g.ns);
+                   g.ns.empty() ? "" : ", namespace " + g.ns,
+                   g.hold_joints ? "" : ", hold_joints false (joints nobody commands are not braked)");
   else
     fmt::format_to(out, "gz_ros2_control plugin tag: no\n");
 }
@@ -131,6 +132,11 @@ std::string describe(const RobotModel& m) {
     else
       fmt::format_to(out, "  -> {} direct (no pid_gains)\n",
                      i == Interface::Position ? "position set kinematically" : "velocity motor");
+    if (t.any_interface && t.interfaces.size() > 1) {
+      std::vector<std::string> others;
+      for (size_t k = 1; k < t.interfaces.size(); ++k) others.push_back(to_string(t.interfaces[k]));
+      fmt::format_to(out, "           switches at run time to {} when a controller claims it\n", fmt::join(others, " or "));
+    }
   }
   if (m.ros2_control.empty())
     fmt::format_to(out, "gazebo_ros_control plugin tag: {}{}\n", m.has_gazebo_ros_control_plugin ? "yes" : "no",

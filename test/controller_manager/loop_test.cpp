@@ -326,3 +326,24 @@ TEST(ControllerManagerLoop, AStartedControllerHoldsTheMeasuredPositionUntilItsFi
   EXPECT_EQ(first.command[0], 0.8) << "step " << first.step;
   EXPECT_EQ(rig.commands[before + 1].command[0], 1.0);  // then the controller's own command
 }
+
+// A <ros2_control> joint handed from a velocity to a position controller in one switch: the switching cycle commands
+// the measured position in position mode, not the velocity controller's last value read as a position.
+TEST(ControllerManagerLoop, AHandOverThatChangesTheInterfaceHoldsTheMeasuredPosition) {
+  Rig rig(cm::builtin_registry(), std::string(LCM_CONTROL_SOURCE_DIR) + "/test/robots/switch_arm.urdf",
+          std::string(LCM_CONTROL_SOURCE_DIR) + "/test/robots/switch_arm.yaml");
+  ASSERT_TRUE(rig.load("velocity_controller").ok);
+  ASSERT_TRUE(rig.load("position_controller").ok);
+  ASSERT_TRUE(rig.switch_({"velocity_controller"}, {}).ok);
+  rig.cycle(3);
+  ASSERT_EQ(rig.commands.back().mode[0], hardware_command_t::MODE_VELOCITY);
+  rig.actuator("j1_actuator").position = 0.7;
+  rig.cycle(1);
+  const size_t before = rig.commands.size();
+  const Reply r = rig.switch_({"position_controller"}, {"velocity_controller"});
+  ASSERT_TRUE(r.ok) << r.message;
+  ASSERT_GT(rig.commands.size(), before);
+  const hardware_command_t& first = rig.commands[before];  // the switching cycle
+  EXPECT_EQ(first.mode[0], hardware_command_t::MODE_POSITION);
+  EXPECT_EQ(first.command[0], 0.7) << "step " << first.step;
+}

@@ -584,3 +584,47 @@ TEST(Ros2Control, ClassicGazeboPluginTagWithANamespace) {
   EXPECT_FALSE(l.model->has_gazebo_ros_control_plugin);
   EXPECT_TRUE(l.model->warnings.empty()) << lines(l.model->warnings);  // no "no gazebo_ros_control plugin" warning
 }
+
+namespace {
+const char* kArmBlock = R"(
+  <ros2_control name="arm" type="system">
+    <hardware><plugin>gz_ros2_control/GazeboSimSystem</plugin></hardware>
+    <joint name="joint1"><command_interface name="position"/><command_interface name="velocity"/></joint>
+  </ros2_control>)";
+}  // namespace
+
+TEST(Ros2Control, EveryCommandInterfaceOfAJointIsTakenAtRunTime) {
+  const Loaded l = load(kArmBlock);
+  ASSERT_TRUE(l.model) << l.error;
+  ASSERT_EQ(l.model->transmissions.size(), 1u);
+  EXPECT_TRUE(l.model->transmissions[0].any_interface);
+  EXPECT_EQ(l.model->transmissions[0].interfaces, (std::vector<Interface>{Interface::Position, Interface::Velocity}));
+}
+
+TEST(Ros2Control, HoldJointsDefaultsToTrueAndReadsFalse) {
+  const Loaded held = load(std::string(kArmBlock) + R"(
+  <gazebo><plugin filename="gz_ros2_control-system" name="gz_ros2_control::GazeboSimROS2ControlPlugin"/></gazebo>)");
+  ASSERT_TRUE(held.model) << held.error;
+  EXPECT_TRUE(held.model->ros2_control_plugin.hold_joints);
+  EXPECT_FALSE(held.model->ros2_control_plugin.position_proportional_gain);
+
+  const Loaded free = load(std::string(kArmBlock) + R"(
+  <gazebo><plugin filename="gz_ros2_control-system" name="gz_ros2_control::GazeboSimROS2ControlPlugin">
+    <hold_joints>false</hold_joints>
+    <position_proportional_gain>0.5</position_proportional_gain>
+  </plugin></gazebo>)");
+  ASSERT_TRUE(free.model) << free.error;
+  EXPECT_FALSE(free.model->ros2_control_plugin.hold_joints);
+  EXPECT_EQ(free.model->ros2_control_plugin.position_proportional_gain, 0.5);
+  const std::string note = fmt::format("{}:{}: <position_proportional_gain> 0.5 is ignored", free.path,
+                                       line_of(free.text, "<position_proportional_gain>"));
+  EXPECT_NE(lines(free.model->notes).find(note), std::string::npos) << lines(free.model->notes);
+}
+
+TEST(Ros2Control, HoldJointsThatIsNotABoolIsRefusedWithItsLine) {
+  const Loaded l = load(std::string(kArmBlock) + R"(
+  <gazebo><plugin filename="gz_ros2_control-system" name="p"><hold_joints>maybe</hold_joints></plugin></gazebo>)");
+  EXPECT_EQ(l.error, fmt::format("{}:{}: <plugin filename=\"gz_ros2_control-system\">: <hold_joints> 'maybe' is not a "
+                                 "bool; write true (joints nobody commands are held still, the default) or false",
+                                 l.path, line_of(l.text, "<hold_joints>")));
+}

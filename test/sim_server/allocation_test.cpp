@@ -63,5 +63,34 @@ TEST(sim_realtime_path, ControlStepsAllocateNothingOnceWarm) {
   }
 }
 
+TEST(sim_realtime_path, SwitchingCommandInterfacesAllocatesNothing) {
+  btAlignedAllocSetCustom(counted_malloc, counted_free);
+  Simulation sim(load_robot_model(std::string(LCM_CONTROL_SOURCE_DIR) + "/test/robots/switch_arm.urdf", ""), {});
+  Actuators& act = sim.actuators();
+  run(sim, 10, {});  // warm
+  g_allocations = 0;
+  g_counting = true;
+  run(sim, 2000, [&](int k) {
+    const int8_t mode = (k / 100) % 3 == 0 ? kPos : (k / 100) % 3 == 1 ? kVel : kNone;
+    for (int i = 0; i < act.size(); ++i) act.set_command(i, mode, mode == kPos ? 0.3 * std::sin(k * 0.01) : 0.2);
+  });
+  g_counting = false;
+  EXPECT_EQ(g_allocations, 0);
+}
+
+TEST(sim_realtime_path, MockHardwareStepsAllocateNothing) {
+  const RobotModel m = load_robot_model(std::string(LCM_CONTROL_SOURCE_DIR) + "/test/robots/mock_arm.urdf", "");
+  Simulation sim(m, {}, m.initial_positions, {}, Backend::Mock);
+  PlayedHardware& hw = sim.hardware();
+  g_allocations = 0;
+  g_counting = true;
+  run(sim, 2000, [&](int k) {
+    const int8_t mode = (k / 100) % 3 == 0 ? kPos : (k / 100) % 3 == 1 ? kVel : kNone;
+    for (int i = 0; i < hw.size(); ++i) hw.set_command(i, mode, 0.3 * std::sin(k * 0.01));
+  });
+  g_counting = false;
+  EXPECT_EQ(g_allocations, 0);
+}
+
 }  // namespace
 }  // namespace lcm_control::sim

@@ -288,8 +288,6 @@ TEST(sim_e2e, MalformedNanWrongSizeAndForeignCommandsAreDroppedAndCounted) {
     bad.session = s.session + 1;
     cm.publish_command(bad);  // another session
     bad.session = s.session;
-    bad.mode[0] = hardware_command_t::MODE_VELOCITY;
-    cm.publish_command(bad);  // wrong mode for a position actuator
     const char garbage[] = "not an lcm message at all, but long enough to be looked at";
     server.lc.publish(cm.command_channel(), garbage, sizeof garbage);
     bad.mode = s.mode;
@@ -301,12 +299,41 @@ TEST(sim_e2e, MalformedNanWrongSizeAndForeignCommandsAreDroppedAndCounted) {
     }
   };
   ASSERT_TRUE(cm.run_until_step(150, 20.0)) << server.output();
-  EXPECT_EQ(dropped_commands(server, stats, 8), 8) << server.output();
+  EXPECT_EQ(dropped_commands(server, stats, 7), 7) << server.output();
   for (const auto& s : cm.states)
     for (int i = 0; i < 2; ++i) ASSERT_TRUE(std::isfinite(s.position[i]) && std::isfinite(s.effort[i])) << s.step;
   EXPECT_NE(server.output().find("dropped a hardware/command"), std::string::npos);
   ASSERT_FALSE(stats.messages.empty());
   EXPECT_EQ(stats.messages.back().process, "sim_server");
+}
+
+// A mode the joint does not offer holds that actuator, is counted and said once; the rest of the command applies.
+TEST(sim_e2e, AModeTheJointDoesNotOfferHoldsThatActuatorAndIsSaidOnce) {
+  SimServerProcess server;
+  std::string why;
+  ASSERT_TRUE(server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1"}, kTurretUrdf, kTurretYaml, &why)) << why;
+  FakeController cm(server.lc);
+  cm.policy = [](const hardware_state_t& s, hardware_command_t& c) {
+    c.command[1] = 1.0;
+    if (s.step >= 100 && s.step < 300) {
+      c.mode[0] = hardware_command_t::MODE_VELOCITY;  // j1 is a position actuator
+      c.command[0] = 5.0;
+    }
+  };
+  ASSERT_TRUE(cm.run_until_step(400, 20.0)) << server.output();
+  const hardware_state_t& at100 = cm.states.at(100);
+  const hardware_state_t& at300 = cm.states.at(300);
+  EXPECT_EQ(at300.mode[0], hardware_command_t::MODE_POSITION);
+  EXPECT_NEAR(at300.position[0], at100.position[0], 1e-6);  // held
+  EXPECT_GT(std::abs(at300.position[1] - at100.position[1]), 0.01);  // j2 kept its commands
+  const std::string out = server.output();
+  const std::string said = "actuator 'a1' (joint 'j1') got a velocity command at step 100, but its joint offers "
+                           "only position";
+  EXPECT_NE(out.find(said), std::string::npos) << out;
+  EXPECT_EQ(out.find(said, out.find(said) + 1), std::string::npos) << "said more than once:\n" << out;
+  server.process->stop(10);
+  EXPECT_NE(server.output().find("0 commands dropped; 200 actuator commands in a mode not offered"), std::string::npos)
+      << server.output();
 }
 
 TEST(sim_e2e, ACommandFromAFutureStepIsDroppedAndGenuineCommandsStillApply) {
@@ -428,6 +455,58 @@ TEST(sim_e2e, BadUrdfOrConfigGivesOneClearLineAndANonZeroExit) {
     EXPECT_EQ(out[0].rfind("sim_server: error: ", 0), 0u) << out[0];
     EXPECT_NE(out[0].find(c.mentions), std::string::npos) << out[0];
   }
+}
+
+}  // namespace
+}  // namespace lcm_control::sim::testing
+
+namespace lcm_control::sim::testing {
+namespace {
+
+// switch_arm with j2 (a pitch joint, under gravity) effort-first and, when `hold` is false,
+// <hold_joints>false</hold_joints> in the gz_ros2_control plugin tag.
+std::string limp_arm(bool hold) {
+  std::ifstream in(source("test/robots/switch_arm.urdf"));
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string j2 = "<joint name=\"j2\">\n      <command_interface name=\"position\"/>";
+  urdf.replace(urdf.find(j2), j2.size(), "<joint name=\"j2\">\n      <command_interface name=\"effort\"/>");
+  const std::string params = "<parameters>switch_arm.yaml</parameters>";
+  if (!hold) urdf.replace(urdf.find(params), params.size(), params + "<hold_joints>false</hold_joints>");
+  const std::string path = lcm_control::testing::temp_dir("hold_joints") + (hold ? "/held.urdf" : "/limp.urdf");
+  std::ofstream(path) << urdf;
+  return path;
+}
+
+// Where j2 is after a second of nobody commanding it.
+double j2_after_a_second_uncommanded(bool hold, std::string* out) {
+  SimServerProcess server;
+  std::string why;
+  if (!server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1", "-J", "j2=0.5"}, limp_arm(hold), "", &why)) {
+    *out = why;
+    return NAN;
+  }
+  FakeController cm(server.lc);
+  cm.policy = [](const hardware_state_t&, hardware_command_t& c) {
+    for (auto& m : c.mode) m = hardware_command_t::MODE_NONE;
+  };
+  if (!cm.run_until_step(1000, 20.0)) {
+    *out = server.output();
+    return NAN;
+  }
+  *out = server.output();
+  return cm.states.back().position[1];
+}
+
+TEST(sim_e2e, HoldJointsFalseLeavesAnUncommandedEffortJointLimpAndSaysSo) {
+  std::string held_out, limp_out;
+  const double held = j2_after_a_second_uncommanded(true, &held_out);
+  const double limp = j2_after_a_second_uncommanded(false, &limp_out);
+  EXPECT_NEAR(held, 0.5, 1e-3) << held_out;  // hold_joints' default: braked where it is
+  EXPECT_GT(std::abs(limp - 0.5), 0.1) << limp_out;  // gravity takes it
+  EXPECT_NE(limp_out.find("<hold_joints>false</hold_joints>: joints nobody commands are not braked"),
+            std::string::npos)
+      << limp_out;
+  EXPECT_EQ(held_out.find("<hold_joints>"), std::string::npos) << held_out;
 }
 
 }  // namespace
