@@ -20,7 +20,7 @@ def run(b):
         for key, srv, cli in placements:
             for name in b.names:
                 pin_threads(b.cms[name][0].pid, srv)
-            placement(key, srv, cli)
+            placement(b, key, srv, cli)
     finally:
         for name in b.names:
             pin_threads(b.cms[name][0].pid, set(cpus))
@@ -54,10 +54,10 @@ def placement(b, key, srv, cli):
                                          "max": float(f[6]), "n": int(f[7]), "lost": int(f[8])})
             res = {"sizes": sizes, "cpus": (sorted(srv), sorted(cli))}
             for kind, bl in blocks.items():
-                res[kind] = {k: median([b[k] for b in bl]) for k in ("min", "p50", "p99", "max")}
-                res[kind]["lost"] = sum(b["lost"] for b in bl)
-            for a, b in (("ours", "lcm"), ("lcm", "udp"), ("clock", "ours")):
-                res[f"{a}/{b}"] = {k: median([x[k] / y[k] for x, y in zip(blocks[a], blocks[b])])
+                res[kind] = {k: median([blk[k] for blk in bl]) for k in ("min", "p50", "p99", "max")}
+                res[kind]["lost"] = sum(blk["lost"] for blk in bl)
+            for num, den in (("ours", "lcm"), ("lcm", "udp"), ("clock", "ours")):
+                res[f"{num}/{den}"] = {k: median([x[k] / y[k] for x, y in zip(blocks[num], blocks[den])])
                                    for k in ("min", "p50", "p99")}
             b.r.setdefault(name, {})["rtt" if key == "one" else "rtt2"] = res
         b.r["floor_rss_kb"] = echo_lcm.vm_hwm_kb()
