@@ -3,20 +3,13 @@
 // SIGINT/SIGTERM. Exit codes: 0 clean stop, 2 usage, 3 bad URDF/YAML, 4 LCM.
 #include <sched.h>
 
-#include <csignal>
-
 #include "cli/cli.hpp"
 #include "rt/log.hpp"
 #include "rt/scheduling.hpp"
+#include "rt/stop_signal.hpp"
 #include "controller_manager/manager.hpp"
 #include "controller_manager/plugins.hpp"
 #include "controller_manager/services.hpp"
-
-namespace {
-volatile std::sig_atomic_t g_stop = 0;
-void on_signal(int) { g_stop = 1; }
-
-}  // namespace
 
 int main(int argc, char** argv) {
   using namespace lcm_control;
@@ -80,22 +73,18 @@ int main(int argc, char** argv) {
       for (const auto& n : c.notes) spdlog::warn("{}", n);
     }
 
-    struct sigaction sa {};
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
+    install_stop_signals();
 
     spdlog::info("ready ({} controllers configured, {} actuated joints, lcm {}{}{}{}{})", configured, actuated,
                  bus.url(), hardware_note(bus),
                  bus.ns().empty() ? "" : ", namespace ", bus.ns(), scheduling.empty() ? "" : ", " + scheduling);
     int errors = 0;
-    while (!g_stop) {
+    while (!stop_requested()) {
       // What is queued, the hardware loop first and at most 1,000 messages each, then the housekeeping: silence
       // is measured after the backlog, so other traffic cannot mask a dead hardware.
       const int64_t wait_us = manager.state_arrivals().sleep_us(monotonic_us(), spin_us, 20000);
       if (wait_us == 0) sched_yield();  // spinning: the simulator, woken to its deadline on this CPU, runs first
-      if (!bus.handle_us(wait_us, 1000) && !g_stop) {
+      if (!bus.handle_us(wait_us, 1000) && !stop_requested()) {
         if (++errors > 100) throw std::runtime_error("LCM keeps failing to receive; giving up");
         continue;
       }

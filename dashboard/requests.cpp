@@ -122,8 +122,12 @@ Parsed parse_request(const std::string& text, bool read_only) {
 }
 
 std::string reply_json(int64_t id, bool ok, const std::string& message) {
-  return json{{"kind", "reply"}, {"id", id}, {"ok", ok}, {"message", message}}.dump(-1, ' ', false,
-                                                                                     json::error_handler_t::replace);
+  return dump(json{{"kind", "reply"}, {"id", id}, {"ok", ok}, {"message", message}});
+}
+
+std::string dump(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
+std::string dump(const nlohmann::ordered_json& j) {
+  return j.dump(-1, ' ', false, nlohmann::ordered_json::error_handler_t::replace);
 }
 
 }  // namespace lcm_control::dashboard

@@ -51,4 +51,8 @@ Parsed parse_request(const std::string& text, bool read_only);
 // The reply to request id: {"kind": "reply", "id": id, "ok": ok, "message": message}.
 std::string reply_json(int64_t id, bool ok, const std::string& message);
 
+// A frame's text as sent to browsers: invalid UTF-8 in a string is replaced, never thrown.
+std::string dump(const nlohmann::json& j);
+std::string dump(const nlohmann::ordered_json& j);
+
 }  // namespace lcm_control::dashboard

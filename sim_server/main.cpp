@@ -1,22 +1,15 @@
 // sim_server: the URDF robot in Bullet, playing the hardware over LCM for a
 // controller_manager (docs/hardware-protocol.md). Flags and wiring only.
-#include <csignal>
-
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 
 #include "cli/cli.hpp"
 #include "rt/log.hpp"
 #include "rt/scheduling.hpp"
+#include "rt/stop_signal.hpp"
 #include "sim_server/sim_io.hpp"
 #include "sim_server/simulation.hpp"
 #include "sim_server/stepper.hpp"
-
-namespace {
-std::atomic<bool> g_stop{false};
-void on_signal(int) { g_stop = true; }
-}  // namespace
 
 int main(int argc, char** argv) {
   using namespace lcm_control;
@@ -159,8 +152,7 @@ int main(int argc, char** argv) {
     sim::SimIo io(bus, sim, opt.lockstep, clock_every);
     io.set_max_command_age(std::max<int64_t>(1, std::llround(opt.watchdog_s * rates.control_hz)));
     sim::Stepper stepper(sim, io, opt);
-    std::signal(SIGINT, on_signal);
-    std::signal(SIGTERM, on_signal);
+    install_stop_signals(true);
     spdlog::info("ready ({}{}{}{}, {} actuators, {}control {:g} Hz, clock {:g} Hz, lcm {}{}{}, session {}{})",
                  opt.lockstep ? "lockstep" : "real time", mock ? ", mock hardware" : "",
                  opt.start_paused ? ", paused" : "",
@@ -172,7 +164,7 @@ int main(int argc, char** argv) {
                  bus.url(), hardware_note(bus),
                  bus.ns().empty() ? "" : ", namespace " + bus.ns(), io.session(),
                  scheduling.empty() ? "" : ", " + scheduling);
-    if (!stepper.run(g_stop)) throw BusError("LCM stopped working (handle failed); is the multicast route still there?");
+    if (!stepper.run(stop_flag())) throw BusError("LCM stopped working (handle failed); is the multicast route still there?");
     spdlog::info("stopped at step {} (sim time {:.3f} s); {} commands dropped{}{}", sim.step_count(), sim.time(),
                  io.dropped(),
                  io.rejected_modes() ? fmt::format("; {} actuator commands in a mode not offered", io.rejected_modes())

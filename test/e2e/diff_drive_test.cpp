@@ -12,8 +12,8 @@
 #include "bus/bus.hpp"
 #include "lcm_control/odometry_t.hpp"
 #include "lcm_control/twist_t.hpp"
+#include "test/e2e/session.hpp"
 #include "test/support/lcm_test.hpp"
-#include "test/support/process.hpp"
 #include "tools/lib/sim_client.hpp"
 
 namespace lcm_control::testing {
@@ -29,23 +29,16 @@ struct Square {
 class DiffBotSession {
  public:
   DiffBotSession()
-      : url_(unique_lcm_url()),
-        bus_(url_, ""),
+      : robot_(source("config/diff_bot.urdf"), source("config/diff_bot.yaml")),
+        bus_(robot_.url(), ""),
         odom_(bus_.lcm(), "diff_drive_controller/odom"),
         truth_(bus_.lcm(), "sim_server/base_pose"),
         sim_client_(bus_, "diff_drive_test") {}
 
   void start() {
-    const std::map<std::string, std::string> env{{"LCM_DEFAULT_URL", url_}};
-    const std::string urdf = source("config/diff_bot.urdf"), yaml = source("config/diff_bot.yaml");
-    cm_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{bin("controller_manager"), "--urdf", urdf, "--config", yaml}, env);
-    sim_ = std::make_unique<ChildProcess>(std::vector<std::string>{bin("sim_server"), "--urdf", urdf, "--config", yaml,
-                                                                   "--floating-base", "--mode", "lockstep", "--paused"},
-                                          env);
-    spawner_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{bin("spawner"), "joint_state_controller", "diff_drive_controller"}, env);
-    ASSERT_TRUE(spawner_->wait_for_output("spawner: ready", 30)) << spawner_->output() << cm_->output();
+    robot_.start_controller_manager();
+    robot_.start_sim({"--floating-base", "--mode", "lockstep", "--paused"});
+    robot_.spawn({"joint_state_controller", "diff_drive_controller"});
   }
 
   // v m/s and w rad/s for `seconds` of sim time, a fresh cmd_vel every kChunk steps.
@@ -82,14 +75,13 @@ class DiffBotSession {
 
   tools::SimClient& sim() { return sim_client_; }
   void settle() { pump_until(bus_.lcm(), [] { return false; }, 0.1); }
-  std::string cm_output() const { return cm_->output(); }
+  std::string cm_output() const { return robot_.cm_output(); }
 
  private:
-  std::string url_;
+  RobotSession robot_;
   Bus bus_;
   Recorder<odometry_t> odom_, truth_;
   tools::SimClient sim_client_;
-  std::unique_ptr<ChildProcess> cm_, sim_, spawner_;
 };
 
 TEST(DiffDrive, ASquareByTimeOdometryWithinFivePercentOfGroundTruthAndRepeatedBitForBitAfterAReset) {

@@ -13,64 +13,30 @@
 
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
+#include "test/e2e/session.hpp"
 #include "test/support/lcm_test.hpp"
-#include "test/support/process.hpp"
 
 namespace lcm_control::testing {
 namespace {
 
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
-class Session {
+// turret_bot with the tutorial's controllers spawned once sim_server is up, and a tap on the bus.
+class Session : public RobotSession {
  public:
-  Session() : url_(unique_lcm_url() + "&recv_buf_size=4194304"), lc(url_) {}
-  ~Session() {
-    for (auto* p : {&spawner_, &cm_, &sim_})
-      if (*p) (*p)->stop(10);
-  }
+  Session() : RobotSession(source("config/turret_bot.urdf"), source("config/turret_bot.yaml")), lc(url()) {}
 
   // sim_extra goes to sim_server; cm_extra to controller_manager.
-  void start(std::vector<std::string> sim_extra, std::vector<std::string> cm_extra = {}) {
-    std::vector<std::string> cm{bin("controller_manager"), "--urdf", urdf(), "--config", yaml()};
-    cm.insert(cm.end(), cm_extra.begin(), cm_extra.end());
-    cm_ = std::make_unique<ChildProcess>(cm, env());
-    std::vector<std::string> sim{bin("sim_server"), "--urdf", urdf(), "--config", yaml()};
-    sim.insert(sim.end(), sim_extra.begin(), sim_extra.end());
-    sim_ = std::make_unique<ChildProcess>(sim, env());
-    ASSERT_TRUE(sim_->wait_for_output("ready", 30)) << sim_->output();
-    spawner_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{bin("spawner"), "joint_state_controller", "j1_controller", "j2_controller"}, env());
-    ASSERT_TRUE(spawner_->wait_for_output("spawner: ready", 30)) << spawner_->output() << cm_->output();
-  }
-
-  // Runs a tool to its end (at most 60 s): its exit code, its output in `out`.
-  int run(std::vector<std::string> argv, std::string* out = nullptr) {
-    argv[0] = bin(argv[0]);
-    ChildProcess p(argv, env());
-    const int rc = p.wait(60);
-    if (out) *out = p.output();
-    return rc;
+  void start(const std::vector<std::string>& sim_extra, const std::vector<std::string>& cm_extra = {}) {
+    start_controller_manager(cm_extra);
+    ASSERT_NO_FATAL_FAILURE(start_sim(sim_extra, 30));
+    spawn({"joint_state_controller", "j1_controller", "j2_controller"});
   }
   int cmctl(std::vector<std::string> args, std::string* out = nullptr) {
     args.insert(args.begin(), "cmctl");
     return run(args, out);
   }
-  std::unique_ptr<ChildProcess> background(std::vector<std::string> argv) {
-    argv[0] = bin(argv[0]);
-    return std::make_unique<ChildProcess>(argv, env());
-  }
 
-  std::string sim_output() const { return sim_->output(); }
-  std::string cm_output() const { return cm_->output(); }
-
- private:
-  static std::string urdf() { return source("config/turret_bot.urdf"); }
-  static std::string yaml() { return source("config/turret_bot.yaml"); }
-  std::map<std::string, std::string> env() const { return {{"LCM_DEFAULT_URL", url_}}; }
-  std::string url_;
-  std::unique_ptr<ChildProcess> cm_, sim_, spawner_;
-
- public:
   lcm::LCM lc;
 };
 

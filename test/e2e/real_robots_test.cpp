@@ -11,8 +11,8 @@
 #include <memory>
 
 #include "lcm_control/joint_state_t.hpp"
+#include "test/e2e/session.hpp"
 #include "test/support/lcm_test.hpp"
-#include "test/support/process.hpp"
 
 namespace lt = lcm_control::testing;
 using namespace lcm_control;
@@ -34,57 +34,29 @@ double velocity_of(const joint_state_t& s, const std::string& joint) {
 }
 
 // A robot in lockstep: controller_manager and the spawner first, then sim_server, all with the same flags.
-class Session {
+class Session : public lt::RobotSession {
  public:
   Session(std::string urdf, std::string config, std::vector<std::string> flags)
-      : urdf_(std::move(urdf)), config_(std::move(config)), flags_(std::move(flags)) {}
+      : RobotSession(std::move(urdf), std::move(config)), flags_(std::move(flags)) {}
 
-  const std::map<std::string, std::string>& env() const { return env_; }
-
-  void start(const std::vector<std::string>& controllers, std::vector<std::string> sim_flags = {}) {
-    std::vector<std::string> cm{lt::bin("controller_manager"), "--urdf", urdf_, "--config", config_};
-    cm.insert(cm.end(), flags_.begin(), flags_.end());
-    cm_ = std::make_unique<lt::ChildProcess>(cm, env_);
-    std::vector<std::string> spawner{lt::bin("spawner")};
-    spawner.insert(spawner.end(), controllers.begin(), controllers.end());
-    spawner_ = std::make_unique<lt::ChildProcess>(spawner, env_);
-    ASSERT_TRUE(spawner_->wait_for_output("spawner: ready", 30)) << spawner_->output() << cm_->output();
-    std::vector<std::string> sim{lt::bin("sim_server"), "--urdf", urdf_, "--config", config_, "--mode", "lockstep"};
-    sim.insert(sim.end(), flags_.begin(), flags_.end());
-    sim.insert(sim.end(), sim_flags.begin(), sim_flags.end());
-    sim_ = std::make_unique<lt::ChildProcess>(sim, env_);
-    ASSERT_TRUE(sim_->wait_for_output("ready", 20)) << sim_->output();
+  void start(const std::vector<std::string>& controllers, const std::vector<std::string>& sim_flags = {}) {
+    start_controller_manager(flags_);
+    ASSERT_NO_FATAL_FAILURE(spawn(controllers));
+    start_sim(with(with({"--mode", "lockstep"}, flags_), sim_flags), 20);
   }
 
   // send-trajectory's exit code; its output in `output`.
   int send(const std::vector<std::string>& args, std::string& output) {
-    std::vector<std::string> argv{lt::bin("send-trajectory")};
-    argv.insert(argv.end(), args.begin(), args.end());
-    lt::ChildProcess p(argv, env_);
-    const int rc = p.wait(60);
-    output = p.output();
-    return rc;
-  }
-
-  std::string sim_output() const { return sim_ ? sim_->output() : ""; }
-
-  ~Session() {
-    if (sim_) sim_->stop(10);
-    if (spawner_) spawner_->stop(10);
-    if (cm_) cm_->stop(10);
+    return run(with({"send-trajectory"}, args), &output);
   }
 
  private:
-  std::string urdf_, config_;
   std::vector<std::string> flags_;
-  std::string url_ = lt::unique_lcm_url();
-  std::map<std::string, std::string> env_{{"LCM_DEFAULT_URL", url_}};
-  std::unique_ptr<lt::ChildProcess> cm_, spawner_, sim_;
 };
 
 // Joint positions from the newest joint_states on the session's bus.
 joint_state_t latest_state(const Session& s, double timeout_s = 10) {
-  lcm::LCM lc(s.env().at("LCM_DEFAULT_URL"));
+  lcm::LCM lc(s.url());
   lt::Recorder<joint_state_t> states(lc, "joint_states");
   lt::pump_until(lc, [&] { return !states.messages.empty(); }, timeout_s);
   return states.messages.empty() ? joint_state_t{} : states.messages.back();
@@ -136,7 +108,7 @@ TEST(RealRobots, AnEffortArmStartsWhereToldAndDoesNotSagBeforeItsControllers) {
       s.start({"joint_state_controller"}, {"-J", "shoulder_lift_joint=-0.5", "--initial-position", "elbow_joint=1"}));
   const joint_state_t a = latest_state(s);
   const joint_state_t b = [&] {
-    lcm::LCM lc(s.env().at("LCM_DEFAULT_URL"));
+    lcm::LCM lc(s.url());
     lt::Recorder<joint_state_t> states(lc, "joint_states");
     lt::pump_until(lc, [&] { return !states.messages.empty() && states.messages.back().utime > a.utime + 2'000'000; },
                    20);

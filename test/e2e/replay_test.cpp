@@ -94,7 +94,7 @@ TEST(Replay, LogplayerReproducesTheLiveCsvAndPlot) {
   const std::string live_csv = dir + "/live.csv", replay_csv = dir + "/replay.csv";
 
   // 1. The live session, recorded.
-  lt::TurretBot bot(lt::busy_bus_url());
+  lt::TurretBot bot(lt::unique_lcm_url());
   bot.bring_up_controllers();
   if (HasFatalFailure()) return;
   auto recorder = lt::start_lcm_logger(bot.url(), log, "joint_states|j1_controller/command|j2_controller/command");
@@ -135,7 +135,7 @@ TEST(Replay, LogplayerReproducesTheLiveCsvAndPlot) {
   for (size_t k = 0; k < live.rows.size(); ++k) ASSERT_EQ(logged.rows[k], live.rows[k]) << "log2csv row " << k;
 
   // 3. The log replayed at 4x its recorded pace onto a bus of its own.
-  const std::string replay_url = lt::busy_bus_url();
+  const std::string replay_url = lt::unique_lcm_url();
   const std::map<std::string, std::string> replay_env{{"LCM_DEFAULT_URL", replay_url}};
   lt::ChildProcess replay_logger({lt::bin("state-logger"), "--output", replay_csv}, replay_env);
   ASSERT_TRUE(replay_logger.wait_for_output("state-logger: logging", 15)) << replay_logger.output();

@@ -31,10 +31,9 @@ import subprocess
 import sys
 import tempfile
 import time
-from importlib.machinery import SourceFileLoader
 
-bench_run = SourceFileLoader(
-    "bench_run", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "bench", "run")).load_module()
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "bench"))
+from lcm_bench.ports import lcm_url  # noqa: E402  (the benchmarks' port picker)
 
 BACKGROUND_S = 3.0
 
@@ -90,7 +89,7 @@ def wait_controllers_running(root, env, timeout_s=40, namespaces=("",)):
 
 def free_url():
     """An LCM URL on a port no running test uses, as bench/run picks them (below the ephemeral range)."""
-    return bench_run.lcm_url()
+    return lcm_url()
 
 
 def stop(p, grace=10.0):

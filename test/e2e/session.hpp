@@ -19,42 +19,91 @@
 
 namespace lcm_control::testing {
 
-// Under lockstep the bus carries thousands of messages per second and every
-// udpm socket on the port receives all of them, whatever it subscribes to. A
-// receive buffer of 4 MB (net.core.rmem_max here) keeps a busy process (the
-// JVM of DecodeLog's neighbours, a plotter running gnuplot) from dropping any.
-inline std::string busy_bus_url() { return unique_lcm_url() + "&recv_buf_size=4194304"; }
-
-class TurretBot {
+// A robot's processes for an end-to-end test, on a bus of its own: controller_manager, sim_server and the spawner,
+// each started when the test says (the order is the test's), and stopped when the session goes.
+class RobotSession {
  public:
-  explicit TurretBot(std::string url) : url_(std::move(url)) {}
+  RobotSession(std::string urdf, std::string config, std::string url = unique_lcm_url())
+      : urdf_(std::move(urdf)), config_(std::move(config)), url_(std::move(url)) {}
+  virtual ~RobotSession() {
+    for (auto* p : {&spawner_, &cm_, &sim_})
+      if (*p) (*p)->stop(10);
+  }
+  RobotSession(const RobotSession&) = delete;
+  RobotSession& operator=(const RobotSession&) = delete;
 
   const std::string& url() const { return url_; }
+  const std::string& urdf() const { return urdf_; }
+  const std::string& config() const { return config_; }
   std::map<std::string, std::string> env() const { return {{"LCM_DEFAULT_URL", url_}}; }
+
+  void start_controller_manager(const std::vector<std::string>& extra = {}) {
+    cm_ = std::make_unique<ChildProcess>(with({bin("controller_manager"), "--urdf", urdf_, "--config", config_}, extra),
+                                         env());
+  }
+  // sim_server in the background; with ready_s > 0, until its "ready" line (at most ready_s).
+  void start_sim(const std::vector<std::string>& extra = {}, double ready_s = 0) {
+    sim_ = std::make_unique<ChildProcess>(with({bin("sim_server"), "--urdf", urdf_, "--config", config_}, extra),
+                                          env());
+    if (ready_s > 0) {
+      ASSERT_TRUE(sim_->wait_for_output("ready", ready_s)) << sim_->output();
+    }
+  }
+  // The spawner with these controllers, until it reports them running.
+  void spawn(const std::vector<std::string>& controllers) {
+    spawner_ = std::make_unique<ChildProcess>(with({bin("spawner")}, controllers), env());
+    ASSERT_TRUE(spawner_->wait_for_output("spawner: ready", 30))
+        << spawner_->output() << (cm_ ? cm_->output() : "") << (sim_ ? sim_->output() : "");
+  }
+
+  // A program of the build run to its end (at most timeout_s): its exit code, its output in `out`.
+  int run(std::vector<std::string> argv, std::string* out = nullptr, double timeout_s = 60) const {
+    argv[0] = bin(argv[0]);
+    ChildProcess p(argv, env());
+    const int rc = p.wait(timeout_s);
+    if (out) *out = p.output();
+    return rc;
+  }
+  std::unique_ptr<ChildProcess> background(std::vector<std::string> argv) const {
+    argv[0] = bin(argv[0]);
+    return std::make_unique<ChildProcess>(argv, env());
+  }
+
+  std::string sim_output() const { return sim_ ? sim_->output() : ""; }
+  std::string cm_output() const { return cm_ ? cm_->output() : ""; }
+  pid_t controller_manager_pid() const { return cm_ ? cm_->pid() : -1; }
+
+ protected:
+  static std::vector<std::string> with(std::vector<std::string> argv, const std::vector<std::string>& extra) {
+    argv.insert(argv.end(), extra.begin(), extra.end());
+    return argv;
+  }
+  std::string urdf_, config_, url_;
+  std::unique_ptr<ChildProcess> cm_, sim_, spawner_;
+};
+
+// turret_bot with the tutorial's three controllers, sim_server last and in the foreground for a bounded stretch.
+class TurretBot : public RobotSession {
+ public:
+  explicit TurretBot(std::string url = unique_lcm_url())
+      : RobotSession(source("config/turret_bot.urdf"), source("config/turret_bot.yaml"), std::move(url)) {}
 
   // controller_manager, then the spawner until it reports the controllers running.
   void bring_up_controllers() {
-    cm_ = std::make_unique<ChildProcess>(std::vector<std::string>{bin("controller_manager"), "--urdf", source("config/turret_bot.urdf"), "--config",
-                                          source("config/turret_bot.yaml")},
-                                         env());
-    spawner_ = std::make_unique<ChildProcess>(
-        std::vector<std::string>{bin("spawner"), "joint_state_controller", "j1_controller", "j2_controller"}, env());
-    ASSERT_TRUE(spawner_->wait_for_output("spawner: ready", 30)) << spawner_->output() << cm_->output();
+    start_controller_manager();
+    spawn({"joint_state_controller", "j1_controller", "j2_controller"});
   }
 
   // sim_server in `mode` for sim_seconds of sim time; returns when it has stopped.
   void run_sim(double sim_seconds, const std::string& mode = "lockstep", std::vector<std::string> extra = {}) {
-    std::vector<std::string> argv{bin("sim_server"), "--urdf", source("config/turret_bot.urdf"), "--config",
-                                  source("config/turret_bot.yaml"), "--mode", mode, "--duration",
-                                  std::to_string(sim_seconds)};
-    argv.insert(argv.end(), extra.begin(), extra.end());
-    ChildProcess sim(argv, env());
+    ChildProcess sim(with({bin("sim_server"), "--urdf", urdf_, "--config", config_, "--mode", mode, "--duration",
+                           std::to_string(sim_seconds)},
+                          extra),
+                     env());
     ASSERT_EQ(sim.wait(45), 0) << sim.output();
     sim_output_ = sim.output();
   }
-
   const std::string& sim_output() const { return sim_output_; }
-  pid_t controller_manager_pid() const { return cm_ ? cm_->pid() : -1; }
 
   void shut_down() {
     if (spawner_) {
@@ -66,8 +115,6 @@ class TurretBot {
   }
 
  private:
-  std::string url_;
-  std::unique_ptr<ChildProcess> cm_, spawner_;
   std::string sim_output_;
 };
 

@@ -36,7 +36,7 @@ TEST(LcmSpySession, EveryChannelOfARealSessionDecodes) {
     GTEST_SKIP() << "no JDK at build time";
   const std::string dir = lt::temp_dir("spy_session");
   const std::string log = dir + "/session.lcmlog";
-  const std::string url = lt::busy_bus_url();
+  const std::string url = lt::unique_lcm_url();
   const std::map<std::string, std::string> env{{"LCM_DEFAULT_URL", url}};
 
   auto recorder = lt::start_lcm_logger(url, log);

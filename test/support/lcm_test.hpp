@@ -12,7 +12,10 @@
 
 namespace lcm_control::testing {
 
-// "udpm://239.255.76.67:PORT?ttl=0&recv_buf_size=..." with a port no other running test uses.
+// "udpm://239.255.76.67:PORT?ttl=0&recv_buf_size=4194304" with a port no other running test uses. Under lockstep
+// the bus carries thousands of messages per second and every udpm socket on the port receives all of them, whatever
+// it subscribes to: a receive buffer of 4 MB (net.core.rmem_max here) keeps a busy process (a JVM, a plotter running
+// gnuplot) from dropping any.
 std::string unique_lcm_url();
 
 // Pumps lc until pred() is true or timeout_s passes; returns pred().

@@ -7,7 +7,6 @@
 #include <unistd.h>
 #include <time.h>
 
-#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -21,25 +20,6 @@
 extern char** environ;
 
 namespace lcm_control::tools {
-
-namespace {
-std::atomic<int> g_signal{0};
-void on_signal(int sig) { g_signal.store(sig); }
-}  // namespace
-
-void install_stop_signals() {
-  struct sigaction sa {};
-  sa.sa_handler = on_signal;
-  sigemptyset(&sa.sa_mask);
-  sa.sa_flags = 0;
-  sigaction(SIGINT, &sa, nullptr);
-  sigaction(SIGTERM, &sa, nullptr);
-}
-
-bool stop_requested() { return g_signal.load() != 0; }
-int stop_signal() { return g_signal.load(); }
-void request_stop(int sig) { g_signal.store(sig); }
-int clear_stop() { return g_signal.exchange(0); }
 
 void sleep_until_us(int64_t deadline_us) {
   // monotonic_us() is steady_clock, which is CLOCK_MONOTONIC on Linux.

@@ -9,18 +9,9 @@
 #include <vector>
 
 #include "bus/bus.hpp"
+#include "rt/stop_signal.hpp"  // install_stop_signals(), stop_requested(): what every wait here checks
 
 namespace lcm_control::tools {
-
-// SIGINT and SIGTERM set a flag instead of killing the process (no SA_RESTART,
-// so a blocking wait returns early). The signal number is kept for the exit code.
-void install_stop_signals();
-bool stop_requested();
-int stop_signal();
-void request_stop(int sig);
-// Clears the flag so that a shutdown can still talk to its peers; a second
-// Ctrl-C during it sets the flag again and cuts it short. Returns the signal.
-int clear_stop();
 
 // Sleeps until the monotonic clock reaches deadline_us (bus/bus.hpp's
 // monotonic_us()). Returns early when a stop is requested.

@@ -66,7 +66,7 @@ TEST(Soak, LockstepRunsWithoutLosingStatesOrGrowing) {
   const std::string dir = lt::temp_dir("soak");
   const std::string csv = dir + "/joint_states.csv";
 
-  lt::TurretBot bot(lt::busy_bus_url());
+  lt::TurretBot bot(lt::unique_lcm_url());
   bot.bring_up_controllers();
   if (HasFatalFailure()) return;
   lt::ChildProcess logger({lt::bin("state-logger"), "joint_states", "--output", csv}, bot.env());

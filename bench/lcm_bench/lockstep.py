@@ -1,0 +1,54 @@
+"""3 and 5. Lockstep throughput as launch runs it (sim_server and controller_manager on one CPU), unpinned and
+through LCM's receive thread, with each process's peak RSS."""
+import os
+
+from .figures import median
+from .processes import Proc, pin_threads
+
+
+def run(b):
+    """Each model as launch runs it in lockstep (sim_server and controller_manager on one CPU: they take turns,
+    and a hand-over on one CPU is a cheaper wake-up), 3 times; and once unpinned (launch's `cpu: none`)."""
+    b.sample_load()
+    reps = 1 if b.smoke else 3
+    cpus = sorted(os.sched_getaffinity(0))
+    # kinds: pinned, unpinned, pinned with LCM's receive thread on both sides ("lcm")
+    runs = {(name, kind): [] for name in b.names for kind in (True, False, "lcm")}
+    for rep in range(reps):
+        order = b.names if rep % 2 == 0 else list(reversed(b.names))
+        for name in order:
+            # The goals are on turret_bot and chain100 (60 s each); the middle chains only show the scaling.
+            duration = 0.3 if b.smoke else 60.0 if name in ("turret_bot", "chain100") else 20.0
+            kinds = (True, "lcm", False) if rep == 0 else (True, "lcm")
+            for kind in (kinds if rep % 2 == 0 else tuple(reversed(kinds))):
+                cpu = None if kind is False else cpus[-1]
+                cm_key = (name, "lcm") if kind == "lcm" else name
+                pin_threads(b.cms[cm_key][0].pid, {cpu} if cpu is not None else set(cpus))
+                runs[(name, kind)].append(lockstep_run(b, name, duration, cpu, kind == "lcm"))
+                pin_threads(b.cms[cm_key][0].pid, set(cpus))
+        b.sample_load()
+    for name in b.names:
+        cm = b.cms[name][0]
+        for kind, key in ((False, "lockstep_unpinned"), (True, "lockstep"), ("lcm", "lockstep_lcm")):
+            rs = runs[(name, kind)]
+            b.r.setdefault(name, {})[key] = {
+                "wall": median([x["wall"] for x in rs]), "rtf": median([x["rtf"] for x in rs]),
+                "rtf_lo": min(x["rtf"] for x in rs), "rtf_hi": max(x["rtf"] for x in rs),
+                "duration": rs[0]["duration"]}
+        b.r[name]["memory"] = {"sim_kb": max(x["rss"] for x in runs[(name, True)]), "cm_kb": cm.vm_hwm_kb()}
+
+
+def lockstep_run(b, name, duration, cpu, lcm_reader=False):
+    urdf, config, _ = b.models[name]
+    url = b.cms[(name, "lcm") if lcm_reader else name][1]
+    argv = [b.exe("sim_server"), "--urdf", urdf, "--config", config, "--lcm-url", url,
+            "--mode", "lockstep", "--duration", str(duration), "--log-level", "info"]
+    if lcm_reader:
+        argv += ["--hardware-reader", "lcm"]
+    sim = Proc(argv + (["--cpu", str(cpu)] if cpu is not None else []), f"sim_server[{name}]")
+    t0 = sim.wait_for("ready (", 30)
+    rc = sim.wait(30 if b.smoke else 600)
+    if rc != 0:
+        raise RuntimeError(f"sim_server[{name}] exited with {rc}:\n{sim.output()[-3000:]}")
+    wall = sim.exit_time - t0
+    return {"wall": wall, "rtf": duration / wall, "rss": sim.rusage.ru_maxrss, "duration": duration}

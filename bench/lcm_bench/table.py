@@ -1,0 +1,164 @@
+"""bench/run's table: one row per figure, one column per robot, with its goal and whether it is met."""
+import statistics
+
+from .figures import fmt
+
+
+def realtime_rows(r, row, yes, key, label, how):
+    """Row 4 (or 4c): a minute of real time with a listener taking every state, against the floors of the same
+    minute."""
+    suffix = key[len("realtime"):]
+    rtd = r.get("turret_bot", {}).get(key)
+    if not rtd:
+        return
+    row(f"{label} real time 1 kHz{how}, {rtd['duration']:g} s: period error p50 / p99 / max, µs (controller side)",
+        lambda d: "**{}** / **{}** / {}".format(*(fmt(d[key][k]) for k in ("p50", "p99", "max"))),
+        "p99 ≤ 100 µs", yes(rtd["p99"] <= 100))
+    tf = r.get("timer_floor" + suffix)
+    if tf:
+        row(f"{label} floor: bare 1 kHz clock_nanosleep loop, the same {tf['seconds']:g} s: period error p50 / p99 / "
+            "max, µs", lambda d: "{} / {} / {}".format(*(fmt(tf[k]) for k in ("p50", "p99", "max")))
+            if d is r["turret_bot"] else "–")
+        row(f"{label} period error p99 / floor p99", lambda d: f'{d[key]["p99"] / tf["p99"]:.2f}', "≤ 1.2",
+            yes(rtd["p99"] / tf["p99"] <= 1.2))
+        # The kernel stamps each datagram as sim_server sends it (SO_TIMESTAMP): the sim's own loop, before any
+        # receiver wakes, against the bare loop.
+        row(f"{label} sim_server's publish period (the kernel's arrival stamps) p50 / p99, µs; p99 / floor p99",
+            lambda d: "{} / {}; **{:.2f}**".format(fmt(d[key]["arrival_p50"]), fmt(d[key]["arrival_p99"]),
+                                                  d[key]["arrival_p99"] / tf["p99"]),
+            "≤ 1.2", yes(rtd["arrival_p99"] / tf["p99"] <= 1.2))
+        if "cm_window" in rtd and "window" in tf:
+            row(f"{label} controller_manager's own period error p99 per 1 s window, median over the windows / the bare "
+                "loop's, µs", lambda d: "{} / {} = {:.2f}".format(fmt(d[key]["cm_window"]), fmt(tf["window"]),
+                                                               d[key]["cm_window"] / tf["window"]))
+    cf = r.get("chain_floor" + suffix)
+    if cf:
+        row(f"{label} floor 2: the bare loop's datagram received by another process, the same {cf['seconds']:g} s: "
+            "period error p50 / p99 / max, µs (send to receipt p50 / p99)",
+            lambda d: "{} / {} / {} ({} / {})".format(*(fmt(cf[k]) for k in ("p50", "p99", "max", "latency_p50",
+                                                                              "latency_p99")))
+            if d is r["turret_bot"] else "–")
+        row(f"{label} period error p99 / floor 2 p99", lambda d: f'{d[key]["p99"] / cf["p99"]:.2f}', "≤ 1.2",
+            yes(rtd["p99"] / cf["p99"] <= 1.2))
+    row(f"{label} sim_server's own period: jitter (median of 1 s windows' std dev) / worst error, µs",
+        lambda d: f'{fmt(d[key]["sim_jitter"])} / {fmt(d[key]["sim_max"])}')
+    row(f"{label} back-to-back states (period < 0.5 ms: catching up after a stall) / the floor's",
+        lambda d: f'{d[key]["short"]} / {tf["short"] if tf else "–"}')
+    # The sim counts a step missed when it ran without its controller's answer (each step, once due, waits up to
+    # --answer-wait-us for it) or was dropped after a stall of more than 0.5 s; the floor counts its own late
+    # wake-ups in the same seconds.
+    row(f"{label} **missed cycles** (sim) / the floor's late wake-ups / states lost / cm missed",
+        lambda d: "**{}** / {} / {} / {}".format(d[key]["missed"], tf["missed"] if tf else "–", d[key]["lost"],
+                                                 d[key]["cm_missed"]),
+        "≤ the floor's", yes(bool(tf) and rtd["missed"] <= tf["missed"]))
+    row(f"{label} real-time factor sim_server reports", lambda d: f'{d[key]["rtf"]:.4f}')
+
+
+def table(b):
+    r, names = b.r, b.names
+    rows = []
+
+    def row(label, fn, goal="", met=""):
+        cells = []
+        for n in names:
+            try:
+                cells.append(fn(r[n]))
+            except (KeyError, TypeError):
+                cells.append("–")
+        rows.append([label] + cells + [goal, met])
+
+    def yes(ok):
+        return "yes" if ok else "**no**"
+
+    ph = {n: r[n]["physics"] for n in names if "physics" in r.get(n, {})}
+    row("joints (actuated)", lambda d: str(d["physics"]["ndof"]))
+    row("1. bare Bullet stepSimulation, µs/step", lambda d: fmt(d["physics"]["bare"]))
+    row("1. full sim step (actuators + Bullet), µs/step", lambda d: fmt(d["physics"]["full"]))
+    ok = all(v["ratio"] <= 1.3 for v in ph.values())
+    row("1. **physics overhead full/bare** (p25–p75 of the rounds)",
+        lambda d: f'**{d["physics"]["ratio"]:.2f}** ({d["physics"]["ratio_lo"]:.2f}–{d["physics"]["ratio_hi"]:.2f})',
+        "≤ 1.3", yes(ok))
+    row("2. payload state / command, bytes", lambda d: "{} / {}".format(*d["rtt"]["sizes"]))
+
+    def mpp(k):
+        return lambda d: "{} / {} / {}".format(*(fmt(d["rtt"][k][s]) for s in ("min", "p50", "p99")))
+    row("2. one core (every process pinned to the same CPU): raw UDP round trip min / p50 / p99, µs", mpp("udp"))
+    row("2. one core: bare LCM round trip min / p50 / p99, µs", mpp("lcm"))
+    row("2. one core: our loop (state → controller_manager → command) min / p50 / p99, µs", mpp("ours"))
+    rt = {n: r[n]["rtt"] for n in names if "rtt" in r.get(n, {})}
+    ok = all(v["ours/lcm"]["min"] <= 1.2 and v["ours/lcm"]["p50"] <= 1.2 for v in rt.values())
+    row("2. one core: **ours / bare LCM** min / p50 / p99", lambda d: "**{:.2f}** / **{:.2f}** / {:.2f}".format(
+        *(d["rtt"]["ours/lcm"][s] for s in ("min", "p50", "p99"))), "≤ 1.2 (min, p50)", yes(ok))
+    row("2. one core: bare LCM / raw UDP min / p50 / p99", lambda d: "{:.2f} / {:.2f} / {:.2f}".format(
+        *(d["rtt"]["lcm/udp"][s] for s in ("min", "p50", "p99"))))
+    row("2. one core: our loop + a `clock` message every step (sim_server `--clock-rate 0`; default 100 Hz), min / p50 / p99, µs", mpp("clock"))
+    row("2. one core: (ours + clock) / ours min / p50 / p99", lambda d: "{:.2f} / {:.2f} / {:.2f}".format(
+        *(d["rtt"]["clock/ours"][s] for s in ("min", "p50", "p99"))))
+    row("2. two cores (echo servers and controller_manager on one CPU, hardware side on the other): bare LCM min / p50 / p99, µs",
+        lambda d: "{} / {} / {}".format(*(fmt(d["rtt2"]["lcm"][s]) for s in ("min", "p50", "p99"))))
+    row("2. two cores: ours / bare LCM min / p50 / p99", lambda d: "{:.2f} / {:.2f} / {:.2f}".format(
+        *(d["rtt2"]["ours/lcm"][s] for s in ("min", "p50", "p99"))))
+    row("2. two cores: (ours + clock) / ours min / p50 / p99", lambda d: "{:.2f} / {:.2f} / {:.2f}".format(
+        *(d["rtt2"]["clock/ours"][s] for s in ("min", "p50", "p99"))))
+    row("3. lockstep: wall time, s / sim time, s", lambda d: f'{fmt(d["lockstep"]["wall"])} / {d["lockstep"]["duration"]:g}')
+
+    def per_step(d):
+        us = d["lockstep"]["wall"] / (d["lockstep"]["duration"] * 1000) * 1e6
+        floor = d["rtt"]["lcm"]["p50"] + d["physics"]["full"]
+        return f"{fmt(us)} / {fmt(floor)} = {us / floor:.2f}"
+    row("3. µs per lockstep step / floor (one-core bare LCM p50 + full sim step) = ratio", per_step)
+    goals = {"turret_bot": 25, "chain100": 5}
+    ls = {n: r[n]["lockstep"]["rtf"] for n in names if "lockstep" in r.get(n, {})}
+    ok = all(ls[n] >= g for n, g in goals.items() if n in ls)
+    row("3. **lockstep real-time factor**, sim_server + controller_manager on one CPU as launch runs them (range)",
+        lambda d: "**{:.1f}x** ({:.1f}–{:.1f})".format(
+        d["lockstep"]["rtf"], d["lockstep"]["rtf_lo"], d["lockstep"]["rtf_hi"]),
+        "turret ≥ 25x, chain100 ≥ 5x",
+        "; ".join(f"{n.replace('_bot', '')} {yes(ls[n] >= g)}" for n, g in goals.items() if n in ls))
+    row("3. lockstep real-time factor through LCM's receive thread (`--hardware-reader lcm` on both, the way before) "
+        "/ direct ÷ that",
+        lambda d: "{:.1f}x / {:.2f}".format(d["lockstep_lcm"]["rtf"], d["lockstep"]["rtf"] / d["lockstep_lcm"]["rtf"]))
+    row("3. lockstep real-time factor, not pinned (launch's `cpu: none`; one run)",
+        lambda d: "{:.1f}x".format(d["lockstep_unpinned"]["rtf"]))
+    for key, label, how in (("realtime", "4.", ""),
+                            ("realtime_fifo", "4c.", f" as `launch --rt-priority {b.RT_PRIORITY}` runs it (SCHED_FIFO "
+                                                     f"{b.RT_PRIORITY} and `--spin-us {b.SPIN_US}` on both; the "
+                                                     "listener and both floors at the same priority)")):
+        realtime_rows(r, row, yes, key, label, how)
+    q = r.get("turret_bot", {}).get("quiet")
+    if q:
+        def quiet(way, fn):
+            return lambda d: "; ".join(fn(x) for x in q["runs"][way]) if d is r["turret_bot"] else "–"
+
+        def verdict(runs, holds, median_holds):
+            """Decided by the median run, so that one run a VM stall spoiled does not decide; how many held beside."""
+            return f"{yes(median_holds)} ({sum(1 for x in runs if holds(x))} of {len(runs)} runs)"
+        ways = {"shipped": "as shipped", "spin": f"`--spin-us {b.SPIN_US}` on both",
+                "fifo": f"`launch --rt-priority {b.RT_PRIORITY}` (SCHED_FIFO {b.RT_PRIORITY} and `--spin-us "
+                        f"{b.SPIN_US}` on both; the bare loop at SCHED_FIFO {b.RT_PRIORITY} too)"}
+        for way, how in ways.items():
+            runs = q["runs"].get(way, [])
+            if not runs:
+                continue
+            row(f"4b. the hardware loop on its own URL, {how}, {q['duration']:g} s runs ({len(runs)}, alternated): "
+                "period error p99 per 1 s window, median over the windows, µs: controller_manager / sim_server / bare "
+                "loop", quiet(way, lambda x: f'{fmt(x["cm"])}, {fmt(x["sim"])}, {fmt(x["floor"])}'))
+            ratio = statistics.median(x["cm"] / x["floor"] for x in runs)
+            row(f"4b. {how}: **controller_manager / bare loop**, sim_server / bare loop (each run; the median of the "
+                "first decides)",
+                quiet(way, lambda x: f'**{x["cm"] / x["floor"]:.2f}**, {x["sim"] / x["floor"]:.2f}'), "≤ 1.2",
+                verdict(runs, lambda x: x["cm"] <= 1.2 * x["floor"], ratio <= 1.2))
+            over = statistics.median(x["missed"] - x["floor_missed"] for x in runs)
+            row(f"4b. {how}: **missed cycles** (sim) / the floor's late wake-ups / cm missed (each run; the median "
+                "of the excess decides)",
+                quiet(way, lambda x: f'**{x["missed"]}** / {x["floor_missed"]} / {x["cm_missed"]}'),
+                "≤ the floor's", verdict(runs, lambda x: x["missed"] <= x["floor_missed"], over <= 0))
+    row("5. peak RSS sim_server (lockstep run), MB", lambda d: f'{d["memory"]["sim_kb"] / 1024:.1f}')
+    row("5. peak RSS controller_manager, MB", lambda d: f'{d["memory"]["cm_kb"] / 1024:.1f}')
+    if r.get("floor_rss_kb"):
+        row("5. floor: peak RSS of a bare LCM echo process, MB",
+            lambda d: f'{r["floor_rss_kb"] / 1024:.1f}' if d is r[names[0]] else "–")
+    header = ["figure"] + names + ["goal", "met"]
+    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
+    lines += ["| " + " | ".join(row) + " |" for row in rows]
+    return "\n".join(lines)

@@ -1,0 +1,282 @@
+// ROS launch XML (the tutorial's gazebo_ros_control.launch and its kind), mapped onto our programs.
+#include <fmt/format.h>
+#include <tinyxml2.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+
+#include "description/robot_model.hpp"
+#include "description/substitution.hpp"
+#include "description/text.hpp"
+#include "tools/lib/launch_file.hpp"
+
+namespace fs = std::filesystem;
+
+namespace lcm_control::tools {
+
+namespace {
+
+using Args = std::vector<std::pair<std::string, std::string>>;
+
+struct RosReader {
+  RosReader(const std::string& file, const std::vector<std::string>& packages, LaunchPlan& out)
+      : path(file), package_path(packages), plan(out) {}
+  const std::string& path;
+  const std::vector<std::string>& package_path;
+  LaunchPlan& plan;
+  Args args;
+  std::vector<std::pair<std::string, std::string>> textfile_params;  // name -> file
+  std::map<std::string, std::vector<std::pair<std::string, std::string>>> xacro_params;  // name -> its xacro args
+  bool gazebo = false, spawn_model = false, unpause = false;
+  std::string spawn_param;
+  int rosparam_files = 0;
+  std::vector<std::string> problems;
+
+  std::string where(const tinyxml2::XMLElement* e) const {
+    return fmt::format("{}:{}: <{}{}>", path, e->GetLineNum(), e->Name(),
+                       e->Attribute("name") ? fmt::format(" name=\"{}\"", e->Attribute("name")) : "");
+  }
+  std::string attr(const tinyxml2::XMLElement* e, const char* name) {
+    const char* v = e->Attribute(name);
+    return v ? trim(substitute(v, Substitutions{package_path, args, kLaunchArgFix}, where(e))) : "";
+  }
+  bool enabled(const tinyxml2::XMLElement* e) {
+    for (const char* cond : {"if", "unless"}) {
+      if (!e->Attribute(cond)) continue;
+      const std::string v = attr(e, cond);
+      const bool truth = v == "true" || v == "1";
+      if (v != "true" && v != "false" && v != "1" && v != "0")
+        throw ModelError(fmt::format("{}: {}=\"{}\" must be true/false/1/0", where(e), cond, v));
+      if (truth != (std::string(cond) == "if")) return false;
+    }
+    return true;
+  }
+  std::string group_ns;  // ns of the enclosing <group>, if any
+
+  // The controllers' namespace: the spawner's ns (inside its group's), as ROS resolves it.
+  void set_ns(const tinyxml2::XMLElement* e, const std::string& ns) {
+    const std::string full = normalize_namespace(ns.rfind('/', 0) == 0 || group_ns.empty() ? ns : group_ns + "/" + ns);
+    if (!plan.ns.empty() && plan.ns != full) {
+      problems.push_back(fmt::format("{}: ns \"{}\" differs from the namespace '{}' set before; lcm_control runs one "
+                                     "robot namespace per launch",
+                                     where(e), ns, plan.ns));
+      return;
+    }
+    if (plan.ns.empty()) plan.notes.push_back(fmt::format("{}: namespace '{}' (as --namespace {})", where(e), full, full));
+    plan.ns = full;
+  }
+  static std::string strip_slash(std::string s) {
+    while (!s.empty() && s[0] == '/') s.erase(0, 1);
+    return s;
+  }
+
+  void node(const tinyxml2::XMLElement* e) {
+    const std::string pkg = attr(e, "pkg"), type = attr(e, "type"), name = attr(e, "name");
+    const auto words = split_words(attr(e, "args"));
+    if (attr(e, "respawn") == "true") plan.notes.push_back(where(e) + ": respawn is not supported; ignored");
+    if (pkg == "robot_state_publisher" && (type == "robot_state_publisher" || type == "state_publisher")) {
+      plan.state_publisher = true;
+      if (!name.empty()) plan.state_publisher_name = name;
+      plan.notes.push_back(where(e) + ": robot_state_publisher -> state-publisher (link_poses)");
+    } else if (pkg == "gazebo_ros" && type == "spawn_model") {
+      spawn_model = true;
+      for (size_t k = 0; k < words.size(); ++k) {
+        if (words[k] == "-unpause") unpause = true;
+        if (words[k] == "-param" && k + 1 < words.size()) spawn_param = strip_slash(words[k + 1]);
+        if (words[k] == "-file" && k + 1 < words.size()) plan.urdf = words[k + 1];
+        if (words[k] == "-J" && k + 2 < words.size()) {
+          double q = 0;
+          if (!parse_double(words[k + 2], q))
+            problems.push_back(fmt::format("{}: -J {} {}: the position must be a number (rad or m)", where(e),
+                                           words[k + 1], words[k + 2]));
+          else
+            plan.initial_positions.emplace_back(words[k + 1], q);
+          k += 2;
+        }
+      }
+      plan.notes.push_back(where(e) + ": gazebo_ros spawn_model -> sim_server loads the URDF");
+    } else if (pkg == "controller_manager" && type == "spawner") {
+      if (!name.empty()) plan.spawner_name = name;
+      if (e->Attribute("ns")) set_ns(e, attr(e, "ns"));
+      for (size_t k = 0; k < words.size(); ++k) {
+        const std::string& w = words[k];
+        if (w == "--stopped") {
+          plan.spawner_args.push_back(w);
+        } else if ((w == "--timeout" || w == "--shutdown-timeout") && k + 1 < words.size()) {
+          if (std::atof(words[k + 1].c_str()) > 0) {
+            plan.spawner_args.push_back(w);
+            plan.spawner_args.push_back(words[k + 1]);
+          }
+          ++k;
+        } else if (w == "--namespace" || w == "--wait-for") {
+          plan.notes.push_back(where(e) + ": spawner " + w + " is not supported; ignored");
+          ++k;
+        } else if (w.rfind("-", 0) == 0) {
+          plan.notes.push_back(where(e) + ": spawner flag " + w + " ignored");
+        } else if (w.size() > 5 && w.substr(w.size() - 5) == ".yaml") {
+          problems.push_back(where(e) + ": spawner argument " + w +
+                             " is a YAML file; name the controllers instead (the config is the <rosparam> file)");
+        } else {
+          plan.controllers.push_back(w);
+        }
+      }
+    } else {
+      plan.notes.push_back(fmt::format("{}: node {}/{} has no lcm_control equivalent; ignored", where(e), pkg, type));
+    }
+  }
+
+  // <param command="$(find xacro)/xacro FILE [--inorder] [NAME:=VALUE ...]"/> (also xacro.py, rosrun xacro xacro):
+  // the file and its arguments, which our own xacro expands.
+  void xacro_command(const tinyxml2::XMLElement* e, const std::string& name) {
+    std::string cmd = e->Attribute("command");
+    for (const char* program : {"$(find xacro)/xacro.py", "$(find xacro)/xacro", "rosrun xacro xacro.py",
+                                "rosrun xacro xacro"}) {
+      const std::string p = program;
+      if (trim(cmd).rfind(p, 0) == 0) {
+        cmd = "xacro" + trim(cmd).substr(p.size());
+        break;
+      }
+    }
+    const auto words = split_words(substitute(cmd, Substitutions{package_path, args, kLaunchArgFix}, where(e)));
+    const bool is_xacro = !words.empty() && (words[0] == "xacro" || words[0] == "xacro.py");
+    std::string file;
+    std::vector<std::pair<std::string, std::string>> xacro_args;
+    for (size_t k = 1; is_xacro && k < words.size(); ++k) {
+      if (words[k] == "--inorder") continue;
+      if (words[k].find(":=") != std::string::npos)
+        xacro_args.push_back(parse_arg(words[k]));
+      else if (file.empty() && words[k].rfind("-", 0) != 0)
+        file = words[k];
+      else
+        return (void)problems.push_back(fmt::format("{}: xacro argument '{}' is not supported (FILE, NAME:=VALUE "
+                                                    "and --inorder are)",
+                                                    where(e), words[k]));
+    }
+    if (file.empty())
+      return (void)problems.push_back(fmt::format(
+          "{}: command=\"{}\" is not a xacro call; give the URDF with textfile= or the xacro with command=\"$(find "
+          "xacro)/xacro FILE NAME:=VALUE ...\"",
+          where(e), e->Attribute("command")));
+    textfile_params.emplace_back(name, file);
+    xacro_params[name] = xacro_args;
+    plan.notes.push_back(where(e) + ": xacro " + file + " is expanded by lcm_control's own xacro");
+  }
+
+  void element(const tinyxml2::XMLElement* e) {
+    if (!enabled(e)) return;
+    const std::string tag = e->Name();
+    if (tag == "arg") {
+      const std::string name = attr(e, "name");
+      const char* value = e->Attribute("value") ? "value" : (e->Attribute("default") ? "default" : nullptr);
+      if (value) args.emplace_back(name, attr(e, value));
+    } else if (tag == "param") {
+      const std::string name = strip_slash(attr(e, "name"));
+      if (e->Attribute("textfile")) {
+        textfile_params.emplace_back(name, attr(e, "textfile"));
+      } else if (e->Attribute("command")) {
+        xacro_command(e, name);
+      } else {
+        plan.notes.push_back(where(e) + ": a plain parameter; ignored (controllers read the <rosparam> YAML)");
+      }
+    } else if (tag == "rosparam") {
+      const std::string cmd = attr(e, "command");
+      if (cmd != "load" && !cmd.empty()) {
+        plan.notes.push_back(where(e) + ": rosparam command=\"" + cmd + "\" ignored");
+        return;
+      }
+      if (!e->Attribute("file")) {
+        problems.push_back(where(e) + ": inline <rosparam> YAML is not supported; use file=");
+        return;
+      }
+      if (e->Attribute("ns")) plan.notes.push_back(where(e) + ": ns=\"" + attr(e, "ns") + "\" ignored");
+      if (++rosparam_files > 1)
+        problems.push_back(where(e) + ": a second <rosparam> file; lcm_control takes one ros_control YAML, merge them");
+      plan.config = attr(e, "file");
+    } else if (tag == "node") {
+      node(e);
+    } else if (tag == "include") {
+      const char* raw = e->Attribute("file");
+      const std::string file = raw ? raw : "";
+      if (file.find("gazebo_ros") != std::string::npos && file.find("world") != std::string::npos) {
+        gazebo = true;
+        for (auto* a = e->FirstChildElement("arg"); a; a = a->NextSiblingElement("arg")) {
+          const std::string n = attr(a, "name"), v = attr(a, "value");
+          if (n == "paused" && v == "true") {
+            plan.paused = true;
+            plan.notes.push_back(where(a) + ": paused=true -> sim_server --paused (cmctl resume runs it), unless "
+                                 "spawn_model has -unpause");
+          }
+        }
+        plan.notes.push_back(where(e) + ": gazebo_ros world -> sim_server + controller_manager");
+      } else {
+        plan.notes.push_back(where(e) + ": include of " + file + " not followed; ignored");
+      }
+    } else if (tag == "group") {
+      const std::string outer = group_ns;
+      if (e->Attribute("ns")) group_ns = attr(e, "ns");
+      for (auto* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) element(c);
+      group_ns = outer;
+    } else if (tag == "remap" || tag == "machine" || tag == "env" || tag == "test") {
+      plan.notes.push_back(where(e) + ": ignored");
+    } else {
+      problems.push_back(where(e) + ": unknown launch tag");
+    }
+  }
+};
+
+}  // namespace
+
+LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::string>& package_path) {
+  std::string text = read_launch_text(path);
+  LaunchPlan plan;
+  plan.file = path;
+  // Copied from a web page, the tutorial's file carries stray "</pre>" inside tags.
+  size_t stray = 0;
+  for (size_t p; (p = text.find("</pre>")) != std::string::npos; ++stray) text.erase(p, 6);
+  if (stray) plan.notes.push_back(fmt::format("{}: removed {} stray '</pre>' (copied from a web page)", path, stray));
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS)
+    throw ModelError(fmt::format("{}:{}: malformed XML: {}", path, doc.ErrorLineNum(),
+                                 doc.ErrorStr() ? trim(doc.ErrorStr()) : "parse error"));
+  const tinyxml2::XMLElement* root = doc.FirstChildElement("launch");
+  if (!root) throw ModelError(fmt::format("{}: no <launch> element; is this a ROS launch file?", path));
+  RosReader r(path, package_path, plan);
+  for (auto* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
+    try {
+      r.element(e);
+    } catch (const ModelError& err) {
+      r.problems.insert(r.problems.end(), err.problems().begin(), err.problems().end());
+    }
+  }
+  const bool earlier = !r.problems.empty();
+  if (plan.urdf.empty()) {
+    const std::string want = r.spawn_param.empty() ? "robot_description" : r.spawn_param;
+    for (const auto& [name, file] : r.textfile_params)
+      if (name == want) {
+        plan.urdf = file;
+        const auto x = r.xacro_params.find(name);
+        plan.xacro_args = x == r.xacro_params.end() ? decltype(plan.xacro_args){} : x->second;
+      }
+    if (plan.urdf.empty() && !earlier)
+      r.problems.push_back(fmt::format("{}: no URDF: expected <param name=\"{}\" textfile=\"...\"/> or command=\"$(find xacro)/xacro ...\"", path, want));
+  }
+  if (plan.config.empty() && !earlier)
+    r.problems.push_back(fmt::format("{}: no ros_control YAML: expected <rosparam command=\"load\" file=\"...\"/>", path));
+  plan.sim = plan.controller_manager = r.gazebo || r.spawn_model;
+  if (!plan.sim)
+    r.problems.push_back(fmt::format(
+        "{}: nothing to simulate: no <include> of gazebo_ros's world launch file and no spawn_model node", path));
+  plan.args = r.args;
+  if (plan.paused && r.unpause) {
+    plan.paused = false;  // as in Gazebo: spawn_model -unpause starts physics once the model is in
+    plan.notes.push_back(path + ": paused=true with spawn_model -unpause: sim_server runs from the start");
+  }
+  if (!r.problems.empty()) throw ModelError(r.problems);
+  const std::string dir = fs::absolute(path).parent_path().string();
+  plan.urdf = absolute_from(plan.urdf, dir);
+  plan.config = absolute_from(plan.config, dir);
+  return plan;
+}
+
+}  // namespace lcm_control::tools

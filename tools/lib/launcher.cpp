@@ -1,0 +1,338 @@
+#include "tools/lib/launcher.hpp"
+
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <cstring>
+#include <memory>
+
+#include "bus/messages.hpp"
+#include "description/urdf_reader.hpp"
+#include "lcm_control/cm_request_t.hpp"
+#include "lcm_control/cm_response_t.hpp"
+#include "rt/scheduling.hpp"
+#include "tools/lib/cm_client.hpp"
+#include "tools/lib/launch_file.hpp"
+#include "tools/lib/supervisor.hpp"
+#include "tools/lib/support.hpp"
+
+namespace lcm_control::tools {
+namespace {
+
+// Tells when the servers answer on the bus: a hardware/state from sim_server,
+// and an answer to LIST (asked every 0.5 s) from the controller manager.
+class ReadinessProbe {
+ public:
+  explicit ReadinessProbe(Bus& bus) : bus_(bus) {
+    state_sub_ = bus_.hardware().subscribe(bus_.channel(channels::kHardwareState), &ReadinessProbe::on_state, this);
+    bus_.lcm().subscribe(bus_.channel(channels::kCmResponse), &ReadinessProbe::on_cm, this);
+  }
+  std::vector<int> fds() { return bus_.fds(); }
+  void handle() {
+    for (lcm::LCM* lc : {&bus_.lcm(), &bus_.hardware()})
+      for (int n = 0; n < 100 && lc->handleTimeout(0) > 0; ++n) {
+      }
+    if (state_seen_ && state_sub_) {  // one is enough: stop queueing them
+      bus_.hardware().unsubscribe(state_sub_);
+      state_sub_ = nullptr;
+    }
+  }
+  void ask_manager() {
+    const int64_t now = monotonic_us();
+    if (cm_answered_ || now - last_list_us_ < 500000) return;
+    last_list_us_ = now;
+    cm_request_t r = cm_request(cm_request_t::LIST);
+    r.utime = wall_us();
+    r.request_id = list_id_ = new_request_id();
+    r.client = "launch";
+    bus_.publish(channels::kCmRequest, r);
+  }
+  bool hardware_seen() const { return state_seen_; }
+  bool manager_answered() const { return cm_answered_; }
+  const std::string& manager_message() const { return cm_message_; }  // its answer to LIST
+
+ private:
+  void on_state(const lcm::ReceiveBuffer*, const std::string&) { state_seen_ = true; }
+  void on_cm(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+    cm_response_t m;
+    if (decode_guarded(m, rbuf->data, rbuf->data_size) && m.request_id == list_id_) {
+      cm_answered_ = true;
+      cm_message_ = m.message;
+    }
+  }
+  Bus& bus_;
+  lcm::Subscription* state_sub_ = nullptr;
+  bool state_seen_ = false, cm_answered_ = false;
+  int64_t list_id_ = 0, last_list_us_ = 0;
+  std::string cm_message_;
+};
+
+// --namespace, else the file's, else the URDF's robotNamespace: what sim_server and controller_manager will use, so
+// that launch waits for them where they are. A URDF that does not load is left for them to report.
+std::string robot_namespace_of(const LaunchPlan& plan, const std::string& flag, const std::vector<std::string>& path) {
+  const std::string given = flag.empty() ? plan.ns : flag;
+  if (!given.empty()) return normalize_namespace(given);
+  LoadOptions o;
+  o.package_path = path;
+  o.xacro_args = plan.xacro_args;
+  RobotModel urdf;
+  try {
+    load_urdf_into(urdf, plan.urdf, o);
+  } catch (const std::exception&) {
+    return "";
+  }
+  return robot_namespace("", urdf.gazebo_plugin_namespace);
+}
+
+std::vector<std::string> with_ns(std::vector<std::string> argv, const std::string& ns) {
+  if (!ns.empty()) {
+    argv.push_back("--namespace");
+    argv.push_back(ns);
+  }
+  return argv;
+}
+
+// The command line of each process launch starts for one robot.
+struct CommandLines {
+  std::vector<std::string> sim, cm, spawner, rsp, dash;
+};
+
+CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const std::string& hw_url, bool hw_apart) {
+  CommandLines lines;
+  auto& [sim, cm, spawner, rsp, dash] = lines;
+  std::vector<std::string> file_args;
+  for (const auto& [name, value] : plan.args) file_args.insert(file_args.end(), {"--arg", name + "=" + value});
+  std::vector<std::string> urdf_args;  // a .xacro urdf's arguments, for every process that reads the robot file
+  for (const auto& [name, value] : plan.xacro_args)
+    urdf_args.insert(urdf_args.end(), {"--xacro-arg", name + ":=" + value});
+  file_args.insert(file_args.end(), urdf_args.begin(), urdf_args.end());
+  sim = {"sim_server", "--urdf", plan.urdf, "--config", plan.config};
+  sim.insert(sim.end(), file_args.begin(), file_args.end());
+  for (const auto& [joint, q] : plan.initial_positions)
+    sim.insert(sim.end(), {"--initial-position", fmt::format("{}={}", joint, q)});
+  if (plan.mode == "lockstep") sim.insert(sim.end(), {"--mode", "lockstep"});
+  if (plan.paused) sim.push_back("--paused");
+  if (plan.physics_rate > 0) sim.insert(sim.end(), {"--physics-rate", fmt::format("{:g}", plan.physics_rate)});
+  if (plan.control_rate > 0) sim.insert(sim.end(), {"--control-rate", fmt::format("{:g}", plan.control_rate)});
+  sim.insert(sim.end(), plan.sim_args.begin(), plan.sim_args.end());
+  if (o.duration > 0) sim.insert(sim.end(), {"--duration", fmt::format("{:g}", o.duration)});
+  cm = {"controller_manager", "--urdf", plan.urdf, "--config", plan.config};
+  cm.insert(cm.end(), file_args.begin(), file_args.end());
+  cm.insert(cm.end(), plan.cm_args.begin(), plan.cm_args.end());
+  // In lockstep the two loop processes take turns; on one CPU each hand-over is a cheaper wake-up (bench/README.md).
+  int pin = -1;
+  if (plan.cpu == "auto" && plan.mode == "lockstep") pin = least_busy_cpu();
+  if (plan.cpu != "auto" && plan.cpu != "none") pin = std::stoi(plan.cpu);
+  // The real-time profile, where the file's own flags for a process do not set it already.
+  const int spin = plan.mode == "realtime" ? effective_spin_us(plan) : 0;
+  for (auto [argv, extra] : {std::pair{&sim, &plan.sim_args}, std::pair{&cm, &plan.cm_args}}) {
+    if (pin >= 0) argv->insert(argv->end(), {"--cpu", std::to_string(pin)});
+    if (hw_apart) argv->insert(argv->end(), {"--hardware-lcm-url", hw_url});
+    auto unset = [&](const std::string& flag) {
+      return std::none_of(extra->begin(), extra->end(),
+                          [&](const std::string& e) { return e == flag || e.rfind(flag + "=", 0) == 0; });
+    };
+    if (plan.rt_priority > 0 && unset("--rt-priority"))
+      argv->insert(argv->end(), {"--rt-priority", std::to_string(plan.rt_priority)});
+    if (spin > 0 && unset("--spin-us")) argv->insert(argv->end(), {"--spin-us", std::to_string(spin)});
+  }
+  spawner = {"spawner"};
+  spawner.insert(spawner.end(), plan.controllers.begin(), plan.controllers.end());
+  spawner.insert(spawner.end(), {"--shutdown-timeout", fmt::format("{:g}", o.stop_timeout * 0.3)});
+  if (plan.sim && plan.mode == "lockstep") spawner.push_back("--hardware-later");  // the sim starts after it
+  spawner.insert(spawner.end(), plan.spawner_args.begin(), plan.spawner_args.end());
+  rsp = {"state-publisher", "--urdf", plan.urdf, "--config", plan.config};
+  rsp.insert(rsp.end(), file_args.begin(), file_args.end());
+  dash = {"dashboard", "--urdf", plan.urdf, "--port", std::to_string(o.dashboard_port)};
+  dash.insert(dash.end(), urdf_args.begin(), urdf_args.end());
+  return lines;
+}
+
+void print_dry_run(const LaunchPlan& plan, const LaunchOptions& o, const CommandLines& lines, const std::string& ns) {
+  const auto& [sim, cm, spawner, rsp, dash] = lines;
+  if (plan.sim) fmt::print("{}: {}\n", plan.sim_name, fmt::join(with_ns(sim, ns), " "));
+  if (plan.controller_manager) fmt::print("{}: {}\n", plan.cm_name, fmt::join(with_ns(cm, ns), " "));
+  if (plan.state_publisher) fmt::print("{}: {}\n", plan.state_publisher_name, fmt::join(with_ns(rsp, ns), " "));
+  if (o.dashboard) fmt::print("dashboard: {}\n", fmt::join(with_ns(dash, ns), " "));
+  for (const auto& p : plan.processes)
+    fmt::print("{}: {}{}\n", p.name, fmt::join(p.argv, " "), p.required ? " (required)" : "");
+  if (!plan.controllers.empty()) fmt::print("{}: {}\n", plan.spawner_name, fmt::join(with_ns(spawner, ns), " "));
+  for (const auto& c : plan.commands)
+    fmt::print("command source: {} [{}] rate {:g} count {} duration {:g}\n", c.target, fmt::join(c.expr, ", "), c.rate,
+               c.count, c.duration);
+}
+
+// Starts the processes in order, waits until each answers, then until one fails, Ctrl-C or the sim's --duration
+// ends the run, and stops them in order: controllers, helpers, then the controller manager and the sim.
+int supervise(const LaunchPlan& plan, const LaunchOptions& o, const CommandLines& lines, const std::string& ns,
+              const std::string& hw_url) {
+  const auto& [sim, cm, spawner, rsp, dash] = lines;
+  install_stop_signals();
+  auto bus = std::make_unique<Bus>(o.bus.lcm_url, ns, hw_url);
+  std::vector<std::pair<std::string, std::string>> env{{"LCM_DEFAULT_URL", bus->url()}};
+  if (!o.package_path.empty())
+    env.emplace_back("LCM_CONTROL_PACKAGE_PATH", fmt::format("{}", fmt::join(o.package_path, ":")));
+  Supervisor sup(env);
+  auto probe = std::make_unique<ReadinessProbe>(*bus);
+  sup.watch(probe->fds(), [&] { probe->handle(); });
+  // A robot already up on this namespace would fight the one started here: its simulator takes the commands of
+  // one manager and drops the other's, and each manager follows one of two simulators.
+  sup.wait_until(
+      [&] {
+        if (plan.controller_manager) probe->ask_manager();
+        return probe->manager_answered() || (plan.sim && probe->hardware_seen());
+      },
+      0.6);
+  const std::string where = ns.empty() ? "the default namespace" : "namespace '" + ns + "'";
+  if (plan.controller_manager && probe->manager_answered())
+    throw std::runtime_error(fmt::format(
+        "a controller manager already answers on '{}' in {} ({}): a second one would fight it for the robot. Stop "
+        "the robot that runs there (Ctrl-C its launch), or launch this one with --namespace NAME or another "
+        "--lcm-url",
+        bus->channel(channels::kCmResponse), where, probe->manager_message()));
+  if (plan.sim && probe->hardware_seen())
+    throw std::runtime_error(fmt::format(
+        "hardware already publishes '{}' in {}: a second simulator there would make two sessions the controller "
+        "manager cannot both follow. Stop it, or launch this robot with --namespace NAME or another --lcm-url",
+        bus->channel(channels::kHardwareState), where));
+  Child *sim_c = nullptr, *cm_c = nullptr, *spawner_c = nullptr;
+  std::vector<Child*> others;
+  std::string failure;
+
+  const int64_t up_deadline = monotonic_us() + int64_t(o.ready_timeout * 1e6);
+  auto left = [&] { return std::max(0.0, double(up_deadline - monotonic_us()) / 1e6); };
+  auto broken = [&] { return stop_requested() || !sup.reason_to_stop().empty(); };
+  const bool sim_last = plan.sim && plan.mode == "lockstep";
+  if (plan.sim && !sim_last) sim_c = &sup.start(plan.sim_name, with_ns(sim, ns), true);
+  if (plan.controller_manager) cm_c = &sup.start(plan.cm_name, with_ns(cm, ns), true);
+  const bool servers_up = sup.wait_until(
+      [&] {
+        if (cm_c && cm_c->ready) probe->ask_manager();
+        return broken() || ((!sim_c || (sim_c->ready && probe->hardware_seen())) &&
+                            (!cm_c || (cm_c->ready && probe->manager_answered())));
+      },
+      left());
+  if (!servers_up) {
+    std::vector<std::string> waiting;
+    if (sim_c && !sim_c->ready) waiting.push_back(plan.sim_name + " (no 'ready' line)");
+    if (sim_c && sim_c->ready && !probe->hardware_seen())
+      waiting.push_back(fmt::format("{} (nothing on '{}')", plan.sim_name, bus->channel(channels::kHardwareState)));
+    if (cm_c && !cm_c->ready) waiting.push_back(plan.cm_name + " (no 'ready' line)");
+    if (cm_c && cm_c->ready && !probe->manager_answered())
+      waiting.push_back(fmt::format("{} (no answer on '{}')", plan.cm_name, bus->channel(channels::kCmResponse)));
+    failure = fmt::format("not up within {}: {}", seconds_text(o.ready_timeout), fmt::join(waiting, ", "));
+  }
+  // From here launch needs no bus; a udpm socket receives every message on
+  // it, which costs CPU the simulation could use.
+  auto drop_bus = [&] {
+    sup.watch({}, {});
+    probe.reset();
+    bus.reset();
+  };
+  if (failure.empty() && !broken()) {
+    if (!sim_last && plan.commands.empty()) drop_bus();
+    if (plan.state_publisher) others.push_back(&sup.start(plan.state_publisher_name, with_ns(rsp, ns), true));
+    for (const auto& p : plan.processes) others.push_back(&sup.start(p.name, p.argv, p.required));
+    if (o.dashboard) others.push_back(&sup.start("dashboard", with_ns(dash, ns), false));
+    if (!plan.controllers.empty()) {
+      spawner_c = &sup.start(plan.spawner_name, with_ns(spawner, ns), true);
+      if (!sup.wait_until([&] { return broken() || spawner_c->ready; }, std::max(left(), 12.0)))
+        failure = fmt::format("{} did not report its controllers running within {}", plan.spawner_name,
+                              seconds_text(std::max(left(), 12.0)));
+    }
+  }
+  if (failure.empty() && !broken() && !plan.commands.empty()) {
+    CmClient client(*bus, "launch");
+    for (const auto& c : plan.commands) {
+      command_source_t req{};
+      req.controller = c.target;
+      req.expressions = c.expr;
+      req.rate_hz = c.rate;
+      req.count = c.count;
+      req.duration_s = c.duration;
+      try {
+        const cm_response_t r = client.command_source(req, std::max(left(), 5.0));
+        if (!r.ok) {
+          failure = r.message;
+          break;
+        }
+        launch_say(r.message);
+      } catch (const CmTimeout& e) {
+        failure = e.what();
+        break;
+      }
+    }
+  }
+  if (failure.empty() && !broken() && sim_last) {
+    sim_c = &sup.start(plan.sim_name, with_ns(sim, ns), true);
+    if (!sup.wait_until([&] { return broken() || (sim_c->ready && probe->hardware_seen()); }, std::max(left(), 5.0)))
+      failure = fmt::format("{} not up within {}: {}", plan.sim_name, seconds_text(std::max(left(), 5.0)),
+                            sim_c->ready ? fmt::format("nothing on '{}'", bus->channel(channels::kHardwareState))
+                                         : std::string("no 'ready' line"));
+  }
+  if (bus) drop_bus();
+  if (failure.empty() && !broken()) {
+    launch_say(fmt::format("up: {}{} (Ctrl-C to stop)", plan.controllers.empty() ? "no controllers" : "controllers ",
+                           fmt::join(plan.controllers, ", ")));
+    sup.wait_until(broken, 1e12);
+  }
+  std::string why = failure;
+  if (why.empty()) why = sup.reason_to_stop();
+  if (why.empty() && stop_requested()) why = fmt::format("got {}", strsignal(stop_signal()));
+  clear_stop();
+  launch_say(fmt::format("stopping ({})", why));
+
+  // Controllers first, then the helpers, then the controller manager and the sim.
+  const int64_t t0 = monotonic_us(), budget = int64_t(o.stop_timeout * 1e6);
+  if (spawner_c) sup.stop({spawner_c}, t0 + budget / 2);
+  sup.stop(others, t0 + budget * 7 / 10);
+  std::vector<Child*> servers;
+  if (cm_c) servers.push_back(cm_c);
+  if (sim_c) servers.push_back(sim_c);
+  sup.stop(servers, t0 + budget);
+
+  std::vector<std::string> failed;
+  for (const auto& c : sup.children())
+    if (!c->clean()) failed.push_back(Supervisor::exit_text(*c));
+  launch_say(
+      fmt::format("all {} processes stopped in {:.2f} s", sup.children().size(), double(monotonic_us() - t0) / 1e6));
+  if (!failure.empty()) throw std::runtime_error(failure);
+  if (!failed.empty()) throw std::runtime_error(fmt::format("{}", fmt::join(failed, "; ")));
+  return int(kExitOk);
+}
+
+}  // namespace
+
+void launch_say(const std::string& line) {
+  fmt::print("[launch] {}\n", line);
+  std::fflush(stdout);
+}
+
+int run_launch(const LaunchOptions& o) {
+  LaunchPlan plan = read_launch_file(o.file, o.package_path);
+  if (o.dashboard && (o.robots > 0 || !plan.robots.empty()))
+    throw CLI::ValidationError("--dashboard",
+                               "one dashboard shows one robot: with several, start one per robot "
+                               "(dashboard --namespace r0 --port 8080 --urdf FILE, r1 on 8081, ...)");
+  if (!o.mode.empty()) plan.mode = o.mode;
+  for (const auto& a : o.xacro_args) plan.xacro_args.push_back(parse_arg(a));  // after the file's: the flag wins
+  if (o.paused) plan.paused = true;
+  if (!o.cpu.empty()) plan.cpu = o.cpu;
+  if (o.rt_priority >= 0) plan.rt_priority = o.rt_priority;
+  if (o.spin_us >= 0) plan.spin_us = o.spin_us;
+  for (const auto& n : plan.notes) launch_say("note: " + n);
+  if (o.robots > 0) plan.robots = robot_names(o.robots);
+  if (!plan.robots.empty()) return run_robots(o, plan);
+  const std::string ns = robot_namespace_of(plan, o.bus.ns, o.package_path);
+  const std::string hw_flag = !o.bus.hardware_lcm_url.empty() ? o.bus.hardware_lcm_url : plan.hardware_lcm_url;
+  const std::string hw_url = hardware_url_for(hw_flag, effective_url(o.bus.lcm_url), ns);
+  const bool hw_apart = hw_url != effective_url(o.bus.lcm_url);
+  const CommandLines lines = command_lines(plan, o, hw_url, hw_apart);
+  if (o.dry_run) {
+    print_dry_run(plan, o, lines, ns);
+    return int(kExitOk);
+  }
+  return supervise(plan, o, lines, ns, hw_url);
+}
+
+}  // namespace lcm_control::tools

@@ -1,0 +1,39 @@
+// The launch program's work: read a launch file, start sim_server, controller_manager, the spawner and the file's
+// other processes under one Supervisor, wait until they answer, and stop them in order (tools/launch.cpp parses the
+// flags into LaunchOptions and calls run_launch).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cli/cli.hpp"
+#include "tools/lib/launch_plan.hpp"
+
+namespace lcm_control::tools {
+
+// launch's flags; empty strings and negative numbers leave the file's value.
+struct LaunchOptions {
+  std::string file;  // YAML or ROS launch XML
+  std::string mode, cpu;
+  std::vector<std::string> package_path;
+  std::vector<std::string> xacro_args;  // NAME:=VALUE, after the file's
+  double ready_timeout = 20, stop_timeout = 5, duration = 0;
+  bool dry_run = false, paused = false;
+  int rt_priority = -1, spin_us = -1;
+  int robots = 0;  // --robots N; 0: the file's `robots:`
+  bool dashboard = false;
+  int dashboard_port = 8080;
+  BusFlags bus;
+};
+
+// Runs the launch to its end; returns the exit code, throws as run_program expects (CLI::ValidationError for a
+// usage error, ModelError for a bad file, runtime_error when a process failed).
+int run_launch(const LaunchOptions& o);
+
+// Several robots (`robots:`, --robots): one launch of the file per robot namespace, supervised as one.
+int run_robots(const LaunchOptions& o, const LaunchPlan& plan);
+
+// One line of launch's own on stdout, prefixed "[launch] ".
+void launch_say(const std::string& line);
+
+}  // namespace lcm_control::tools
