@@ -112,7 +112,6 @@ int main(int argc, char** argv) {
     opt.lockstep = mode == "lockstep";
     opt.overrun = overrun == "skip" ? sim::Overrun::Skip : sim::Overrun::CatchUp;
     sim::substeps_for(rates);  // bad rates fail before anything else is said
-    const int clock_every = sim::clock_every_for(rates.control_hz, clock_hz);
     std::string scheduling = apply_scheduling(sched);
     if (!opt.lockstep) set_timer_slack(timer_slack_ns);
     if (!opt.lockstep && opt.spin_us > 0)
@@ -121,6 +120,17 @@ int main(int argc, char** argv) {
     const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
     for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
+    // A ROS 2 parameter file's update_rate is the control rate (gz_ros2_control runs the manager at it) unless
+    // --control-rate says otherwise; the physics rate becomes its nearest multiple at or above 1 kHz if not given.
+    if (model.update_rate_hz && app.get_option("--control-rate")->count() == 0) {
+      rates.control_hz = *model.update_rate_hz;
+      if (app.get_option("--physics-rate")->count() == 0)
+        rates.physics_hz = rates.control_hz * std::ceil(1000.0 / rates.control_hz - 1e-9);
+      sim::substeps_for(rates);
+      spdlog::info("{}: control rate {:g} Hz from controller_manager's update_rate (physics {:g} Hz)",
+                   model.config_path, rates.control_hz, rates.physics_hz);
+    }
+    const int clock_every = sim::clock_every_for(rates.control_hz, clock_hz);
     InitialPositions start = model.initial_positions;  // <ros2_control> initial_value; -J overrides
     for (const auto& a : initial) {
       const auto [joint, q] = parse_initial_position(a);

@@ -55,6 +55,11 @@ int main(int argc, char** argv) {
                  "sim seconds: passed to sim_server, which stops then; launch then stops the rest and exits 0")
       ->check(CLI::PositiveNumber);
   app.add_flag("--dry-run", o.dry_run, "print what would be started and exit");
+  app.add_option("--controllers", o.controllers,
+                 "controllers to start (a,b,c), instead of the file's `controllers:` (ROS 2's spawner calls)")
+      ->delimiter(',');
+  app.add_option("--inactive", o.inactive, "controllers to load without starting (a,b; ROS 2's spawner --inactive)")
+      ->delimiter(',');
   add_package_path_flag(app, o.package_path);
   add_xacro_arg_flag(app, o.xacro_args);
   add_bus_flags(app, o.bus);

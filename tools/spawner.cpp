@@ -22,7 +22,9 @@ int main(int argc, char** argv) {
   double shutdown_timeout = 1.5;
   bool hardware_later = false;
   BusFlags bus_flags;
-  app.add_option("NAME", names, "controllers (top-level keys of the ros_control YAML)")->required();
+  app.add_option("NAME", names, "controllers (top-level keys of the ros_control YAML)");
+  app.add_option("--load-inactive", o.inactive,
+                 "also load these, never starting them (a ROS 2 launch's `spawner --inactive` calls)");
   app.add_flag("--stopped,--inactive,--load-only", o.stopped, "load only, do not start (ROS 2: --inactive)");
   app.add_option("--timeout,--controller-manager-timeout", o.timeout_s,
                  "seconds to wait for the controller manager and for each answer")
@@ -54,6 +56,8 @@ int main(int argc, char** argv) {
       fmt::print(stderr, "spawner: note: --param-file {}: the controller manager reads the parameters from its own "
                          "--config (give it that file)\n", param_file);
     o.say = [](const std::string& line) { fmt::print(stderr, "spawner: {}\n", line); };
+    if (names.empty() && o.inactive.empty())
+      throw CLI::ValidationError("NAME", "name the controllers to spawn (or --load-inactive NAME)");
     Spawner spawner(names, o);
     {
       Bus bus(bus_flags.lcm_url, bus_flags.ns);
@@ -67,8 +71,9 @@ int main(int argc, char** argv) {
     }
     // Idle without an LCM socket: a udpm socket receives every message on the
     // bus, which costs CPU the simulation could use.
-    fmt::print(stderr, "spawner: ready: {} {} (Ctrl-C to stop and unload)\n", fmt::join(names, ", "),
-               o.stopped ? "loaded" : "running");
+    fmt::print(stderr, "spawner: ready: {} {}{} (Ctrl-C to stop and unload)\n", fmt::join(names, ", "),
+               o.stopped ? "loaded" : "running",
+               o.inactive.empty() ? "" : fmt::format("; {} loaded, inactive", fmt::join(o.inactive, ", ")));
     while (!stop_requested()) sleep_until_us(monotonic_us() + 1000000);
     clear_stop();
     Bus bus(bus_flags.lcm_url, bus_flags.ns);

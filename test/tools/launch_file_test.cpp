@@ -334,3 +334,17 @@ TEST(LaunchFile, XacroCommandOfRobotDescriptionAndXacroArgsKey) {
   EXPECT_NE(problems_of([&] { read_launch_file(bad, {}); }).find("'xacro_args' must be a map NAME: VALUE"),
             std::string::npos);
 }
+
+TEST(LaunchFile, SpawnAndInactiveNameWhatStartsAndWhatIsOnlyLoaded) {
+  const std::string dir = lt::temp_dir("launch_spawn");
+  const std::string head = "urdf: " + lt::source("config/turret_bot.urdf") + "\nconfig: " +
+                           lt::source("config/turret_bot.yaml") + "\n";
+  const LaunchPlan plan = read_launch_file(
+      write(dir, "a.yaml", head + "spawn: [joint_state_controller, j1_controller]\ninactive: [j2_controller]\n"), {});
+  EXPECT_EQ(plan.controllers, (std::vector<std::string>{"joint_state_controller", "j1_controller"}));
+  EXPECT_EQ(plan.inactive, std::vector<std::string>{"j2_controller"});
+  const std::string p = problems_of([&] {
+    read_launch_file(write(dir, "b.yaml", head + "controllers: [j1_controller]\nspawn: [j2_controller]\n"), {});
+  });
+  EXPECT_NE(p.find("give controllers or spawn (the same list), not both"), std::string::npos) << p;
+}

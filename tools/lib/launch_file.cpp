@@ -48,8 +48,9 @@ LaunchPlan read_launch_file(const std::string& path, const std::vector<std::stri
                                                                     : read_launch_yaml(path, package_path);
   std::vector<std::string> problems;
   std::error_code ec;
+  // No config: the URDF's gz_ros2_control plugin may name it (launcher.cpp).
   for (const auto& [what, file] : {std::pair{"URDF", plan.urdf}, {"ros_control YAML", plan.config}})
-    if (!fs::is_regular_file(file, ec)) problems.push_back(fmt::format("{}: the {} {} does not exist", path, what, file));
+    if (!file.empty() && !fs::is_regular_file(file, ec)) problems.push_back(fmt::format("{}: the {} {} does not exist", path, what, file));
   if (!problems.empty()) throw ModelError(problems);
   return plan;
 }

@@ -42,7 +42,8 @@ struct LaunchPlan {
   int spin_us = -1;
   bool sim = true, controller_manager = true;
   std::vector<std::string> sim_args, cm_args;  // extra flags
-  std::vector<std::string> controllers;        // spawned in one strict switch
+  std::vector<std::string> controllers;        // spawned in one strict switch (`controllers:` or `spawn:`)
+  std::vector<std::string> inactive;           // loaded, not started (`inactive:`; ROS 2's spawner --inactive)
   std::vector<std::string> spawner_args;       // e.g. --stopped, --timeout 5
   std::vector<CommandSpec> commands;           // registered after the spawner, in order
   bool state_publisher = false;

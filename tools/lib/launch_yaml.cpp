@@ -80,7 +80,7 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
   };
   const std::set<std::string> known = {"urdf",         "config",          "mode",            "cpu",
                                        "physics_rate", "control_rate",    "sim_server_args",
-                                       "controller_manager_args", "controllers", "spawner_args",
+                                       "controller_manager_args", "controllers", "spawn", "inactive", "spawner_args",
                                        "state_publisher", "processes",  "commands", "namespace", "args",
                                        "initial_positions", "paused", "robots", "hardware_lcm_url",
                                        "rt_priority", "spin_us", "xacro_args"};
@@ -121,8 +121,12 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
         plan.sim_args = list(v, key);
       } else if (key == "controller_manager_args") {
         plan.cm_args = list(v, key);
-      } else if (key == "controllers") {
+      } else if (key == "controllers" || key == "spawn") {
+        if (!plan.controllers.empty())
+          problems.push_back(where(v, key) + ": give controllers or spawn (the same list), not both");
         plan.controllers = list(v, key);
+      } else if (key == "inactive") {
+        plan.inactive = list(v, key);
       } else if (key == "spawner_args") {
         plan.spawner_args = list(v, key);
       } else if (key == "state_publisher") {
@@ -249,7 +253,6 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
       problems.push_back(fmt::format("{}: commands: target '{}' is not one of the spawned controllers ({})", path,
                                      c.target, plan.controllers.empty() ? "none" : fmt::format("{}", fmt::join(plan.controllers, ", "))));
   if (plan.urdf.empty()) problems.push_back(fmt::format("{}: 'urdf' is missing: the robot's URDF file", path));
-  if (plan.config.empty()) problems.push_back(fmt::format("{}: 'config' is missing: the ros_control YAML", path));
   if (!problems.empty()) throw ModelError(problems);
   return plan;
 }

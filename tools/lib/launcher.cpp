@@ -84,6 +84,46 @@ std::string robot_namespace_of(const LaunchPlan& plan, const std::string& flag, 
   return robot_namespace("", urdf.gazebo_plugin_namespace);
 }
 
+bool spawns(const LaunchPlan& plan) { return !plan.controllers.empty() || !plan.inactive.empty(); }
+
+// For a ROS 2 robot: the config from the gz_ros2_control plugin's <parameters> when the file gives none, and a note
+// when nothing says which controllers to start (ROS 2 says it in the launch file's spawner calls, not in the YAML).
+void ros2_defaults(LaunchPlan& plan, const std::vector<std::string>& path) {
+  LoadOptions o;
+  o.package_path = path;
+  o.xacro_args = plan.xacro_args;
+  o.args = plan.args;
+  RobotModel model;
+  try {
+    model = load_robot_model(plan.urdf, plan.config, o);
+  } catch (const std::exception&) {
+    if (plan.config.empty())
+      throw ModelError(fmt::format("{}: 'config' is missing: the controllers YAML", plan.file));
+    return;  // the servers say what is wrong
+  }
+  if (plan.config.empty() && !model.ros2_control_plugin.parameters.empty()) {
+    plan.config = model.ros2_control_plugin.parameters.front();
+    launch_say(fmt::format("note: config {} from the URDF's {} plugin <parameters>", plan.config,
+                           model.ros2_control_plugin.filename));
+    try {
+      model = load_robot_model(plan.urdf, plan.config, o);
+    } catch (const std::exception&) {
+      return;
+    }
+  }
+  if (plan.config.empty())
+    throw ModelError(fmt::format("{}: 'config' is missing: the controllers YAML (a URDF's gz_ros2_control plugin may "
+                                 "name it in <parameters>; {}'s does not)",
+                                 plan.file, plan.urdf));
+  if (!model.ros2_parameter_file || spawns(plan)) return;
+  std::vector<std::string> names;
+  for (const auto& c : model.controllers) names.push_back(c.name);
+  launch_say(fmt::format("note: {} configures {}; a ROS 2 launch starts controllers in its spawner calls: name them "
+                         "with --controllers a,b (and --inactive c), or `controllers:` / `inactive:` in a launch "
+                         "file. Starting none.",
+                         plan.config, names.empty() ? "no controllers" : fmt::format("{}", fmt::join(names, ", "))));
+}
+
 std::vector<std::string> with_ns(std::vector<std::string> argv, const std::string& ns) {
   if (!ns.empty()) {
     argv.push_back("--namespace");
@@ -138,6 +178,7 @@ CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const
   }
   spawner = {"spawner"};
   spawner.insert(spawner.end(), plan.controllers.begin(), plan.controllers.end());
+  for (const auto& n : plan.inactive) spawner.insert(spawner.end(), {"--load-inactive", n});
   spawner.insert(spawner.end(), {"--shutdown-timeout", fmt::format("{:g}", o.stop_timeout * 0.3)});
   if (plan.sim && plan.mode == "lockstep") spawner.push_back("--hardware-later");  // the sim starts after it
   spawner.insert(spawner.end(), plan.spawner_args.begin(), plan.spawner_args.end());
@@ -156,7 +197,7 @@ void print_dry_run(const LaunchPlan& plan, const LaunchOptions& o, const Command
   if (o.dashboard) fmt::print("dashboard: {}\n", fmt::join(with_ns(dash, ns), " "));
   for (const auto& p : plan.processes)
     fmt::print("{}: {}{}\n", p.name, fmt::join(p.argv, " "), p.required ? " (required)" : "");
-  if (!plan.controllers.empty()) fmt::print("{}: {}\n", plan.spawner_name, fmt::join(with_ns(spawner, ns), " "));
+  if (spawns(plan)) fmt::print("{}: {}\n", plan.spawner_name, fmt::join(with_ns(spawner, ns), " "));
   for (const auto& c : plan.commands)
     fmt::print("command source: {} [{}] rate {:g} count {} duration {:g}\n", c.target, fmt::join(c.expr, ", "), c.rate,
                c.count, c.duration);
@@ -234,7 +275,7 @@ int supervise(const LaunchPlan& plan, const LaunchOptions& o, const CommandLines
     if (plan.state_publisher) others.push_back(&sup.start(plan.state_publisher_name, with_ns(rsp, ns), true));
     for (const auto& p : plan.processes) others.push_back(&sup.start(p.name, p.argv, p.required));
     if (o.dashboard) others.push_back(&sup.start("dashboard", with_ns(dash, ns), false));
-    if (!plan.controllers.empty()) {
+    if (spawns(plan)) {
       spawner_c = &sup.start(plan.spawner_name, with_ns(spawner, ns), true);
       if (!sup.wait_until([&] { return broken() || spawner_c->ready; }, std::max(left(), 12.0)))
         failure = fmt::format("{} did not report its controllers running within {}", plan.spawner_name,
@@ -272,8 +313,9 @@ int supervise(const LaunchPlan& plan, const LaunchOptions& o, const CommandLines
   }
   if (bus) drop_bus();
   if (failure.empty() && !broken()) {
-    launch_say(fmt::format("up: {}{} (Ctrl-C to stop)", plan.controllers.empty() ? "no controllers" : "controllers ",
-                           fmt::join(plan.controllers, ", ")));
+    launch_say(fmt::format("up: {}{}{} (Ctrl-C to stop)", plan.controllers.empty() ? "no controllers" : "controllers ",
+                           fmt::join(plan.controllers, ", "),
+                           plan.inactive.empty() ? "" : fmt::format("; inactive {}", fmt::join(plan.inactive, ", "))));
     sup.wait_until(broken, 1e12);
   }
   std::string why = failure;
@@ -320,7 +362,10 @@ int run_launch(const LaunchOptions& o) {
   if (!o.cpu.empty()) plan.cpu = o.cpu;
   if (o.rt_priority >= 0) plan.rt_priority = o.rt_priority;
   if (o.spin_us >= 0) plan.spin_us = o.spin_us;
+  if (!o.controllers.empty()) plan.controllers = o.controllers;
+  if (!o.inactive.empty()) plan.inactive = o.inactive;
   for (const auto& n : plan.notes) launch_say("note: " + n);
+  ros2_defaults(plan, o.package_path);
   if (o.robots > 0) plan.robots = robot_names(o.robots);
   if (!plan.robots.empty()) return run_robots(o, plan);
   const std::string ns = robot_namespace_of(plan, o.bus.ns, o.package_path);

@@ -21,6 +21,9 @@ struct LaunchOptions {
   bool dry_run = false, paused = false;
   int rt_priority = -1, spin_us = -1;
   int robots = 0;  // --robots N; 0: the file's `robots:`
+  // --controllers, --inactive: which controllers start and which are only loaded (ROS 2 decides it in the launch
+  // file's spawner calls); empty: the file's.
+  std::vector<std::string> controllers, inactive;
   bool dashboard = false;
   int dashboard_port = 8080;
   BusFlags bus;

@@ -34,20 +34,22 @@ void Spawner::say(const std::string& line) const {
 
 void Spawner::spawn(CmClient& cm) {
   std::set<std::string> unique;
-  for (const auto& n : names_)
+  std::vector<std::string> all = names_;
+  all.insert(all.end(), o_.inactive.begin(), o_.inactive.end());
+  for (const auto& n : all)
     if (!unique.insert(n).second) throw std::runtime_error(fmt::format("controller '{}' is named twice", n));
   try {
     cm.wait_for_manager(o_.timeout_s, [&] {
       say(fmt::format("waiting up to {} for the controller manager on '{}'", seconds_text(o_.timeout_s),
                       cm.request_channel()));
     });
-    for (const auto& n : names_) {
+    for (const auto& n : all) {
       const cm_response_t r = cm.load({n}, o_.timeout_s);
       if (!r.ok) throw std::runtime_error(fmt::format("controller '{}' failed to load: {}", n, r.message));
       loaded_.push_back(n);
       say(fmt::format("loaded {}", n));
     }
-    if (o_.stopped) return;
+    if (o_.stopped || names_.empty()) return;
     const cm_response_t r = cm.switch_controllers(names_, {}, true, o_.timeout_s);
     if (!r.ok)
       throw std::runtime_error(fmt::format("could not start [{}] (one strict switch, so none started): {}",
@@ -70,9 +72,9 @@ bool Spawner::teardown(CmClient& cm, double timeout_s) {
   bool all_ok = true;
   try {
     if (started_) {
-      const cm_response_t r = cm.switch_controllers({}, loaded_, true, left());
+      const cm_response_t r = cm.switch_controllers({}, names_, true, left());
       if (!r.ok) {
-        say(fmt::format("stopping [{}] was refused: {}", fmt::join(loaded_, ", "), r.message));
+        say(fmt::format("stopping [{}] was refused: {}", fmt::join(names_, ", "), r.message));
         all_ok = false;
       }
       started_ = false;

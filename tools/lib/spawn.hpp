@@ -13,6 +13,7 @@ namespace lcm_control::tools {
 
 struct SpawnOptions {
   bool stopped = false;      // load only, do not start
+  std::vector<std::string> inactive;  // also loaded, never started (ROS 2: spawned --inactive)
   double timeout_s = 10;     // for the manager to answer at all, and for each request
   std::function<void(const std::string&)> say;  // progress lines (may be empty)
 };
@@ -44,7 +45,7 @@ class Spawner {
   std::vector<std::string> names_;
   SpawnOptions o_;
   std::vector<std::string> loaded_;
-  bool started_ = false;
+  bool started_ = false;  // names_ run
 };
 
 }  // namespace lcm_control::tools
