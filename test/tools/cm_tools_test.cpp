@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <tuple>
 
 #include "test/support/lcm_test.hpp"
 #include "test/support/process.hpp"
@@ -243,4 +244,46 @@ TEST(Tune, AControllersOwnPid) {
   EXPECT_EQ(rc, 0) << out;
   std::tie(rc, out) = run({bin("tune"), "j2", "--owner", "j2_controller"});
   EXPECT_EQ(out, "j2 (j2_controller): p 20  i 0.5  d 1  i_clamp [-3, 3]  antiwindup true\n");
+}
+
+// ROS 2's `ros2 control` verbs on a robot from ROS 2 files: states named inactive / active, each joint's interfaces
+// with who claims them, and the spawner's ROS 2 flags.
+TEST_F(CmTools, Ros2VerbsNameStatesAsRos2AndListTheHardwareInterfaces) {
+  cm_->stop(5);
+  cm_ = std::make_unique<ChildProcess>(std::vector<std::string>{
+      bin("controller_manager"), "--urdf", source("test/controller_manager/data/ros2_bot.urdf"), "--config",
+      source("test/controller_manager/data/ros2_bot.yaml"), "--lcm-url", url_});
+  ASSERT_TRUE(cm_->wait_for_output("ready", 10.0)) << cm_->output();
+  auto [rc, out] = run({bin("cmctl"), "load-controller", "elbow_forward", "--set-state", "active"});
+  ASSERT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("elbow_forward is active"), std::string::npos) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "set-controller-state", "elbow_trajectory", "inactive"});
+  ASSERT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("elbow_trajectory is inactive"), std::string::npos) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "list-controllers"});
+  ASSERT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("forward_command_controller/ForwardCommandController    active"), std::string::npos) << out;
+  EXPECT_NE(out.find("joint_trajectory_controller/JointTrajectoryController  inactive"), std::string::npos) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "list-hardware-interfaces"});
+  ASSERT_EQ(rc, 0) << out;
+  EXPECT_NE(out.find("command interfaces\n\tlift/position [available] [unclaimed]\n"
+                     "\telbow/velocity [available] [claimed by elbow_forward]\n"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("state interfaces\n\tlift/position\n\tlift/velocity\n"), std::string::npos) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "switch-controllers", "--activate", "elbow_trajectory", "--deactivate",
+                           "elbow_forward", "--strict"});
+  ASSERT_EQ(rc, 0) << out;
+  std::tie(rc, out) = run({bin("cmctl"), "list-hardware-interfaces"});
+  EXPECT_NE(out.find("elbow/velocity [available] [claimed by elbow_trajectory]"), std::string::npos) << out;
+
+  ChildProcess spawner({bin("spawner"), "base", "--inactive", "-c", "/controller_manager", "--lcm-url", url_});
+  ASSERT_TRUE(spawner.wait_for_output("spawner: ready", 10.0)) << spawner.output();
+  std::tie(rc, out) = run({bin("cmctl"), "list"});
+  EXPECT_NE(out.find("diff_drive_controller/DiffDriveController              inactive"), std::string::npos) << out;
+  std::tie(rc, out) = run({bin("spawner"), "base", "-c", "/other/arm_manager"});
+  EXPECT_NE(rc, 0);
+  EXPECT_NE(out.find("--controller-manager /other/arm_manager: the node here is always 'controller_manager'"),
+            std::string::npos)
+      << out;
 }

@@ -1,0 +1,138 @@
+// ROS 2 robots from their own unchanged packages (../shared/ros2_robots: gz_ros2_control's cart, ros2_control_demos'
+// rrbot example 1, Universal Robots' UR5e as ur_simulation_gz loads it), end to end with the real programs in
+// lockstep. Skipped when the folder is absent; the project's own ROS 2 test robots cover each trait without it
+// (test/controller_manager/ros2_controllers_test.cpp, test/sim_server, test/e2e/interface_switch_test.cpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "lcm_control/float64_array_t.hpp"
+#include "lcm_control/joint_state_t.hpp"
+#include "test/e2e/session.hpp"
+#include "test/support/lcm_test.hpp"
+
+namespace lt = lcm_control::testing;
+namespace fs = std::filesystem;
+using namespace lcm_control;
+
+namespace {
+
+// The robots folder, or "" (the test skips).
+std::string robots_dir() {
+  const char* env = std::getenv("LCM_CONTROL_ROS2_ROBOTS");
+  const fs::path dir = env ? env : lt::source("../shared/ros2_robots");
+  return fs::is_directory(dir / "gz_cart") ? fs::canonical(dir).string() : "";
+}
+
+#define NEED_ROS2_ROBOTS(dir)                                                                              \
+  const std::string dir = robots_dir();                                                                    \
+  if (dir.empty()) GTEST_SKIP() << "no ../shared/ros2_robots (set LCM_CONTROL_ROS2_ROBOTS to the folder)"
+
+double position_of(const joint_state_t& s, const std::string& joint) {
+  for (int k = 0; k < s.num_joints; ++k)
+    if (s.name[k] == joint) return s.position[k];
+  return NAN;
+}
+
+// A ROS 2 robot in lockstep: controller_manager and the spawner, then sim_server, all with the same flags.
+class Session : public lt::RobotSession {
+ public:
+  Session(std::string urdf, std::string config, std::vector<std::string> flags)
+      : RobotSession(std::move(urdf), std::move(config)), flags_(std::move(flags)) {}
+
+  void start(const std::vector<std::string>& controllers) {
+    start_controller_manager(flags_);
+    ASSERT_NO_FATAL_FAILURE(spawn(controllers));
+    start_sim(with({"--mode", "lockstep"}, flags_), 30);
+  }
+  const std::vector<std::string>& flags() const { return flags_; }
+
+ private:
+  std::vector<std::string> flags_;
+};
+
+// The newest joint_states once `done` holds for it (at most timeout_s).
+joint_state_t state_when(const Session& s, const std::function<bool(const joint_state_t&)>& done,
+                         double timeout_s = 20) {
+  lcm::LCM lc(s.url());
+  lt::Recorder<joint_state_t> states(lc, "joint_states");
+  lt::pump_until(lc, [&] { return !states.messages.empty() && done(states.messages.back()); }, timeout_s);
+  return states.messages.empty() ? joint_state_t{} : states.messages.back();
+}
+
+}  // namespace
+
+TEST(Ros2Robots, GzCartOnPositionReachesATrajectoryGoalWithinAMillimetre) {
+  NEED_ROS2_ROBOTS(dir);
+  const std::string pkg = dir + "/gz_cart/pkgs/gz_ros2_control_demos";
+  Session s(pkg + "/urdf/test_cart_position.xacro.urdf", pkg + "/config/cart_controller_position.yaml", {});
+  ASSERT_NO_FATAL_FAILURE(s.start({"joint_state_broadcaster", "joint_trajectory_controller"}));
+  // initial_value 5.0 is the start pose, as gz_ros2_control teleports the cart there.
+  const joint_state_t first = state_when(s, [](const joint_state_t&) { return true; });
+  EXPECT_NEAR(position_of(first, "slider_to_cart"), 5.0, 1e-3);
+  std::string out;
+  ASSERT_EQ(s.run({"send-trajectory", "joint_trajectory_controller", "--point", "1:6.0", "--point", "2:4.0"}, &out), 0)
+      << out << s.sim_output();
+  EXPECT_NE(out.find("SUCCEEDED"), std::string::npos) << out;
+  const joint_state_t end = state_when(s, [](const joint_state_t& m) { return m.num_joints > 0; });
+  EXPECT_NEAR(position_of(end, "slider_to_cart"), 4.0, 1e-3);
+}
+
+TEST(Ros2Robots, RrbotExample1OnMockHardwareTakesForwardPositionsWithItsVarPrefix) {
+  NEED_ROS2_ROBOTS(dir);
+  const std::string pkg = dir + "/rrbot9/pkgs/ros2_control_demo_example_1";
+  Session s(pkg + "/urdf/rrbot.urdf.xacro", pkg + "/config/rrbot_controllers.yaml",
+            {"--package-path", dir + "/rrbot9/pkgs", "--arg", "joint_prefix=joint"});
+  ASSERT_NO_FATAL_FAILURE(s.start({"joint_state_broadcaster", "forward_position_controller"}));
+  EXPECT_TRUE(s.sim_output().find("mock hardware") != std::string::npos) << s.sim_output();
+  lcm::LCM lc(s.url());
+  float64_array_t cmd{};
+  cmd.data = {0.785, -0.785};
+  cmd.size = 2;
+  lc.publish("forward_position_controller/command", &cmd);
+  const joint_state_t end = state_when(s, [](const joint_state_t& m) {
+    return std::abs(position_of(m, "joint1") - 0.785) < 1e-9 && std::abs(position_of(m, "joint2") + 0.785) < 1e-9;
+  });
+  EXPECT_NEAR(position_of(end, "joint1"), 0.785, 1e-9);
+  EXPECT_NEAR(position_of(end, "joint2"), -0.785, 1e-9);
+}
+
+TEST(Ros2Robots, Ur5eTrajectoryGoalSucceedsAndAVelocityControllerSwitchesTheInterface) {
+  NEED_ROS2_ROBOTS(dir);
+  const std::string pkgs = dir + "/ur5e/pkgs";
+  Session s(pkgs + "/ur_simulation_gz/urdf/ur_gz.urdf.xacro", pkgs + "/ur_simulation_gz/config/ur_controllers.yaml",
+            {"--package-path", pkgs, "--xacro-arg", "name:=ur", "--xacro-arg", "ur_type:=ur5e", "--xacro-arg",
+             "safety_limits:=true", "--xacro-arg", "simulation_controllers:=" + pkgs +
+                                                       "/ur_simulation_gz/config/ur_controllers.yaml"});
+  ASSERT_NO_FATAL_FAILURE(s.start({"joint_state_broadcaster", "joint_trajectory_controller"}));
+  std::string out;
+  ASSERT_EQ(s.run({"send-trajectory", "joint_trajectory_controller", "--relative", "--point",
+                   "2:0.3,-0.3,0.3,0.3,0.3,0.3"},
+                  &out),
+            0)
+      << out << s.sim_output();
+  EXPECT_NE(out.find("SUCCEEDED"), std::string::npos) << out;
+
+  ASSERT_EQ(s.run({"cmctl", "load-controller", "forward_velocity_controller"}, &out), 0) << out;
+  ASSERT_EQ(s.run({"cmctl", "switch-controllers", "--activate", "forward_velocity_controller", "--deactivate",
+                   "joint_trajectory_controller"},
+                  &out),
+            0)
+      << out;
+  ASSERT_EQ(s.run({"cmctl", "list-hardware-interfaces"}, &out), 0) << out;
+  EXPECT_NE(out.find("shoulder_pan_joint/velocity [available] [claimed by forward_velocity_controller]"),
+            std::string::npos)
+      << out;
+  const double before = position_of(state_when(s, [](const joint_state_t&) { return true; }), "elbow_joint");
+  lcm::LCM lc(s.url());
+  float64_array_t v{};
+  v.data = {0, 0, 0.2, 0, 0, 0};
+  v.size = 6;
+  lc.publish("forward_velocity_controller/command", &v);
+  const joint_state_t moved = state_when(s, [&](const joint_state_t& m) {
+    return position_of(m, "elbow_joint") > before + 0.1;
+  });
+  EXPECT_GT(position_of(moved, "elbow_joint"), before + 0.1) << s.sim_output();
+}
