@@ -10,6 +10,9 @@
 
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
+#include "lcm_control/odometry_t.hpp"
+#include "lcm_control/twist_t.hpp"
+#include "rt/clock.hpp"
 #include "test/e2e/session.hpp"
 #include "test/support/lcm_test.hpp"
 
@@ -135,4 +138,110 @@ TEST(Ros2Robots, Ur5eTrajectoryGoalSucceedsAndAVelocityControllerSwitchesTheInte
     return position_of(m, "elbow_joint") > before + 0.1;
   });
   EXPECT_GT(position_of(moved, "elbow_joint"), before + 0.1) << s.sim_output();
+}
+
+namespace {
+
+// One forward command (float64_array_t) to `controller`.
+void forward(const Session& s, const std::string& controller, std::vector<double> values) {
+  lcm::LCM lc(s.url());
+  float64_array_t m{};
+  m.size = static_cast<int32_t>(values.size());
+  m.data = std::move(values);
+  lc.publish(controller + "/command", &m);
+}
+
+}  // namespace
+
+TEST(Ros2Robots, GzCartOnVelocityAndOnEffortMovesTheCartAsCommanded) {
+  NEED_ROS2_ROBOTS(dir);
+  const std::string pkg = dir + "/gz_cart/pkgs/gz_ros2_control_demos";
+  {
+    Session s(pkg + "/urdf/test_cart_velocity.xacro.urdf", pkg + "/config/cart_controller_velocity.yaml", {});
+    ASSERT_NO_FATAL_FAILURE(s.start({"joint_state_broadcaster", "velocity_controller"}));
+    const double x0 = position_of(state_when(s, [](const joint_state_t&) { return true; }), "slider_to_cart");
+    forward(s, "velocity_controller", {1.5});
+    const joint_state_t m = state_when(s, [&](const joint_state_t& m) { return position_of(m, "slider_to_cart") > x0 + 3; });
+    EXPECT_GT(position_of(m, "slider_to_cart"), x0 + 3);
+    for (int k = 0; k < m.num_joints; ++k) {
+      if (m.name[k] == "slider_to_cart") {
+        EXPECT_NEAR(m.velocity[k], 1.5, 1e-3);
+      }
+    }
+  }
+  {
+    Session s(pkg + "/urdf/test_cart_effort.xacro.urdf", pkg + "/config/cart_controller_effort.yaml", {});
+    ASSERT_NO_FATAL_FAILURE(s.start({"joint_state_broadcaster", "effort_controller"}));
+    const double x0 = position_of(state_when(s, [](const joint_state_t&) { return true; }), "slider_to_cart");
+    forward(s, "effort_controller", {-2.0});  // 2 N on the 1 kg cart: 1 m/s^2 backwards
+    const joint_state_t m = state_when(s, [&](const joint_state_t& m) { return position_of(m, "slider_to_cart") < x0 - 1; });
+    EXPECT_LT(position_of(m, "slider_to_cart"), x0 - 1);
+  }
+}
+
+TEST(Ros2Robots, GzMimicGripperFingersMoveTogetherAndStopAtTheCommandedOpening) {
+  NEED_ROS2_ROBOTS(dir);
+  const std::string pkg = dir + "/gz_gripper_mimic/pkgs/gz_ros2_control_demos";
+  for (const std::string variant : {"position", "effort"}) {
+    SCOPED_TRACE(variant);
+    Session s(pkg + "/urdf/test_gripper_mimic_joint_" + variant + ".xacro.urdf",
+              pkg + "/config/gripper_controller_" + variant + ".yaml", {});
+    ASSERT_NO_FATAL_FAILURE(s.start({"joint_state_broadcaster", "gripper_controller"}));
+    // position: to 0.3; effort: 50 N opens it to its limit 0.38.
+    const double target = variant == "position" ? 0.3 : 0.38;
+    forward(s, "gripper_controller", {variant == "position" ? 0.3 : 50.0});
+    const joint_state_t m = state_when(s, [&](const joint_state_t& m) {
+      return std::abs(position_of(m, "right_finger_joint") - target) < 2e-3 &&
+             std::abs(position_of(m, "left_finger_joint") - target) < 2e-3;
+    });
+    EXPECT_NEAR(position_of(m, "right_finger_joint"), target, 2e-3) << s.sim_output();
+    EXPECT_NEAR(position_of(m, "left_finger_joint"), position_of(m, "right_finger_joint"), 2e-3);
+  }
+}
+
+TEST(Ros2Robots, RrbotExample9InGazeboTakesForwardPositions) {
+  NEED_ROS2_ROBOTS(dir);
+  const std::string pkg = dir + "/rrbot9/pkgs/ros2_control_demo_example_9";
+  Session s(pkg + "/urdf/rrbot.urdf.xacro", pkg + "/config/rrbot_controllers.yaml",
+            {"--package-path", dir + "/rrbot9/pkgs", "--xacro-arg", "use_gazebo:=true"});
+  ASSERT_NO_FATAL_FAILURE(s.start({"joint_state_broadcaster", "forward_position_controller"}));
+  EXPECT_EQ(s.sim_output().find("mock hardware"), std::string::npos) << s.sim_output();
+  forward(s, "forward_position_controller", {0.785, -0.785});
+  const joint_state_t m = state_when(s, [](const joint_state_t& m) {
+    return std::abs(position_of(m, "joint1") - 0.785) < 1e-3 && std::abs(position_of(m, "joint2") + 0.785) < 1e-3;
+  });
+  EXPECT_NEAR(position_of(m, "joint1"), 0.785, 1e-3) << s.sim_output();
+  EXPECT_NEAR(position_of(m, "joint2"), -0.785, 1e-3);
+}
+
+TEST(Ros2Robots, GzDiffDriveAtATenthOfAMetrePerSecondForFiveSecondsGoesHalfAMetre) {
+  NEED_ROS2_ROBOTS(dir);
+  const std::string pkg = dir + "/gz_diff_drive/pkgs/gz_ros2_control_demos";
+  Session s(pkg + "/urdf/test_diff_drive.xacro.urdf", pkg + "/config/diff_drive_controller_velocity.yaml", {});
+  s.start_controller_manager();
+  ASSERT_NO_FATAL_FAILURE(s.spawn({"joint_state_broadcaster", "diff_drive_base_controller"}));
+  s.start_sim({"--floating-base"}, 30);  // real time: cmd_vel_timeout is 0.5 s of sim time
+  lcm::LCM lc(s.url());
+  lt::Recorder<odometry_t> odom(lc, "diff_drive_base_controller/odom"), truth(lc, "sim_server/base_pose");
+  lt::pump_until(lc, [&] { return !odom.messages.empty() && !truth.messages.empty(); }, 10);
+  ASSERT_FALSE(odom.messages.empty() || truth.messages.empty()) << s.sim_output();
+  lt::pump_until(lc, [] { return false; }, 1.0);  // settled on its wheels
+  const odometry_t odom0 = odom.messages.back(), truth0 = truth.messages.back();
+  twist_t go{};
+  go.linear.x = 0.1;
+  const int64_t end = monotonic_us() + 5000000;
+  while (monotonic_us() < end) {
+    lc.publish("diff_drive_base_controller/cmd_vel", &go);
+    lt::pump_until(lc, [] { return false; }, 0.05);
+  }
+  twist_t stop{};
+  lc.publish("diff_drive_base_controller/cmd_vel", &stop);
+  lt::pump_until(lc, [] { return false; }, 1.0);
+  const double odom_d = std::hypot(odom.messages.back().position.x - odom0.position.x,
+                                   odom.messages.back().position.y - odom0.position.y);
+  const double truth_d = std::hypot(truth.messages.back().position.x - truth0.position.x,
+                                    truth.messages.back().position.y - truth0.position.y);
+  std::printf("diff drive: odometry %.4f m, ground truth %.4f m (goal 0.5 m +- 5 %%)\n", odom_d, truth_d);
+  EXPECT_NEAR(odom_d, 0.5, 0.025);
+  EXPECT_NEAR(truth_d, 0.5, 0.025) << s.sim_output();
 }
