@@ -245,3 +245,25 @@ TEST(Ros2Robots, GzDiffDriveAtATenthOfAMetrePerSecondForFiveSecondsGoesHalfAMetr
   EXPECT_NEAR(odom_d, 0.5, 0.025);
   EXPECT_NEAR(truth_d, 0.5, 0.025) << s.sim_output();
 }
+
+TEST(Ros2Robots, Robotiq2f85GripperControllerOpensAndClosesWithItsFiveMimicJointsFollowing) {
+  NEED_ROS2_ROBOTS(dir);
+  const std::string r = dir + "/robotiq_2f85";
+  Session s(r + "/derived/robotiq_2f_85_sim_gazebo.urdf.xacro", r + "/config/robotiq_controllers.yaml",
+            {"--package-path", r + "/pkgs"});
+  ASSERT_NO_FATAL_FAILURE(s.start({"joint_state_broadcaster", "robotiq_gripper_controller"}));
+  const std::vector<std::pair<std::string, double>> mimics = {
+      {"robotiq_85_right_knuckle_joint", -1},      {"robotiq_85_left_inner_knuckle_joint", 1},
+      {"robotiq_85_right_inner_knuckle_joint", -1}, {"robotiq_85_left_finger_tip_joint", -1},
+      {"robotiq_85_right_finger_tip_joint", 1}};
+  for (const double goal : {0.0, 0.5}) {
+    SCOPED_TRACE(goal);
+    std::string out;
+    const int rc = s.run({"gripper", "robotiq_gripper_controller", "--position", std::to_string(goal)}, &out);
+    EXPECT_EQ(rc, 0) << out << s.sim_output();
+    const joint_state_t m = state_when(s, [](const joint_state_t& m) { return m.num_joints >= 6; });
+    const double q = position_of(m, "robotiq_85_left_knuckle_joint");
+    EXPECT_NEAR(q, goal, 0.02) << out;  // the YAML's goal_tolerance
+    for (const auto& [joint, multiplier] : mimics) EXPECT_NEAR(position_of(m, joint), multiplier * q, 1e-3) << joint;
+  }
+}
