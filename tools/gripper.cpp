@@ -62,36 +62,6 @@ class GoalWatch {
   int64_t first_us_ = 0, printed_us_ = -1;
 };
 
-std::string without_prefix(const std::string& message, const std::string& controller) {
-  const std::string prefix = controller + ": ";
-  return message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
-}
-
-// Why no result came: what the controller manager says about the controller now.
-std::string no_result(CmClient& cm, const Bus& bus, const std::string& controller, double timeout_s,
-                      size_t feedback) {
-  const std::string head = fmt::format("no result from '{}' on '{}' within {}", controller,
-                                       bus.channel(controller + "/result"), seconds_text(timeout_s));
-  try {
-    for (const auto& c : cm.list(1.0).controllers) {
-      if (c.name != controller) continue;
-      if (c.state != "running")
-        return fmt::format("{}: the controller manager now lists it as {}, not running (cmctl list)", head, c.state);
-      if (feedback > 0)
-        return fmt::format("{}: it is running and sent {} feedback messages for this goal (still moving, or "
-                           "stall_timeout is longer); give a longer --timeout",
-                           head, feedback);
-      return fmt::format("{}: it is running but sent no feedback for this goal on '{}': does its time advance? (is "
-                         "sim_server running and stepping?)",
-                         head, bus.channel(controller + "/feedback"));
-    }
-    return fmt::format("{}: the controller manager no longer lists it (cmctl list)", head);
-  } catch (const CmTimeout&) {
-    return fmt::format("{}, and the controller manager no longer answers on '{}': is it running? (cmctl list)", head,
-                       cm.request_channel());
-  }
-}
-
 int run(const Options& o, const BusFlags& bus_flags) {
   const std::string controller = controller_name(o.target);
   if (controller.empty())
@@ -116,7 +86,7 @@ int run(const Options& o, const BusFlags& bus_flags) {
 
   pump_until(bus, [&] { return watch.result().has_value(); }, o.timeout);
   if (const auto& r = watch.result()) {
-    const std::string message = without_prefix(r->message, controller);
+    const std::string message = without_controller_prefix(r->message, controller);
     const std::string figures = fmt::format("{}: position {:.6f}, effort {:.6f}{}{}", r->joint, r->position, r->effort,
                                             r->stalled ? ", stalled" : "", r->reached_goal ? ", reached goal" : "");
     if (r->status != gripper_status_t::SUCCEEDED)
@@ -132,7 +102,8 @@ int run(const Options& o, const BusFlags& bus_flags) {
                controller);
     return 128 + sig;
   }
-  throw NoAnswer(no_result(cm, bus, controller, o.timeout, watch.feedback()));
+  throw NoAnswer(no_goal_result(cm, bus, controller, o.timeout, watch.feedback(),
+                                "(still moving, or stall_timeout is longer); give a longer --timeout"));
 }
 
 }  // namespace

@@ -139,36 +139,6 @@ class GoalWatch {
   int64_t first_us_ = 0, printed_us_ = -1;
 };
 
-std::string without_prefix(const std::string& message, const std::string& controller) {
-  const std::string prefix = controller + ": ";
-  return message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
-}
-
-// Why no result came: what the controller manager says about the controller now.
-std::string no_result(CmClient& cm, const Bus& bus, const std::string& controller, double timeout_s,
-                      size_t feedback) {
-  const std::string head = fmt::format("no result from '{}' on '{}' within {}", controller,
-                                       bus.channel(controller + "/result"), seconds_text(timeout_s));
-  try {
-    const cm_response_t now = cm.list(1.0);
-    for (const auto& c : now.controllers) {
-      if (c.name != controller) continue;
-      if (c.state != "running")
-        return fmt::format("{}: the controller manager now lists it as {}, not running (cmctl list)", head, c.state);
-      if (feedback > 0)
-        return fmt::format("{}: it is running and sent {} feedback messages for this goal; give a longer --result-timeout",
-                           head, feedback);
-      return fmt::format("{}: it is running but sent no feedback for this goal on '{}': does its time advance? (is "
-                         "sim_server running and stepping?)",
-                         head, bus.channel(controller + "/feedback"));
-    }
-    return fmt::format("{}: the controller manager no longer lists it (cmctl list)", head);
-  } catch (const CmTimeout&) {
-    return fmt::format("{}, and the controller manager no longer answers on '{}': is it running? (cmctl list)", head,
-                       cm.request_channel());
-  }
-}
-
 TrajectoryGoal read_goal(const Options& o) {
   if (!o.file.empty()) return parse_goal_yaml(read_input_file(o.file, "trajectory YAML", "--file"), o.file);
   if (!o.csv.empty()) return parse_goal_csv(read_input_file(o.csv, "trajectory CSV", "--csv"), o.csv);
@@ -218,7 +188,7 @@ int run(const Options& o, const BusFlags& bus_flags) {
 
   pump_until(bus, [&] { return watch.result().has_value(); }, timeout);
   if (const auto& r = watch.result()) {
-    const std::string message = without_prefix(r->message, controller);
+    const std::string message = without_controller_prefix(r->message, controller);
     if (r->status != trajectory_status_t::SUCCEEDED)
       throw std::runtime_error(fmt::format("{}: {}: {}", controller, status_name(r->status), message));
     fmt::print("{}: SUCCEEDED: {}\n", controller, message);
@@ -233,10 +203,10 @@ int run(const Options& o, const BusFlags& bus_flags) {
     const auto& r = watch.result();
     fmt::print(stderr, "send-trajectory: interrupted: sent an empty trajectory to stop '{}' (goal {}: {})\n",
                controller, goal_id,
-               r ? status_name(r->status) + ": " + without_prefix(r->message, controller) : std::string("no result yet"));
+               r ? status_name(r->status) + ": " + without_controller_prefix(r->message, controller) : std::string("no result yet"));
     return 128 + sig;
   }
-  throw NoAnswer(no_result(cm, bus, controller, timeout, watch.feedback()));
+  throw NoAnswer(no_goal_result(cm, bus, controller, timeout, watch.feedback(), "give a longer --result-timeout"));
 }
 
 }  // namespace

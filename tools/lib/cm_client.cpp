@@ -203,6 +203,34 @@ cm_response_t CmClient::wait_for_manager(double timeout_s, const std::function<v
   throw CmTimeout(no_answer("list", timeout_s));
 }
 
+std::string without_controller_prefix(const std::string& message, const std::string& controller) {
+  const std::string prefix = controller + ": ";
+  return message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message;
+}
+
+std::string no_goal_result(CmClient& cm, const Bus& bus, const std::string& controller, double timeout_s,
+                           size_t feedback, const std::string& longer) {
+  const std::string head = fmt::format("no result from '{}' on '{}' within {}", controller,
+                                       bus.channel(controller + "/result"), seconds_text(timeout_s));
+  try {
+    for (const auto& c : cm.list(1.0).controllers) {
+      if (c.name != controller) continue;
+      if (c.state != "running")
+        return fmt::format("{}: the controller manager now lists it as {}, not running (cmctl list)", head, c.state);
+      if (feedback > 0)
+        return fmt::format("{}: it is running and sent {} feedback messages for this goal{}{}", head, feedback,
+                           longer.rfind("(", 0) == 0 ? " " : "; ", longer);
+      return fmt::format("{}: it is running but sent no feedback for this goal on '{}': does its time advance? (is "
+                         "sim_server running and stepping?)",
+                         head, bus.channel(controller + "/feedback"));
+    }
+    return fmt::format("{}: the controller manager no longer lists it (cmctl list)", head);
+  } catch (const CmTimeout&) {
+    return fmt::format("{}, and the controller manager no longer answers on '{}': is it running? (cmctl list)", head,
+                       cm.request_channel());
+  }
+}
+
 std::string ros2_state(const std::string& state) { return state == "running" ? "active" : "inactive"; }
 
 std::string hardware_interfaces_text(const std::vector<joint_interfaces_t>& joints) {

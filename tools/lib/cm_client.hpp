@@ -79,6 +79,13 @@ class CmClient {
   static constexpr double kResendS = 0.5;
 };
 
+// `message` without its leading "<controller>: " (a controller's result names itself).
+std::string without_controller_prefix(const std::string& message, const std::string& controller);
+// Why no result came from `controller` on `<controller>/result` within timeout_s, from what the manager says of it
+// now; `longer` is what to do when it runs and sent `feedback` messages for the goal (e.g. "give a longer --timeout").
+std::string no_goal_result(CmClient& cm, const Bus& bus, const std::string& controller, double timeout_s,
+                           size_t feedback, const std::string& longer);
+
 // "name  type  state  joints  interface" as an aligned table, one controller a line; with ros2, states as ROS 2
 // names them (ros2_state).
 std::string controller_table(const std::vector<controller_info_t>& controllers, bool ros2 = false);
