@@ -10,6 +10,7 @@
 #include "lcm_control/gripper_command_t.hpp"
 #include "lcm_control/gripper_status_t.hpp"
 #include "tools/lib/cm_client.hpp"
+#include "tools/lib/goal_watch.hpp"
 #include "tools/lib/gripper_goal.hpp"
 #include "tools/lib/support.hpp"
 #include "tools/lib/trajectory_goal.hpp"
@@ -29,39 +30,6 @@ class NoAnswer : public BusError {
   using BusError::BusError;
 };
 
-// The result of one goal on `<controller>/result`, and its feedback (printed with --verbose).
-class GoalWatch {
- public:
-  GoalWatch(Bus& bus, const std::string& controller, int64_t goal_id, bool verbose)
-      : goal_id_(goal_id), verbose_(verbose) {
-    subscribe_guarded<&GoalWatch::on_result>(bus.lcm(), bus.channel(controller + "/result"), this)->setQueueCapacity(100);
-    subscribe_guarded<&GoalWatch::on_feedback>(bus.lcm(), bus.channel(controller + "/feedback"), this);
-  }
-  const std::optional<gripper_status_t>& result() const { return result_; }
-  size_t feedback() const { return feedback_; }
-
- private:
-  void on_result(const lcm::ReceiveBuffer*, const std::string&, const gripper_status_t* m) {
-    if (m->goal_id == goal_id_ && !result_) result_ = *m;
-  }
-  // At most 4 lines per second of the controller's time.
-  void on_feedback(const lcm::ReceiveBuffer*, const std::string&, const gripper_status_t* m) {
-    if (m->goal_id != goal_id_) return;
-    if (feedback_++ == 0) first_us_ = m->utime;
-    if (!verbose_ || (printed_us_ >= 0 && m->utime - printed_us_ < 250000)) return;
-    printed_us_ = m->utime;
-    fmt::print("feedback {:.2f} s: {} position {:.6f} (goal {:.6f}) effort {:.6f}\n", double(m->utime - first_us_) * 1e-6,
-               m->joint, m->position, m->goal_position, m->effort);
-    std::fflush(stdout);
-  }
-
-  int64_t goal_id_;
-  bool verbose_;
-  std::optional<gripper_status_t> result_;
-  size_t feedback_ = 0;
-  int64_t first_us_ = 0, printed_us_ = -1;
-};
-
 int run(const Options& o, const BusFlags& bus_flags) {
   const std::string controller = controller_name(o.target);
   if (controller.empty())
@@ -72,7 +40,9 @@ int run(const Options& o, const BusFlags& bus_flags) {
   gripper_controller(cm.list(o.cm_timeout).controllers, controller);
 
   const int64_t goal_id = new_request_id();
-  GoalWatch watch(bus, controller, goal_id, o.verbose);  // listening before the goal goes out
+  GoalWatch<gripper_status_t> watch(bus, controller, goal_id, o.verbose, [](const gripper_status_t& m) {
+    return fmt::format("{} position {:.6f} (goal {:.6f}) effort {:.6f}", m.joint, m.position, m.goal_position, m.effort);
+  });  // listening before the goal goes out
   gripper_command_t goal{};
   goal.utime = wall_us();
   goal.goal_id = goal_id;

@@ -15,6 +15,7 @@
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 #include "tools/lib/cm_client.hpp"
+#include "tools/lib/goal_watch.hpp"
 #include "tools/lib/support.hpp"
 #include "tools/lib/trajectory_goal.hpp"
 
@@ -103,42 +104,6 @@ class CurrentPositions {
   std::set<std::string> seen_;
 };
 
-// The result of one goal on `<controller>/result`, and its feedback (printed with --verbose).
-class GoalWatch {
- public:
-  GoalWatch(Bus& bus, const std::string& controller, int64_t goal_id, bool verbose)
-      : goal_id_(goal_id), verbose_(verbose) {
-    subscribe_guarded<&GoalWatch::on_result>(bus.lcm(), bus.channel(controller + "/result"), this)->setQueueCapacity(100);
-    subscribe_guarded<&GoalWatch::on_feedback>(bus.lcm(), bus.channel(controller + "/feedback"), this);
-  }
-  const std::optional<trajectory_status_t>& result() const { return result_; }
-  size_t feedback() const { return feedback_; }
-
- private:
-  void on_result(const lcm::ReceiveBuffer*, const std::string&, const trajectory_status_t* m) {
-    if (m->goal_id == goal_id_ && !result_) result_ = *m;
-  }
-  // At most 4 lines per second of the controller's time.
-  void on_feedback(const lcm::ReceiveBuffer*, const std::string&, const trajectory_status_t* m) {
-    if (m->goal_id != goal_id_) return;
-    if (feedback_++ == 0) first_us_ = m->utime;
-    if (!verbose_ || (printed_us_ >= 0 && m->utime - printed_us_ < 250000)) return;
-    printed_us_ = m->utime;
-    std::vector<std::string> joints;
-    for (size_t k = 0; k < m->joint_names.size() && k < m->error.size(); ++k)
-      joints.push_back(fmt::format("{} desired {:.6f} actual {:.6f} error {:.6f}", m->joint_names[k], m->desired[k],
-                                   m->actual[k], m->error[k]));
-    fmt::print("feedback {:.2f} s: {}\n", double(m->utime - first_us_) * 1e-6, fmt::join(joints, "; "));
-    std::fflush(stdout);
-  }
-
-  int64_t goal_id_;
-  bool verbose_;
-  std::optional<trajectory_status_t> result_;
-  size_t feedback_ = 0;
-  int64_t first_us_ = 0, printed_us_ = -1;
-};
-
 TrajectoryGoal read_goal(const Options& o) {
   if (!o.file.empty()) return parse_goal_yaml(read_input_file(o.file, "trajectory YAML", "--file"), o.file);
   if (!o.csv.empty()) return parse_goal_csv(read_input_file(o.csv, "trajectory CSV", "--csv"), o.csv);
@@ -174,7 +139,13 @@ int run(const Options& o, const BusFlags& bus_flags) {
   }
 
   const int64_t goal_id = new_request_id();
-  GoalWatch watch(bus, controller, goal_id, o.verbose);  // listening before the goal goes out
+  GoalWatch<trajectory_status_t> watch(bus, controller, goal_id, o.verbose, [](const trajectory_status_t& m) {
+    std::vector<std::string> joints;
+    for (size_t k = 0; k < m.joint_names.size() && k < m.error.size(); ++k)
+      joints.push_back(fmt::format("{} desired {:.6f} actual {:.6f} error {:.6f}", m.joint_names[k], m.desired[k],
+                                   m.actual[k], m.error[k]));
+    return fmt::format("{}", fmt::join(joints, "; "));
+  });  // listening before the goal goes out
   const double span = goal.points.back().time;
   const double timeout = o.result_timeout > 0 ? o.result_timeout : span + 10.0;
   const std::string command = bus.channel(controller + "/command");
