@@ -28,6 +28,7 @@ void register_builtin(Registry& r) {
   r.add(pid_controller(I::Effort, PidTarget::Velocity));
   r.add(pid_controller(I::Velocity, PidTarget::Position));
   r.add(group_position_pid_controller());
+  r.add(ros2_pid_controller());
   r.add(joint_trajectory_controller(I::Position));
   r.add(joint_trajectory_controller(I::Effort));
   r.add(joint_trajectory_controller(I::Velocity));

@@ -19,6 +19,8 @@ ControllerType ros2_forward_command_controller(bool multi_interface);
 enum class PidTarget { Position, Velocity };
 ControllerType pid_controller(Interface out, PidTarget target);
 ControllerType group_position_pid_controller();  // position set points to efforts, one PID per joint
+// ROS 2's pid_controller/PidController: a PID per joint of dof_names to the interface command_interface names.
+ControllerType ros2_pid_controller();
 ControllerType joint_trajectory_controller(Interface command);
 ControllerType ros2_joint_trajectory_controller();  // the interface from command_interfaces
 ControllerType diff_drive_controller();

@@ -156,6 +156,9 @@ TEST(ControllerTypes, BuiltinDeclarationsGiveTheRosParameterNames) {
   EXPECT_EQ(names("forward_command_controller/ForwardCommandController"), (V{"joints", "interface_name"}));
   EXPECT_EQ(names("forward_command_controller/MultiInterfaceForwardCommandController"),
             (V{"joint", "interface_names"}));
+  EXPECT_EQ(names("pid_controller/PidController"),
+            (V{"dof_names", "command_interface", "reference_and_state_interfaces", "gains",
+               "set_current_state_as_first_setpoint", "use_external_measured_states", "reference_and_state_dof_names"}));
   for (const char* t : {"effort_controllers/JointPositionController", "effort_controllers/JointVelocityController",
                         "velocity_controllers/JointPositionController"})
     EXPECT_EQ(names(t), (V{"joint", "pid"})) << t;
