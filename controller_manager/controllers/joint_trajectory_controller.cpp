@@ -33,6 +33,7 @@
 
 #include "control/angles.hpp"
 #include "controller_manager/controllers/factories.hpp"
+#include "controller_manager/controllers/ros2_gains.hpp"
 #include "controller_manager/controllers/trajectory.hpp"
 #include "lcm_control/joint_trajectory_controller_state_t.hpp"
 #include "lcm_control/joint_trajectory_t.hpp"
@@ -76,30 +77,6 @@ Interface ros2_command_interface(Params& p, std::vector<std::string>& notes) {
                                                   fmt::join(c, ", ")));
 }
 
-// ROS 2's `gains/<joint>`: p, i, d default 0; ff_velocity_scale is the velocity feed-forward; u_clamp_* clamp the
-// command; angle_wraparound and normalize_error are what continuous joints do here anyway.
-PidGains ros2_gains(const YAML::Node& node, const std::string& where, double& ff, double& u_min, double& u_max) {
-  if (!node.IsMap()) throw ControllerError(where + ": expected a map {p, i, d, i_clamp, ff_velocity_scale}");
-  YAML::Node g = YAML::Clone(node);
-  auto take = [&](const char* key, double& out) {
-    if (!g[key]) return;
-    try {
-      out = g[key].as<double>();
-    } catch (const YAML::Exception&) {
-      throw ControllerError(fmt::format("{}/{}: '{}' is not a number", where, key, g[key].Scalar()));
-    }
-    g.remove(key);
-  };
-  take("ff_velocity_scale", ff);
-  take("u_clamp_min", u_min);
-  take("u_clamp_max", u_max);
-  for (const char* ignored : {"angle_wraparound", "normalize_error", "antiwindup_strategy", "tracking_time_constant",
-                              "error_deadband", "saturation"})
-    g.remove(ignored);
-  if (!g["p"]) g["p"] = 0.0;
-  return Params::pid_from(g, where);
-}
-
 class JointTrajectoryController : public Controller {
  public:
   // No `iface`: ROS 2's controller, whose command_interfaces choose it.
@@ -126,9 +103,14 @@ class JointTrajectoryController : public Controller {
                                         "gains: {{<joint>: {{p, i, d, ff_velocity_scale}}}})",
                                         p.where(), quantity_of(iface_)));
       for (size_t k = 0; k < n && gains; ++k)
-        if (gains[names_[k]])
-          pids_[k].set_gains(ros2_gains(gains[names_[k]], p.where() + "/gains/" + names_[k], velocity_ff_[k],
-                                        u_min_[k], u_max_[k]));
+        if (gains[names_[k]]) {
+          const Ros2Gains g =
+              read_ros2_gains(gains[names_[k]], p.where() + "/gains/" + names_[k], "ff_velocity_scale", ctx.notes);
+          pids_[k].set_gains(g.pid);
+          velocity_ff_[k] = g.feedforward;
+          u_min_[k] = g.u_min;
+          u_max_[k] = g.u_max;
+        }
     } else if (iface_ != Interface::Position) {
       const YAML::Node gains = p.node("gains");
       if (!gains || !gains.IsMap())

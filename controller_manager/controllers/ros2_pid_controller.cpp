@@ -17,6 +17,7 @@
 
 #include "control/angles.hpp"
 #include "controller_manager/controllers/factories.hpp"
+#include "controller_manager/controllers/ros2_gains.hpp"
 
 namespace lcm_control::cm {
 
@@ -25,80 +26,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The keys of ROS 2's gains.<dof>.
-const char* const kGainKeys[] = {"p", "i", "d", "i_clamp_max", "i_clamp_min", "u_clamp_max", "u_clamp_min",
-                                 "feedforward_gain", "angle_wraparound", "antiwindup", "antiwindup_strategy",
-                                 "tracking_time_constant", "error_deadband", "save_i_term",
-                                 "activate_state_publisher"};
-
-struct DofGains {
-  PidGains pid;
-  double feedforward = 0, u_min = -kInf, u_max = kInf;
-  bool wraparound = false;
-};
-
-// gains.<dof> as ROS 2 reads it: p, i, d default 0, the integral unclamped unless i_clamp_* say otherwise.
-DofGains ros2_pid_gains(const YAML::Node& node, const std::string& where, std::vector<std::string>& notes) {
-  if (!node.IsMap())
-    throw ControllerError(where + ": expected a map {p, i, d, i_clamp_max, i_clamp_min, u_clamp_max, u_clamp_min, "
-                                  "feedforward_gain, angle_wraparound}");
-  for (const auto& kv : node) {
-    const std::string key = kv.first.as<std::string>();
-    if (std::find_if(std::begin(kGainKeys), std::end(kGainKeys), [&](const char* k) { return key == k; }) ==
-        std::end(kGainKeys))
-      throw ControllerError(fmt::format("{}/{}: unknown key; valid keys are {}", where, key, fmt::join(kGainKeys, ", ")));
-  }
-  DofGains out;
-  YAML::Node g = YAML::Clone(node);
-  auto take = [&](const char* key, double& value) {
-    if (!g[key]) return;
-    try {
-      value = g[key].as<double>();
-    } catch (const YAML::Exception&) {
-      throw ControllerError(fmt::format("{}/{}: '{}' is not a number", where, key, g[key].Scalar()));
-    }
-    if (std::isnan(value)) throw ControllerError(fmt::format("{}/{}: is not a number", where, key));
-    g.remove(key);
-  };
-  take("feedforward_gain", out.feedforward);
-  take("u_clamp_min", out.u_min);
-  take("u_clamp_max", out.u_max);
-  if (out.u_min > out.u_max)
-    throw ControllerError(fmt::format("{}: u_clamp_min {} is above u_clamp_max {}", where, out.u_min, out.u_max));
-  if (g["angle_wraparound"]) {
-    try {
-      out.wraparound = g["angle_wraparound"].as<bool>();
-    } catch (const YAML::Exception&) {
-      throw ControllerError(
-          fmt::format("{}/angle_wraparound: '{}' is not true or false", where, g["angle_wraparound"].Scalar()));
-    }
-    g.remove("angle_wraparound");
-  }
-  if (g["antiwindup_strategy"] && g["antiwindup_strategy"].IsScalar() && g["antiwindup_strategy"].Scalar() != "none")
-    notes.push_back(fmt::format("{}/antiwindup_strategy: '{}' is not implemented; the integral term is clamped to "
-                                "i_clamp_min/max",
-                                where, g["antiwindup_strategy"].Scalar()));
-  for (const char* ignored : {"antiwindup_strategy", "tracking_time_constant", "error_deadband", "save_i_term",
-                              "activate_state_publisher"})
-    g.remove(ignored);
-  // ROS 2's i_clamp defaults are infinite; here a clamp of 0 would zero the I term, so "none" is the largest number.
-  constexpr double kBig = std::numeric_limits<double>::max();
-  auto clamp_or_big = [&](const char* key, double big) {
-    if (!g[key]) return;
-    try {
-      if (std::isinf(g[key].as<double>())) g[key] = big;
-    } catch (const YAML::Exception&) {
-    }  // pid_from names it
-  };
-  clamp_or_big("i_clamp_max", kBig);
-  clamp_or_big("i_clamp_min", -kBig);
-  const bool has_max = static_cast<bool>(g["i_clamp_max"]), has_min = static_cast<bool>(g["i_clamp_min"]);
-  if (!g["p"]) g["p"] = 0.0;
-  out.pid = Params::pid_from(g, where);
-  if (!has_max) out.pid.i_clamp_max = kBig;
-  if (!has_min) out.pid.i_clamp_min = -kBig;
-  return out;
-}
 
 class Ros2PidController : public Controller {
  public:
@@ -148,7 +75,7 @@ class Ros2PidController : public Controller {
       }
     for (size_t k = 0; k < n; ++k) {
       if (gains && gains[names_[k]]) {
-        gains_[k] = ros2_pid_gains(gains[names_[k]], p.where() + "/gains/" + names_[k], ctx.notes);
+        gains_[k] = read_ros2_gains(gains[names_[k]], p.where() + "/gains/" + names_[k], "feedforward_gain", ctx.notes);
       } else {
         gains_[k].pid.i_clamp_max = std::numeric_limits<double>::max();
         gains_[k].pid.i_clamp_min = -std::numeric_limits<double>::max();
@@ -200,7 +127,7 @@ class Ros2PidController : public Controller {
         j.command = hold_[k];
         continue;
       }
-      const DofGains& g = gains_[k];
+      const Ros2Gains& g = gains_[k];
       const double error = g.wraparound ? shortest_angular_distance(measured, ref) : ref - measured;
       double u;
       if (with_derivative_) {
@@ -240,7 +167,7 @@ class Ros2PidController : public Controller {
   std::vector<std::string> names_;
   std::vector<JointData*> joints_;
   std::vector<Pid> pids_;
-  std::vector<DofGains> gains_;
+  std::vector<Ros2Gains> gains_;
   std::vector<double> reference_, reference_dot_, hold_;
 };
 
