@@ -5,7 +5,6 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -14,15 +13,13 @@
 
 using namespace lcm_control;
 namespace lt = lcm_control::testing;
-namespace fs = std::filesystem;
 
 namespace {
 
-std::string robots_dir() { return fs::weakly_canonical(lt::source("../shared/ros2_robots")).string(); }
+std::string robots_dir() { return lt::ros2_robots_dir(); }
 
-#define SKIP_WITHOUT_SHARED_ROBOTS()                                                                          \
-  if (!fs::is_directory(robots_dir()))                                                                        \
-  GTEST_SKIP() << robots_dir() << " is absent (the shared real ROS 2 robots sit next to the source tree)"
+#define SKIP_WITHOUT_SHARED_ROBOTS() \
+  if (robots_dir().empty()) GTEST_SKIP() << "no ../shared/ros2_robots (set LCM_CONTROL_ROS2_ROBOTS to the folder)"
 
 struct Robot {
   std::string dir;  // <robots>/<name>

@@ -5,8 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
 
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
@@ -17,20 +15,12 @@
 #include "test/support/lcm_test.hpp"
 
 namespace lt = lcm_control::testing;
-namespace fs = std::filesystem;
 using namespace lcm_control;
 
 namespace {
 
-// The robots folder, or "" (the test skips).
-std::string robots_dir() {
-  const char* env = std::getenv("LCM_CONTROL_ROS2_ROBOTS");
-  const fs::path dir = env ? env : lt::source("../shared/ros2_robots");
-  return fs::is_directory(dir / "gz_cart") ? fs::canonical(dir).string() : "";
-}
-
 #define NEED_ROS2_ROBOTS(dir)                                                                              \
-  const std::string dir = robots_dir();                                                                    \
+  const std::string dir = lt::ros2_robots_dir();                                                           \
   if (dir.empty()) GTEST_SKIP() << "no ../shared/ros2_robots (set LCM_CONTROL_ROS2_ROBOTS to the folder)"
 
 double position_of(const joint_state_t& s, const std::string& joint) {

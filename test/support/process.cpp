@@ -25,6 +25,12 @@ double now_s() {
 std::string bin(const std::string& name) { return std::string(LCM_CONTROL_BIN_DIR) + "/" + name; }
 std::string source(const std::string& relative) { return std::string(LCM_CONTROL_SOURCE_DIR) + "/" + relative; }
 
+std::string ros2_robots_dir() {
+  const char* env = std::getenv("LCM_CONTROL_ROS2_ROBOTS");
+  const std::filesystem::path dir = env ? env : source("../shared/ros2_robots");
+  return std::filesystem::is_directory(dir / "gz_cart") ? std::filesystem::canonical(dir).string() : "";
+}
+
 std::string temp_dir(const std::string& tag) {
   std::string tmpl = (std::filesystem::temp_directory_path() / ("lcm_control_" + tag + "_XXXXXX")).string();
   if (!mkdtemp(tmpl.data())) throw std::runtime_error("mkdtemp failed for " + tmpl);

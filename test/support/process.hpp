@@ -66,6 +66,9 @@ long output_bytes(F&& f) {
 std::string bin(const std::string& name);
 // Path of a file in the source tree (e.g. "config/turret_bot.urdf").
 std::string source(const std::string& relative);
+// The real ROS 2 robot packages (../shared/ros2_robots beside the checkout, or $LCM_CONTROL_ROS2_ROBOTS), canonical;
+// "" when absent (the tests that need them skip).
+std::string ros2_robots_dir();
 // A fresh, empty folder for one test's files.
 std::string temp_dir(const std::string& tag);
 
