@@ -160,7 +160,7 @@ class JointTrajectoryController : public Controller {
     status_.desired.assign(n, 0.0);
     status_.actual.assign(n, 0.0);
     status_.error.assign(n, 0.0);
-    status_.message.reserve(512);
+    status_.message.reserve(1024);
     state_.num_joints = static_cast<int32_t>(n);
     state_.joint_names = names_;
     for (auto* v : {&state_.desired_position, &state_.desired_velocity, &state_.desired_acceleration,
@@ -388,6 +388,7 @@ class JointTrajectoryController : public Controller {
     status_.goal_id = goal_id_;
     status_.status = status;
     status_.message.assign(message);
+    status_.message.append(limit_note_);
     result_pub_.publish(status_);
     goal_active_ = false;
   }
@@ -449,6 +450,8 @@ class JointTrajectoryController : public Controller {
     std::vector<SplineState> start(n);
     for (size_t k = 0; k < n; ++k) current_->sample(last_t_, k, start[k]);
     std::vector<Waypoint> points;
+    int beyond = 0;  // positions beyond a joint limit; the first one is named
+    std::string limit_note;
     double prev = 0;
     for (size_t i = 0; i < g.points.size(); ++i) {
       const trajectory_point_t& p = g.points[i];
@@ -481,9 +484,9 @@ class JointTrajectoryController : public Controller {
         if (!std::isfinite(pos))
           return reject(g, fmt::format("point {}: joint '{}' position is NaN/Inf", i, names_[k]));
         const Joint* u = joints_[k]->urdf;
-        if (u && u->has_position_limits && (pos < u->lower || pos > u->upper))
-          return reject(g, fmt::format("point {}: joint '{}' position {} is outside its limits [{}, {}]", i, names_[k],
-                                       pos, u->lower, u->upper));
+        if (u && u->has_position_limits && (pos < u->lower || pos > u->upper) && beyond++ == 0)
+          limit_note = fmt::format("point {} puts joint '{}' at {:g}, beyond its limits [{:g}, {:g}]", i, names_[k],
+                                   pos, u->lower, u->upper);
         w.pos.push_back(pos);
         if (!p.velocities.empty()) w.vel.push_back(p.velocities[c]);
         if (!p.accelerations.empty()) w.acc.push_back(p.accelerations[c]);
@@ -504,6 +507,13 @@ class JointTrajectoryController : public Controller {
     if (goal_active_) {
       std::snprintf(text_, sizeof text_, "replaced by goal %lld", static_cast<long long>(g.goal_id));
       finish(Time{static_cast<int64_t>(last_t_ * 1e6)}, trajectory_status_t::PREEMPTED, text_);
+    }
+    limit_note_.clear();
+    if (beyond > 0) {  // as ROS: accepted, and the joint stops at its limit
+      limit_note_ = fmt::format(" ({}{}; the joint stops at its limit)", limit_note,
+                                beyond > 1 ? fmt::format(", and {} more positions beyond a limit", beyond - 1) : "");
+      spdlog::warn("{}: goal {}: {}{}: accepted as ROS does; the joint stops at its limit", name_, g.goal_id,
+                   limit_note, beyond > 1 ? fmt::format(" (and {} more)", beyond - 1) : "");
     }
     active_ = std::move(next);
     current_ = &active_;
@@ -534,6 +544,7 @@ class JointTrajectoryController : public Controller {
   trajectory_status_t status_;
   joint_trajectory_controller_state_t state_;
   char text_[512] = {};
+  std::string limit_note_;  // appended to the goal's result: a position beyond a limit (set between cycles)
   Publisher<trajectory_status_t> feedback_pub_, result_pub_;
   Publisher<joint_trajectory_controller_state_t> state_pub_;
 };

@@ -330,12 +330,19 @@ TEST(ControllerManagerTrajectoryController, BadGoalsAreRejectedAndNewGoalsPreemp
   rig.publish("trajectory/command", trajectory_goal(3, {"tilt"}, {{1.0, {0.3}}}));
   rig.publish("trajectory/command", trajectory_goal(4, {"tilt", "slide"}, {{1.0, {0.3, 5.0}}}));
   rig.publish("trajectory/command", trajectory_goal(5, {"tilt", "slide"}, {{1.0, {0.3, 0.5}}, {0.5, {0.3, 0.5}}}));
-  ASSERT_EQ(result.messages.size(), 3u);
+  ASSERT_EQ(result.messages.size(), 2u);
   EXPECT_TRUE(has(result.messages[0].message, "joint 'slide' is missing")) << result.messages[0].message;
-  EXPECT_TRUE(has(result.messages[1].message, "outside its limits [0, 1]")) << result.messages[1].message;
-  EXPECT_TRUE(has(result.messages[2].message, "time_from_start 0.5 must be greater than 1"))
-      << result.messages[2].message;
+  EXPECT_TRUE(has(result.messages[1].message, "time_from_start 0.5 must be greater than 1"))
+      << result.messages[1].message;
   for (const auto& m : result.messages) EXPECT_EQ(m.status, trajectory_status_t::REJECTED);
+  // Goal 4 put slide beyond its limits: accepted (as ROS), and now replaced.
+  rig.publish("trajectory/command", trajectory_goal(44, {"tilt", "slide"}, {{1.0, {0.3, 0.5}}}));
+  ASSERT_EQ(result.messages.size(), 3u);
+  EXPECT_EQ(result.messages[2].goal_id, 4);
+  EXPECT_EQ(result.messages[2].status, trajectory_status_t::PREEMPTED);
+  EXPECT_TRUE(has(result.messages[2].message, "point 0 puts joint 'slide' at 5, beyond its limits [0, 1]"))
+      << result.messages[2].message;
+  result.messages.erase(result.messages.begin() + 2);
   rig.publish("trajectory/command", trajectory_goal(6, {"tilt", "slide"}, {{1.0, {0.3, 0.5}}}));
   rig.cycle(100);
   rig.publish("trajectory/command", trajectory_goal(7, {"tilt", "slide"}, {{1.0, {0.0, 0.0}}}));
