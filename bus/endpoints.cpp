@@ -19,6 +19,10 @@ void Endpoints::subscribe_raw(const std::string& channel, std::function<void(con
   subs_.push_back(s);
 }
 
+void Endpoints::on_lost(const std::string& channel, LcmSocket::LostHandler handler) {
+  if (socket_) socket_subs_.push_back(socket_->on_lost(channel, std::move(handler)));
+}
+
 void Endpoints::divert(const std::string& channel, RawHandler to) {
   bool first = true;
   for (auto& h : handlers_) {

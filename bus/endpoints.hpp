@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bus/bus.hpp"
+#include "bus/lcm_socket.hpp"
 #include "rt/outbox.hpp"
 
 namespace lcm_control {
@@ -106,6 +107,10 @@ class Endpoints {
     subscribe_decoded<Msg>(channel, std::move(on_msg), std::move(on_bad), false, {});
   }
 
+  // A message on `channel` lost on the way, too large or with fragments missing (bus/lcm_socket.hpp): `handler`
+  // hears of it. Only where the Endpoints read a socket directly: lcm::LCM drops such messages unseen.
+  void on_lost(const std::string& channel, LcmSocket::LostHandler handler);
+
   using RawHandler = std::function<void(const lcm::ReceiveBuffer&)>;
   // While diverted, what arrives from the bus on `channel` goes to `to` (once) instead of its handlers: a command
   // source owns the channel. An empty `to` gives the channel back.
@@ -125,6 +130,7 @@ class Endpoints {
   template <class Msg>
   void subscribe_decoded(const std::string& channel, std::function<void(const Msg&)> on_msg,
                          std::function<void(const std::string&)> on_bad, bool keep, Precheck precheck) {
+    if (on_bad) on_lost(channel, [on_bad](const LcmSocket::Lost& lost) { on_bad(describe(lost)); });
     auto kept = std::make_shared<Msg>();
     subscribe_raw(channel, [kept, keep, on_msg, on_bad, channel, precheck](const lcm::ReceiveBuffer& rb) {
       auto bad = [&](const std::string& why) {

@@ -17,6 +17,7 @@
 
 #include "bus/bus.hpp"
 #include "bus/wire_check.hpp"
+#include "rt/log.hpp"
 
 namespace lcm_control {
 
@@ -98,16 +99,28 @@ LcmSocket::~LcmSocket() {
   if (fd_ >= 0) close(fd_);
 }
 
+namespace {
+std::atomic<int> next_id{1};  // subscription ids, unique in the process
+}  // namespace
+
 int LcmSocket::subscribe(const std::string& channel, Handler handler) {
-  static std::atomic<int> next_id{1};
   const int id = next_id++;
   subscribers_.push_back(Entry{id, channel, std::move(handler)});
+  return id;
+}
+
+int LcmSocket::on_lost(const std::string& channel, LostHandler handler) {
+  const int id = next_id++;
+  lost_handlers_.push_back(LostEntry{id, channel, std::move(handler)});
   return id;
 }
 
 void LcmSocket::unsubscribe(int id) {
   subscribers_.erase(std::remove_if(subscribers_.begin(), subscribers_.end(), [id](const Entry& e) { return e.id == id; }),
                      subscribers_.end());
+  lost_handlers_.erase(std::remove_if(lost_handlers_.begin(), lost_handlers_.end(),
+                                      [id](const LostEntry& e) { return e.id == id; }),
+                       lost_handlers_.end());
 }
 
 bool LcmSocket::subscribed(std::string_view channel) const {
@@ -134,7 +147,7 @@ bool LcmSocket::parse(int n, const sockaddr_in& from, std::string_view* channel,
 }
 
 // LCM's reassembly: one message in progress per sender (a newer sequence number from it drops the unfinished one),
-// a few senders at once (the least recently heard one gives way).
+// a few senders at once (the least recently heard one gives way), the fragments in order.
 bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* channel, const uint8_t** payload,
                          int* size) {
   const uint8_t* b = buf_.data();
@@ -142,7 +155,7 @@ bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* chann
   const uint16_t number = read_be<uint16_t>(b + 16), count = read_be<uint16_t>(b + 18);
   const uint8_t* chunk = b + kFragmentHeader;
   uint32_t chunk_size = uint32_t(n - kFragmentHeader);
-  if (count == 0 || number >= count || total > kMaxMessageBytes) {
+  if (count == 0 || number >= count || uint64_t(total) > uint64_t(count) * 65536) {  // its fragments cannot carry it
     ++not_lcm_;
     return false;
   }
@@ -150,15 +163,15 @@ bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* chann
   for (Partial& q : partials_)
     if (q.active && q.addr == from.sin_addr.s_addr && q.port == from.sin_port) p = &q;
   if (p && (p->seqno != seqno || p->total != total || p->count != count)) {
-    ++incomplete_;  // the sender moved on: its unfinished message is lost, as LCM loses it
+    drop(*p);  // the sender moved on: its unfinished message is lost, as LCM loses it
     p->active = false;
   }
   if (!p || !p->active) {
     if (!p) {
       p = &partials_[0];
       for (Partial& q : partials_)
-        if (!q.active || q.heard_us < p->heard_us) p = &q;
-      if (p->active) ++incomplete_;
+        if (!q.active || (p->active && q.heard_us < p->heard_us)) p = &q;
+      if (p->active) drop(*p);
     }
     p->active = true;
     p->addr = from.sin_addr.s_addr;
@@ -167,11 +180,13 @@ bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* chann
     p->total = total;
     p->count = count;
     p->received = 0;
-    p->wanted = true;
+    p->filled = 0;
+    p->wanted = false;
     p->named = false;
+    p->dropped = false;
   }
   p->heard_us = monotonic_us();
-  if (number == 0) {
+  if (number == 0 && p->received == 0) {
     const void* nul = std::memchr(chunk, 0, chunk_size);
     if (!nul) {
       ++not_lcm_;
@@ -181,27 +196,76 @@ bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* chann
     const size_t name_size = size_t(static_cast<const uint8_t*>(nul) - chunk);
     p->channel.assign(reinterpret_cast<const char*>(chunk), name_size);
     p->named = true;
-    p->wanted = subscribed(p->channel);
     chunk += name_size + 1;
     chunk_size -= uint32_t(name_size + 1);
+    if (subscribed(p->channel)) {
+      p->wanted = total <= kMaxMessageBytes;
+      if (!p->wanted) {
+        ++too_large_;
+        p->dropped = true;
+        tell_lost(Lost{p->channel, total, true, chunk, int(std::min(chunk_size, total))});
+      }
+    }
   }
   if (uint64_t(offset) + chunk_size > total) {
     ++not_lcm_;
+    drop(*p);
     p->active = false;
     return false;
   }
-  if (p->wanted) {
-    if (p->data.size() < total) p->data.resize(total);
-    std::memcpy(p->data.data() + offset, chunk, chunk_size);
+  if (number != p->received || offset != p->filled) {
+    drop(*p);  // a fragment went missing (or came out of order): the rest of this message is skipped
+    ++p->received;
+    return false;
   }
+  if (p->wanted) {
+    if (p->data.size() < size_t(p->filled) + chunk_size) p->data.resize(size_t(p->filled) + chunk_size);
+    std::memcpy(p->data.data() + p->filled, chunk, chunk_size);
+  }
+  p->filled += chunk_size;
   if (++p->received < p->count) return false;
   p->active = false;
-  if (!p->named || !p->wanted) return false;
+  if (p->dropped || !p->wanted) return false;
+  if (p->filled != p->total) {
+    drop(*p);
+    return false;
+  }
   ++reassembled_;
   *channel = p->channel;
   *payload = p->data.data();
   *size = int(total);
   return true;
+}
+
+void LcmSocket::drop(Partial& p) {
+  if (!p.dropped) {
+    ++incomplete_;
+    if (p.named && p.wanted) tell_lost(Lost{p.channel, p.total, false, p.data.data(), int(p.filled)});
+  }
+  p.wanted = false;
+  p.dropped = true;
+  if (p.data.capacity() > kKeptBytes) std::vector<uint8_t>().swap(p.data);
+}
+
+void LcmSocket::tell_lost(const Lost& lost) {
+  for (const LostEntry& e : lost_handlers_)
+    if (e.channel == lost.channel) e.handler(lost);
+}
+
+void LcmSocket::expire(int64_t now_us) {
+  for (Partial& p : partials_) {
+    if (p.active && now_us - p.heard_us > kFragmentTimeoutUs) {
+      drop(p);
+      p.active = false;
+    }
+    if (!p.active && p.data.capacity() > kKeptBytes) std::vector<uint8_t>().swap(p.data);
+  }
+}
+
+size_t LcmSocket::reassembly_bytes() const {
+  size_t bytes = 0;
+  for (const Partial& p : partials_) bytes += p.data.capacity();
+  return bytes;
 }
 
 bool LcmSocket::receive(ssize_t* n, std::string_view* channel, const uint8_t** payload, int* size) {
@@ -228,6 +292,7 @@ bool LcmSocket::receive(ssize_t* n, std::string_view* channel, const uint8_t** p
 }
 
 int LcmSocket::handle_queued(int max) {
+  expire(monotonic_us());
   int read = 0;
   for (; read < max; ++read) {
     ssize_t n = 0;
@@ -258,6 +323,16 @@ const uint8_t* LcmSocket::wait_for(std::string_view channel, int timeout_ms, int
     if (size) *size = bytes;
     return payload;
   }
+}
+
+std::string describe(const LcmSocket::Lost& lost) {
+  if (lost.too_large)
+    return fmt::format("a message of {} bytes on '{}' was dropped: over the {} bytes a message may have here "
+                       "(docs/reliability.md, \"Limits\"); send less at a time",
+                       lost.bytes, clip(std::string(lost.channel)), LcmSocket::kMaxMessageBytes);
+  return fmt::format("a message of {} bytes on '{}' was lost on the way: {} of its bytes arrived in order (a fragment "
+                     "was lost: raise the receive buffer with recv_buf_size in the LCM URL, or send less at a time)",
+                     lost.bytes, clip(std::string(lost.channel)), lost.head_size);
 }
 
 }  // namespace lcm_control

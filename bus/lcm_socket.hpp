@@ -4,7 +4,11 @@
 // lcm-logger and lcm-logplayer see and replay the same messages.
 // A message LCM sends whole ("LC02") is handed over from the receive buffer; one it split into "LC03" fragments
 // (over 64 kB with Debian's LCM, over 1,400 bytes with some other builds) is put together first, as LCM does: one
-// message in progress per sender, up to kMaxMessageBytes.
+// message in progress per sender, its fragments in the order LCM sends them. What a forged or broken sender can
+// make it hold is bounded: a message announcing more than kMaxMessageBytes is refused at its first fragment, a
+// message takes memory only as its fragments arrive, one unheard for kFragmentTimeoutUs is dropped, and a buffer
+// over kKeptBytes is given back once its message is delivered or dropped. A subscriber that asks is told of each
+// message on its channel that was lost this way (docs/reliability.md, "Limits").
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
@@ -47,6 +51,19 @@ class LcmSocket {
   int subscribe(const std::string& channel, Handler handler);
   void unsubscribe(int id);
 
+  // A fragmented message on a subscribed channel that was not delivered.
+  struct Lost {
+    std::string_view channel;
+    uint32_t bytes = 0;          // the message's size as its fragments announced it
+    bool too_large = false;      // over kMaxMessageBytes: refused at its first fragment; else fragments went missing
+    const uint8_t* head = nullptr;  // the message's first head_size bytes as they arrived (for its ids), or none
+    int head_size = 0;
+  };
+  using LostHandler = std::function<void(const Lost&)>;
+  // `handler` hears of the messages on `channel` lost as above, in the thread that calls handle_queued(); as
+  // subscribe(), until unsubscribe(id).
+  int on_lost(const std::string& channel, LostHandler handler);
+
   // Handles the datagrams already queued, without blocking, at most `max`: how many were read, or -1 on a socket
   // error. No allocation once subscribed.
   int handle_queued(int max = 1000);
@@ -55,9 +72,14 @@ class LcmSocket {
   // or nullptr on timeout. For start-up checks and benchmarks, not for a socket with subscribers.
   const uint8_t* wait_for(std::string_view channel, int timeout_ms, int* size = nullptr);
 
-  static constexpr uint32_t kMaxMessageBytes = 16u << 20;  // larger fragmented messages are not LCM's (counted)
+  static constexpr uint32_t kMaxMessageBytes = 4u << 20;        // a larger message is refused (counted, told)
+  static constexpr int64_t kFragmentTimeoutUs = 1'000'000;      // a message in progress unheard this long is dropped
+  static constexpr size_t kKeptBytes = 256u << 10;              // reassembly buffers up to this size are kept
   int64_t reassembled() const { return reassembled_; }  // fragmented messages put together and delivered
-  int64_t incomplete() const { return incomplete_; }    // fragmented messages given up (a fragment lost)
+  int64_t incomplete() const { return incomplete_; }    // fragmented messages given up (a fragment lost or late)
+  int64_t too_large() const { return too_large_; }      // fragmented messages refused for their size
+  // Bytes held for messages in progress and kept buffers (what fragments cost in memory).
+  size_t reassembly_bytes() const;
   int64_t not_lcm() const { return not_lcm_; }          // datagrams on the port that are not LCM's
 
  private:
@@ -73,13 +95,19 @@ class LcmSocket {
     bool active = false;
     uint32_t addr = 0;
     uint16_t port = 0;
-    uint32_t seqno = 0, total = 0;
+    uint32_t seqno = 0, total = 0, filled = 0;
     uint16_t count = 0, received = 0;
-    bool wanted = true, named = false;
+    bool wanted = false, named = false;
+    bool dropped = false;  // given up (counted, told); its remaining fragments are skipped
     std::string channel;
-    std::vector<uint8_t> data;  // kept between messages: no allocation once grown
+    std::vector<uint8_t> data;  // kept between messages up to kKeptBytes: no allocation once grown
     int64_t heard_us = 0;
   };
+  // Gives up the message in progress of `p`, telling its channel's lost handlers.
+  void drop(Partial& p);
+  void tell_lost(const Lost& lost);
+  // Drops the messages in progress unheard for kFragmentTimeoutUs, and gives back idle buffers over kKeptBytes.
+  void expire(int64_t now_us);
 
   struct Entry {
     int id;
@@ -89,10 +117,19 @@ class LcmSocket {
   std::string url_;
   int fd_ = -1;
   std::vector<Entry> subscribers_;
+  struct LostEntry {
+    int id;
+    std::string channel;
+    LostHandler handler;
+  };
+  std::vector<LostEntry> lost_handlers_;
   std::vector<uint8_t> buf_ = std::vector<uint8_t>(65536);
   Partial partials_[4];
-  int64_t reassembled_ = 0, incomplete_ = 0, not_lcm_ = 0;
+  int64_t reassembled_ = 0, incomplete_ = 0, too_large_ = 0, not_lcm_ = 0;
   int64_t arrived_us_ = -1;  // the kernel's arrival stamp of the datagram receive() read last, -1 without one
 };
+
+// One line for a lost message: its channel, size and why, with what to do.
+std::string describe(const LcmSocket::Lost& lost);
 
 }  // namespace lcm_control

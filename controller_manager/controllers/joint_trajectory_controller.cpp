@@ -22,12 +22,13 @@
 // velocity as it is), `state_interfaces` are checked, `interpolation_method:
 // none` steps from waypoint to waypoint, and `cmd_timeout` (> goal_time) holds
 // the measured position that long after a trajectory's end.
+#include <endian.h>
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <limits>
 #include <optional>
 
@@ -38,6 +39,7 @@
 #include "lcm_control/joint_trajectory_controller_state_t.hpp"
 #include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
+#include "rt/log.hpp"
 
 namespace lcm_control::cm {
 
@@ -173,8 +175,22 @@ class JointTrajectoryController : public Controller {
         ctx.channel("command"), [this](const joint_trajectory_t& g) { on_goal(g); },
         [this](const std::string& why) {
           ++dropped_;
-          spdlog::warn("{}: {}", name_, why);
+          bad_log_.warn(fmt::format("{}: {}", name_, why));
         });
+    // A goal too large to take, or lost on the way: its sender hears of it on the result channel, under the goal id
+    // its first bytes carry (a joint_trajectory_t starts with its fingerprint, utime and goal_id).
+    ctx.endpoints().on_lost(ctx.channel("command"), [this](const LcmSocket::Lost& lost) {
+      int64_t hash = 0;
+      if (lost.head_size >= 24) std::memcpy(&hash, lost.head, 8);
+      if (int64_t(be64toh(uint64_t(hash))) != joint_trajectory_t::getHash()) return;  // not a goal: no id to answer
+      joint_trajectory_t g;
+      std::memcpy(&g.utime, lost.head + 8, 8);
+      std::memcpy(&g.goal_id, lost.head + 16, 8);
+      g.utime = int64_t(be64toh(uint64_t(g.utime)));
+      g.goal_id = int64_t(be64toh(uint64_t(g.goal_id)));
+      answer(g, trajectory_status_t::REJECTED,
+             fmt::format("{}: goal {} rejected: {}", name_, g.goal_id, describe(lost)));
+    });
   }
 
   std::vector<std::string> pid_joints() const override {
@@ -406,7 +422,7 @@ class JointTrajectoryController : public Controller {
   void reject(const joint_trajectory_t& g, const std::string& why) {
     const std::string message = fmt::format("{}: goal {} rejected: {}", name_, g.goal_id, why);
     answer(g, trajectory_status_t::REJECTED, message);
-    spdlog::warn("{}", message);
+    goal_log_.warn(message);
   }
 
   // An empty trajectory: stop where the trajectory is now, ramping down over stop_trajectory_duration.
@@ -420,7 +436,7 @@ class JointTrajectoryController : public Controller {
     current_ = &hold_;
     answer(g, trajectory_status_t::SUCCEEDED,
            fmt::format("{}: goal {}: empty trajectory, stopping (over {:g} s)", name_, g.goal_id, stop_duration_));
-    spdlog::info("{}: goal {}: empty trajectory, stopping", name_, g.goal_id);
+    goal_log_.info(fmt::format("{}: goal {}: empty trajectory, stopping", name_, g.goal_id));
   }
 
   // Runs between cycles, in the loop's thread: may allocate.
@@ -512,8 +528,8 @@ class JointTrajectoryController : public Controller {
     if (beyond > 0) {  // as ROS: accepted, and the joint stops at its limit
       limit_note_ = fmt::format(" ({}{}; the joint stops at its limit)", limit_note,
                                 beyond > 1 ? fmt::format(", and {} more positions beyond a limit", beyond - 1) : "");
-      spdlog::warn("{}: goal {}: {}{}: accepted as ROS does; the joint stops at its limit", name_, g.goal_id,
-                   limit_note, beyond > 1 ? fmt::format(" (and {} more)", beyond - 1) : "");
+      goal_log_.warn(fmt::format("{}: goal {}: {}{}: accepted as ROS does; the joint stops at its limit", name_,
+                                 g.goal_id, limit_note, beyond > 1 ? fmt::format(" (and {} more)", beyond - 1) : ""));
     }
     active_ = std::move(next);
     current_ = &active_;
@@ -521,7 +537,7 @@ class JointTrajectoryController : public Controller {
     goal_active_ = true;
     last_feedback_ = -1e9;
     std::fill(max_path_err_.begin(), max_path_err_.end(), 0.0);
-    spdlog::info("{}: goal {} accepted: {} points over {:.3f} s", name_, g.goal_id, points.size(), prev);
+    goal_log_.info(fmt::format("{}: goal {} accepted: {} points over {:.3f} s", name_, g.goal_id, points.size(), prev));
   }
 
   Interface iface_;
@@ -544,7 +560,9 @@ class JointTrajectoryController : public Controller {
   trajectory_status_t status_;
   joint_trajectory_controller_state_t state_;
   char text_[512] = {};
-  std::string limit_note_;  // appended to the goal's result: a position beyond a limit (set between cycles)
+  std::string limit_note_;
+  BusLog bad_log_;   // what the bus sent that could not be a goal: clipped and rate-limited
+  BusLog goal_log_;  // goals taken or refused: as many as anyone sends, so clipped and rate-limited too  // appended to the goal's result: a position beyond a limit (set between cycles)
   Publisher<trajectory_status_t> feedback_pub_, result_pub_;
   Publisher<joint_trajectory_controller_state_t> state_pub_;
 };

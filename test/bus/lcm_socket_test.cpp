@@ -9,6 +9,8 @@
 
 #include <cstring>
 
+#include <fmt/format.h>
+
 #include "bus/bus.hpp"
 #include "bus/lcm_socket.hpp"
 #include "test/support/lcm_test.hpp"
@@ -33,6 +35,22 @@ bool pump(LcmSocket& s, Done done, double timeout_s = 2) {
     if (s.handle_queued() < 0) return false;
   }
   return true;
+}
+
+// A socket that sends to the URL's group, and the group's address.
+int socket_fd_for(const std::string&) {
+  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
+  const unsigned char ttl = 0;
+  setsockopt(fd, IPPROTO_IP, IP_MULTICAST_TTL, &ttl, sizeof(ttl));
+  return fd;
+}
+sockaddr_in group_of(const std::string& url) {
+  const UdpmAddress a = parse_udpm_url(url);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(uint16_t(a.port));
+  inet_pton(AF_INET, a.group.c_str(), &to.sin_addr);
+  return to;
 }
 
 // Datagrams sent to the URL's group and port from one socket (one sender, as LCM's reassembly sees senders).
@@ -201,6 +219,76 @@ TEST(LcmSocket, PutsFragmentedMessagesTogetherAsLcmSendsThem) {
   ASSERT_TRUE(pump(socket, [&] { return got.size() == 4; }));
   EXPECT_EQ(got[3], (std::vector<uint8_t>{5, 6}));
   EXPECT_EQ(socket.incomplete(), 1);
+}
+
+namespace {
+// An LC03 fragment: message `seqno` of `total` bytes, fragment `number` of `count` at `offset`, carrying `data`
+// (the channel name and its NUL first, in fragment 0).
+std::vector<uint8_t> lc03(uint32_t seqno, uint32_t total, uint32_t offset, uint16_t number, uint16_t count,
+                          const std::vector<uint8_t>& data) {
+  std::vector<uint8_t> d{0x4c, 0x43, 0x30, 0x33};
+  auto be = [&](uint64_t v, int bytes) {
+    for (int k = bytes - 1; k >= 0; --k) d.push_back(uint8_t(v >> (8 * k)));
+  };
+  be(seqno, 4), be(total, 4), be(offset, 4), be(number, 2), be(count, 2);
+  d.insert(d.end(), data.begin(), data.end());
+  return d;
+}
+std::vector<uint8_t> named(const std::string& channel, size_t payload_bytes) {
+  std::vector<uint8_t> d(channel.begin(), channel.end());
+  d.push_back(0);
+  d.resize(d.size() + payload_bytes, 7);
+  return d;
+}
+}  // namespace
+
+// Issue 35, item 4: forged first fragments of huge messages, and messages that never complete, cost memory only as
+// their fragments arrive and only for a while; the subscriber hears of each loss on its channel.
+TEST(LcmSocket, ReassemblyIsBoundedAndTellsTheSubscriberWhatWasLost) {
+  const std::string url = lt::unique_lcm_url();
+  LcmSocket socket(url);
+  int delivered = 0;
+  std::vector<std::string> lost;
+  socket.subscribe("goal", [&](const lcm::ReceiveBuffer&) { ++delivered; });
+  socket.on_lost("goal", [&](const LcmSocket::Lost& l) {
+    lost.push_back(fmt::format("{} {} {} {}", l.channel, l.bytes, l.too_large ? "too large" : "incomplete",
+                               l.head_size));
+  });
+  const int fd = socket_fd_for(url);
+  sockaddr_in to = group_of(url);
+  auto send = [&](const std::vector<uint8_t>& d) {
+    EXPECT_EQ(sendto(fd, d.data(), d.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof(to)), ssize_t(d.size()));
+  };
+  // Eight first fragments of 16 MB messages from one sender, then of 3 MB ones: nothing is kept for the first, the
+  // others hold only what arrived.
+  // (Datagrams of a few kB and a pump after each burst: the kernel's receive buffer holds them.)
+  for (uint32_t k = 0; k < 8; ++k) send(lc03(100 + k, 16u << 20, 0, 0, 300, named("goal", 4000)));
+  for (uint32_t k = 0; k < 8; ++k) send(lc03(200 + k, 3u << 20, 0, 0, 800, named("goal", 4000)));
+  ASSERT_TRUE(pump(socket, [&] { return lost.size() == 15; })) << fmt::format("{}", fmt::join(lost, "; "));
+  EXPECT_EQ(socket.too_large(), 8);
+  EXPECT_EQ(lost[0], fmt::format("goal {} too large 4000", 16u << 20));
+  EXPECT_EQ(lost[8], fmt::format("goal {} incomplete 4000", 3u << 20)) << "the sender moved on";
+  EXPECT_LT(socket.reassembly_bytes(), 300000u);
+  // A fragment out of order loses its message; a message left unfinished is dropped after kFragmentTimeoutUs and
+  // its buffer given back.
+  send(lc03(300, 20000, 0, 0, 4, named("goal", 5000)));
+  send(lc03(300, 20000, 10000, 2, 4, std::vector<uint8_t>(5000, 1)));
+  ASSERT_TRUE(pump(socket, [&] { return lost.size() == 17; })) << fmt::format("{}", fmt::join(lost, "; "));
+  EXPECT_EQ(lost[16], "goal 20000 incomplete 5000");
+  send(lc03(400, 2400000, 0, 0, 600, named("goal", 4000)));
+  for (uint16_t k = 1; k < 599; ++k) {
+    send(lc03(400, 2400000, 4000u * k, k, 600, std::vector<uint8_t>(4000, 2)));
+    if (k % 20 == 0) socket.handle_queued();
+  }
+  ASSERT_TRUE(pump(socket, [&] { return socket.reassembly_bytes() > 4000u * 599; }))
+      << socket.reassembly_bytes() << " " << socket.incomplete() << " " << fmt::format("{}", fmt::join(lost, "; "));
+  const int64_t t0 = monotonic_us();
+  ASSERT_TRUE(pump(socket, [&] { return lost.size() == 18; }, 3)) << fmt::format("{}", fmt::join(lost, "; "));
+  EXPECT_GE(monotonic_us() - t0, LcmSocket::kFragmentTimeoutUs / 2);
+  EXPECT_EQ(lost[17], fmt::format("goal 2400000 incomplete {}", 4000 * 599));
+  EXPECT_LE(socket.reassembly_bytes(), LcmSocket::kKeptBytes * 4);
+  EXPECT_EQ(delivered, 0);
+  close(fd);
 }
 
 TEST(LcmSocket, WaitForSkipsOtherChannelsAndTimesOut) {

@@ -25,6 +25,13 @@ double now_s() {
 std::string bin(const std::string& name) { return std::string(LCM_CONTROL_BIN_DIR) + "/" + name; }
 std::string source(const std::string& relative) { return std::string(LCM_CONTROL_SOURCE_DIR) + "/" + relative; }
 
+long rss_kb(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
+  return -1;
+}
+
 std::string ros2_robots_dir() {
   const char* env = std::getenv("LCM_CONTROL_ROS2_ROBOTS");
   const std::filesystem::path dir = env ? env : source("../shared/ros2_robots");

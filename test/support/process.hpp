@@ -69,6 +69,8 @@ std::string source(const std::string& relative);
 // The real ROS 2 robot packages (../shared/ros2_robots beside the checkout, or $LCM_CONTROL_ROS2_ROBOTS), canonical;
 // "" when absent (the tests that need them skip).
 std::string ros2_robots_dir();
+// Resident memory of a process (VmRSS), kB; -1 when it is gone.
+long rss_kb(pid_t pid);
 // A fresh, empty folder for one test's files.
 std::string temp_dir(const std::string& tag);
 

@@ -10,7 +10,6 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -153,13 +152,6 @@ double first_command_offset(Watcher& w, double t) {
     if (++seen == 1) break;
   }
   return seen ? worst : NAN;
-}
-
-long rss_kb(pid_t pid) {
-  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
-  return -1;
 }
 
 // turret_bot in real time (or lockstep), its controller manager and the tutorial's controllers, j1 at 0.5 and j2
@@ -387,7 +379,7 @@ TEST(Faults, AFloodOf50000CommandsASecondKeepsTheLoopRateAndMemory) {
     if (!windows.empty() && *std::max_element(windows.begin(), windows.end()) >= 900) break;
     sleep_s(0.1);
   }
-  const long rss_before = rss_kb(robot.manager().pid());
+  const long rss_before = lt::rss_kb(robot.manager().pid());
   const double t_before = w.now();
   const size_t n_before = w.commands_between(t_before - 1.0, t_before);
   lcm::LCM lc(robot.url());
@@ -407,7 +399,7 @@ TEST(Faults, AFloodOf50000CommandsASecondKeepsTheLoopRateAndMemory) {
   const double flood_s = since(start);
   const double t_after = w.now();
   const size_t n_during = w.commands_between(t_after - 4.0, t_after);
-  const long rss_after = rss_kb(robot.manager().pid());
+  const long rss_after = lt::rss_kb(robot.manager().pid());
   // The loop rate as the controller manager counts its cycles (1 Hz windows): before the flood, and in the windows
   // that ended in its last 4 s. The answers this test received are printed too; under load it may lose some.
   const std::vector<int64_t> before = w.cm_cycles(0, t_before), during = w.cm_cycles(t_after - 4.0, t_after);
