@@ -224,4 +224,14 @@ void validate(RobotModel& model) {
   if (!problems.empty()) throw ModelError(problems);
 }
 
+std::string simulation_size_problem(const RobotModel& model) {
+  size_t moving = 0;
+  for (const Joint& j : model.joints) moving += j.type != JointType::Fixed;
+  if (moving <= kMaxSimulatedJoints) return "";
+  return fmt::format("{}: {} moving joints: sim_server simulates at most {} (its solver's start-up time and memory grow "
+                     "with the square of the joints: 1,000 take about 4 s and 200 MB); fix joints that need not move, "
+                     "split the robot, or run it on mock hardware (--mock-hardware)",
+                     model.urdf_path, moving, kMaxSimulatedJoints);
+}
+
 }  // namespace lcm_control

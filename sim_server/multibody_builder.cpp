@@ -77,6 +77,34 @@ btQuaternion bt_rotation(const Eigen::Matrix3d& r) {
   return q;
 }
 
+// Bullet's multibody solver, with room made for a step's Jacobian rows before they are filled: Bullet grows those
+// buffers to the exact size one row at a time (a copy of every row before for each new one), which took a 500-link
+// chain 27 s to size and made a step with more active rows than ever before cost the square of their number. Here
+// they grow once, to an upper bound of the step's rows (and only when that is more than ever before).
+class RoomySolver final : public btMultiBodyConstraintSolver {
+ protected:
+  btScalar solveGroupCacheFriendlySetup(btCollisionObject** bodies, int num_bodies, btPersistentManifold** manifolds,
+                                        int num_manifolds, btTypedConstraint** constraints, int num_constraints,
+                                        const btContactSolverInfo& info, btIDebugDraw* draw) override {
+    int64_t values = 0, dofs = 6;
+    for (int i = 0; i < m_tmpNumMultiBodyConstraints; ++i) {
+      btMultiBodyConstraint* c = m_tmpMultiBodyConstraints[i];
+      const int64_t n = (c->getMultiBodyA() ? c->getMultiBodyA()->getNumDofs() + 6 : 0) +
+                        (c->getMultiBodyB() ? c->getMultiBodyB()->getNumDofs() + 6 : 0);
+      values += int64_t(c->getNumRows()) * n;
+      dofs = std::max(dofs, n);
+    }
+    for (int m = 0; m < num_manifolds; ++m)  // a contact point: its normal, two friction and two torsional rows
+      values += int64_t(manifolds[m]->getNumContacts()) * 5 * 2 * dofs;
+    if (values > m_data.m_jacobians.capacity() && values < INT32_MAX) {
+      m_data.m_jacobians.reserve(int(values));
+      m_data.m_deltaVelocitiesUnitImpulse.reserve(int(values));
+    }
+    return btMultiBodyConstraintSolver::solveGroupCacheFriendlySetup(bodies, num_bodies, manifolds, num_manifolds,
+                                                                     constraints, num_constraints, info, draw);
+  }
+};
+
 }  // namespace
 
 Multibody::Multibody(const RobotModel& model, double dt, const InitialPositions& initial, const WorldOptions& world)
@@ -84,7 +112,7 @@ Multibody::Multibody(const RobotModel& model, double dt, const InitialPositions&
   collision_config_ = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_config_.get());
   broadphase_ = std::make_unique<btDbvtBroadphase>();
-  solver_ = std::make_unique<btMultiBodyConstraintSolver>();
+  solver_ = std::make_unique<RoomySolver>();
   world_ = std::make_unique<btMultiBodyDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
                                                       collision_config_.get());
   world_->setGravity(btVector3(0, 0, -kGravity));

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "description/model_check.hpp"
 
 namespace lcm_control::sim {
 
@@ -41,6 +42,7 @@ Simulation::Simulation(const RobotModel& model, const SimulationRates& rates, co
     mock_ = std::make_unique<MockHardware>(model_, initial_);
     return;
   }
+  if (const std::string why = simulation_size_problem(model_); !why.empty()) throw ModelError(why);
   multibody_ = std::make_unique<Multibody>(model_, 1.0 / rates.physics_hz, initial_, world_);
   actuators_ = std::make_unique<Actuators>(model_, *multibody_);
   multibody_->size_solver_buffers();

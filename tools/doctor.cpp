@@ -9,6 +9,7 @@
 
 #include "cli/cli.hpp"
 #include "tools/model_report.hpp"
+#include "description/model_check.hpp"
 #include "description/robot_model.hpp"
 #include "controller_manager/manager.hpp"
 #include "controller_manager/plugins.hpp"
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
     for (const auto& n : model.notes) std::printf("note: %s\n", n.c_str());
 
     std::vector<std::string> errors, warnings = model.warnings;
+    if (const std::string why = simulation_size_problem(model); !why.empty()) errors.push_back(why);
     size_t loadable = 0;
     if (!config.empty()) {
       if (model.controllers.empty())
