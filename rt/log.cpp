@@ -1,15 +1,86 @@
 #include "rt/log.hpp"
 
+#include <fmt/format.h>
+#include <spdlog/details/null_mutex.h>
+#include <spdlog/sinks/base_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
 
 #include <cstdlib>
+#include <memory>
+#include <string_view>
 
 #include "rt/clock.hpp"
 
 namespace lcm_control {
 
+std::string escape_controls(std::string_view s, bool keep_newlines) {
+  std::string out;
+  out.reserve(s.size());
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (c == '\n' && keep_newlines) {
+      out += "\n  ";  // a continuation, never a line of its own
+    } else if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (c < 0x20 || c == 0x7f) {
+      out += fmt::format("\\x{:02x}", c);
+    } else {
+      out += ch;
+    }
+  }
+  return out;
+}
+
+std::string clip(const std::string& s, size_t max_chars) {
+  if (s.size() <= max_chars) return escape_controls(s, false);
+  return escape_controls(std::string_view(s).substr(0, max_chars), false) + "... (" + std::to_string(s.size()) +
+         " bytes)";
+}
+
+namespace {
+
+bool has_controls(std::string_view s) {
+  for (const char ch : s) {
+    const auto c = static_cast<unsigned char>(ch);
+    if ((c < 0x20 && c != '\t') || c == 0x7f) return true;
+  }
+  return false;
+}
+
+// Hands every message to `inner` with its control characters escaped (escape_controls, newlines kept as
+// continuations): no text that reaches a log, from the bus, a file or anywhere, can move the cursor, colour the
+// terminal or start a line that looks like a program's own.
+class EscapingSink final : public spdlog::sinks::base_sink<spdlog::details::null_mutex> {
+ public:
+  explicit EscapingSink(spdlog::sink_ptr inner) : inner_(std::move(inner)) {}
+
+ protected:
+  void sink_it_(const spdlog::details::log_msg& msg) override {
+    const std::string_view payload(msg.payload.data(), msg.payload.size());
+    if (!has_controls(payload)) return inner_->log(msg);
+    const std::string text = escape_controls(payload, true);
+    spdlog::details::log_msg copy(msg);
+    copy.payload = spdlog::string_view_t(text.data(), text.size());
+    inner_->log(copy);
+  }
+  void flush_() override { inner_->flush(); }
+  void set_pattern_(const std::string& pattern) override { inner_->set_pattern(pattern); }
+  void set_formatter_(std::unique_ptr<spdlog::formatter> f) override { inner_->set_formatter(std::move(f)); }
+
+ private:
+  spdlog::sink_ptr inner_;
+};
+
+}  // namespace
+
 void setup_logging(const std::string& program, const std::string& level) {
-  auto logger = spdlog::stderr_color_mt(program);
+  auto inner = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
+  auto logger = std::make_shared<spdlog::logger>(program, std::make_shared<EscapingSink>(inner));
+  spdlog::register_logger(logger);
   logger->set_pattern("[%n] %^%l%$: %v");
   std::string lvl = level;
   if (lvl.empty())
@@ -17,11 +88,6 @@ void setup_logging(const std::string& program, const std::string& level) {
   logger->set_level(lvl.empty() ? spdlog::level::info : spdlog::level::from_str(lvl));
   logger->flush_on(spdlog::level::trace);
   spdlog::set_default_logger(logger);
-}
-
-std::string clip(const std::string& s, size_t max_chars) {
-  if (s.size() <= max_chars) return s;
-  return s.substr(0, max_chars) + "... (" + std::to_string(s.size()) + " bytes)";
 }
 
 void BusLog::write(spdlog::level::level_enum level, const std::string& line) {

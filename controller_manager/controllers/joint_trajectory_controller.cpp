@@ -451,10 +451,10 @@ class JointTrajectoryController : public Controller {
     for (size_t c = 0; c < g.joint_names.size(); ++c) {
       const auto it = std::find(names_.begin(), names_.end(), g.joint_names[c]);
       if (it == names_.end())
-        return reject(g, fmt::format("joint '{}' is not controlled here (joints: {})", g.joint_names[c],
+        return reject(g, fmt::format("joint '{}' is not controlled here (joints: {})", clip(g.joint_names[c]),
                                      fmt::join(names_, ", ")));
       if (index[it - names_.begin()] >= 0)
-        return reject(g, fmt::format("joint '{}' is listed twice", g.joint_names[c]));
+        return reject(g, fmt::format("joint '{}' is listed twice", clip(g.joint_names[c])));
       index[it - names_.begin()] = static_cast<int>(c);
     }
     if (!allow_partial_)
