@@ -100,7 +100,40 @@ ControllerSlot* ControllerManager::find(const std::string& name) const {
 std::string ControllerManager::names_loaded() const {
   std::vector<std::string> v;
   for (const auto& s : loop_.slots()) v.push_back(s->name);
-  return v.empty() ? "none" : join(v);
+  return v.empty() ? "none" : join_some(v, 20);
+}
+
+Reply ControllerManager::each(const std::vector<std::string>& names, bool load) {
+  Reply all{true, ""};
+  std::vector<std::string> unknown;
+  for (const auto& n : names) {
+    if (!find(n) && (!load || !model_.controller(n))) {
+      unknown.push_back(n);
+      continue;
+    }
+    const Reply one = load ? this->load(n) : unload(n);
+    all.ok = all.ok && one.ok;
+    all.message += (all.message.empty() ? "" : "; ") + one.message;
+  }
+  if (unknown.empty() || (unknown.size() == 1 && names.size() == 1)) {
+    if (!unknown.empty()) return load ? this->load(unknown[0]) : unload(unknown[0]);
+    return all;
+  }
+  std::vector<std::string> quoted, candidates;
+  for (size_t k = 0; k < std::min<size_t>(unknown.size(), 5); ++k) quoted.push_back("'" + clip(unknown[k], 60) + "'");
+  if (unknown.size() > 5) quoted.push_back(fmt::format("(and {} more)", unknown.size() - 5));
+  if (load)
+    for (const auto& c : model_.controllers) candidates.push_back(c.name);
+  else
+    for (const auto& s : loop_.slots()) candidates.push_back(s->name);
+  const std::string near = unknown[0].size() <= 256 ? closest_name(unknown[0], candidates, 3) : "";
+  all.ok = false;
+  all.message += (all.message.empty() ? "" : "; ") +
+                 fmt::format("cannot {} {} controller(s) {}: {}{} ({} controllers: {})", load ? "load" : "unload",
+                             unknown.size(), load ? "with no entry in the config " + model_.config_path : "not loaded",
+                             join(quoted), near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
+                             load ? "configured" : "loaded", candidates.empty() ? "none" : join_some(candidates, 20));
+  return all;
 }
 
 std::string ControllerManager::yaml_key(const std::string& controller) const {
@@ -159,8 +192,8 @@ Reply ControllerManager::load(const std::string& name) {
     for (const auto& c : model_.controllers) configured.push_back(c.name);
     return {false, fmt::format("cannot load '{}': there is no '{}' entry with a type in the config {} (configured "
                                "controllers: {})",
-                               name, yaml_key(name), model_.config_path,
-                               configured.empty() ? "none" : join(configured))};
+                               clip(name), clip(yaml_key(name)), model_.config_path,
+                               configured.empty() ? "none" : join_some(configured, 20))};
   }
   auto slot = std::make_unique<ControllerSlot>();
   slot->name = name;
@@ -194,7 +227,7 @@ std::vector<ControllerCheck> ControllerManager::check_configured() {
 
 Reply ControllerManager::unload(const std::string& name) {
   ControllerSlot* s = find(name);
-  if (!s) return {false, fmt::format("cannot unload '{}': it is not loaded (loaded: {})", name, names_loaded())};
+  if (!s) return {false, fmt::format("cannot unload '{}': it is not loaded (loaded: {})", clip(name), names_loaded())};
   if (s->running)
     return {false, fmt::format("cannot unload '{}': it is running; stop it first (switch with stop=[{}])", name, name)};
   if (busy()) return {false, fmt::format("cannot unload '{}' now: a switch is being applied; retry", name)};

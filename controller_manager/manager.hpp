@@ -61,6 +61,10 @@ class ControllerManager {
 
   Reply load(const std::string& name);
   Reply unload(const std::string& name);
+  // Each name in turn, in one reply; the names not configured (load) or not loaded (unload) are refused together in
+  // one bounded sentence, however many there are.
+  Reply load(const std::vector<std::string>& names) { return each(names, true); }
+  Reply unload(const std::vector<std::string>& names) { return each(names, false); }
   // Applied after the next update when hardware is ticking, at once otherwise;
   // `done` gets the reply when the switch has happened or was refused.
   void switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop, int strictness,
@@ -105,6 +109,7 @@ class ControllerManager {
   std::string yaml_key(const std::string& controller) const;  // its key path in the YAML
   void complete_pending();
   std::string names_loaded() const;
+  Reply each(const std::vector<std::string>& names, bool load);
 
   RobotModel model_;
   Bus& bus_;

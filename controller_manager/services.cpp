@@ -101,6 +101,10 @@ void Services::handle(const cm_request_t& r) {
     return;
   }
   auto names_ok = [&](const std::vector<std::string>& v, const char* field) -> std::string {
+    if (v.size() > kMaxRequestNames)
+      return fmt::format("malformed request: {} names in {}[]; at most {} in one request (docs/reliability.md, "
+                         "\"Limits\")",
+                         v.size(), field, kMaxRequestNames);
     for (size_t k = 0; k < v.size(); ++k)
       if (v[k].empty()) return fmt::format("malformed request: {}[{}] is an empty name", field, k);
     return "";
@@ -118,13 +122,7 @@ void Services::handle(const cm_request_t& r) {
         return answer(r, {false, fmt::format("malformed request: {} needs at least one controller name in names[]",
                                              op_name(r.op))});
       if (auto why = names_ok(r.names, "names"); !why.empty()) return answer(r, {false, why});
-      Reply all{true, ""};
-      for (const auto& n : r.names) {
-        const Reply one = r.op == cm_request_t::LOAD ? cm_.load(n) : cm_.unload(n);
-        all.ok = all.ok && one.ok;
-        all.message += (all.message.empty() ? "" : "; ") + one.message;
-      }
-      answer(r, all);
+      answer(r, r.op == cm_request_t::LOAD ? cm_.load(r.names) : cm_.unload(r.names));
       return;
     }
     case cm_request_t::SWITCH: {

@@ -17,6 +17,9 @@
 
 namespace lcm_control::cm {
 
+// Names one request may carry in names[], start[] or stop[]: more is refused at once, before any work.
+inline constexpr size_t kMaxRequestNames = 1000;
+
 class Services {
  public:
   Services(ControllerManager& cm, Bus& bus);

@@ -5,6 +5,8 @@
 #include <algorithm>
 
 #include "controller_manager/claims.hpp"
+#include "description/text.hpp"
+#include "rt/log.hpp"
 #include "lcm_control/cm_request_t.hpp"
 
 namespace lcm_control::cm {
@@ -12,9 +14,16 @@ namespace lcm_control::cm {
 namespace {
 std::string names(const std::vector<LoadedController>& loaded) {
   if (loaded.empty()) return "none";
-  std::string s;
-  for (size_t k = 0; k < loaded.size(); ++k) s += (k ? ", " : "") + loaded[k].name;
-  return s;
+  std::vector<std::string> v;
+  for (const auto& c : loaded) v.push_back(c.name);
+  return join_some(v, 20);
+}
+// One note for every name of a best-effort switch that is not loaded, however many: the first few, clipped.
+std::string not_loaded_note(const char* verb, const std::vector<std::string>& unknown,
+                            const std::vector<LoadedController>& loaded) {
+  std::vector<std::string> quoted;
+  for (const auto& n : unknown) quoted.push_back("'" + clip(n, 60) + "'");
+  return fmt::format("ignored: cannot {} {}: not loaded (loaded: {})", verb, join_some(quoted, 5), names(loaded));
 }
 int index_of(const std::vector<LoadedController>& loaded, const std::string& n) {
   for (size_t k = 0; k < loaded.size(); ++k)
@@ -42,13 +51,18 @@ SwitchPlan plan_switch(const std::vector<LoadedController>& loaded, const std::v
   const bool strict = strictness == cm_request_t::STRICT;
   for (const auto& s : start)
     if (std::find(stop.begin(), stop.end(), s) != stop.end())
-      return refuse(fmt::format("'{}' is in both the start and the stop list", s));
+      return refuse(fmt::format("'{}' is in both the start and the stop list", clip(s)));
 
+  std::vector<std::string> unknown;
   for (const auto& n : stop) {
     const int k = index_of(loaded, n);
     std::string why;
+    if (k < 0 && !strict) {
+      unknown.push_back(n);
+      continue;
+    }
     if (k < 0)
-      why = fmt::format("cannot stop '{}': it is not loaded (loaded: {})", n, names(loaded));
+      why = fmt::format("cannot stop '{}': it is not loaded (loaded: {})", clip(n), names(loaded));
     else if (loaded[k].state != "running")
       why = fmt::format("cannot stop '{}': it is not running (state: {})", n, loaded[k].state);
     if (!why.empty()) {
@@ -58,11 +72,17 @@ SwitchPlan plan_switch(const std::vector<LoadedController>& loaded, const std::v
     }
     if (std::find(plan.stop.begin(), plan.stop.end(), k) == plan.stop.end()) plan.stop.push_back(k);
   }
+  if (!unknown.empty()) plan.notes.push_back(not_loaded_note("stop", unknown, loaded));
+  unknown.clear();
   for (const auto& n : start) {
     const int k = index_of(loaded, n);
     std::string why;
+    if (k < 0 && !strict) {
+      unknown.push_back(n);
+      continue;
+    }
     if (k < 0)
-      why = fmt::format("cannot start '{}': it is not loaded (loaded: {})", n, names(loaded));
+      why = fmt::format("cannot start '{}': it is not loaded (loaded: {})", clip(n), names(loaded));
     else if (loaded[k].state == "running")
       why = fmt::format("cannot start '{}': it is already running", n);
     if (!why.empty()) {
@@ -72,6 +92,7 @@ SwitchPlan plan_switch(const std::vector<LoadedController>& loaded, const std::v
     }
     if (std::find(plan.start.begin(), plan.start.end(), k) == plan.start.end()) plan.start.push_back(k);
   }
+  if (!unknown.empty()) plan.notes.push_back(not_loaded_note("start", unknown, loaded));
   std::sort(plan.stop.begin(), plan.stop.end());
   std::sort(plan.start.begin(), plan.start.end());
 

@@ -46,6 +46,12 @@ std::string join(const std::vector<std::string>& items, const std::string& sep) 
   return s;
 }
 
+std::string join_some(const std::vector<std::string>& items, size_t max_items, const std::string& sep) {
+  if (items.size() <= max_items) return join(items, sep);
+  std::string s = join(std::vector<std::string>(items.begin(), items.begin() + long(max_items)), sep);
+  return s + (s.empty() ? "" : " ") + "(and " + std::to_string(items.size() - max_items) + " more)";
+}
+
 size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
   for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;

@@ -15,6 +15,8 @@ std::vector<std::string> split(const std::string& s, char sep);
 // A finite number and nothing else (blanks around it allowed); false for "", "1x", "nan", "inf".
 bool parse_double(const std::string& text, double& out);
 std::string join(const std::vector<std::string>& items, const std::string& sep = ", ");
+// The first max_items joined, then "(and N more)": lists in answers and log lines that must stay short.
+std::string join_some(const std::vector<std::string>& items, size_t max_items, const std::string& sep = ", ");
 // Levenshtein distance, for "did you mean" suggestions.
 size_t edit_distance(const std::string& a, const std::string& b);
 // The candidate closest to `name`, "" if none is within `max_distance` edits.

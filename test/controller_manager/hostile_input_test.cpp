@@ -57,3 +57,41 @@ TEST(ControllerManagerHostileInput, AFloodOfRequestsWithHugeNamesCannotFillTheLo
   EXPECT_LT(bytes, 200000);
   EXPECT_EQ(responses.messages.size(), 4000u);
 }
+
+// Issue 35, item 2: a LOAD of many unknown names gets one bounded refusal (before: one per name, each listing every
+// configured controller: a 129 KB request made a 1.93 MB answer), and a request over kMaxRequestNames is refused at
+// once.
+TEST(ControllerManagerHostileInput, ManyUnknownNamesGetOneBoundedRefusal) {
+  Rig rig;
+  cm::Services services(*rig.cm, rig.bus);
+  lcm_control::testing::Recorder<cm_response_t> responses(rig.bus.lcm(), "controller_manager/response");
+  rig.cycle(2);
+  std::vector<std::string> names;
+  for (size_t k = 0; k < cm::kMaxRequestNames; ++k) names.push_back("unknown_" + std::to_string(k));
+  names.push_back("trajectory");  // a configured one among them is loaded
+  names.erase(names.begin());
+  cm_request_t r = cm_request(cm_request_t::LOAD, names);
+  r.request_id = 1;
+  rig.bus.lcm().publish("controller_manager/request", &r);
+  names.push_back("one_too_many"), names.push_back("and_another");
+  cm_request_t big = cm_request(cm_request_t::LOAD, names);
+  big.request_id = 2;
+  rig.bus.lcm().publish("controller_manager/request", &big);
+  rig.pump();
+  ASSERT_EQ(responses.messages.size(), 2u);
+  const cm_response_t& a = responses.messages[0];
+  std::printf("a LOAD of %d bytes with %zu unknown names: an answer of %d bytes\n", r.getEncodedSize(), names.size() - 3,
+              a.getEncodedSize());
+  EXPECT_FALSE(a.ok);
+  EXPECT_LT(a.getEncodedSize(), 64 * 1024);
+  EXPECT_NE(a.message.find("loaded 'trajectory'"), std::string::npos) << a.message;
+  EXPECT_NE(a.message.find("cannot load 999 controller(s) with no entry in the config"), std::string::npos)
+      << a.message.substr(0, 600);
+  EXPECT_NE(a.message.find("'unknown_1', 'unknown_2', 'unknown_3', 'unknown_4', 'unknown_5', (and 994 more)"),
+            std::string::npos)
+      << a.message.substr(0, 600);
+  const cm_response_t& b = responses.messages[1];
+  EXPECT_FALSE(b.ok);
+  EXPECT_NE(b.message.find("malformed request: 1002 names in names[]; at most 1000 in one request"), std::string::npos)
+      << b.message;
+}

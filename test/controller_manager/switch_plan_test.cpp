@@ -58,6 +58,19 @@ TEST(ControllerManagerSwitchPlan, BestEffortDropsThoseEntriesAndSaysSo) {
   ASSERT_EQ(p.notes.size(), 3u);
 }
 
+// However many names are not loaded, they make one note of bounded size (issue 35, item 2).
+TEST(ControllerManagerSwitchPlan, BestEffortSaysAllUnknownNamesInOneShortNote) {
+  Fixture f;
+  std::vector<std::string> start(1000, std::string(5000, 'q'));
+  start.push_back("c");
+  const auto p = plan_switch(f.loaded, start, {}, 1);
+  ASSERT_TRUE(p.ok) << p.message;
+  EXPECT_EQ(p.start, std::vector<int>{2});
+  ASSERT_EQ(p.notes.size(), 1u);
+  EXPECT_LT(p.notes[0].size(), 1000u) << p.notes[0];
+  EXPECT_NE(p.notes[0].find("(and 995 more): not loaded"), std::string::npos) << p.notes[0];
+}
+
 TEST(ControllerManagerSwitchPlan, SameNameInBothListsAndBadStrictnessAreRefused) {
   Fixture f;
   EXPECT_FALSE(plan_switch(f.loaded, {"b"}, {"b"}, 1).ok);
