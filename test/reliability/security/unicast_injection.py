@@ -6,7 +6,11 @@ ttl=0 udpm:// URL, "peer" is another machine on the robot's network. A plain
 UDP datagram from the peer to the robot's address on the LCM port is logged as
 a message (LCM binds its socket to 0.0.0.0:PORT). With scripts/lcm-firewall
 installed in the robot's namespace it is not, while a local publisher still
-is; allowing the veth interface lets the peer in again.
+is; allowing the veth interface lets the peer in again. Then with the multicast
+route on the veth, as "Several computers" in the user guide sets it on eth0:
+the firewall must still let the robot's own looped-back traffic through (it
+dropped it once: iifname is then the veth, not lo), and --allow-from the peer
+lets that peer in.
 
 Needs root, ip (iproute2), nft (nftables) and lcm-logger; exits 77 (skipped)
 without them. Prints a RELIABILITY line for test/reliability/run.
@@ -138,6 +142,11 @@ def main():
             guarded = trial(net, port, logdir, "guarded")
             net.ns(net.robot, firewall, "install", "--port", str(port), "--allow-interface", net.robot_if)
             allowed = trial(net, port, logdir, "allowed")
+            net.ns(net.robot, "ip", "route", "replace", "224.0.0.0/4", "dev", net.robot_if)
+            net.ns(net.robot, firewall, "install", "--port", str(port))
+            routed = trial(net, port, logdir, "routed")
+            net.ns(net.robot, firewall, "install", "--port", str(port), "--allow-from", net.peer_ip)
+            routed_peer = trial(net, port, logdir, "routed_peer")
             net.ns(net.robot, firewall, "remove")
         finally:
             net.close()
@@ -156,10 +165,21 @@ def main():
         failures.append("with lcm-firewall installed the local publisher was not heard: the rule breaks the bus")
     if count(allowed, "INJECTED") == 0:
         failures.append("--allow-interface did not let the allowed interface's datagram in")
-    blocked = 3 - count(guarded, "INJECTED")
-    print(f"RELIABILITY|security|unicast injection from another host|tried=3|ok={blocked}|crashes=0|hangs=0|"
-          f"accepted without a firewall {count(open_bus, 'INJECTED')}/3, with scripts/lcm-firewall "
-          f"{count(guarded, 'INJECTED')}/3 (local bus still heard {count(guarded, 'LOCAL')}/3)")
+    print(f"route on {net.robot_if}:  injected {count(routed, 'INJECTED')}/3 logged, local {count(routed, 'LOCAL')}/3")
+    print(f"--allow-from peer: injected {count(routed_peer, 'INJECTED')}/3 logged, "
+          f"local {count(routed_peer, 'LOCAL')}/3")
+    if count(routed, "LOCAL") == 0:
+        failures.append("with the multicast route on the veth, lcm-firewall dropped the host's own traffic")
+    if count(routed, "INJECTED") != 0:
+        failures.append("with the multicast route on the veth, the peer's datagram still reached lcm-logger")
+    if count(routed_peer, "INJECTED") == 0 or count(routed_peer, "LOCAL") == 0:
+        failures.append("--allow-from did not let the allowed peer in (or lost the local traffic)")
+    blocked = 6 - count(guarded, "INJECTED") - count(routed, "INJECTED")
+    print(f"RELIABILITY|security|unicast injection from another host, multicast route on lo and on a veth|tried=6|"
+          f"ok={blocked}|crashes=0|hangs=0|accepted without a firewall {count(open_bus, 'INJECTED')}/3, with "
+          f"scripts/lcm-firewall {count(guarded, 'INJECTED')}/3 (route on lo) and {count(routed, 'INJECTED')}/3 "
+          f"(route on the veth); the host's own bus still heard {count(guarded, 'LOCAL')}/3 and "
+          f"{count(routed, 'LOCAL')}/3; --allow-from the peer {count(routed_peer, 'INJECTED')}/3 in")
     for f in failures:
         print("FAILED: " + f)
     return 1 if failures else 0
