@@ -119,8 +119,8 @@ int cmd_netcheck(Bus& bus, double duration_s, bool answer_only) {
   std::string nft_out;
   if (run_and_wait({"nft", "list", "table", "inet", "lcm_control"}, 3.0, &nft_out) == 0)
     fmt::print("firewall:  nftables table inet lcm_control is installed (scripts/lcm-firewall): UDP to its ports is "
-               "taken only on lo and the interfaces it allows; allow the robot's network with scripts/lcm-firewall "
-               "install --port {} --allow-interface IF\n",
+               "taken only from this computer and the interfaces and peers it allows; allow the robot's other "
+               "computers with scripts/lcm-firewall install --port {} --allow-from ADDR (or --allow-interface IF)\n",
                url.port);
   netcheck_t self{};
   self.host = host;
