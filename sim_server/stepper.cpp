@@ -248,7 +248,7 @@ void Stepper::after_step() {
 void Stepper::serve(const sim_request_t& req) {
   const std::string who = req.client.empty() ? "" : fmt::format(" (from {})", clip(req.client));
   auto reply = [&](bool ok, std::string message) {
-    if (ok && req.op != sim_request_t::STATUS) spdlog::info("{}{}", message, who);
+    if (ok && req.op != sim_request_t::STATUS) request_log_.info(message + who);
     io_.answer(response_to(req, ok, std::move(message)));
   };
   const int64_t now = monotonic_us();

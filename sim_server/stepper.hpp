@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "rt/log.hpp"
 #include "rt/loop_stats.hpp"
 #include "sim_server/sim_io.hpp"
 #include "sim_server/simulation.hpp"
@@ -47,6 +48,7 @@ class Stepper {
   bool run(const std::atomic<bool>& stop);
 
  private:
+  BusLog request_log_;  // the requests served: anyone may send many, so clipped and rate-limited
   bool run_lockstep(const std::atomic<bool>& stop);
   bool run_real_time(const std::atomic<bool>& stop);
   // Paused with no steps to take: the state is republished, requests are served.

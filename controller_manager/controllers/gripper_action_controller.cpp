@@ -24,6 +24,7 @@
 #include "controller_manager/controllers/factories.hpp"
 #include "lcm_control/gripper_command_t.hpp"
 #include "lcm_control/gripper_status_t.hpp"
+#include "rt/log.hpp"
 
 namespace lcm_control::cm {
 
@@ -86,7 +87,7 @@ class GripperActionController : public Controller {
         ctx.channel("command"), [this](const gripper_command_t& g) { on_goal(g); },
         [this](const std::string& why) {
           ++dropped_;
-          spdlog::warn("{}: {}", name_, why);
+          goal_log_.warn(fmt::format("{}: {}", name_, why));
         });
   }
 
@@ -225,7 +226,7 @@ class GripperActionController : public Controller {
     r.position = joint_->position;
     r.message = fmt::format("{}: goal {} rejected: {}", name_, g.goal_id, why);
     result_pub_.publish(r);
-    spdlog::warn("{}", r.message);
+    goal_log_.warn(r.message);
   }
 
   // Runs between cycles, in the loop's thread.
@@ -250,8 +251,8 @@ class GripperActionController : public Controller {
     goal_active_ = true;
     last_movement_ = last_t_;
     last_feedback_ = -kInf;
-    spdlog::info("{}: goal {} accepted: position {} on '{}', max_effort {}", name_, g.goal_id, g.position,
-                 status_.joint, limit_);
+    goal_log_.info(fmt::format("{}: goal {} accepted: position {} on '{}', max_effort {}", name_, g.goal_id,
+                               g.position, status_.joint, limit_));
   }
 
   Interface iface_;
@@ -267,6 +268,7 @@ class GripperActionController : public Controller {
   int64_t goal_id_ = 0;
   gripper_status_t status_{};
   char text_[512] = {};
+  BusLog goal_log_;  // goals and what could not be one: as many as anyone sends, so clipped and rate-limited
   Publisher<gripper_status_t> feedback_pub_, result_pub_;
 };
 
