@@ -1,12 +1,14 @@
 // Limits, end to end (issue 35): turret_bot with its trajectory controller in real time, while this test sends
 // what a careless or hostile peer might: first fragments of huge messages and messages that never complete
-// (item 4), trajectory goals too large to take (item 5), and robots of thousands of links (item 6). Each test prints its figures as a RELIABILITY line.
+// (item 4), trajectory goals too large to take (item 5), robots of thousands of links (item 6), and goals meant to
+// flood or forge the log (item 1). Each test prints its figures as a RELIABILITY line.
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -222,4 +224,38 @@ TEST(Limits, ALongChainIsReadyQuicklyOrRefusedAtOnceWithTheLimitNamed) {
   std::filesystem::remove_all(folder);
   std::printf("RELIABILITY|limits|serial chains of 500 and 5,000 links|tried=2|ok=%d|crashes=0|hangs=0|%s\n",
               ::testing::Test::HasFailure() ? 0 : 2, figures.c_str());
+}
+
+// Item 1: 5,000 trajectory goals naming a 60 KB joint that clears the screen and forges a line (before: 300 MB of
+// log, one raw line per goal). The controller manager's log grows by at most 1 MB per 10,000 such messages, and no
+// escape character or forged line reaches it.
+TEST(Limits, HostileGoalsCannotFloodOrForgeTheLog) {
+  Robot robot;
+  ASSERT_NO_FATAL_FAILURE(robot.bring_up());
+  sleep_s(0.5);
+  const size_t before = robot.cm_output().size();
+  lcm::LCM lc(robot.url());
+  joint_trajectory_t g = goal_of(1, 1);
+  g.joint_names[0] = std::string(60000, 'j') + "\x1b[2J\x1b[31m\r\n[controller_manager] info: all good";
+  const int n = 5000;
+  for (int k = 0; k < n; ++k) {
+    g.goal_id = 100000 + k;
+    lc.publish("trajectory_controller/command", &g);
+    if (k % 50 == 49) sleep_s(0.005);  // as fast as the bus takes them: 60 KB each
+  }
+  sleep_s(1.5);
+  g.goal_id = 99;  // the next line after the flood tells how many were left out
+  lc.publish("trajectory_controller/command", &g);
+  sleep_s(0.5);
+  const std::string out = robot.cm_output();
+  const size_t grew = out.size() - before;
+  const double per_10k = double(grew) * 10000.0 / n;
+  std::printf("RELIABILITY|limits|%d trajectory goals naming a 60 KB joint with escapes and a forged line|tried=%d|"
+              "ok=%d|crashes=0|hangs=0|controller_manager log grew %zu bytes (%.0f bytes per 10,000); escape "
+              "characters in it: %zu\n",
+              n, n, grew < 500000 ? n : 0, grew, per_10k, size_t(std::count(out.begin(), out.end(), '\x1b')));
+  EXPECT_LT(per_10k, 1e6);
+  EXPECT_EQ(out.find('\x1b'), std::string::npos);
+  EXPECT_EQ(out.find("\n[controller_manager] info: all good"), std::string::npos) << "a forged line";
+  EXPECT_NE(out.find("similar lines not logged"), std::string::npos) << out.substr(out.size() - 2000);
 }
