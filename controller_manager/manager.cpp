@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <string_view>
+#include <unordered_set>
 
 #include "bus/hardware_wire.hpp"
 #include "bus/messages.hpp"
@@ -106,8 +108,12 @@ std::string ControllerManager::names_loaded() const {
 Reply ControllerManager::each(const std::vector<std::string>& names, bool load) {
   Reply all{true, ""};
   std::vector<std::string> unknown;
+  std::unordered_set<std::string_view> known;  // one pass over the config and the slots, however many names
+  for (const auto& s : loop_.slots()) known.insert(s->name);
+  if (load)
+    for (const auto& c : model_.controllers) known.insert(c.name);
   for (const auto& n : names) {
-    if (!find(n) && (!load || !model_.controller(n))) {
+    if (!known.count(n)) {
       unknown.push_back(n);
       continue;
     }
