@@ -37,43 +37,6 @@ bool pump(LcmSocket& s, Done done, double timeout_s = 2) {
   return true;
 }
 
-// A socket that sends to the URL's group, and the group's address.
-int socket_fd_for(const std::string&) {
-  const int fd = socket(AF_INET, SOCK_DGRAM, 0);
-  const unsigned char ttl = 0;
-  setsockopt(fd, IPPROTO_IP, IP_MULTICAST_TTL, &ttl, sizeof(ttl));
-  return fd;
-}
-sockaddr_in group_of(const std::string& url) {
-  const UdpmAddress a = parse_udpm_url(url);
-  sockaddr_in to{};
-  to.sin_family = AF_INET;
-  to.sin_port = htons(uint16_t(a.port));
-  inet_pton(AF_INET, a.group.c_str(), &to.sin_addr);
-  return to;
-}
-
-// Datagrams sent to the URL's group and port from one socket (one sender, as LCM's reassembly sees senders).
-class RawSender {
- public:
-  explicit RawSender(const std::string& url) : fd_(socket(AF_INET, SOCK_DGRAM, 0)) {
-    const UdpmAddress a = parse_udpm_url(url);
-    to_.sin_family = AF_INET;
-    to_.sin_port = htons(uint16_t(a.port));
-    inet_pton(AF_INET, a.group.c_str(), &to_.sin_addr);
-    const unsigned char ttl = 0;
-    setsockopt(fd_, IPPROTO_IP, IP_MULTICAST_TTL, &ttl, sizeof(ttl));
-  }
-  ~RawSender() { close(fd_); }
-  template <size_t N>
-  void send(const uint8_t (&bytes)[N]) {
-    EXPECT_EQ(sendto(fd_, bytes, N, 0, reinterpret_cast<sockaddr*>(&to_), sizeof(to_)), ssize_t(N));
-  }
-
- private:
-  int fd_;
-  sockaddr_in to_{};
-};
 }  // namespace
 
 TEST(UdpmUrl, TakesLcmsDefaultsPortAndReceiveBufferAndNamesWhatIsWrong) {
@@ -164,7 +127,7 @@ TEST(LcmSocket, CountsWhatIsNotLcmAndDeliversNoneOfIt) {
   int delivered = 0;
   socket.subscribe("hardware/state", [&](const lcm::ReceiveBuffer&) { ++delivered; });
 
-  RawSender raw(url);
+  lt::RawSender raw(url);
   const uint8_t garbage[] = "not LCM at all";
   raw.send(garbage);
   const uint8_t no_nul[] = {0x4c, 0x43, 0x30, 0x32, 0, 0, 0, 1, 'h', 'a', 'r', 'd'};  // LC02, name never ends
@@ -209,7 +172,7 @@ TEST(LcmSocket, PutsFragmentedMessagesTogetherAsLcmSendsThem) {
   EXPECT_EQ(socket.incomplete(), 0);
 
   // A sender that moves on before its message is complete loses that message, and only that one.
-  RawSender raw(url);
+  lt::RawSender raw(url);
   const uint8_t first_of_two[] = {0x4c, 0x43, 0x30, 0x33, 0, 0, 0, 7, 0, 0, 0, 4, 0, 0, 0, 0, 0, 0, 0, 2,
                                   'g', 'o', 'a', 'l', 0, 1, 2};
   raw.send(first_of_two);
@@ -221,26 +184,6 @@ TEST(LcmSocket, PutsFragmentedMessagesTogetherAsLcmSendsThem) {
   EXPECT_EQ(socket.incomplete(), 1);
 }
 
-namespace {
-// An LC03 fragment: message `seqno` of `total` bytes, fragment `number` of `count` at `offset`, carrying `data`
-// (the channel name and its NUL first, in fragment 0).
-std::vector<uint8_t> lc03(uint32_t seqno, uint32_t total, uint32_t offset, uint16_t number, uint16_t count,
-                          const std::vector<uint8_t>& data) {
-  std::vector<uint8_t> d{0x4c, 0x43, 0x30, 0x33};
-  auto be = [&](uint64_t v, int bytes) {
-    for (int k = bytes - 1; k >= 0; --k) d.push_back(uint8_t(v >> (8 * k)));
-  };
-  be(seqno, 4), be(total, 4), be(offset, 4), be(number, 2), be(count, 2);
-  d.insert(d.end(), data.begin(), data.end());
-  return d;
-}
-std::vector<uint8_t> named(const std::string& channel, size_t payload_bytes) {
-  std::vector<uint8_t> d(channel.begin(), channel.end());
-  d.push_back(0);
-  d.resize(d.size() + payload_bytes, 7);
-  return d;
-}
-}  // namespace
 
 // Issue 35, item 4: forged first fragments of huge messages, and messages that never complete, cost memory only as
 // their fragments arrive and only for a while; the subscriber hears of each loss on its channel.
@@ -254,16 +197,13 @@ TEST(LcmSocket, ReassemblyIsBoundedAndTellsTheSubscriberWhatWasLost) {
     lost.push_back(fmt::format("{} {} {} {}", l.channel, l.bytes, l.too_large ? "too large" : "incomplete",
                                l.head_size));
   });
-  const int fd = socket_fd_for(url);
-  sockaddr_in to = group_of(url);
-  auto send = [&](const std::vector<uint8_t>& d) {
-    EXPECT_EQ(sendto(fd, d.data(), d.size(), 0, reinterpret_cast<sockaddr*>(&to), sizeof(to)), ssize_t(d.size()));
-  };
+  lt::RawSender raw(url);
+  auto send = [&](const std::vector<uint8_t>& d) { raw.send(d); };
   // Eight first fragments of 16 MB messages from one sender, then of 3 MB ones: nothing is kept for the first, the
   // others hold only what arrived.
   // (Datagrams of a few kB and a pump after each burst: the kernel's receive buffer holds them.)
-  for (uint32_t k = 0; k < 8; ++k) send(lc03(100 + k, 16u << 20, 0, 0, 300, named("goal", 4000)));
-  for (uint32_t k = 0; k < 8; ++k) send(lc03(200 + k, 3u << 20, 0, 0, 800, named("goal", 4000)));
+  for (uint32_t k = 0; k < 8; ++k) send(lt::lcm_fragment(100 + k, 16u << 20, 0, 0, 300, lt::named_payload("goal", 4000)));
+  for (uint32_t k = 0; k < 8; ++k) send(lt::lcm_fragment(200 + k, 3u << 20, 0, 0, 800, lt::named_payload("goal", 4000)));
   ASSERT_TRUE(pump(socket, [&] { return lost.size() == 15; })) << fmt::format("{}", fmt::join(lost, "; "));
   EXPECT_EQ(socket.too_large(), 8);
   EXPECT_EQ(lost[0], fmt::format("goal {} too large 4000", 16u << 20));
@@ -271,13 +211,13 @@ TEST(LcmSocket, ReassemblyIsBoundedAndTellsTheSubscriberWhatWasLost) {
   EXPECT_LT(socket.reassembly_bytes(), 300000u);
   // A fragment out of order loses its message; a message left unfinished is dropped after kFragmentTimeoutUs and
   // its buffer given back.
-  send(lc03(300, 20000, 0, 0, 4, named("goal", 5000)));
-  send(lc03(300, 20000, 10000, 2, 4, std::vector<uint8_t>(5000, 1)));
+  send(lt::lcm_fragment(300, 20000, 0, 0, 4, lt::named_payload("goal", 5000)));
+  send(lt::lcm_fragment(300, 20000, 10000, 2, 4, std::vector<uint8_t>(5000, 1)));
   ASSERT_TRUE(pump(socket, [&] { return lost.size() == 17; })) << fmt::format("{}", fmt::join(lost, "; "));
   EXPECT_EQ(lost[16], "goal 20000 incomplete 5000");
-  send(lc03(400, 2400000, 0, 0, 600, named("goal", 4000)));
+  send(lt::lcm_fragment(400, 2400000, 0, 0, 600, lt::named_payload("goal", 4000)));
   for (uint16_t k = 1; k < 599; ++k) {
-    send(lc03(400, 2400000, 4000u * k, k, 600, std::vector<uint8_t>(4000, 2)));
+    send(lt::lcm_fragment(400, 2400000, 4000u * k, k, 600, std::vector<uint8_t>(4000, 2)));
     if (k % 20 == 0) socket.handle_queued();
   }
   ASSERT_TRUE(pump(socket, [&] { return socket.reassembly_bytes() > 4000u * 599; }))
@@ -288,7 +228,6 @@ TEST(LcmSocket, ReassemblyIsBoundedAndTellsTheSubscriberWhatWasLost) {
   EXPECT_EQ(lost[17], fmt::format("goal 2400000 incomplete {}", 4000 * 599));
   EXPECT_LE(socket.reassembly_bytes(), LcmSocket::kKeptBytes * 4);
   EXPECT_EQ(delivered, 0);
-  close(fd);
 }
 
 TEST(LcmSocket, WaitForSkipsOtherChannelsAndTimesOut) {

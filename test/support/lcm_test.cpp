@@ -6,12 +6,51 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstring>
 #include <fstream>
 #include <random>
 #include <limits>
 #include <stdexcept>
 
+#include "bus/lcm_socket.hpp"
+
 namespace lcm_control::testing {
+
+RawSender::RawSender(const std::string& url) : fd_(socket(AF_INET, SOCK_DGRAM, 0)), to_(sizeof(sockaddr_in)) {
+  const UdpmAddress a = parse_udpm_url(url);
+  sockaddr_in to{};
+  to.sin_family = AF_INET;
+  to.sin_port = htons(uint16_t(a.port));
+  inet_pton(AF_INET, a.group.c_str(), &to.sin_addr);
+  std::memcpy(to_.data(), &to, sizeof to);
+  const unsigned char ttl = 0;
+  setsockopt(fd_, IPPROTO_IP, IP_MULTICAST_TTL, &ttl, sizeof(ttl));
+}
+
+RawSender::~RawSender() { close(fd_); }
+
+void RawSender::send(const std::vector<uint8_t>& d) {
+  const ssize_t n = sendto(fd_, d.data(), d.size(), 0, reinterpret_cast<const sockaddr*>(to_.data()), socklen_t(to_.size()));
+  if (n != ssize_t(d.size())) throw std::runtime_error("RawSender: sendto failed");
+}
+
+std::vector<uint8_t> lcm_fragment(uint32_t seqno, uint32_t total, uint32_t offset, uint16_t number, uint16_t count,
+                                  const std::vector<uint8_t>& data) {
+  std::vector<uint8_t> d{0x4c, 0x43, 0x30, 0x33};
+  auto be = [&](uint64_t v, int bytes) {
+    for (int k = bytes - 1; k >= 0; --k) d.push_back(uint8_t(v >> (8 * k)));
+  };
+  be(seqno, 4), be(total, 4), be(offset, 4), be(number, 2), be(count, 2);
+  d.insert(d.end(), data.begin(), data.end());
+  return d;
+}
+
+std::vector<uint8_t> named_payload(const std::string& channel, size_t payload_bytes) {
+  std::vector<uint8_t> d(channel.begin(), channel.end());
+  d.push_back(0);
+  d.resize(d.size() + payload_bytes, 7);
+  return d;
+}
 
 std::string unique_lcm_url() {
   // A random port below the kernel's ephemeral range: a port from that range can be taken, between this check and

@@ -5,6 +5,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -17,6 +18,32 @@ namespace lcm_control::testing {
 // it subscribes to: a receive buffer of 4 MB (net.core.rmem_max here) keeps a busy process (a JVM, a plotter running
 // gnuplot) from dropping any.
 std::string unique_lcm_url();
+
+// A UDP socket that sends hand-made datagrams to a udpm:// URL's group and port: one LCM sender, as reassembly tells
+// senders apart (ttl 0, nothing leaves the host).
+class RawSender {
+ public:
+  explicit RawSender(const std::string& url);
+  ~RawSender();
+  RawSender(const RawSender&) = delete;
+  RawSender& operator=(const RawSender&) = delete;
+  void send(const std::vector<uint8_t>& datagram);
+  template <size_t N>
+  void send(const uint8_t (&bytes)[N]) {
+    send(std::vector<uint8_t>(bytes, bytes + N));
+  }
+
+ private:
+  int fd_;
+  std::vector<uint8_t> to_;  // the sockaddr_in
+};
+
+// An LCM fragment ("LC03") as LCM sends it: fragment `number` of `count` of message `seqno` (`total` bytes), at
+// `offset`, carrying `data` (fragment 0 starts with the channel name and its NUL; see named_payload).
+std::vector<uint8_t> lcm_fragment(uint32_t seqno, uint32_t total, uint32_t offset, uint16_t number, uint16_t count,
+                                  const std::vector<uint8_t>& data);
+// `channel`, its NUL and payload_bytes filler bytes: the data of a fragment 0.
+std::vector<uint8_t> named_payload(const std::string& channel, size_t payload_bytes);
 
 // Pumps lc until pred() is true or timeout_s passes; returns pred().
 bool pump_until(lcm::LCM& lc, const std::function<bool()>& pred, double timeout_s);

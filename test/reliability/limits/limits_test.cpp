@@ -2,11 +2,7 @@
 // what a careless or hostile peer might: first fragments of huge messages and messages that never complete
 // (item 4), trajectory goals too large to take (item 5), robots of thousands of links (item 6), and goals meant to
 // flood or forge the log (item 1). Each test prints its figures as a RELIABILITY line.
-#include <arpa/inet.h>
 #include <gtest/gtest.h>
-#include <netinet/in.h>
-#include <sys/socket.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -41,35 +37,13 @@ struct Robot : lt::RobotSession {
   pid_t sim_pid() const { return sim_ ? sim_->pid() : -1; }
 };
 
-// A UDP sender to the URL's group: one LCM "sender" as reassembly tells them apart.
-class RawSender {
- public:
-  explicit RawSender(const std::string& url) : fd_(socket(AF_INET, SOCK_DGRAM, 0)) {
-    const UdpmAddress a = parse_udpm_url(url);
-    to_.sin_family = AF_INET;
-    to_.sin_port = htons(uint16_t(a.port));
-    inet_pton(AF_INET, a.group.c_str(), &to_.sin_addr);
-    const unsigned char ttl = 0;
-    setsockopt(fd_, IPPROTO_IP, IP_MULTICAST_TTL, &ttl, sizeof(ttl));
-  }
-  ~RawSender() { close(fd_); }
-  // Fragment `number` of `count` of message `seqno` (`total` bytes) at `offset`; fragment 0 carries the channel.
-  void fragment(uint32_t seqno, uint32_t total, uint32_t offset, uint16_t number, uint16_t count,
-                const std::string& channel, size_t bytes) {
-    std::vector<uint8_t> d{0x4c, 0x43, 0x30, 0x33};
-    auto be = [&](uint64_t v, int n) {
-      for (int k = n - 1; k >= 0; --k) d.push_back(uint8_t(v >> (8 * k)));
-    };
-    be(seqno, 4), be(total, 4), be(offset, 4), be(number, 2), be(count, 2);
-    if (number == 0) d.insert(d.end(), channel.c_str(), channel.c_str() + channel.size() + 1);
-    d.resize(d.size() + bytes, 0x5a);
-    sendto(fd_, d.data(), d.size(), 0, reinterpret_cast<sockaddr*>(&to_), sizeof(to_));
-  }
-
- private:
-  int fd_;
-  sockaddr_in to_{};
-};
+// Fragment `number` of `count` of message `seqno` (`total` bytes) at `offset`, `bytes` long; fragment 0 carries the
+// channel.
+void send_fragment(lt::RawSender& sender, uint32_t seqno, uint32_t total, uint32_t offset, uint16_t number,
+                   uint16_t count, const std::string& channel, size_t bytes) {
+  sender.send(lt::lcm_fragment(seqno, total, offset, number, count,
+                               number == 0 ? lt::named_payload(channel, bytes) : std::vector<uint8_t>(bytes, 0x5a)));
+}
 
 joint_trajectory_t goal_of(int64_t id, int points) {
   joint_trajectory_t g{};
@@ -98,15 +72,15 @@ TEST(Limits, FragmentsOfHugeOrUnfinishedMessagesAreNotHeld) {
   sleep_s(1.0);
   const long cm0 = lt::rss_kb(robot.controller_manager_pid()), sim0 = lt::rss_kb(robot.sim_pid());
   const size_t chunk = 60000;
-  std::vector<std::unique_ptr<RawSender>> senders;
-  for (int s = 0; s < 16; ++s) senders.push_back(std::make_unique<RawSender>(robot.url()));
+  std::vector<std::unique_ptr<lt::RawSender>> senders;
+  for (int s = 0; s < 16; ++s) senders.push_back(std::make_unique<lt::RawSender>(robot.url()));
   for (int s = 0; s < 16; ++s) {  // 8 senders on the controller manager's channel, 8 on the simulator's
     const std::string channel = s < 8 ? "trajectory_controller/command" : "hardware/command";
-    senders[size_t(s)]->fragment(uint32_t(10 * s), 16u << 20, 0, 0, 300, channel, chunk);
+    send_fragment(*senders[size_t(s)], uint32_t(10 * s), 16u << 20, 0, 0, 300, channel, chunk);
     const uint32_t total = 3500000, count = total / chunk + 1;
     for (uint32_t k = 0; k < 50; ++k) {  // 3 MB of it, then silence
-      senders[size_t(s)]->fragment(uint32_t(10 * s + 1), total, uint32_t(k * chunk), uint16_t(k), uint16_t(count),
-                                   channel, chunk);
+      send_fragment(*senders[size_t(s)], uint32_t(10 * s + 1), total, uint32_t(k * chunk), uint16_t(k),
+                    uint16_t(count), channel, chunk);
       if (k % 4 == 3) sleep_s(0.002);  // at the pace the receivers read
     }
   }
@@ -114,7 +88,7 @@ TEST(Limits, FragmentsOfHugeOrUnfinishedMessagesAreNotHeld) {
   const long cm_peak = lt::rss_kb(robot.controller_manager_pid()), sim_peak = lt::rss_kb(robot.sim_pid());
   sleep_s(LcmSocket::kFragmentTimeoutUs * 1e-6 + 1.5);
   // A datagram after the timeout: the loops drop what they held when they next read their sockets.
-  senders[0]->fragment(99, 100, 0, 0, 1, "unrelated", 90);
+  send_fragment(*senders[0], 99, 100, 0, 0, 1, "unrelated", 90);
   sleep_s(0.5);
   const long cm1 = lt::rss_kb(robot.controller_manager_pid()), sim1 = lt::rss_kb(robot.sim_pid());
   std::printf("RELIABILITY|limits|16 senders: a 16 MB first fragment + 3 MB of an unfinished 3.5 MB message each, on "
