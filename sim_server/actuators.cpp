@@ -17,6 +17,11 @@ namespace {
 // slope f/v0 stays a stable explicit damping for the joint's inertia.
 constexpr double kMinFrictionSpeed = 1e-3;
 constexpr double kUnlimitedEffort = 1e9;
+// A position PID's D term goes through the solver (ImplicitJointDamper) once d*dt/I passes this. An explicit D term
+// is unstable at d*dt/I = 2 for one joint alone, but near-coaxial joints of light links move modes lighter than any
+// one joint's effective inertia (the upright Panda: largest mode 1.45x its largest joint's d*dt/I); below it the
+// explicit term is cheaper (an always-active solver row costs a sweep of the whole body per iteration).
+constexpr double kImplicitDamping = 0.25;
 
 double finite_or(double v, double fallback) { return std::isfinite(v) ? v : fallback; }
 
@@ -47,6 +52,7 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
     a.joint = t.joint;
     a.map = t.map;
     a.link = mj.link;
+    a.inertia = mj.effective_inertia;
     a.continuous = j.type == JointType::Continuous;
     a.effort_limit = j.effort_limit;
     a.velocity_limit = j.velocity_limit;
@@ -79,6 +85,12 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
     a.mode = a.mode_for[a.wire_mode];
     if (a.has_pid) a.pid.set_gains(gains->second);
     if (brakeable) a.brake = mb.add_motor(a.link, finite_or(a.effort_limit, kUnlimitedEffort) * dt);
+    if (a.offered[hardware_command_t::MODE_POSITION] && a.mode_for[hardware_command_t::MODE_POSITION] ==
+                                                           ActuatorMode::PositionPid) {
+      a.damper = mb.add_damper(a.link);  // in the world now, so that putting it back later does not allocate
+      a.damper_on = true;
+    }
+    choose_damping(a);
     a.position_motor_on = a.position_motor != nullptr;
     a.velocity_motor_on = a.velocity_motor != nullptr;
     a.braking = a.brake != nullptr;
@@ -175,7 +187,12 @@ void Actuators::set_e_stop(bool engaged) {
 bool Actuators::set_gains(int i, const PidGains& g) {
   if (!actuators_[i].has_pid) return false;
   actuators_[i].pid.set_gains(g);
+  choose_damping(actuators_[i]);
   return true;
+}
+
+void Actuators::choose_damping(Actuator& a) {
+  a.implicit_d = a.damper && a.inertia > 0 && a.pid.gains().d * mb_.dt() / a.inertia > kImplicitDamping;
 }
 
 double Actuators::position_goal(Actuator& a, bool hold, double dt) {
@@ -206,6 +223,7 @@ void Actuators::switch_mode(Actuator& a, int8_t wire_mode) {
   a.wire_mode = wire_mode;
   a.mode = a.mode_for[wire_mode];
   a.pid.reset();
+  a.have_last_goal = false;
   a.saturation.reset(a.q);  // a position goal moves from where the joint is, at most at the velocity limit
 }
 
@@ -218,6 +236,7 @@ void Actuators::apply(double dt) {
     if (a.commanded && a.next_wire_mode != a.wire_mode) switch_mode(a, a.next_wire_mode);
     set_in_world(a.position_motor, a.position_motor_on, a.mode == ActuatorMode::PositionDirect);
     set_in_world(a.velocity_motor, a.velocity_motor_on, a.mode == ActuatorMode::VelocityMotor);
+    set_in_world(a.damper, a.damper_on, a.mode == ActuatorMode::PositionPid && a.implicit_d);
     const bool brakeable_mode = a.mode != ActuatorMode::PositionDirect && a.mode != ActuatorMode::VelocityMotor;
     set_in_world(a.brake, a.braking, brakeable_mode && brakes_ && !e_stop_ && (hold_all_ || !a.commanded));
     if (a.braking) {
@@ -230,7 +249,20 @@ void Actuators::apply(double dt) {
       case ActuatorMode::PositionPid: {
         const double goal = position_goal(a, hold, dt);
         const double error = a.continuous ? shortest_angular_distance(q, goal) : goal - q;
-        a.effort = clamp_abs(a.pid.compute(error, dt), e_max);
+        const double u = a.pid.compute(error, dt);
+        if (!a.damper_on) {
+          a.effort = clamp_abs(u, e_max);
+        } else {
+          // d*(goal rate - v_next) in the solver instead of d*de/dt = d*(goal rate - v_now) here; together within
+          // the effort limit.
+          const double step = a.continuous ? shortest_angular_distance(a.last_goal, goal) : goal - a.last_goal;
+          const double goal_rate = a.have_last_goal ? step / dt : 0.0;
+          a.effort = clamp_abs(u - a.pid.last_d_term(), e_max);
+          const double limit = std::isfinite(e_max) ? e_max : kUnlimitedEffort;
+          a.damper->set(a.pid.gains().d, goal_rate, -limit - a.effort, limit - a.effort);
+        }
+        a.last_goal = goal;
+        a.have_last_goal = true;
         break;
       }
       case ActuatorMode::PositionDirect: {
@@ -270,6 +302,7 @@ void Actuators::read(double dt) {
     btMultiBodyJointMotor* motor = active_motor(a);
     a.applied = motor ? motor->getAppliedImpulse(0) / dt : a.effort;
     if (a.braking) a.applied += a.brake->getAppliedImpulse(0) / dt;
+    if (a.damper_on) a.applied += a.damper->applied_torque(dt);
   }
 }
 

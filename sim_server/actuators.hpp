@@ -41,6 +41,8 @@ class Actuators final : public PlayedHardware {
   int64_t rejected(int i) const { return actuators_[i].rejected; }
   // One line per actuator for the INFO log: mode, reduction, limits, gains.
   std::string describe(int i) const;
+  // Whether a position PID's D term is applied implicitly (d*dt/I above kImplicitDamping).
+  bool implicit_derivative(int i) const { return actuators_[i].implicit_d; }
   // Findings worth a WARN (damping capped so the explicit damping torque stays stable).
   const std::vector<std::string>& warnings() const { return warnings_; }
 
@@ -108,7 +110,14 @@ class Actuators final : public PlayedHardware {
     btMultiBodyJointMotor* position_motor = nullptr;  // position direct
     btMultiBodyJointMotor* velocity_motor = nullptr;  // velocity motor
     btMultiBodyJointMotor* brake = nullptr;
-    bool position_motor_on = false, velocity_motor_on = false, braking = false;
+    // Position PID: its D term as an implicit damper while d*dt/I (I: the joint's effective inertia) is above
+    // kImplicitDamping, where an explicit one nears instability.
+    ImplicitJointDamper* damper = nullptr;
+    double inertia = 0;
+    bool implicit_d = false;
+    bool position_motor_on = false, velocity_motor_on = false, braking = false, damper_on = false;
+    double last_goal = 0;
+    bool have_last_goal = false;
     bool commanded = false;  // false: nobody commands it (MODE_NONE or none yet)
     double command = 0;      // joint units
     bool holding = true;
@@ -117,6 +126,7 @@ class Actuators final : public PlayedHardware {
   };
 
   double position_goal(Actuator& a, bool hold, double dt);
+  void choose_damping(Actuator& a);
   void switch_mode(Actuator& a, int8_t wire_mode);
   void set_in_world(btMultiBodyJointMotor* motor, bool& in_world, bool on);
   btMultiBodyJointMotor* active_motor(const Actuator& a) const;

@@ -431,6 +431,15 @@ btMultiBodyJointMotor* Multibody::add_motor(int link, double max_impulse) {
   return raw;
 }
 
+ImplicitJointDamper* Multibody::add_damper(int link) {
+  auto damper = std::make_unique<ImplicitJointDamper>(body_.get(), link);
+  damper->finalizeMultiDof();
+  world_->addMultiBodyConstraint(damper.get());
+  auto* raw = damper.get();
+  constraints_.push_back(std::move(damper));
+  return raw;
+}
+
 Eigen::Isometry3d Multibody::link_pose(const std::string& link) const {
   const int i = link_index_.at(link);
   btTransform world_from_com;

@@ -28,6 +28,7 @@
 #include "description/initial_positions.hpp"
 #include "description/robot_model.hpp"
 #include "sim_server/collision_shapes.hpp"
+#include "sim_server/implicit_damper.hpp"
 #include "sim_server/limit_constraint.hpp"
 
 namespace lcm_control::sim {
@@ -79,6 +80,8 @@ class Multibody {
   void set_state(int link, double q, double qd);
   // A joint motor on the link (impulse per step capped at max_impulse), owned and added to the world here.
   btMultiBodyJointMotor* add_motor(int link, double max_impulse);
+  // An implicit damper on the link's joint (damping 0 until set), owned and added to the world here.
+  ImplicitJointDamper* add_damper(int link);
 
   // Takes one throw-away step with every limit row (and every motor) active, then restores the state: Bullet
   // sizes its solver buffers to that high-water mark, so later steps do not allocate. Call after adding motors.

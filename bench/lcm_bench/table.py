@@ -78,6 +78,16 @@ def table(b):
     row("1. **physics overhead full/bare** (p25–p75 of the rounds)",
         lambda d: f'**{d["physics"]["ratio"]:.2f}** ({d["physics"]["ratio_lo"]:.2f}–{d["physics"]["ratio_hi"]:.2f})',
         "≤ 1.3", yes(ok))
+    st = r.get("stiff")
+    if st:
+        row("1b. stiff D on a light link at 1 ms (`bench_stiff`), I = " +
+            ", ".join(f'{x["inertia"]:g}' for x in st) + " kg m²: largest stable explicit d / bound 2·I/dt; "
+            "implicit (sim_server's PID) stable up to",
+            lambda d: "; ".join(f'{x["explicit"]:.3g} / {x["bound"]:.3g} = **{x["explicit"] / x["bound"]:.2f}**, '
+                                f'{x["implicit"]:.3g} ({x["implicit"] / x["bound"]:.0f}x)'
+                                + ("" if x["implicit_stable"] else " **unstable**") for x in st)
+            if d is r[names[0]] else "–",
+            "explicit ≤ 1.0x the bound; implicit stable", yes(all(x["implicit_stable"] for x in st)))
     row("2. payload state / command, bytes", lambda d: "{} / {}".format(*d["rtt"]["sizes"]))
 
     def mpp(k):

@@ -1,0 +1,79 @@
+// Stiff gains on light links (issue 30, item 5): the implicit joint damper on
+// its own against the exact backward-Euler figure, and the light upright arm of
+// test/e2e/data/stiff_arm.urdf holding still and moving under franka_gazebo's
+// gains, where an explicit D term chattered at the velocity limit every step.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sim_server/simulation.hpp"
+#include "test/sim_server/sim_test_support.hpp"
+
+namespace lcm_control::sim {
+namespace {
+
+using namespace testing;
+
+std::string stiff_arm(const std::string& ext) {
+  return std::string(LCM_CONTROL_SOURCE_DIR) + "/test/e2e/data/stiff_arm." + ext;
+}
+
+TEST(sim_stiff, TheImplicitDamperGivesTheBackwardEulerVelocityWhereExplicitDampingWouldDiverge) {
+  const RobotModel m = load_robot_model(stiff_arm("urdf"), "");
+  Multibody mb(m, 1e-3);
+  const MultibodyJoint& j1 = mb.joints()[mb.joint_index("joint1")];
+  ImplicitJointDamper* damper = mb.add_damper(j1.link);
+  mb.size_solver_buffers();
+  // c*dt/I = 10 (explicit: v' = (1 - 10) v, growing 9x a step); implicit: v' = v / (1 + 10).
+  const double c = 10 * j1.effective_inertia / mb.dt();
+  damper->set(c, 0, -1e9, 1e9);
+  mb.set_state(j1.link, 0, 1.0);
+  double v = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    mb.step();
+    v /= 11;
+    EXPECT_NEAR(mb.velocity(j1.link), v, 1e-3 * v) << "step " << k;
+    EXPECT_NEAR(damper->applied_torque(mb.dt()), -c * mb.velocity(j1.link), 1e-3 * c * v) << "step " << k;
+  }
+  // Bounded: it may not apply more than it is allowed to.
+  damper->set(c, 0, -0.01, 0.01);
+  mb.set_state(j1.link, 0, 1.0);
+  mb.step();
+  EXPECT_NEAR(damper->applied_torque(mb.dt()), -0.01, 1e-9);
+}
+
+TEST(sim_stiff, LightUprightArmUnderStiffPidGainsHoldsStillAndFollows) {
+  Simulation sim(load_robot_model(stiff_arm("urdf"), stiff_arm("yaml")), {});
+  Actuators& act = sim.actuators();
+  for (int i = 0; i < act.size(); ++i) {
+    // The explicit D term would be far past its bound on every joint of this arm (d*dt/I = 0.7 .. 79).
+    const MultibodyJoint& j = sim.multibody().joints()[sim.multibody().joint_index(act.joint(i))];
+    EXPECT_GT(act.gains(i).d * sim.physics_dt() / j.effective_inertia, 0.5) << act.joint(i);
+    EXPECT_TRUE(act.implicit_derivative(i)) << act.joint(i);
+  }
+  double worst = 0;
+  // A step to 0.1 rad (rate-limited by the velocity limits), then 1 s of holding there.
+  run(sim, 2000, [&](int) { for (int i = 0; i < act.size(); ++i) act.set_command(i, kPos, 0.1); },
+      [&](int k) {
+        if (k >= 1000)
+          for (int i = 0; i < act.size(); ++i) worst = std::max(worst, std::abs(act.joint_velocity(i)));
+      });
+  EXPECT_LT(worst, 0.05);
+  for (int i = 0; i < act.size(); ++i) EXPECT_NEAR(act.joint_position(i), 0.1, 0.01) << act.joint(i);
+  // The reported effort includes the damper's share: at rest it is the gravity torque, not a chattering one.
+  for (int i = 0; i < act.size(); ++i) EXPECT_LT(std::abs(act.joint_effort(i)), 2.0) << act.joint(i);
+  // Tuned at run time to a soft D: back to the explicit term (stable there), still holding.
+  PidGains soft = act.gains(1);
+  soft.d = 0.1;
+  ASSERT_TRUE(act.set_gains(1, soft));
+  EXPECT_FALSE(act.implicit_derivative(1));
+  worst = 0;
+  run(sim, 1000, [&](int) { for (int i = 0; i < act.size(); ++i) act.set_command(i, kPos, 0.1); },
+      [&](int k) {
+        if (k >= 500) worst = std::max(worst, std::abs(act.joint_velocity(1)));
+      });
+  EXPECT_LT(worst, 0.05);
+}
+
+}  // namespace
+}  // namespace lcm_control::sim
