@@ -37,7 +37,7 @@ std::string problems_of(const std::function<void()>& f) {
 TEST(LaunchFile, TurretBotYaml) {
   const LaunchPlan plan = read_launch_file(lt::source("config/turret_bot.launch.yaml"), {});
   EXPECT_EQ(plan.urdf, lt::source("config/turret_bot.urdf"));
-  EXPECT_EQ(plan.config, lt::source("config/turret_bot.yaml"));
+  EXPECT_EQ(plan.configs, std::vector<std::string>{lt::source("config/turret_bot.yaml")});
   EXPECT_EQ(plan.mode, "realtime");
   EXPECT_EQ(plan.physics_rate, 1000);
   EXPECT_EQ(plan.controllers, kControllers);
@@ -51,7 +51,7 @@ TEST(LaunchFile, TutorialRosLaunchWithThePackagePath) {
   const std::string pkg = lt::source("test/tools/data/turret_bot");
   const LaunchPlan plan = read_launch_file(pkg + "/launch/gazebo_ros_control.launch", {lt::source("test/tools/data")});
   EXPECT_EQ(plan.urdf, pkg + "/urdf/turret_bot.urdf");
-  EXPECT_EQ(plan.config, pkg + "/config/config.yaml");
+  EXPECT_EQ(plan.configs, std::vector<std::string>{pkg + "/config/config.yaml"});
   EXPECT_EQ(plan.controllers, kControllers);
   EXPECT_TRUE(plan.state_publisher);
   EXPECT_EQ(plan.state_publisher_name, "robot_state_publisher");
@@ -347,4 +347,11 @@ TEST(LaunchFile, SpawnAndInactiveNameWhatStartsAndWhatIsOnlyLoaded) {
     read_launch_file(write(dir, "b.yaml", head + "controllers: [j1_controller]\nspawn: [j2_controller]\n"), {});
   });
   EXPECT_NE(p.find("give controllers or spawn (the same list), not both"), std::string::npos) << p;
+}
+
+TEST(LaunchFile, YamlConfigTakesAListOfFilesInOrder) {
+  const std::string dir = lt::temp_dir("launch_configs");
+  const LaunchPlan plan = read_launch_yaml(
+      write(dir, "two.launch.yaml", "urdf: arm.urdf\nconfig: [arm.yaml, " + dir + "/gripper.yaml]\n"), {});
+  EXPECT_EQ(plan.configs, (std::vector<std::string>{dir + "/arm.yaml", dir + "/gripper.yaml"}));
 }
