@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <tinyxml2.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -43,7 +44,8 @@ struct RosReader {
   bool enabled(const tinyxml2::XMLElement* e) {
     for (const char* cond : {"if", "unless"}) {
       if (!e->Attribute(cond)) continue;
-      const std::string v = attr(e, cond);
+      std::string v = attr(e, cond);
+      for (char& c : v) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));  // roslaunch: "True" too
       const bool truth = v == "true" || v == "1";
       if (v != "true" && v != "false" && v != "1" && v != "0")
         throw ModelError(fmt::format("{}: {}=\"{}\" must be true/false/1/0", where(e), cond, v));
