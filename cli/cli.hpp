@@ -1,4 +1,4 @@
-// What every program's main() shares: the --lcm-url/--namespace/--package-path
+// What every program's main() shares: the --lcm-url/--namespace/--package-path/--config
 // flags, and one clear line (no exception trace) plus a non-zero exit on failure.
 #pragma once
 
@@ -56,6 +56,14 @@ inline void add_package_path_flag(CLI::App& app, std::vector<std::string>& dirs)
                  "folders searched for package://NAME/ and $(find NAME) (default: $LCM_CONTROL_PACKAGE_PATH, "
                  "$ROS_PACKAGE_PATH)")
       ->delimiter(':');
+}
+
+// --config FILE (repeatable): controller YAML files, merged in order by load_robot_model as rosparam loads several
+// files into one namespace (a later key wins).
+inline CLI::Option* add_config_flag(CLI::App& app, std::vector<std::string>& files, const std::string& what) {
+  return app.add_option("--config", files,
+                        what + "; repeatable: several files are merged in order, a later file's key winning (maps "
+                               "merge key by key), as rosparam loads them");
 }
 
 // "" if `v` is NAME=VALUE or NAME:=VALUE, else what is wrong with it (a CLI11 check).

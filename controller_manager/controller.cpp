@@ -30,7 +30,8 @@ JointData* ControllerContext::claim(const std::string& joint, Interface iface) {
   return j;
 }
 
-const JointData* ControllerContext::read(const std::string& joint, const std::string& key) {
+const JointData* ControllerContext::read(const std::string& joint, const std::string& key,
+                                         const std::string& listed_as) {
   JointData* j = hw_.find(joint);
   if (!j) {
     std::string all;
@@ -38,7 +39,7 @@ const JointData* ControllerContext::read(const std::string& joint, const std::st
     throw params_.error(key, fmt::format("joint '{}' has no transmission in {}, so no state (actuated joints: {})",
                                          joint, model_.urdf_path, all));
   }
-  if (self_ && !self_->claim_.interface) self_->claim_.joints.push_back(joint);
+  if (self_ && !self_->claim_.interface) self_->claim_.joints.push_back(listed_as.empty() ? joint : listed_as);
   return j;
 }
 

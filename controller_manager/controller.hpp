@@ -95,8 +95,9 @@ class ControllerContext {
   // Claims `joint` on `iface`; throws ControllerError naming controller, joint,
   // interface needed and interfaces offered.
   JointData* claim(const std::string& joint, Interface iface);
-  // Reads a joint without claiming it.
-  const JointData* read(const std::string& joint, const std::string& key);
+  // Reads a joint without claiming it; the controller's joint list (cmctl list) shows it as `listed_as` when given
+  // (a mimic joint computed from `joint`).
+  const JointData* read(const std::string& joint, const std::string& key, const std::string& listed_as = "");
   std::vector<std::string> actuated_joints() const;
 
   std::string channel(const std::string& suffix) const { return bus_.channel(name_ + "/" + suffix); }

@@ -20,14 +20,15 @@ int main(int argc, char** argv) {
       "  controller_manager --urdf config/turret_bot.urdf --config config/turret_bot.yaml\n"
       "  controller_manager --urdf robot.urdf --config robot.yaml --namespace r1 --cpu 1 --rt-priority 80",
       "controller_manager"};
-  std::string urdf, config;
+  std::string urdf;
+  std::vector<std::string> config;
   BusFlags bus_flags;
   SchedulingFlags sched;
   std::vector<std::string> package_path;
   double silence_s = 0.25;
   std::string log_level;
   app.add_option("--urdf", urdf, "robot URDF (or .urdf.xacro: --xacro-arg gives its arguments) with <transmission> tags")->required();
-  app.add_option("--config", config, "ros_control YAML (controllers as top-level keys)")->required();
+  add_config_flag(app, config, "ros_control YAML (controllers as top-level keys)")->required();
   add_bus_flags(app, bus_flags);
   add_hardware_url_flag(app, bus_flags);
   add_hardware_reader_flag(app, bus_flags);

@@ -152,11 +152,11 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
   auto controller = registry_.create(spec.type);
   if (!controller) {
     c.outcome = ros_origin_of_type(spec.type).empty() ? ControllerCheck::Refused : ControllerCheck::NotImplemented;
-    c.message = fmt::format("{}: {}/type: {}", model_.config_path, yaml_key(spec.name),
+    c.message = fmt::format("{}: {}/type: {}", model_.config_file_of(yaml_key(spec.name) + "/type"), yaml_key(spec.name),
                             registry_.unknown_type_message(spec.type));
     return c;
   }
-  Params params(spec.params, fmt::format("{}: {}", model_.config_path, yaml_key(spec.name)));
+  Params params(spec.params, fmt::format("{}: {}", spec.file, yaml_key(spec.name)));
   ControllerContext ctx(spec.name, spec.type, params, model_, hw_, bus_, endpoints);
   ctx.self() = controller.get();
   try {
@@ -175,7 +175,8 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
   const ControllerTypeInfo* info = registry_.info(spec.type);
   const std::vector<std::string> known = info ? parameter_names(*info) : std::vector<std::string>{};
   for (const auto& k : params.unused()) {
-    const std::string where = fmt::format("{}: {}/{}", model_.config_path, yaml_key(spec.name), k);
+    const std::string where =
+        fmt::format("{}: {}/{}", model_.config_file_of(yaml_key(spec.name) + "/" + k), yaml_key(spec.name), k);
     if (std::find(known.begin(), known.end(), k) != known.end()) {
       c.notes.push_back(fmt::format("{}: known ROS parameter of {}, not supported yet; ignored", where, spec.type));
       continue;
@@ -208,7 +209,7 @@ Reply ControllerManager::load(const std::string& name) {
   slot->endpoints->set_outbox(&outbox_);
   const ControllerCheck c = instantiate(*spec, *slot->endpoints, &slot->controller);
   if (c.outcome != ControllerCheck::Loads)
-    return {false, c.outcome == ControllerCheck::NotImplemented || c.message.rfind(model_.config_path, 0) == 0
+    return {false, c.outcome == ControllerCheck::NotImplemented || c.message.rfind(spec->file, 0) == 0
                        ? fmt::format("cannot load '{}': {}", name, c.message)
                        : fmt::format("cannot load '{}' ({}): {}", name, spec->type, c.message)};
   if (slot->controller->claim().interface)
@@ -316,7 +317,7 @@ void ControllerManager::reload(bool force, Done done) {
     fresh.notes.clear();
     fresh.warnings.clear();
     try {
-      load_control_config_into(fresh, model_.config_path);
+      load_control_config_into(fresh, model_.config_paths);
       validate(fresh);
     } catch (const ModelError& e) {
       done({false, fmt::format("cannot reload: {}; nothing was changed", join(e.problems(), "; "))});
@@ -325,6 +326,7 @@ void ControllerManager::reload(bool force, Done done) {
     sources_.end_all("controllers reloaded");
     loop_.slots().clear();
     model_.controllers = fresh.controllers;
+    model_.config_key_files = fresh.config_key_files;
     std::vector<std::string> configured;
     for (const auto& c : model_.controllers) configured.push_back(c.name);
     done({true, fmt::format("reloaded {}: {} controller(s) configured ({}); unloaded [{}]", model_.config_path,

@@ -15,12 +15,13 @@ namespace fs = std::filesystem;
 
 std::vector<std::string> plugin_libraries(const RobotModel& model) {
   std::vector<std::string> out;
-  const fs::path base = fs::path(model.config_path).parent_path();
   for (const auto& c : model.controllers) {
     const YAML::Node p = c.params["plugin"];
     if (!p) continue;
-    const std::string key = fmt::format("{}: {}/plugin", model.config_path,
-                                        model.config_section.empty() ? c.name : model.config_section + "/" + c.name);
+    const std::string key_path = (model.config_section.empty() ? c.name : model.config_section + "/" + c.name) + "/plugin";
+    const std::string file = model.config_file_of(key_path);
+    const fs::path base = fs::path(file).parent_path();
+    const std::string key = fmt::format("{}: {}", file, key_path);
     if (!p.IsScalar() || p.as<std::string>().empty())
       throw ModelError(fmt::format("{}: give the path of a controller library (.so), relative to the YAML's folder",
                                    key));

@@ -134,32 +134,40 @@ void parse_control_config(RobotModel& model, const YAML::Node& doc, const std::s
                                  file));
   model.update_rate_hz.reset();  // the file's own (a reload reads it again)
   model.ros2_parameter_file = is_ros2_parameter_file(doc);
-  if (model.ros2_parameter_file) return parse_ros2_params(model, doc, file);  // controller_manager: ros__parameters:
+  if (model.ros2_parameter_file) {  // controller_manager: ros__parameters:
+    parse_ros2_params(model, doc, file);
+    for (auto& c : model.controllers) c.file = file;
+    return;
+  }
   const YAML::Node root = select_section(model, doc, file);
   const std::string prefix = model.config_section.empty() ? "" : model.config_section + "/";
+  // The file a key came from (with several --config files, the one that set it).
+  const auto src = [&](const std::string& key) {
+    return model.config_key_files.empty() ? file : model.config_file_of(prefix + key);
+  };
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
     const YAML::Node& v = kv.second;
     if (key == "gazebo_ros_control") {
       if (!v.IsMap()) {
-        problems.push_back(fmt::format("{}: {}gazebo_ros_control: expected a map with pid_gains", file, prefix));
+        problems.push_back(fmt::format("{}: {}gazebo_ros_control: expected a map with pid_gains", src(key), prefix));
         continue;
       }
       for (const auto& g : v) {
         const std::string gk = g.first.as<std::string>();
         if (gk != "pid_gains") {
           model.warnings.push_back(
-              fmt::format("{}: {}gazebo_ros_control/{}: not used (only pid_gains is read)", file, prefix, gk));
+              fmt::format("{}: {}gazebo_ros_control/{}: not used (only pid_gains is read)", src(key + "/" + gk), prefix, gk));
           continue;
         }
         if (!g.second.IsMap()) {
-          problems.push_back(fmt::format("{}: {}gazebo_ros_control/pid_gains: expected a map of joint names", file, prefix));
+          problems.push_back(fmt::format("{}: {}gazebo_ros_control/pid_gains: expected a map of joint names", src(key + "/pid_gains"), prefix));
           continue;
         }
         for (const auto& jg : g.second) {
           const std::string joint = jg.first.as<std::string>();
           model.pid_gains[joint] = parse_pid_gains(
-              jg.second, fmt::format("{}: {}gazebo_ros_control/pid_gains/{}", file, prefix, joint), problems,
+              jg.second, fmt::format("{}: {}gazebo_ros_control/pid_gains/{}", src(key + "/pid_gains/" + joint), prefix, joint), problems,
               model.warnings);
         }
       }
@@ -167,36 +175,82 @@ void parse_control_config(RobotModel& model, const YAML::Node& doc, const std::s
     }
     if (!v.IsMap() || !v["type"]) {
       model.warnings.push_back(fmt::format(
-          "{}: {}entry '{}' is neither a controller (no 'type' key) nor gazebo_ros_control; it is ignored", file,
+          "{}: {}entry '{}' is neither a controller (no 'type' key) nor gazebo_ros_control; it is ignored", src(key),
           prefix.empty() ? "top-level " : prefix, key));
       continue;
     }
     if (!v["type"].IsScalar() || trim(v["type"].Scalar()).empty()) {
       problems.push_back(fmt::format("{}: {}{}/type: expected a controller type name (`cmctl list-types` lists "
                                      "them)",
-                                     file, prefix, key));
+                                     src(key + "/type"), prefix, key));
       continue;
     }
-    model.controllers.push_back(ControllerSpec{key, trim(v["type"].Scalar()), YAML::Clone(v)});
+    model.controllers.push_back(ControllerSpec{key, trim(v["type"].Scalar()), YAML::Clone(v), src(key)});
   }
   if (!problems.empty()) throw ModelError(problems);
 }
 
-void load_control_config_into(RobotModel& model, const std::string& config_path) {
-  model.config_path = config_path;
+namespace {
+
+YAML::Node read_config_file(const RobotModel& model, const std::string& config_path) {
   const std::string text =
       substitute_file(read_input_file(config_path, "config", "--config"),
                       Substitutions{model.options.package_path, model.options.args,
                                     "give its value with --arg {0}=VALUE (launch files: args: {{{0}: VALUE}}), as "
                                     "roslaunch does for <rosparam subst_value=\"true\">"},
                       config_path);
-  YAML::Node root;
   try {
-    root = YAML::Load(text);
+    return YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw ModelError(fmt::format("{}:{}:{}: malformed YAML: {}", config_path, e.mark.line + 1, e.mark.column + 1, e.msg));
   }
-  parse_control_config(model, root, config_path);
+}
+
+// Records `file` as the origin of every leaf (a scalar, a list, an empty map) of `value`, set at `key`.
+void record_leaves(std::map<std::string, std::string>& files, const std::string& key, const YAML::Node& value,
+                   const std::string& file) {
+  if (!value.IsMap() || value.size() == 0) {
+    files[key] = file;
+    return;
+  }
+  for (const auto& kv : value) record_leaves(files, key + "/" + kv.first.Scalar(), kv.second, file);
+}
+
+// The files merged in order, as rosparam loads them into one namespace; each key a later file replaces is one note
+// naming it and both files, and model.config_key_files says where every key came from.
+YAML::Node merge_config_files(RobotModel& model, const std::vector<std::string>& paths) {
+  YAML::Node merged(YAML::NodeType::Map);
+  for (const std::string& path : paths) {
+    const YAML::Node doc = read_config_file(model, path);
+    if (!doc || doc.IsNull()) throw ModelError(fmt::format("{}: the file is empty; expected controllers as top-level keys", path));
+    if (!doc.IsMap())
+      throw ModelError(fmt::format("{}: expected a map of controllers at the top level (like `j1_controller: {{type: "
+                                   "...}}`)",
+                                   path));
+    deep_merge(merged, doc, [&](const std::string& key, const YAML::Node& value, bool replaced) {
+      if (replaced)
+        model.notes.push_back(fmt::format("{}: {} replaces the value from {} (a later --config file wins, as with "
+                                          "rosparam)",
+                                          path, key, model.config_file_of(key)));
+      auto& files = model.config_key_files;
+      for (auto it = files.lower_bound(key + "/"); it != files.end() && it->first.rfind(key + "/", 0) == 0;)
+        it = files.erase(it);
+      record_leaves(files, key, value, path);
+    });
+  }
+  return merged;
+}
+
+}  // namespace
+
+void load_control_config_into(RobotModel& model, const std::vector<std::string>& config_paths) {
+  model.config_paths = config_paths;
+  model.config_path = join(config_paths, " + ");
+  model.config_key_files.clear();
+  if (config_paths.size() == 1) return parse_control_config(model, read_config_file(model, config_paths[0]),
+                                                            config_paths[0]);
+  const YAML::Node merged = merge_config_files(model, config_paths);
+  parse_control_config(model, merged, model.config_path);
 }
 
 }  // namespace lcm_control

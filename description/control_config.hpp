@@ -13,9 +13,10 @@
 
 namespace lcm_control {
 
-// Reads config_path into model.controllers and model.pid_gains, looking under model.ns first;
-// $(arg NAME), $(find PKG) and $(env VAR) are substituted first with model.options.
-void load_control_config_into(RobotModel& model, const std::string& config_path);
+// Reads the config files, merged in order as rosparam loads them (a later key wins; one note per replaced key),
+// into model.controllers and model.pid_gains, looking under model.ns first; $(arg NAME), $(find PKG) and $(env VAR)
+// are substituted first with model.options.
+void load_control_config_into(RobotModel& model, const std::vector<std::string>& config_paths);
 // The same for an already parsed document (`file` is used in messages).
 void parse_control_config(RobotModel& model, const YAML::Node& root, const std::string& file);
 // One ros_control PID map ({p, i, d, i_clamp, i_clamp_min, i_clamp_max, antiwindup}) with

@@ -37,6 +37,22 @@ bool moves_anything_below(const RobotModel& model, const Joint& j) {
   return false;
 }
 
+// True when the hardware only ever sets the joint's position (every interface it takes is position, with no
+// pid_gains): gazebo_ros_control then moves it kinematically and never reads its effort limit.
+bool sets_position_directly(const RobotModel& model, const std::string& joint) {
+  const TransmissionSpec* t = model.transmission_for_joint(joint);
+  if (!t || t->interfaces.empty() || model.pid_gains.count(joint)) return false;
+  const size_t offered = t->any_interface ? t->interfaces.size() : 1;
+  for (size_t k = 0; k < offered; ++k)
+    if (t->interfaces[k] != Interface::Position) return false;
+  return true;
+}
+
+// The YAML key path of a joint's pid_gains.
+std::string gains_key(const RobotModel& model, const std::string& joint) {
+  return (model.config_section.empty() ? "" : model.config_section + "/") + "gazebo_ros_control/pid_gains/" + joint;
+}
+
 // Largest magnitudes taken (SI units): beyond them, or not finite, a value is a typo or a corrupted file, and
 // Bullet would turn it into non-finite states.
 constexpr double kMaxLength = 1e4;     // m: origins, collision sizes
@@ -128,10 +144,18 @@ void check_model(RobotModel& model, std::vector<std::string>& problems) {
                                           "<joint type=\"continuous\">",
                                           u, j.name, j.lower, j.upper));
     }
-    if (j.effort_limit == 0)
-      problems.push_back(fmt::format("{}: joint '{}': <limit effort=\"0\"> would freeze the joint (no force allowed); set "
-                                     "the actuator's real effort limit",
-                                     u, j.name));
+    if (j.effort_limit == 0 && sets_position_directly(model, j.name))
+      model.warnings.push_back(fmt::format("{}: joint '{}': <limit effort=\"0\"> ignored: the joint takes position "
+                                           "commands without pid_gains, so it is moved directly and no effort limit "
+                                           "applies (as in Gazebo)",
+                                           u, j.name));
+    else if (j.effort_limit == 0)
+      problems.push_back(fmt::format("{}: joint '{}': <limit effort=\"0\"> would freeze the joint (no force allowed{}); "
+                                     "set the actuator's real effort limit",
+                                     u, j.name,
+                                     model.pid_gains.count(j.name) ? fmt::format(": its pid_gains in {} drive it by effort",
+                                                                                 model.config_file_of(gains_key(model, j.name)))
+                                                                   : ""));
     if (j.velocity_limit == 0)
       problems.push_back(fmt::format("{}: joint '{}': <limit velocity=\"0\"> would freeze the joint; set the real "
                                      "velocity limit",
@@ -192,18 +216,19 @@ void check_model(RobotModel& model, std::vector<std::string>& problems) {
   for (const auto& [joint, gains] : model.pid_gains) {
     const Joint* j = model.joint(joint);
     const TransmissionSpec* t = model.transmission_for_joint(joint);
+    const std::string gains_file = model.config_file_of(gains_key(model, joint));
     if (!j) {
       problems.push_back(fmt::format("{}: gazebo_ros_control/pid_gains/{}: joint '{}' is not in the URDF {} (moving "
                                      "joints: {})",
-                                     c, joint, joint, u, names_of(model.joints, true)));
+                                     gains_file, joint, joint, u, names_of(model.joints, true)));
     } else if (!t) {
       model.warnings.push_back(fmt::format("{}: gazebo_ros_control/pid_gains/{}: joint has no transmission in {}, so the "
                                            "gains are not used",
-                                           c, joint, u));
+                                           gains_file, joint, u));
     } else if (t->interfaces.front() == Interface::Effort) {
       model.warnings.push_back(fmt::format("{}: gazebo_ros_control/pid_gains/{}: the joint takes effort commands, so "
                                            "the gains are not used",
-                                           c, joint));
+                                           gains_file, joint));
     }
     (void)gains;
   }

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 #include "description/control_config.hpp"
 #include "description/model_check.hpp"
 #include "description/text.hpp"
@@ -78,6 +80,28 @@ const ControllerSpec* RobotModel::controller(const std::string& n) const {
     if (c.name == n) return &c;
   return nullptr;
 }
+std::string RobotModel::config_file_of(const std::string& key_path) const {
+  if (config_key_files.empty()) return config_path;
+  std::vector<std::string> files;
+  auto add = [&](const std::string& f) {
+    if (std::find(files.begin(), files.end(), f) == files.end()) files.push_back(f);
+  };
+  // The key and what is under it; else (a key no file has) its nearest parent that a file has.
+  for (std::string key = key_path; files.empty();) {
+    const std::string under = key + "/";
+    for (const auto& [path, file] : config_key_files)
+      if (path == key || path.rfind(under, 0) == 0 || under.rfind(path + "/", 0) == 0) add(file);
+    const size_t slash = key.rfind('/');
+    if (slash == std::string::npos) break;
+    key.erase(slash);
+  }
+  if (files.empty()) return config_path;
+  std::vector<std::string> ordered;  // in --config order
+  for (const auto& f : config_paths)
+    if (std::find(files.begin(), files.end(), f) != files.end()) ordered.push_back(f);
+  return join(ordered, " + ");
+}
+
 std::vector<std::string> RobotModel::actuated_joints() const {
   std::vector<std::string> v;
   for (const auto& t : transmissions) v.push_back(t.joint);
@@ -97,6 +121,12 @@ std::string robot_namespace(const std::string& given, const std::string& plugin_
 }
 
 RobotModel load_robot_model(const std::string& urdf_path, const std::string& config_path, const LoadOptions& options) {
+  return load_robot_model(urdf_path, config_path.empty() ? std::vector<std::string>{} : std::vector{config_path},
+                          options);
+}
+
+RobotModel load_robot_model(const std::string& urdf_path, const std::vector<std::string>& config_paths,
+                            const LoadOptions& options) {
   RobotModel model;
   model.options = options;
   std::vector<std::string> problems;
@@ -112,9 +142,9 @@ RobotModel load_robot_model(const std::string& urdf_path, const std::string& con
     model.notes.push_back(fmt::format("{}: namespace '{}' from the gazebo_ros_control plugin's <robotNamespace>; "
                                       "channels are {}/... (give the tools --namespace {})",
                                       urdf_path, model.ns, model.ns, model.ns));
-  if (!config_path.empty()) {
+  if (!config_paths.empty()) {
     try {
-      load_control_config_into(model, config_path);
+      load_control_config_into(model, config_paths);
     } catch (const ModelError& e) {
       parsed = false;
       problems.insert(problems.end(), e.problems().begin(), e.problems().end());

@@ -115,6 +115,7 @@ struct ControllerSpec {
   std::string name;
   std::string type;
   YAML::Node params;  // the whole YAML entry, `type` included
+  std::string file;   // the config file(s) the entry came from, as messages name them
 };
 
 struct LoadOptions {
@@ -132,7 +133,13 @@ struct LoadOptions {
 
 struct RobotModel {
   std::string name;
-  std::string urdf_path, config_path;
+  std::string urdf_path;
+  // The controller YAML files (--config, repeatable), merged in order as rosparam loads them into one namespace: a
+  // later file's key wins (maps merge key by key). config_path names them in messages ("a.yaml", "a.yaml + b.yaml").
+  std::vector<std::string> config_paths;
+  std::string config_path;
+  // With several files: the file each leaf key path ("arm_controller/gains/j1/p") was set by.
+  std::map<std::string, std::string> config_key_files;
   LoadOptions options;                          // as loaded (a reload reads the config again with them)
   std::string root_link;
   std::vector<Link> links;                     // URDF order
@@ -164,6 +171,8 @@ struct RobotModel {
   const Link* link(const std::string& name) const;
   const TransmissionSpec* transmission_for_joint(const std::string& joint) const;
   const ControllerSpec* controller(const std::string& name) const;
+  // The config file(s) that set a key path ("ctl/joints") or anything under it, as messages name them.
+  std::string config_file_of(const std::string& key_path) const;
   // Joints that have a transmission, in transmission order (the hardware's joints).
   std::vector<std::string> actuated_joints() const;
 };
@@ -171,6 +180,9 @@ struct RobotModel {
 // Loads and validates: the URDF (common/urdf_reader), the namespace, the YAML
 // (common/control_config), then the cross-checks (common/model_check).
 // Throws ModelError naming the file and culprit of every problem.
+RobotModel load_robot_model(const std::string& urdf_path, const std::vector<std::string>& config_paths,
+                            const LoadOptions& options = {});
+// One config file, or none for "".
 RobotModel load_robot_model(const std::string& urdf_path, const std::string& config_path,
                             const LoadOptions& options = {});
 

@@ -93,16 +93,24 @@ bool node_path_matches(const std::string& pattern, const std::string& fqn) {
   return match(tokens(pattern), 0, tokens(fqn), 0);
 }
 
-void deep_merge(YAML::Node& into, const YAML::Node& from) {
+namespace {
+void deep_merge_at(YAML::Node& into, const YAML::Node& from, const std::string& prefix, const MergeListener& on_set) {
   for (const auto& kv : from) {
     const std::string key = kv.first.Scalar();
-    if (kv.second.IsMap() && has_key(into, key) && into[key].IsMap()) {
+    const bool had = has_key(into, key);
+    if (kv.second.IsMap() && had && into[key].IsMap()) {
       YAML::Node sub = into[key];
-      deep_merge(sub, kv.second);
+      deep_merge_at(sub, kv.second, prefix + key + "/", on_set);
     } else {
       into[key] = YAML::Clone(kv.second);
+      if (on_set) on_set(prefix + key, kv.second, had);
     }
   }
+}
+}  // namespace
+
+void deep_merge(YAML::Node& into, const YAML::Node& from, const MergeListener& on_set) {
+  deep_merge_at(into, from, "", on_set);
 }
 
 YAML::Node expand_dotted_keys(const YAML::Node& node) {

@@ -9,6 +9,7 @@
 // params = the merged section with `type` in it).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 #include <yaml-cpp/yaml.h>
@@ -26,8 +27,11 @@ void parse_ros2_params(RobotModel& model, const YAML::Node& doc, const std::stri
 
 // `a.b.c: v` -> `a: {b: {c: v}}`, at every level, merged with the keys already nested there.
 YAML::Node expand_dotted_keys(const YAML::Node& node);
-// Deep merge: maps merge key by key, anything else in `from` replaces what `into` has.
-void deep_merge(YAML::Node& into, const YAML::Node& from);
+// Deep merge: maps merge key by key, anything else in `from` replaces what `into` has. on_set, if given, hears of
+// each value `from` puts in place (not the maps merged further): its key path ("a/b/c"), the value, and whether it
+// replaced one.
+using MergeListener = std::function<void(const std::string& path, const YAML::Node& value, bool replaced)>;
+void deep_merge(YAML::Node& into, const YAML::Node& from, const MergeListener& on_set = {});
 // rclcpp's node-name matching: `pattern` and `fqn` are node paths ("/**/arm", "/ns/arm"); `**` stands for any
 // number of namespace levels, `*` for exactly one; a name without a leading '/' is in the root namespace.
 bool node_path_matches(const std::string& pattern, const std::string& fqn);

@@ -5,15 +5,68 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <stdexcept>
 
 #include "description/packages.hpp"
 #include "description/robot_model.hpp"
 #include "description/text.hpp"
+#include "description/xacro/process_error.hpp"
+#include "description/xacro/substitution_args.hpp"
 
 namespace fs = std::filesystem;
 
 namespace lcm_control {
+
+namespace {
+
+// The ')' closing the '(' at `open`, past nested parentheses and quoted strings; npos if there is none.
+size_t closing_paren(const std::string& text, size_t open) {
+  int depth = 0;
+  char quote = 0;
+  for (size_t k = open; k < text.size(); ++k) {
+    const char c = text[k];
+    if (quote) {
+      if (c == '\\') ++k;
+      else if (c == quote) quote = 0;
+    } else if (c == '\'' || c == '"') {
+      quote = c;
+    } else if (c == '(') {
+      ++depth;
+    } else if (c == ')' && --depth == 0) {
+      return k;
+    }
+  }
+  return std::string::npos;
+}
+
+// roslaunch's $(eval EXPR): a Python expression over the args (by name, or arg('NAME')) and find(), env(),
+// optenv(), evaluated by xacro's evaluator (description/xacro), as roslaunch and xacro share it.
+std::string evaluate(const std::string& expression, const Substitutions& subs, const std::string& where) {
+  std::map<std::string, std::string> args;
+  for (const auto& [k, v] : subs.args) args[k] = v;
+  const auto path = subs.package_path.empty() ? default_package_path() : subs.package_path;
+  xacro::SubstitutionContext context;
+  context.args = &args;
+  context.find_package = [&path](const std::string& name) {
+    const std::string dir = find_package_dir(name, path);
+    return dir.empty() ? dir : fs::absolute(dir).string();
+  };
+  context.package_search_note = fmt::format(
+      "the package path is {}; give the folder that holds it with --package-path DIR or LCM_CONTROL_PACKAGE_PATH",
+      path.empty() ? "empty" : fmt::format("{}", fmt::join(path, ":")));
+  try {
+    return xacro::resolve_substitution("eval " + expression, context);
+  } catch (const xacro::ProcessError& e) {
+    std::string why = e.what();
+    why = why.substr(0, why.find("\nwhen evaluating"));
+    for (char& c : why)
+      if (c == '\n') c = ' ';
+    throw ModelError(fmt::format("{}: $(eval {}): {}", where, expression, why));
+  }
+}
+
+}  // namespace
 
 std::string substitute(const std::string& text, const Substitutions& subs, const std::string& where) {
   std::string out;
@@ -21,12 +74,16 @@ std::string substitute(const std::string& text, const Substitutions& subs, const
   while (true) {
     const size_t start = text.find("$(", pos);
     if (start == std::string::npos) break;
-    const size_t end = text.find(')', start);
-    if (end == std::string::npos) throw ModelError(fmt::format("{}: unclosed '$(' in '{}'", where, trim(text)));
+    const bool eval = text.compare(start, 7, "$(eval ") == 0;
+    const size_t end = eval ? closing_paren(text, start + 1) : text.find(')', start);
+    if (end == std::string::npos)
+      throw ModelError(fmt::format("{}: unclosed '$(' in '{}'", where, trim(text)));
     out += text.substr(pos, start - pos);
     const auto words = split_words(text.substr(start + 2, end - start - 2));
     const std::string kind = words.empty() ? "" : words[0];
-    if (kind == "find" && words.size() == 2) {
+    if (eval) {
+      out += evaluate(text.substr(start + 7, end - start - 7), subs, where);
+    } else if (kind == "find" && words.size() == 2) {
       const auto path = subs.package_path.empty() ? default_package_path() : subs.package_path;
       const std::string dir = find_package_dir(words[1], path);
       if (dir.empty())
@@ -52,9 +109,10 @@ std::string substitute(const std::string& text, const Substitutions& subs, const
       else
         throw ModelError(fmt::format("{}: $(env {}): the environment variable is not set", where, words[1]));
     } else {
+      const size_t whole = closing_paren(text, start + 1);  // the whole of `$(cmd f(x))`, for the message
       throw ModelError(fmt::format("{}: '{}' is not supported (supported: $(find PKG), $(arg NAME), $(var NAME), "
-                                   "$(env VAR), $(optenv VAR [default]))",
-                                   where, text.substr(start, end - start + 1)));
+                                   "$(env VAR), $(optenv VAR [default]), $(eval EXPR))",
+                                   where, text.substr(start, (whole == std::string::npos ? end : whole) - start + 1)));
     }
     pos = end + 1;
   }

@@ -1,6 +1,7 @@
 // roslaunch's substitution args in launch files and in ros_control YAML
 // (rosparam's subst_value): $(find PKG), $(arg NAME), $(env VAR),
-// $(optenv VAR [default]); and ROS 2 launch's $(var NAME), read as $(arg NAME).
+// $(optenv VAR [default]), $(eval EXPR) (xacro's evaluator, with the args,
+// arg(), find(), env(), optenv()); and ROS 2 launch's $(var NAME), read as $(arg NAME).
 #pragma once
 
 #include <string>

@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
       "e_stop, sim_server/gains).\n"
       "Example: sim_server --urdf config/turret_bot.urdf --config config/turret_bot.yaml --mode lockstep",
       "sim_server"};
-  std::string urdf, config, log_level;
+  std::string urdf, log_level;
+  std::vector<std::string> config;
   std::vector<std::string> package_path;
   BusFlags bus_flags;
   SchedulingFlags sched;
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
   sim::StepperOptions opt;
   double clock_hz = 100;
   app.add_option("--urdf", urdf, "URDF (or .urdf.xacro, with --xacro-arg) with <transmission> tags")->required();
-  app.add_option("--config", config, "ros_control YAML (gazebo_ros_control/pid_gains); none: every joint direct");
+  add_config_flag(app, config, "ros_control YAML (gazebo_ros_control/pid_gains); none: every joint direct");
   std::string mode = "realtime";
   app.add_option("--mode", mode,
                  "realtime: paced by the wall clock; lockstep: step only when the controller manager answers "

@@ -37,12 +37,13 @@ int main(int argc, char** argv) {
       "controller is loaded in-process as controller_manager would load it.\n"
       "Example: doctor --urdf config/turret_bot.urdf --config config/turret_bot.yaml",
       "doctor"};
-  std::string urdf, config;
+  std::string urdf;
+  std::vector<std::string> config;
   std::vector<std::string> package_path, args;
   BusFlags bus_flags;
   bool strict = false;
   app.add_option("--urdf", urdf, "URDF file (or .urdf.xacro, with --xacro-arg) with <transmission> tags")->required();
-  app.add_option("--config", config, "ros_control YAML (controllers, gazebo_ros_control/pid_gains)");
+  add_config_flag(app, config, "ros_control YAML (controllers, gazebo_ros_control/pid_gains)");
   app.add_option("--namespace", bus_flags.ns,
                  "the robot's namespace (default: the gazebo_ros_control plugin's <robotNamespace>); the YAML is read "
                  "under it when it nests there");
@@ -64,7 +65,7 @@ int main(int argc, char** argv) {
         errors.push_back(fmt::format(
             "{}: no controllers found (a controller is a map with a `type:` key, at the top level or under the "
             "robot's namespace{}); see the warnings above for what was read instead",
-            config, model.ns.empty() ? "" : " '" + model.ns + ":'"));
+            model.config_path, model.ns.empty() ? "" : " '" + model.ns + ":'"));
       Bus bus("memq://", model.ns);
       cm::Registry registry = cm::builtin_registry();
       for (const auto& line : cm::load_plugins(registry, cm::plugin_libraries(model))) std::printf("%s\n", line.c_str());

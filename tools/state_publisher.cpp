@@ -67,12 +67,13 @@ int main(int argc, char** argv) {
       "0; the last value of each joint is kept.\n"
       "Example: state-publisher --urdf config/turret_bot.urdf",
       "state-publisher"};
-  std::string urdf, config;
+  std::string urdf;
+  std::vector<std::string> config;
   double max_rate = 0;
   std::vector<std::string> package_path;
   BusFlags bus_flags;
   app.add_option("--urdf", urdf, "the robot's URDF (or .urdf.xacro, with --xacro-arg)")->required();
-  app.add_option("--config", config, "ros_control YAML, checked together with the URDF (optional)");
+  add_config_flag(app, config, "ros_control YAML, checked together with the URDF (optional)");
   app.add_option("--max-rate", max_rate, "publish at most this many times per second (default: every joint_states)")
       ->check(CLI::NonNegativeNumber);
   add_package_path_flag(app, package_path);

@@ -2,7 +2,8 @@
 // publish_rate on the hardware clock, first on its first cycle; `joints` picks
 // and orders (default: URDF transmission order, then the mimic joints, whose
 // position and velocity follow their joint's by the URDF's <mimic> as ROS's
-// joint_state_publisher computes them; effort 0); `extra_joints` appends fixed
+// joint_state_publisher computes them; effort 0; `publish_mimic_joints: false`
+// leaves them out, as ROS's joint_state_controller does); `extra_joints` appends fixed
 // values. Unlike ROS it keeps its rate after a forward time jump and resumes
 // at once after a backward one (the loop restarts it).
 // franka_control/FrankaStateController is the same for what it shares with it:
@@ -56,14 +57,17 @@ class JointStateController : public Controller {
       else
         joints_.push_back(ctx.read(n, joints_key));
     }
-    if (!listed)  // every mimic joint of an actuated joint, after the actuated ones
+    // ROS's joint_state_controller publishes only the joints with a transmission; ours adds their mimic joints unless
+    // publish_mimic_joints is false.
+    const bool with_mimics = ros2 || p.boolean("publish_mimic_joints", true);
+    if (!listed && with_mimics)  // every mimic joint of an actuated joint, after the actuated ones
       for (const Joint& j : ctx.model().joints)
         if (j.mimic && ctx.model().transmission_for_joint(j.mimic->joint)) mimic_names.push_back(j.name);
     names.clear();
     for (const JointData* j : joints_) names.push_back(j->name);
     for (const auto& n : mimic_names) {
       const Mimic& m = *ctx.model().joint(n)->mimic;
-      mimics_.push_back(MimicJoint{ctx.read(m.joint, joints_key), m.multiplier, m.offset});
+      mimics_.push_back(MimicJoint{ctx.read(m.joint, joints_key, n), m.multiplier, m.offset});
       names.push_back(n);
     }
     const YAML::Node extra = p.node("extra_joints");
@@ -197,6 +201,8 @@ ControllerType joint_state_controller() {
       {"publish_rate", "number", "", "publish_rate", "", "Hz on the hardware clock"},
       {"joints", "strings", "", "", "joints", "which joints and in what order (default: every actuated joint, then the mimic joints)"},
       {"extra_joints", "list", "", "extra_joints", "", "fixed {name, position, velocity, effort} appended"},
+      {"publish_mimic_joints", "bool", "true", "", "",
+       "false: only the joints with a transmission, as ROS's joint_state_controller (true adds their <mimic> joints)"},
   };
   return {t, [](const std::string&) { return std::make_unique<JointStateController>(Flavour::Ros1); }};
 }
@@ -230,6 +236,8 @@ ControllerType franka_state_controller() {
       {"publish_rate", "number", "", "publish_rate", "", "Hz on the hardware clock"},
       {"joint_names", "strings", "", "joint_names", "", "which joints and in what order"},
       {"arm_id", "string", "", "arm_id", "", "read and not used (franka_states is not published)"},
+      {"publish_mimic_joints", "bool", "true", "", "",
+       "false: only the joints with a transmission, as ROS's joint_state_controller (true adds their <mimic> joints)"},
   };
   return {t, [](const std::string&) { return std::make_unique<JointStateController>(Flavour::Franka); }};
 }

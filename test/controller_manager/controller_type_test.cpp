@@ -144,7 +144,9 @@ TEST(ControllerTypes, BuiltinDeclarationsGiveTheRosParameterNames) {
     return info ? parameter_names(*info) : std::vector<std::string>{};
   };
   using V = std::vector<std::string>;
-  EXPECT_EQ(names("joint_state_controller/JointStateController"), (V{"publish_rate", "joints", "extra_joints"}));
+  // publish_mimic_joints is ours (ROS's behaviour with false), after ROS's names.
+  EXPECT_EQ(names("joint_state_controller/JointStateController"),
+            (V{"publish_rate", "joints", "extra_joints", "publish_mimic_joints"}));
   for (const char* t : {"position_controllers/JointPositionController", "velocity_controllers/JointVelocityController",
                         "effort_controllers/JointEffortController"})
     EXPECT_EQ(names(t), V{"joint"}) << t;

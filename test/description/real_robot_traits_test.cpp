@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 
 #include "description/robot_model.hpp"
 #include "test/support/process.hpp"
@@ -97,5 +98,92 @@ TEST(RealRobotTraits, AnArgPlaceholderWithoutAValueIsOneErrorNamingTheFix) {
     EXPECT_NE(p.find("multi_trans_arm.yaml:7"), std::string::npos) << p;
     EXPECT_NE(p.find("arm_id"), std::string::npos) << p;
     EXPECT_NE(p.find("--arg arm_id=VALUE"), std::string::npos) << p;
+  }
+}
+
+TEST(RealRobotTraits, ZeroEffortOnPositionJointsWithoutGainsIsOneWarningPerJoint) {
+  // ROS-Industrial's arms: effort="0" everywhere, PositionJointInterface, no pid_gains (Gazebo sets the position).
+  const RobotModel m = load_robot_model(robot("industrial_arm.urdf"), robot("industrial_arm.yaml"));
+  EXPECT_EQ(count_containing(m.warnings, "<limit effort=\"0\"> ignored"), 2u) << lines(m.warnings);
+  for (const char* j : {"joint_1", "joint_2"})
+    EXPECT_EQ(count_containing(m.warnings, fmt::format("industrial_arm.urdf: joint '{}': <limit effort=\"0\">", j)),
+              1u)
+        << lines(m.warnings);
+}
+
+TEST(RealRobotTraits, ZeroEffortStaysAnErrorWhereTheEffortLimitIsUsed) {
+  // With pid_gains the position interface drives the joint by effort; an effort interface always does.
+  const std::string dir = lt::temp_dir("zero_effort");
+  std::ifstream in(robot("industrial_arm.yaml"));
+  std::ofstream(dir + "/gains.yaml") << std::string(std::istreambuf_iterator<char>(in), {})
+                                     << "gazebo_ros_control:\n  pid_gains:\n    joint_2: {p: 100, d: 1}\n";
+  try {
+    load_robot_model(robot("industrial_arm.urdf"), dir + "/gains.yaml");
+    FAIL() << "loaded a PID joint with effort 0";
+  } catch (const ModelError& e) {
+    ASSERT_EQ(e.problems().size(), 1u) << e.what();
+    EXPECT_NE(e.problems()[0].find("joint 'joint_2': <limit effort=\"0\"> would freeze the joint (no force allowed: "
+                                   "its pid_gains in " + dir + "/gains.yaml drive it by effort)"),
+              std::string::npos)
+        << e.what();
+  }
+  std::ifstream u(robot("industrial_arm.urdf"));
+  std::string urdf(std::istreambuf_iterator<char>(u), {});
+  const std::string position = "<joint name=\"joint_1\"><hardwareInterface>hardware_interface/PositionJointInterface";
+  ASSERT_NE(urdf.find(position), std::string::npos);
+  urdf.replace(urdf.find(position), position.size(),
+               "<joint name=\"joint_1\"><hardwareInterface>hardware_interface/EffortJointInterface");
+  std::ofstream(dir + "/effort.urdf") << urdf;
+  try {
+    load_robot_model(dir + "/effort.urdf", "");
+    FAIL() << "loaded an effort joint with effort 0";
+  } catch (const ModelError& e) {
+    ASSERT_EQ(e.problems().size(), 1u) << e.what();
+    EXPECT_NE(e.problems()[0].find("joint 'joint_1': <limit effort=\"0\"> would freeze the joint"), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(RealRobotTraits, TwoControllerYamlsMergeInOrderAndSayWhichKeyTheLaterOneReplaced) {
+  // As a launch file's two <rosparam file=.../>: rosparam loads both into one namespace, the later key wins.
+  const std::string a = robot("industrial_arm.yaml"), b = robot("industrial_arm_overrides.yaml");
+  const RobotModel m = load_robot_model(robot("industrial_arm.urdf"), std::vector<std::string>{a, b});
+  ASSERT_EQ(m.controllers.size(), 3u);
+  EXPECT_EQ(m.controllers[2].name, "joint_1_controller");
+  const YAML::Node arm = m.controller("arm_controller")->params;
+  EXPECT_EQ(arm["constraints"]["goal_time"].as<double>(), 1.0);
+  EXPECT_EQ(arm["joints"].size(), 2u);  // maps merge key by key: the first file's other keys stay
+  EXPECT_EQ(m.config_path, a + " + " + b);
+  EXPECT_EQ(m.controller("joint_state_controller")->file, a);
+  EXPECT_EQ(m.controller("joint_1_controller")->file, b);
+  EXPECT_EQ(m.controller("arm_controller")->file, a + " + " + b);
+  EXPECT_EQ(m.config_file_of("arm_controller/constraints/goal_time"), b);
+  EXPECT_EQ(m.config_file_of("arm_controller/joints"), a);
+  EXPECT_EQ(count_containing(m.notes, "replaces"), 1u) << lines(m.notes);
+  EXPECT_EQ(count_containing(m.notes, b + ": arm_controller/constraints/goal_time replaces the value from " + a), 1u)
+      << lines(m.notes);
+}
+
+TEST(RealRobotTraits, AProblemInTheSecondControllerYamlNamesThatFile) {
+  const std::string dir = lt::temp_dir("two_yamls");
+  std::ofstream(dir + "/gains.yaml") << "gazebo_ros_control:\n  pid_gains:\n    no_such_joint: {p: 1}\n";
+  try {
+    load_robot_model(robot("industrial_arm.urdf"), std::vector<std::string>{robot("industrial_arm.yaml"),
+                                                                             dir + "/gains.yaml"});
+    FAIL() << "loaded pid_gains of a joint the URDF does not have";
+  } catch (const ModelError& e) {
+    ASSERT_EQ(e.problems().size(), 1u) << e.what();
+    EXPECT_EQ(e.problems()[0].rfind(dir + "/gains.yaml: gazebo_ros_control/pid_gains/no_such_joint: joint "
+                                    "'no_such_joint' is not in the URDF", 0),
+              0u)
+        << e.what();
+  }
+  std::ofstream(dir + "/broken.yaml") << "arm_controller: [\n";
+  try {
+    load_robot_model(robot("industrial_arm.urdf"), std::vector<std::string>{robot("industrial_arm.yaml"),
+                                                                             dir + "/broken.yaml"});
+    FAIL() << "loaded a malformed YAML";
+  } catch (const ModelError& e) {
+    EXPECT_EQ(e.problems()[0].rfind(dir + "/broken.yaml:", 0), 0u) << e.what();
   }
 }

@@ -30,7 +30,7 @@ Read read(const std::string& yaml, std::vector<std::pair<std::string, std::strin
   r.model.options.args = std::move(args);
   r.model.ns = std::move(ns);
   try {
-    load_control_config_into(r.model, r.path);
+    load_control_config_into(r.model, {r.path});
   } catch (const ModelError& e) {
     r.error = e.what();
   }

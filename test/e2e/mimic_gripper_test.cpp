@@ -42,5 +42,37 @@ TEST(MimicGripper, ClosesOnTheBoxWithBothFingersAndPublishesTheMimicJoint) {
   EXPECT_NEAR(at(last, "right_finger_joint"), 0.035, 2e-3);  // stopped by the box, not at the 0.05 commanded
 }
 
+TEST(MimicGripper, PublishMimicJointsFalseLeavesTheMimicJointOutAsRosDoes) {
+  // gripper_ros_joint_states.yaml, merged after gripper.yaml, sets publish_mimic_joints: false.
+  RobotSession robot(source("test/robots/gripper.urdf"), source("test/robots/gripper.yaml"));
+  lcm::LCM lc(robot.url());
+  Recorder<joint_state_t> states(lc, "joint_states");
+  robot.start_controller_manager({"--config", source("test/robots/gripper_ros_joint_states.yaml")});
+  robot.start_sim();
+  ASSERT_NO_FATAL_FAILURE(robot.spawn({"joint_state_controller", "gripper_controller"}));
+  ASSERT_TRUE(pump_until(lc, [&] { return !states.messages.empty(); }, 10)) << robot.cm_output();
+  const joint_state_t& last = states.messages.back();
+  ASSERT_EQ(last.num_joints, 1);
+  EXPECT_EQ(last.name[0], "left_finger_joint");
+  std::string list;
+  ASSERT_EQ(robot.run({"cmctl", "list"}, &list, 15), 0) << list;
+  EXPECT_NE(list.find("joint_state_controller"), std::string::npos) << list;
+  EXPECT_EQ(list.find("right_finger_joint"), std::string::npos) << list;
+}
+
+TEST(MimicGripper, CmctlListsEveryJointJointStatesPublishesByItsOwnName) {
+  RobotSession robot(source("test/robots/gripper.urdf"), source("test/robots/gripper.yaml"));
+  robot.start_controller_manager();
+  robot.start_sim();
+  ASSERT_NO_FATAL_FAILURE(robot.spawn({"joint_state_controller", "gripper_controller"}));
+  std::string list;
+  ASSERT_EQ(robot.run({"cmctl", "list"}, &list, 15), 0) << list;
+  const size_t jsc = list.find("joint_state_controller");
+  ASSERT_NE(jsc, std::string::npos) << list;
+  const std::string line = list.substr(jsc, list.find('\n', jsc) - jsc);
+  EXPECT_NE(line.find("left_finger_joint"), std::string::npos) << list;
+  EXPECT_NE(line.find("right_finger_joint"), std::string::npos) << list;
+}
+
 }  // namespace
 }  // namespace lcm_control::testing

@@ -205,3 +205,31 @@ TEST(RealRobots, NamespacedRobotUnderLaunchRunsItsThreeControllersInItsNamespace
   EXPECT_NEAR(velocity_of(after, "joint1"), 0.0, 0.01);
   EXPECT_EQ(launch.stop(30), 0) << launch.output();
 }
+
+// A ROS-Industrial-style arm (effort="0" on position joints without pid_gains) from its ROS launch file with two
+// <rosparam> files: launch, sim_server and controller_manager take it with one warning per joint, and it follows a
+// trajectory under the merged arm_controller.
+TEST(RealRobots, IndustrialArmWithZeroEffortLimitsRunsFromItsLaunchFileAndTwoYamls) {
+  const std::string url = lt::unique_lcm_url();
+  const std::map<std::string, std::string> env{{"LCM_DEFAULT_URL", url}};
+  lt::ChildProcess launch({lt::bin("launch"), robot("industrial_arm.launch"), "--package-path", lt::source("test"),
+                           "--lcm-url", url, "--stop-timeout", "20"});
+  ASSERT_TRUE(launch.wait_for_output("started joint_state_controller, arm_controller", 40)) << launch.output();
+  const std::string warning = "industrial_arm.urdf: joint 'joint_1': <limit effort=\"0\"> ignored";
+  EXPECT_NE(launch.output().find("sim_server"), std::string::npos);
+  size_t said = 0;
+  for (size_t at = launch.output().find(warning); at != std::string::npos; at = launch.output().find(warning, at + 1))
+    ++said;
+  EXPECT_EQ(said, 2u) << "once by sim_server, once by controller_manager:\n" << launch.output();
+  EXPECT_NE(launch.output().find("arm_controller/constraints/goal_time replaces the value from"), std::string::npos)
+      << launch.output();
+  lt::ChildProcess send({lt::bin("send-trajectory"), "arm_controller", "--point", "1.5:0.5,-0.4"}, env);
+  ASSERT_EQ(send.wait(30), 0) << send.output() << launch.output();
+  EXPECT_NE(send.output().find("arm_controller: SUCCEEDED"), std::string::npos) << send.output();
+  lcm::LCM lc(url);
+  lt::Recorder<joint_state_t> states(lc, "joint_states");
+  ASSERT_TRUE(lt::pump_until(lc, [&] { return !states.messages.empty(); }, 10));
+  EXPECT_NEAR(position_of(states.messages.back(), "joint_1"), 0.5, 0.01);
+  EXPECT_NEAR(position_of(states.messages.back(), "joint_2"), -0.4, 0.01);
+  EXPECT_EQ(launch.stop(30), 0) << launch.output();
+}

@@ -78,3 +78,27 @@ broken_controller:
       << r.out;
   EXPECT_TRUE(has(r.out, "no_such_joint")) << r.out;
 }
+
+TEST(Doctor, ZeroEffortOnADirectPositionJointIsOneWarningNotAnError) {
+  const DoctorRun r = doctor({"--urdf", robot("industrial_arm.urdf"), "--config", robot("industrial_arm.yaml")});
+  EXPECT_EQ(r.rc, 0) << r.out;
+  for (const char* j : {"joint_1", "joint_2"}) {
+    const std::string w = std::string("industrial_arm.urdf: joint '") + j + "': <limit effort=\"0\"> ignored";
+    const size_t at = r.out.find(w);
+    EXPECT_NE(at, std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find(w, at + 1), std::string::npos) << "said twice:\n" << r.out;
+  }
+}
+
+TEST(Doctor, SeveralConfigsMergeAndAKeyIsBlamedOnTheFileItCameFrom) {
+  const std::string dir = lt::temp_dir("doctor_configs");
+  std::ofstream(dir + "/typo.yaml") << "arm_controller:\n  state_publish_rat: 25\n";
+  const std::string a = robot("industrial_arm.yaml"), b = robot("industrial_arm_overrides.yaml");
+  const DoctorRun r =
+      doctor({"--urdf", robot("industrial_arm.urdf"), "--config", a, "--config", b, "--config", dir + "/typo.yaml"});
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_TRUE(has(r.out, "note: " + b + ": arm_controller/constraints/goal_time replaces the value from " + a)) << r.out;
+  EXPECT_TRUE(has(r.out, "joint_1_controller               loads")) << r.out;
+  EXPECT_TRUE(has(r.out, dir + "/typo.yaml: arm_controller/state_publish_rat: not a parameter of")) << r.out;
+  EXPECT_TRUE(has(r.out, "OK: 3 joints, 2 transmissions, 3 controllers\n")) << r.out;
+}

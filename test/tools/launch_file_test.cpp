@@ -37,7 +37,7 @@ std::string problems_of(const std::function<void()>& f) {
 TEST(LaunchFile, TurretBotYaml) {
   const LaunchPlan plan = read_launch_file(lt::source("config/turret_bot.launch.yaml"), {});
   EXPECT_EQ(plan.urdf, lt::source("config/turret_bot.urdf"));
-  EXPECT_EQ(plan.config, lt::source("config/turret_bot.yaml"));
+  EXPECT_EQ(plan.configs, std::vector<std::string>{lt::source("config/turret_bot.yaml")});
   EXPECT_EQ(plan.mode, "realtime");
   EXPECT_EQ(plan.physics_rate, 1000);
   EXPECT_EQ(plan.controllers, kControllers);
@@ -51,7 +51,7 @@ TEST(LaunchFile, TutorialRosLaunchWithThePackagePath) {
   const std::string pkg = lt::source("test/tools/data/turret_bot");
   const LaunchPlan plan = read_launch_file(pkg + "/launch/gazebo_ros_control.launch", {lt::source("test/tools/data")});
   EXPECT_EQ(plan.urdf, pkg + "/urdf/turret_bot.urdf");
-  EXPECT_EQ(plan.config, pkg + "/config/config.yaml");
+  EXPECT_EQ(plan.configs, std::vector<std::string>{pkg + "/config/config.yaml"});
   EXPECT_EQ(plan.controllers, kControllers);
   EXPECT_TRUE(plan.state_publisher);
   EXPECT_EQ(plan.state_publisher_name, "robot_state_publisher");
@@ -347,4 +347,48 @@ TEST(LaunchFile, SpawnAndInactiveNameWhatStartsAndWhatIsOnlyLoaded) {
     read_launch_file(write(dir, "b.yaml", head + "controllers: [j1_controller]\nspawn: [j2_controller]\n"), {});
   });
   EXPECT_NE(p.find("give controllers or spawn (the same list), not both"), std::string::npos) << p;
+}
+
+// A ROS launch file with two <rosparam> files and the args people compute with $(optenv) and $(eval).
+TEST(LaunchFile, TwoRosparamFilesOptenvAndEvalAsRoslaunchReadsThem) {
+  const std::string robots = lt::source("test/robots");
+  unsetenv("LCM_CONTROL_TEST_ROBOT");
+  unsetenv("LCM_CONTROL_TEST_START");
+  LaunchPlan plan = read_launch_file(robots + "/industrial_arm.launch", {lt::source("test")});
+  EXPECT_EQ(plan.urdf, robots + "/industrial_arm.urdf");
+  EXPECT_EQ(plan.configs,
+            (std::vector<std::string>{robots + "/industrial_arm.yaml", robots + "/industrial_arm_overrides.yaml"}));
+  EXPECT_EQ(plan.controllers, (std::vector<std::string>{"joint_state_controller", "arm_controller"}));
+
+  // $(optenv VAR default) takes the variable when it is set; eval's optenv() too.
+  setenv("LCM_CONTROL_TEST_ROBOT", "no_such_robot", 1);
+  setenv("LCM_CONTROL_TEST_START", "no", 1);
+  plan = read_ros_launch(robots + "/industrial_arm.launch", {lt::source("test")});  // the files are not checked
+  unsetenv("LCM_CONTROL_TEST_ROBOT");
+  unsetenv("LCM_CONTROL_TEST_START");
+  EXPECT_EQ(plan.urdf, robots + "/no_such_robot.urdf");
+  EXPECT_EQ(plan.configs.back(), robots + "/no_such_robot_overrides.yaml");
+  EXPECT_TRUE(plan.controllers.empty());
+}
+
+TEST(LaunchFile, YamlConfigTakesAListOfFilesInOrder) {
+  const std::string dir = lt::temp_dir("launch_configs");
+  const LaunchPlan plan = read_launch_yaml(
+      write(dir, "two.launch.yaml", "urdf: arm.urdf\nconfig: [arm.yaml, " + dir + "/gripper.yaml]\n"), {});
+  EXPECT_EQ(plan.configs, (std::vector<std::string>{dir + "/arm.yaml", dir + "/gripper.yaml"}));
+}
+
+TEST(LaunchFile, AnEvalErrorShowsTheWholeExpression) {
+  const std::string dir = lt::temp_dir("launch_eval");
+  const std::string p = problems_of([&] {
+    read_launch_file(write(dir, "eval.launch", R"L(<launch>
+  <arg name="scale" default="2"/>
+  <arg name="size" value="$(eval max(1, min(arg('scale') * (3 + no_such_arg), 10)))"/>
+</launch>)L"),
+                     {});
+  });
+  EXPECT_NE(p.find("eval.launch:3: <arg name=\"size\">: $(eval max(1, min(arg('scale') * (3 + no_such_arg), 10))): "),
+            std::string::npos)
+      << p;
+  EXPECT_NE(p.find("no_such_arg"), std::string::npos) << p;
 }

@@ -49,7 +49,9 @@ LaunchPlan read_launch_file(const std::string& path, const std::vector<std::stri
   std::vector<std::string> problems;
   std::error_code ec;
   // No config: the URDF's gz_ros2_control plugin may name it (launcher.cpp).
-  for (const auto& [what, file] : {std::pair{"URDF", plan.urdf}, {"ros_control YAML", plan.config}})
+  std::vector<std::pair<std::string, std::string>> files{{"URDF", plan.urdf}};
+  for (const auto& c : plan.configs) files.emplace_back("ros_control YAML", c);
+  for (const auto& [what, file] : files)
     if (!file.empty() && !fs::is_regular_file(file, ec)) problems.push_back(fmt::format("{}: the {} {} does not exist", path, what, file));
   if (!problems.empty()) throw ModelError(problems);
   return plan;

@@ -27,7 +27,8 @@ struct CommandSpec {
 
 struct LaunchPlan {
   std::string file;
-  std::string urdf, config;          // absolute paths
+  std::string urdf;                  // absolute path
+  std::vector<std::string> configs;  // absolute paths; several are merged in order (a later key wins), as rosparam does
   std::string mode = "realtime";     // realtime | lockstep
   bool paused = false;               // sim_server --paused (`paused:`, gazebo_ros's paused arg)
   double physics_rate = 0, control_rate = 0;  // 0: sim_server's defaults

@@ -2,6 +2,7 @@
 #include <fmt/format.h>
 #include <tinyxml2.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -30,7 +31,6 @@ struct RosReader {
   std::map<std::string, std::vector<std::pair<std::string, std::string>>> xacro_params;  // name -> its xacro args
   bool gazebo = false, spawn_model = false, unpause = false;
   std::string spawn_param;
-  int rosparam_files = 0;
   std::vector<std::string> problems;
 
   std::string where(const tinyxml2::XMLElement* e) const {
@@ -44,7 +44,8 @@ struct RosReader {
   bool enabled(const tinyxml2::XMLElement* e) {
     for (const char* cond : {"if", "unless"}) {
       if (!e->Attribute(cond)) continue;
-      const std::string v = attr(e, cond);
+      std::string v = attr(e, cond);
+      for (char& c : v) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));  // roslaunch: "True" too
       const bool truth = v == "true" || v == "1";
       if (v != "true" && v != "false" && v != "1" && v != "0")
         throw ModelError(fmt::format("{}: {}=\"{}\" must be true/false/1/0", where(e), cond, v));
@@ -190,9 +191,7 @@ struct RosReader {
         return;
       }
       if (e->Attribute("ns")) plan.notes.push_back(where(e) + ": ns=\"" + attr(e, "ns") + "\" ignored");
-      if (++rosparam_files > 1)
-        problems.push_back(where(e) + ": a second <rosparam> file; lcm_control takes one ros_control YAML, merge them");
-      plan.config = attr(e, "file");
+      plan.configs.push_back(attr(e, "file"));
     } else if (tag == "node") {
       node(e);
     } else if (tag == "include") {
@@ -261,7 +260,7 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
     if (plan.urdf.empty() && !earlier)
       r.problems.push_back(fmt::format("{}: no URDF: expected <param name=\"{}\" textfile=\"...\"/> or command=\"$(find xacro)/xacro ...\"", path, want));
   }
-  if (plan.config.empty() && !earlier)
+  if (plan.configs.empty() && !earlier)
     r.problems.push_back(fmt::format("{}: no ros_control YAML: expected <rosparam command=\"load\" file=\"...\"/>", path));
   plan.sim = plan.controller_manager = r.gazebo || r.spawn_model;
   if (!plan.sim)
@@ -275,7 +274,7 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
   if (!r.problems.empty()) throw ModelError(r.problems);
   const std::string dir = fs::absolute(path).parent_path().string();
   plan.urdf = absolute_from(plan.urdf, dir);
-  plan.config = absolute_from(plan.config, dir);
+  for (auto& c : plan.configs) c = absolute_from(c, dir);
   return plan;
 }
 

@@ -93,7 +93,8 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
       } else if (key == "urdf") {
         plan.urdf = absolute_from(str(v, key), dir);
       } else if (key == "config") {
-        plan.config = absolute_from(str(v, key), dir);
+        for (const auto& c : v.IsSequence() ? list(v, key) : std::vector<std::string>{str(v, key)})
+          plan.configs.push_back(absolute_from(c, dir));
       } else if (key == "mode") {
         plan.mode = str(v, key);
         if (plan.mode != "realtime" && plan.mode != "lockstep")

@@ -95,23 +95,23 @@ void ros2_defaults(LaunchPlan& plan, const std::vector<std::string>& path) {
   o.args = plan.args;
   RobotModel model;
   try {
-    model = load_robot_model(plan.urdf, plan.config, o);
+    model = load_robot_model(plan.urdf, plan.configs, o);
   } catch (const std::exception&) {
-    if (plan.config.empty())
+    if (plan.configs.empty())
       throw ModelError(fmt::format("{}: 'config' is missing: the controllers YAML", plan.file));
     return;  // the servers say what is wrong
   }
-  if (plan.config.empty() && !model.ros2_control_plugin.parameters.empty()) {
-    plan.config = model.ros2_control_plugin.parameters.front();
-    launch_say(fmt::format("note: config {} from the URDF's {} plugin <parameters>", plan.config,
+  if (plan.configs.empty() && !model.ros2_control_plugin.parameters.empty()) {
+    plan.configs = {model.ros2_control_plugin.parameters.front()};
+    launch_say(fmt::format("note: config {} from the URDF's {} plugin <parameters>", plan.configs.front(),
                            model.ros2_control_plugin.filename));
     try {
-      model = load_robot_model(plan.urdf, plan.config, o);
+      model = load_robot_model(plan.urdf, plan.configs, o);
     } catch (const std::exception&) {
       return;
     }
   }
-  if (plan.config.empty())
+  if (plan.configs.empty())
     throw ModelError(fmt::format("{}: 'config' is missing: the controllers YAML (a URDF's gz_ros2_control plugin may "
                                  "name it in <parameters>; {}'s does not)",
                                  plan.file, plan.urdf));
@@ -121,7 +121,7 @@ void ros2_defaults(LaunchPlan& plan, const std::vector<std::string>& path) {
   launch_say(fmt::format("note: {} configures {}; a ROS 2 launch starts controllers in its spawner calls: name them "
                          "with --controllers a,b (and --inactive c), or `controllers:` / `inactive:` in a launch "
                          "file. Starting none.",
-                         plan.config, names.empty() ? "no controllers" : fmt::format("{}", fmt::join(names, ", "))));
+                         model.config_path, names.empty() ? "no controllers" : fmt::format("{}", fmt::join(names, ", "))));
 }
 
 std::vector<std::string> with_ns(std::vector<std::string> argv, const std::string& ns) {
@@ -146,7 +146,10 @@ CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const
   for (const auto& [name, value] : plan.xacro_args)
     urdf_args.insert(urdf_args.end(), {"--xacro-arg", name + ":=" + value});
   file_args.insert(file_args.end(), urdf_args.begin(), urdf_args.end());
-  sim = {"sim_server", "--urdf", plan.urdf, "--config", plan.config};
+  std::vector<std::string> robot_files{"--urdf", plan.urdf};
+  for (const auto& c : plan.configs) robot_files.insert(robot_files.end(), {"--config", c});
+  file_args.insert(file_args.begin(), robot_files.begin(), robot_files.end());
+  sim = {"sim_server"};
   sim.insert(sim.end(), file_args.begin(), file_args.end());
   for (const auto& [joint, q] : plan.initial_positions)
     sim.insert(sim.end(), {"--initial-position", fmt::format("{}={}", joint, q)});
@@ -156,7 +159,7 @@ CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const
   if (plan.control_rate > 0) sim.insert(sim.end(), {"--control-rate", fmt::format("{:g}", plan.control_rate)});
   sim.insert(sim.end(), plan.sim_args.begin(), plan.sim_args.end());
   if (o.duration > 0) sim.insert(sim.end(), {"--duration", fmt::format("{:g}", o.duration)});
-  cm = {"controller_manager", "--urdf", plan.urdf, "--config", plan.config};
+  cm = {"controller_manager"};
   cm.insert(cm.end(), file_args.begin(), file_args.end());
   cm.insert(cm.end(), plan.cm_args.begin(), plan.cm_args.end());
   // In lockstep the two loop processes take turns; on one CPU each hand-over is a cheaper wake-up (bench/README.md).
@@ -182,7 +185,7 @@ CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const
   spawner.insert(spawner.end(), {"--shutdown-timeout", fmt::format("{:g}", o.stop_timeout * 0.3)});
   if (plan.sim && plan.mode == "lockstep") spawner.push_back("--hardware-later");  // the sim starts after it
   spawner.insert(spawner.end(), plan.spawner_args.begin(), plan.spawner_args.end());
-  rsp = {"state-publisher", "--urdf", plan.urdf, "--config", plan.config};
+  rsp = {"state-publisher"};
   rsp.insert(rsp.end(), file_args.begin(), file_args.end());
   dash = {"dashboard", "--urdf", plan.urdf, "--port", std::to_string(o.dashboard_port)};
   dash.insert(dash.end(), urdf_args.begin(), urdf_args.end());
