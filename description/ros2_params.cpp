@@ -257,7 +257,7 @@ void parse_ros2_params(RobotModel& model, const YAML::Node& doc, const std::stri
     params["type"] = type;
     for (const auto& kv : own)
       if (kv.first.Scalar() != "type") params[kv.first.Scalar()] = YAML::Clone(kv.second);
-    model.controllers.push_back(ControllerSpec{name, type, params});
+    model.controllers.push_back(ControllerSpec{name, type, params, file});
   }
   model.notes.push_back(fmt::format("{}: a ROS 2 parameter file: {} controller{}{}", file, model.controllers.size(),
                                     model.controllers.size() == 1 ? "" : "s",

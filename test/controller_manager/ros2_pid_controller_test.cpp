@@ -24,7 +24,7 @@ RobotModel with_pid(const std::string& section) {
   RobotModel m = load_robot_model(data("ros2_bot.urdf"), data("ros2_bot.yaml"));
   YAML::Node params = YAML::Load(section);
   params["type"] = "pid_controller/PidController";
-  m.controllers.push_back(ControllerSpec{"twist_pid", "pid_controller/PidController", params});
+  m.controllers.push_back(ControllerSpec{"twist_pid", "pid_controller/PidController", params, "twist_pid.yaml"});
   return m;
 }
 
