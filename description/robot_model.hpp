@@ -67,6 +67,7 @@ struct Link {
   std::vector<Geometry> visuals;
   std::string parent_joint;  // "" for the root
   std::optional<double> friction;  // <gazebo reference="LINK"><mu1>: contact friction coefficient (default 1)
+  bool gravity_off = false;        // <gazebo reference="LINK"><turnGravityOff>true: the link feels no gravity
 };
 
 // <mimic joint= multiplier= offset=>: position = multiplier * the other joint's position + offset.

@@ -309,25 +309,45 @@ void parse_transmissions(RobotModel& model, const tinyxml2::XMLElement* robot, c
                                          no_reduction.size() == 1 ? "has" : "have"));
 }
 
-void parse_gazebo_plugin(RobotModel& model, const tinyxml2::XMLElement* robot) {
+// The <gazebo> extensions read here: self_collide (robot), mu1 and turnGravityOff (per link), and the
+// gazebo_ros_control plugin (a ros2_control plugin is read by ros2_control.cpp). Every other tag is named in one
+// warning: Gazebo would read it, we do not.
+void parse_gazebo_plugin(RobotModel& model, const tinyxml2::XMLElement* robot, const std::string& file) {
+  std::map<std::string, int> unread;  // "tag" or "plugin FILENAME" -> count
   for (auto* g = robot->FirstChildElement("gazebo"); g; g = g->NextSiblingElement("gazebo")) {
+    const bool per_link = g->Attribute("reference") != nullptr;
+    for (auto* c = g->FirstChildElement(); c; c = c->NextSiblingElement()) {
+      const std::string tag = c->Name();
+      const bool read = tag == "plugin" || (!per_link && tag == "self_collide") ||
+                        (per_link && (tag == "mu1" || tag == "turnGravityOff"));
+      if (!read) ++unread[(per_link ? "<gazebo reference> " : "<gazebo> ") + tag];
+    }
     if (const char* sc = child_text(g, "self_collide"); sc && !g->Attribute("reference"))
       model.self_collide = trim(sc) == "true" || trim(sc) == "1";
     if (const char* ref = g->Attribute("reference"))
-      if (const char* mu = child_text(g, "mu1"))
-        for (Link& l : model.links)
-          if (l.name == ref) {
-            double v = 0;
-            if (parse_double(trim(mu), v) && v >= 0) l.friction = v;
-          }
+      for (Link& l : model.links) {
+        if (l.name != ref) continue;
+        double v = 0;
+        if (const char* mu = child_text(g, "mu1"); mu && parse_double(trim(mu), v) && v >= 0) l.friction = v;
+        if (const char* off = child_text(g, "turnGravityOff"))
+          l.gravity_off = trim(off) == "true" || trim(off) == "1";
+      }
     for (auto* p = g->FirstChildElement("plugin"); p; p = p->NextSiblingElement("plugin")) {
       const char* fn = p->Attribute("filename");
       if (fn && std::string(fn).find("gazebo_ros_control") != std::string::npos) {
         model.has_gazebo_ros_control_plugin = true;
         if (const char* ns = child_text(p, "robotNamespace")) model.gazebo_plugin_namespace = trim(ns);
+      } else if (!fn || std::string(fn).find("ros2_control") == std::string::npos) {  // read by ros2_control.cpp
+        ++unread[fmt::format("<plugin filename=\"{}\">", fn ? fn : "")];
       }
     }
   }
+  if (unread.empty()) return;
+  std::vector<std::string> names;
+  for (const auto& [tag, n] : unread) names.push_back(n == 1 ? tag : fmt::format("{} (x{})", tag, n));
+  model.warnings.push_back(fmt::format("{}: Gazebo tags not simulated here, ignored: {} (read are <self_collide>, "
+                                       "per link <mu1> and <turnGravityOff>, and the ros_control plugins)",
+                                       file, fmt::join(names, ", ")));
 }
 
 // urdfdom reads a number it cannot parse as 0, or drops the whole element (a mass of "nan" left the link
@@ -485,7 +505,7 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
     read_ros2_control(model, robot, urdf_path, problems);  // ROS 2: the blocks, not <transmission> tags
   else
     parse_transmissions(model, robot, urdf_path, problems);
-  parse_gazebo_plugin(model, robot);
+  parse_gazebo_plugin(model, robot, urdf_path);
   read_ros2_control_plugin(model, robot, urdf_path, problems);
 }
 

@@ -157,6 +157,7 @@ int main(int argc, char** argv) {
       spdlog::info("{}: <hold_joints>false</hold_joints>: joints nobody commands are not braked (effort and velocity "
                    "joints go limp, position PIDs hold on their gains), as --no-brakes",
                    model.urdf_path);
+    for (const auto& n : sim.notes()) spdlog::info("{}", n);
     for (const auto& w : sim.warnings()) spdlog::warn("{}", w);
     for (const auto& line : sim.describe()) spdlog::info("{}", line);
     Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url, hardware_reader_named(bus_flags.hardware_reader));

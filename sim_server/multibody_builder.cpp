@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 
 #include "description/text.hpp"
 
@@ -119,10 +120,42 @@ Multibody::Multibody(const RobotModel& model, double dt, const InitialPositions&
   world_->getSolverInfo().m_numIterations = 50;
   build(model, world);
   set_initial_positions(model, initial);
+  if (world.floating_base && world.ground) rest_on_ground(model);
   compute_effective_inertias();
 }
 
+void Multibody::rest_on_ground(const RobotModel& model) {
+  double lowest = std::numeric_limits<double>::infinity();
+  std::string lowest_link;
+  for (const auto& [name, index] : link_index_) {
+    const btMultiBodyLinkCollider* col = index < 0 ? body_->getBaseCollider() : body_->getLink(index).m_collider;
+    if (!col || col->getBroadphaseHandle() == nullptr || col->getBroadphaseHandle()->m_collisionFilterGroup == 0)
+      continue;  // the tiny collider of a geometry-less link touches nothing
+    btVector3 lo, hi;
+    col->getCollisionShape()->getAabb(col->getWorldTransform(), lo, hi);
+    if (lo.z() < lowest) {
+      lowest = lo.z();
+      lowest_link = name;
+    }
+  }
+  if (!(lowest < 0)) return;  // above the ground (it falls, as in Gazebo) or nothing collides
+  btTransform base = body_->getBaseWorldTransform();
+  base.getOrigin().setZ(base.getOrigin().z() - lowest);
+  body_->setBaseWorldTransform(base);
+  set_state_refresh();
+  start_notes_.push_back(fmt::format("robot '{}': its lowest collision shape (link '{}') would start {:.4g} m inside "
+                                     "the ground plane; the floating base starts lifted by {:.4g} m so it rests on "
+                                     "the ground (start it higher with --base-pose / spawn_model -z to choose)",
+                                     model.name, lowest_link, -lowest, -lowest));
+}
+
 void Multibody::step() {
+  for (const auto& [link, f] : antigravity_) {
+    if (link < 0)
+      body_->addBaseForce(f);
+    else
+      body_->addLinkForce(link, f);
+  }
   world_->stepSimulation(dt_, 0, dt_);
   for (const MultibodyJoint& j : joints_) {
     if (j.max_velocity <= 0) continue;
@@ -293,6 +326,12 @@ void Multibody::build(const RobotModel& model, const WorldOptions& world) {
       body_->getLink(index).m_collider = col.get();
     colliders_.push_back(std::move(col));
   };
+  for (const auto& [name, index] : link_index_) {
+    const Link* l = model.link(name);
+    if (!l || !l->gravity_off) continue;
+    const double mass = index < 0 ? body_->getBaseMass() : body_->getLinkMass(index);
+    antigravity_.emplace_back(index, btVector3(0, 0, kGravity * mass));  // applied at the COM: no torque
+  }
   add_collider(*root, -1);
   for (int i = 0; i < int(order.size()); ++i) add_collider(*model.link(order[i]->child_link), i);
   if (world.ground) {

@@ -104,10 +104,15 @@ class Multibody {
   const std::vector<std::string>& warnings() const { return warnings_; }
   // Initial positions outside the limits, clamped into them (one WARN each).
   const std::vector<std::string>& start_warnings() const { return start_warnings_; }
+  // What the start did that the user should know (one INFO each): a floating base lifted out of the ground.
+  const std::vector<std::string>& start_notes() const { return start_notes_; }
 
  private:
   void build(const RobotModel& model, const WorldOptions& world);
   void set_initial_positions(const RobotModel& model, const InitialPositions& initial);
+  // A floating base whose collision shapes start inside the ground plane would be thrown up by Bullet's
+  // penetration recovery: lift it so its lowest shape (AABB in the initial pose) rests on the plane.
+  void rest_on_ground(const RobotModel& model);
   void compute_effective_inertias();
   void set_state_refresh();  // forward kinematics and collider transforms after a state change
 
@@ -126,7 +131,9 @@ class Multibody {
   std::vector<MultibodyJoint> joints_;
   std::map<std::string, int> link_index_;               // URDF link -> Bullet link (-1: base)
   std::map<std::string, Eigen::Isometry3d> link_from_com_;  // URDF link frame -> its Bullet COM frame
-  std::vector<std::string> warnings_, start_warnings_;
+  std::vector<std::string> warnings_, start_warnings_, start_notes_;
+  // <turnGravityOff> links: Bullet link index (-1: base) and the force that cancels their weight, added each step.
+  std::vector<std::pair<int, btVector3>> antigravity_;
 };
 
 }  // namespace lcm_control::sim

@@ -97,6 +97,10 @@ std::vector<std::string> Simulation::warnings() const {
   return lines;
 }
 
+std::vector<std::string> Simulation::notes() const {
+  return multibody_ ? multibody_->start_notes() : std::vector<std::string>{};
+}
+
 void Simulation::step() {
   if (mock_) {
     mock_->step(control_period_);

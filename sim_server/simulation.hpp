@@ -78,6 +78,8 @@ class Simulation {
   std::vector<std::string> describe() const;
   // The WARN lines of building it: the multibody's and actuators' findings, then start_warnings().
   std::vector<std::string> warnings() const;
+  // The INFO lines of building it (a floating base lifted out of the ground).
+  std::vector<std::string> notes() const;
 
  private:
   RobotModel model_;  // the multibody points into it

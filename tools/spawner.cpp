@@ -1,5 +1,8 @@
 // spawner: the controller_manager spawner. Loads controllers, starts them in
-// one strict switch, stays running, and stops and unloads them on Ctrl-C.
+// one strict switch, stays running, and stops and unloads them on Ctrl-C. One
+// that fails is named with its reason, the others run, and the exit is non-zero.
+#include <algorithm>
+
 #include "cli/cli.hpp"
 #include "tools/lib/cm_client.hpp"
 #include "tools/lib/spawn.hpp"
@@ -10,8 +13,10 @@ int main(int argc, char** argv) {
   using namespace lcm_control::tools;
   CLI::App app{
       "Load controllers and start them all in one strict switch (ROS's controller_manager spawner), then stay running; "
-      "on Ctrl-C or SIGTERM stop and unload them. Unlike ROS's, every wait is bounded and any failure exits non-zero "
-      "naming the controller and the reason, with nothing left loaded.\n"
+      "on Ctrl-C or SIGTERM stop and unload them. A controller that fails to load or start is named with the reason "
+      "and the others run, as with ROS's spawner; the ready line names it ('; failed: NAME') and the exit status is "
+      "then 1. If none can be spawned (or with --activate-as-group, any), it exits 1 at once with nothing left "
+      "loaded. Unlike ROS's, every wait is bounded.\n"
       "Examples:\n"
       "  spawner joint_state_controller j1_controller j2_controller\n"
       "  spawner j2_effort_controller --stopped      # load only; start later with cmctl start\n"
@@ -34,9 +39,11 @@ int main(int argc, char** argv) {
                  "ROS 2: the controller manager's node name (/NS/controller_manager): its namespace is --namespace");
   app.add_option("-p,--param-file", param_file,
                  "ROS 2: the controllers' parameter file; here the controller manager reads them from its --config");
-  app.add_flag("--activate-as-group,--unload-on-kill,-u",
-               "ROS 2's flags, accepted: this spawner always starts its controllers in one switch and unloads them "
-               "when stopped");
+  app.add_flag("--activate-as-group", o.as_group,
+               "all or nothing (ROS 2): if one controller fails to load or start, none is left loaded and the "
+               "spawner exits 1");
+  app.add_flag("--unload-on-kill,-u", "ROS 2's flag, accepted: this spawner always unloads its controllers when "
+               "stopped");
   app.add_option("--shutdown-timeout", shutdown_timeout, "seconds for stopping and unloading at exit")
       ->check(CLI::PositiveNumber);
   // launch in lockstep starts the simulator after the spawner: no warning about its missing state then.
@@ -71,15 +78,27 @@ int main(int argc, char** argv) {
     }
     // Idle without an LCM socket: a udpm socket receives every message on the
     // bus, which costs CPU the simulation could use.
-    fmt::print(stderr, "spawner: ready: {} {}{} (Ctrl-C to stop and unload)\n", fmt::join(names, ", "),
+    std::vector<std::string> failed, inactive;
+    for (const auto& [n, why] : spawner.failed()) failed.push_back(n);
+    for (const auto& n : o.inactive)
+      if (std::find(failed.begin(), failed.end(), n) == failed.end()) inactive.push_back(n);
+    const std::vector<std::string> up = o.stopped ? spawner.loaded() : spawner.running();
+    // launch reads this line: "ready: ", then "; failed: A, B" when some could not be spawned.
+    fmt::print(stderr, "spawner: ready: {} {}{}{} (Ctrl-C to stop and unload)\n",
+               up.empty() ? "no controllers" : fmt::format("{}", fmt::join(up, ", ")),
                o.stopped ? "loaded" : "running",
-               o.inactive.empty() ? "" : fmt::format("; {} loaded, inactive", fmt::join(o.inactive, ", ")));
+               inactive.empty() ? "" : fmt::format("; {} loaded, inactive", fmt::join(inactive, ", ")),
+               failed.empty() ? "" : fmt::format("; failed: {}", fmt::join(failed, ", ")));
     while (!stop_requested()) sleep_until_us(monotonic_us() + 1000000);
     clear_stop();
     Bus bus(bus_flags.lcm_url, bus_flags.ns);
     CmClient cm(bus, "spawner");
     const bool ok = spawner.teardown(cm, shutdown_timeout);
     fmt::print(stderr, "spawner: {}\n", ok ? "stopped and unloaded, bye" : "exiting without a clean unload");
+    if (!spawner.failed().empty()) {
+      for (const auto& [n, why] : spawner.failed()) fmt::print(stderr, "spawner: error: controller '{}' {}\n", n, why);
+      return int(kExitFailure);
+    }
     return int(kExitOk);
   });
 }

@@ -3,7 +3,8 @@
 // velocity and acceleration), turns it into wheel velocities on
 // VelocityJointInterface, stops the wheels when no command came for
 // cmd_vel_timeout, and dead-reckons the base from the wheel positions (exact
-// arcs), publishing odometry_t on `<controller>/odom` at publish_rate.
+// arcs), publishing odometry_t on `<controller>/odom` at publish_rate and,
+// with publish_cmd, the limited twist on `<controller>/cmd_vel_out` every update.
 // wheel_radius and wheel_separation default to the URDF's (the wheel link's
 // collision cylinder or sphere, and the wheel joints' distance apart).
 // ROS 2's parameters (left_wheel_names, right_wheel_names, and limits that hold
@@ -130,11 +131,10 @@ class DiffDriveController : public Controller {
     angular_ = read_limits(p, "angular", "z", ros2);
     odom_.frame_id = p.has("odom_frame_id") ? p.string("odom_frame_id") : "odom";
     odom_.child_frame_id = p.has("base_frame_id") ? p.string("base_frame_id") : "base_link";
-    for (const char* ignored : {"enable_odom_tf", "pose_covariance_diagonal", "twist_covariance_diagonal",
-                                "allow_multiple_cmd_vel_publishers", "publish_cmd",
-                                "publish_wheel_joint_controller_state", "wheels_per_side", "use_stamped_vel",
-                                "tf_frame_prefix_enable", "tf_frame_prefix"})
-      if (p.has(ignored)) p.node(ignored);
+    // ROS 1's publish_cmd, ROS 2's publish_limited_velocity: the twist after the limits, on <name>/cmd_vel_out.
+    // The parameters ROS has and this controller does not read are named by the manager when given.
+    const char* publish_key = p.has("publish_limited_velocity") ? "publish_limited_velocity" : "publish_cmd";
+    if (p.boolean(publish_key, false)) cmd_out_pub_ = ctx.endpoints().publisher<twist_t>(ctx.channel("cmd_vel_out"));
     const std::string name = ctx.name();
     auto bad = [this, name](const std::string& why) {
       if (dropped_++ % 100 == 0) spdlog::warn("{}: dropped a cmd_vel: {} ({} dropped so far)", name, why, dropped_);
@@ -184,6 +184,12 @@ class DiffDriveController : public Controller {
     const double left = (v - w * separation_ / 2) / left_radius_, right = (v + w * separation_ / 2) / right_radius_;
     for (JointData* j : left_) j->command = left;
     for (JointData* j : right_) j->command = right;
+    if (cmd_out_pub_.valid()) {
+      cmd_out_.utime = now.utime;
+      cmd_out_.linear.x = v;
+      cmd_out_.angular.z = w;
+      cmd_out_pub_.publish(cmd_out_);
+    }
     publish(now);
   }
 
@@ -263,6 +269,8 @@ class DiffDriveController : public Controller {
   size_t filled_ = 0, next_ = 0;
   odometry_t odom_{};
   Publisher<odometry_t> odom_pub_;
+  twist_t cmd_out_{};
+  Publisher<twist_t> cmd_out_pub_;  // publish_cmd: the limited twist on <name>/cmd_vel_out
 };
 
 }  // namespace
@@ -271,11 +279,13 @@ ControllerType diff_drive_controller() {
   ControllerTypeInfo t;
   t.name = "diff_drive_controller/DiffDriveController";
   t.ros = RosVersion::Both;
-  t.doc = "a twist_t on <name>/cmd_vel to wheel velocities; odometry_t on <name>/odom";
+  t.doc = "a twist_t on <name>/cmd_vel to wheel velocities; odometry_t on <name>/odom (and, publish_cmd, the limited "
+          "twist_t on <name>/cmd_vel_out)";
   t.claims = {Interface::Velocity, {"left_wheel", "right_wheel"}, ""};
   t.command = {"twist_t", "cmd_vel", 0, ""};
   auto ignored = [](const char* name, const char* type, bool ros1 = true, bool ros2 = false) {
-    return ParameterInfo{name, type, "", ros1 ? name : "", ros2 ? name : "", "read and not used", true};
+    return ParameterInfo{name, type, "", ros1 ? name : "", ros2 ? name : "", "not implemented (named when given)",
+                         false};
   };
   t.parameters = {
       {"left_wheel", "strings", "", "left_wheel", "left_wheel_names", "the left wheel joint(s): a name or a list"},
@@ -309,7 +319,8 @@ ControllerType diff_drive_controller() {
       ignored("pose_covariance_diagonal", "list", true, true),
       ignored("twist_covariance_diagonal", "list", true, true),
       ignored("allow_multiple_cmd_vel_publishers", "bool"),
-      ignored("publish_cmd", "bool"),
+      {"publish_cmd", "bool", "false", "publish_cmd", "publish_limited_velocity",
+       "publish the twist after the limits on <name>/cmd_vel_out"},
       ignored("publish_wheel_joint_controller_state", "bool"),
       {"estimate_velocity_from_position", "bool", "", "estimate_velocity_from_position", "", "not implemented", false},
   };

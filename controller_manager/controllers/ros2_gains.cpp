@@ -64,9 +64,17 @@ Ros2Gains read_ros2_gains(const YAML::Node& node, const std::string& where, cons
     notes.push_back(fmt::format("{}/antiwindup_strategy: '{}' is not implemented; the integral term is clamped to "
                                 "i_clamp_min/max",
                                 where, g["antiwindup_strategy"].Scalar()));
-  for (const char* ignored : {"antiwindup_strategy", "tracking_time_constant", "error_deadband", "save_i_term",
-                              "activate_state_publisher", "normalize_error", "saturation"})
-    g.remove(ignored);
+  g.remove("antiwindup_strategy");
+  std::vector<std::string> unsupported;  // control_toolbox keys given and not implemented: named, not dropped silently
+  for (const char* key : {"tracking_time_constant", "error_deadband", "save_i_term", "activate_state_publisher",
+                          "normalize_error", "saturation"})
+    if (g[key]) {
+      unsupported.push_back(key);
+      g.remove(key);
+    }
+  if (!unsupported.empty())
+    notes.push_back(fmt::format("{}: {}: known ROS 2 gain key{} (control_toolbox), not supported yet; ignored", where,
+                                fmt::join(unsupported, ", "), unsupported.size() == 1 ? "" : "s"));
   // ROS 2's i_clamp defaults are infinite; here a clamp of 0 would zero the I term, so "none" is the largest number.
   constexpr double kBig = std::numeric_limits<double>::max();
   auto clamp_or_big = [&](const char* key, double big) {

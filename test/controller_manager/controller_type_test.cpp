@@ -181,7 +181,7 @@ TEST(ControllerTypes, BuiltinDeclarationsGiveTheRosParameterNames) {
                "position_feedback", "open_loop",
                "velocity_rolling_window_size", "linear", "angular", "pose_covariance_diagonal",
                "twist_covariance_diagonal", "allow_multiple_cmd_vel_publishers", "publish_cmd",
-               "publish_wheel_joint_controller_state", "estimate_velocity_from_position"}));
+               "publish_limited_velocity", "publish_wheel_joint_controller_state", "estimate_velocity_from_position"}));
   // Every built-in type declares its command and, when it claims joints, the parameters that name them.
   for (const auto& t : r.types()) {
     const ControllerTypeInfo& info = *r.info(t);

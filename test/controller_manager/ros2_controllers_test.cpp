@@ -224,3 +224,45 @@ TEST(Ros2Controllers, DiffDriveReadsRos2WheelNamesAndLimitsWithoutHasFlags) {
   EXPECT_NEAR(rig.joint("left_wheel").velocity, 5.0, 1e-6);
   EXPECT_NEAR(rig.joint("right_wheel").velocity, 5.0, 1e-6);
 }
+
+// publish_cmd (ROS 1) / publish_limited_velocity (ROS 2): the twist after the limits on <name>/cmd_vel_out, every
+// update; a ROS parameter it does not read (enable_odom_tf) is named when the controller loads.
+TEST(Ros2Controllers, DiffDrivePublishesTheLimitedTwistOnCmdVelOut) {
+  lcm_control::testing::Rig rig(cm::builtin_registry(), data("ros2_bot.urdf"), data("diff_drive_publish_cmd.yaml"));
+  Recorder<twist_t> out(rig.bus.lcm(), "base/cmd_vel_out");
+  rig.cycle();
+  const cm::Reply loaded = rig.load("base");
+  ASSERT_TRUE(loaded.ok) << loaded.message;
+  EXPECT_TRUE(has(loaded.message, "enable_odom_tf: known ROS parameter of diff_drive_controller/DiffDriveController, "
+                                  "not supported yet; ignored"))
+      << loaded.message;
+  EXPECT_FALSE(has(loaded.message, "publish_limited_velocity")) << loaded.message;
+  ASSERT_TRUE(rig.switch_({"base"}, {}).ok);
+  out.messages.clear();
+  twist_t t{};
+  t.linear.x = 2.0;  // over linear.x.max_velocity 0.5
+  t.angular.z = 0.3;
+  rig.publish("base/cmd_vel", t);
+  rig.cycle(100);
+  ASSERT_GE(out.messages.size(), 99u);
+  EXPECT_NEAR(out.messages.back().linear.x, 0.5, 1e-12);
+  EXPECT_NEAR(out.messages.back().angular.z, 0.3, 1e-12);
+
+  // Without the flag nothing is published there; ROS 1's name for it is read too.
+  for (const std::string flag : {"", "publish_cmd: true, "}) {
+    lcm_control::testing::Rig plain(cm::builtin_registry(), data("ros2_bot.urdf"), data("ros2_bot.yaml"));
+    if (!flag.empty()) {
+      const std::string msg = load_message(
+          with_section("base", "{" + flag + "left_wheel_names: [left_wheel], right_wheel_names: [right_wheel], "
+                                          "wheel_separation: 0.6, wheel_radius: 0.1}"),
+          "base");
+      EXPECT_FALSE(has(msg, "publish_cmd")) << msg;
+      continue;
+    }
+    Recorder<twist_t> none(plain.bus.lcm(), "base/cmd_vel_out");
+    plain.start("base");
+    plain.publish("base/cmd_vel", t);
+    plain.cycle(50);
+    EXPECT_TRUE(none.messages.empty());
+  }
+}

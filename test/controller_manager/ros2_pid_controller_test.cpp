@@ -131,6 +131,9 @@ TEST(Ros2PidController, GainKeysAreRos2sAndUnknownOnesAreRefused) {
       "feedforward_gain: 0, angle_wraparound: false, antiwindup_strategy: none, tracking_time_constant: 0, "
       "error_deadband: 1e-16, save_i_term: true, activate_state_publisher: false}}}");
   EXPECT_TRUE(has(ok, "ok: ")) << ok;
+  EXPECT_TRUE(has(ok, "gains/twist: tracking_time_constant, error_deadband, save_i_term, activate_state_publisher: "
+                      "known ROS 2 gain keys (control_toolbox), not supported yet; ignored"))
+      << ok;
   const std::string typo = load_message(
       "{dof_names: [twist], command_interface: effort, reference_and_state_interfaces: [position], "
       "gains: {twist: {p: 1, feedforward: 2}}}");

@@ -70,31 +70,78 @@ TEST_F(CmTools, SpawnerStartsTheTutorialControllersAndCmctlListsThemRunning) {
   EXPECT_EQ(out.substr(0, out.find('\n') + 1), "no controllers loaded\n") << out;
 }
 
-TEST_F(CmTools, SpawnerFailureExitsNonZeroWithTheReasonAndLeavesNothingLoaded) {
-  auto [rc, out] = run({bin("spawner"), "joint_state_controller", "j3_controller"});
+// One good and one bad controller spawned together (ROS's spawner: the bad one is reported, the others run).
+TEST_F(CmTools, SpawnerNamesTheControllerThatFailsToLoadKeepsTheOthersAndExitsNonZero) {
+  cm_->stop(5.0);
+  const std::string dir = temp_dir("spawner_one_bad");
+  std::ofstream(dir + "/c.yaml") << read_text(source("config/turret_bot.yaml"))
+                                 << "bad_controller:\n  type: position_controllers/JointPositionController\n"
+                                    "  joint: j9\n";
+  start_manager(dir + "/c.yaml");
+  ChildProcess spawner({bin("spawner"), "joint_state_controller", "bad_controller", "j1_controller", "--lcm-url", url_});
+  ASSERT_TRUE(spawner.wait_for_output("spawner: ready", 10.0)) << spawner.output();
+  const std::string said = spawner.output();
+  EXPECT_NE(said.find("spawner: error: controller 'bad_controller' failed to load: "), std::string::npos) << said;
+  EXPECT_NE(said.find("'j9'"), std::string::npos) << said;
+  EXPECT_NE(said.find("spawner: ready: joint_state_controller, j1_controller running; failed: bad_controller "
+                      "(Ctrl-C"),
+            std::string::npos)
+      << said;
+  auto [rc, out] = run({bin("cmctl"), "list"});
+  EXPECT_NE(out.find("joint_state_controller "), std::string::npos) << out;
+  EXPECT_NE(out.find("j1_controller "), std::string::npos) << out;
+  EXPECT_EQ(out.find("bad_controller"), std::string::npos) << out;
+  for (const auto& l : split(out, '\n'))
+    if (l.rfind("j1_controller ", 0) == 0) EXPECT_NE(l.find(" running "), std::string::npos) << l;
+  EXPECT_EQ(spawner.stop(5.0), 1) << spawner.output();  // the failure shows in the exit status at the end
+  EXPECT_NE(spawner.output().find("stopped and unloaded"), std::string::npos) << spawner.output();
+  std::tie(rc, out) = run({bin("cmctl"), "list"});
+  EXPECT_EQ(out.substr(0, out.find('\n') + 1), "no controllers loaded\n") << out;
+}
+
+TEST_F(CmTools, SpawnerWhoseOnlyControllerFailsExitsNonZeroAtOnce) {
+  auto [rc, out] = run({bin("spawner"), "j3_controller"});
   EXPECT_EQ(rc, 1) << out;
   EXPECT_NE(out.find("spawner: error: controller 'j3_controller' failed to load: cannot load 'j3_controller': there "
                      "is no 'j3_controller' entry"),
             std::string::npos)
       << out;
+}
+
+TEST_F(CmTools, SpawnerActivateAsGroupIsAllOrNothing) {
+  auto [rc, out] = run({bin("spawner"), "joint_state_controller", "j3_controller", "--activate-as-group"});
+  EXPECT_EQ(rc, 1) << out;
+  EXPECT_NE(out.find("spawner: error: controller 'j3_controller' failed to load: cannot load 'j3_controller': there "
+                     "is no 'j3_controller' entry"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("--activate-as-group: none spawned"), std::string::npos) << out;
   EXPECT_NE(out.find("unloaded joint_state_controller"), std::string::npos) << out;
   std::tie(rc, out) = run({bin("cmctl"), "list"});
   EXPECT_EQ(out.substr(0, out.find('\n') + 1), "no controllers loaded\n") << out;
 }
 
-TEST_F(CmTools, SpawnerConflictStartsNoneAndSaysWhy) {
+TEST_F(CmTools, SpawnerConflictStartsTheFirstAndNamesTheOther) {
   cm_->stop(5.0);
   const std::string dir = temp_dir("spawner_conflict");
   std::ofstream(dir + "/c.yaml") << read_text(source("config/turret_bot.yaml"))
                                  << "j1_other:\n  type: position_controllers/JointPositionController\n  joint: j1\n";
   start_manager(dir + "/c.yaml");
-  auto [rc, out] = run({bin("spawner"), "j1_controller", "j1_other"});
+  {
+    ChildProcess spawner({bin("spawner"), "j1_controller", "j1_other", "--lcm-url", url_});
+    ASSERT_TRUE(spawner.wait_for_output("spawner: ready", 10.0)) << spawner.output();
+    const std::string said = spawner.output();
+    EXPECT_NE(said.find("starting [j1_controller, j1_other] together was refused"), std::string::npos) << said;
+    EXPECT_NE(said.find("spawner: error: controller 'j1_other' could not start: "), std::string::npos) << said;
+    EXPECT_NE(said.find("spawner: ready: j1_controller running; failed: j1_other"), std::string::npos) << said;
+    EXPECT_EQ(spawner.stop(5.0), 1) << spawner.output();
+  }
+  auto [rc, out] = run({bin("spawner"), "j1_controller", "j1_other", "--activate-as-group"});
   EXPECT_EQ(rc, 1) << out;
-  EXPECT_NE(out.find("spawner: error: could not start [j1_controller, j1_other] (one strict switch, so none "
-                     "started): "),
+  EXPECT_NE(out.find("spawner: error: could not start [j1_controller, j1_other] (--activate-as-group: one strict "
+                     "switch, so none started): "),
             std::string::npos)
       << out;
-  EXPECT_NE(out.find("j1"), std::string::npos);
   std::tie(rc, out) = run({bin("cmctl"), "list"});
   EXPECT_EQ(out.substr(0, out.find('\n') + 1), "no controllers loaded\n") << out;
 }

@@ -186,7 +186,7 @@ TEST(Launch, FailedSpawnStopsEverythingAndSaysWhy) {
   const std::string dir = temp_dir("launch_fail");
   std::ofstream(dir + "/bad.launch.yaml") << "urdf: " << source("config/turret_bot.urdf") << "\nconfig: "
                                           << source("config/turret_bot.yaml")
-                                          << "\ncontrollers: [j1_controller, j3_controller]\n";
+                                          << "\ncontrollers: [j3_controller]\n";
   ChildProcess launch({bin("launch"), dir + "/bad.launch.yaml", "--lcm-url", url});
   EXPECT_EQ(launch.wait(25.0), 1) << launch.output();
   const std::string out = launch.output();
@@ -376,4 +376,31 @@ TEST(TurretCmd, SimTimeUnderLockstepGivesEveryStepItsOwnCommand) {
   pump_until(lc, [] { return false; }, 0.3);
   EXPECT_EQ(sent.messages.size(), after) << "commands after the source was removed";
   launch.stop(8.0);
+}
+
+// One of three controllers cannot load (a joint the URDF does not have): the robot comes up with the other two,
+// launch's up line names the failed one, and launch exits non-zero when stopped.
+TEST(Launch, AControllerThatFailsToLoadIsNamedAndTheRobotRunsWithTheOthers) {
+  const std::string url = unique_lcm_url();
+  const std::string dir = temp_dir("launch_one_bad");
+  std::ofstream(dir + "/c.yaml") << read_text(source("config/turret_bot.yaml"))
+                                 << "bad_controller:\n  type: position_controllers/JointPositionController\n"
+                                    "  joint: j9\n";
+  std::ofstream(dir + "/bad.launch.yaml") << "urdf: " << source("config/turret_bot.urdf") << "\nconfig: c.yaml\n"
+                                          << "controllers: [joint_state_controller, bad_controller, j1_controller]\n";
+  ChildProcess launch({bin("launch"), dir + "/bad.launch.yaml", "--lcm-url", url});
+  ASSERT_TRUE(launch.wait_for_output("[launch] up:", 25.0)) << launch.output();
+  EXPECT_NE(launch.output().find("[launch] up: controllers joint_state_controller, j1_controller; FAILED to spawn "
+                                 "bad_controller"),
+            std::string::npos)
+      << launch.output();
+  EXPECT_NE(launch.output().find("error: controller 'bad_controller' failed to load: "), std::string::npos)
+      << launch.output();
+  auto [rc, out] = run({bin("cmctl"), "list"}, url);
+  const auto at = out.find("j1_controller ");
+  ASSERT_NE(at, std::string::npos) << out;
+  EXPECT_NE(out.substr(at, out.find('\n', at) - at).find(" running "), std::string::npos) << out;
+  const auto pids = started_pids(launch.output());
+  EXPECT_NE(launch.stop(8.0, SIGINT), 0) << launch.output();  // the failure shows in the exit status
+  for (const auto& [name, pid] : pids) EXPECT_TRUE(gone(pid)) << name;
 }

@@ -82,7 +82,12 @@ int run_robots(const LaunchOptions& o, const LaunchPlan& plan) {
     failure = fmt::format("not up within {}: {}", seconds_text(o.ready_timeout + 5), fmt::join(waiting, ", "));
   }
   if (failure.empty() && !broken()) {
-    launch_say(fmt::format("up: {} robots ({}) (Ctrl-C to stop)", plan.robots.size(), fmt::join(plan.robots, ", ")));
+    std::vector<std::string> partial;  // robots up without some of their controllers (their launch says which)
+    for (const Child* c : children)
+      if (c->ready_line.find("FAILED to spawn") != std::string::npos) partial.push_back(c->name);
+    launch_say(fmt::format("up: {} robots ({}){} (Ctrl-C to stop)", plan.robots.size(), fmt::join(plan.robots, ", "),
+                           partial.empty() ? "" : fmt::format("; controllers FAILED to spawn on {}",
+                                                              fmt::join(partial, ", "))));
     sup.wait_until([&] { return broken() || all(&Child::exited); }, 1e12);
   }
   std::string why = failure;

@@ -316,9 +316,36 @@ int supervise(const LaunchPlan& plan, const LaunchOptions& o, const CommandLines
   }
   if (bus) drop_bus();
   if (failure.empty() && !broken()) {
-    launch_say(fmt::format("up: {}{}{} (Ctrl-C to stop)", plan.controllers.empty() ? "no controllers" : "controllers ",
-                           fmt::join(plan.controllers, ", "),
-                           plan.inactive.empty() ? "" : fmt::format("; inactive {}", fmt::join(plan.inactive, ", "))));
+    // The spawner's ready line ends "; failed: A, B (Ctrl-C ..." when some controllers could not be spawned: the
+    // robot stays up with the others, as with ROS's spawner, and launch's exit status says so at the end.
+    std::vector<std::string> failed_names;
+    if (spawner_c) {
+      const std::string& line = spawner_c->ready_line;
+      const auto at = line.find("; failed: ");
+      if (at != std::string::npos) {
+        const std::string list = line.substr(at + 10, line.find(" (Ctrl-C", at) - at - 10);
+        for (size_t b = 0; b <= list.size();) {
+          const size_t e = std::min(list.find(", ", b), list.size());
+          if (e > b) failed_names.push_back(list.substr(b, e - b));
+          b = e + 2;
+        }
+      }
+    }
+    auto spawned = [&](const std::vector<std::string>& names) {
+      std::vector<std::string> out;
+      for (const auto& n : names)
+        if (std::find(failed_names.begin(), failed_names.end(), n) == failed_names.end()) out.push_back(n);
+      return out;
+    };
+    const std::vector<std::string> running = spawned(plan.controllers), inactive = spawned(plan.inactive);
+    launch_say(fmt::format("up: {}{}{}{} (Ctrl-C to stop)", running.empty() ? "no controllers" : "controllers ",
+                           fmt::join(running, ", "),
+                           inactive.empty() ? "" : fmt::format("; inactive {}", fmt::join(inactive, ", ")),
+                           failed_names.empty()
+                               ? ""
+                               : fmt::format("; FAILED to spawn {} (the reason is in [{}]'s lines above; launch "
+                                             "will exit 1)",
+                                             fmt::join(failed_names, ", "), plan.spawner_name)));
     sup.wait_until(broken, 1e12);
   }
   std::string why = failure;

@@ -38,6 +38,11 @@ void Spawner::spawn(CmClient& cm) {
   all.insert(all.end(), o_.inactive.begin(), o_.inactive.end());
   for (const auto& n : all)
     if (!unique.insert(n).second) throw std::runtime_error(fmt::format("controller '{}' is named twice", n));
+  auto failures = [&] {
+    std::vector<std::string> lines;
+    for (const auto& [n, why] : failed_) lines.push_back(fmt::format("controller '{}' {}", n, why));
+    return fmt::format("{}", fmt::join(lines, "; "));
+  };
   try {
     cm.wait_for_manager(o_.timeout_s, [&] {
       say(fmt::format("waiting up to {} for the controller manager on '{}'", seconds_text(o_.timeout_s),
@@ -45,17 +50,45 @@ void Spawner::spawn(CmClient& cm) {
     });
     for (const auto& n : all) {
       const cm_response_t r = cm.load({n}, o_.timeout_s);
-      if (!r.ok) throw std::runtime_error(fmt::format("controller '{}' failed to load: {}", n, r.message));
+      if (!r.ok) {
+        failed_.emplace_back(n, "failed to load: " + r.message);
+        if (o_.as_group) throw std::runtime_error(failures() + " (--activate-as-group: none spawned)");
+        say(fmt::format("error: controller '{}' failed to load: {}", n, r.message));
+        continue;
+      }
       loaded_.push_back(n);
       say(fmt::format("loaded {}", n));
     }
-    if (o_.stopped || names_.empty()) return;
-    const cm_response_t r = cm.switch_controllers(names_, {}, true, o_.timeout_s);
-    if (!r.ok)
-      throw std::runtime_error(fmt::format("could not start [{}] (one strict switch, so none started): {}",
-                                           fmt::join(names_, ", "), r.message));
-    started_ = true;
-    say(fmt::format("started {}", fmt::join(names_, ", ")));
+    if (loaded_.empty()) throw std::runtime_error(failures());
+    if (o_.stopped) return;
+    std::vector<std::string> to_start;
+    for (const auto& n : names_)
+      if (std::find(loaded_.begin(), loaded_.end(), n) != loaded_.end()) to_start.push_back(n);
+    if (to_start.empty()) return;
+    const cm_response_t r = cm.switch_controllers(to_start, {}, true, o_.timeout_s);
+    if (r.ok) {
+      running_ = to_start;
+      say(fmt::format("started {}", fmt::join(running_, ", ")));
+      return;
+    }
+    if (o_.as_group)
+      throw std::runtime_error(fmt::format("could not start [{}] (--activate-as-group: one strict switch, so none "
+                                           "started): {}",
+                                           fmt::join(to_start, ", "), r.message));
+    // Which one? Start each alone, as ROS 2's spawner activates each controller by itself.
+    say(fmt::format("starting [{}] together was refused ({}); starting each alone", fmt::join(to_start, ", "),
+                    r.message));
+    for (const auto& n : to_start) {
+      const cm_response_t one = cm.switch_controllers({n}, {}, true, o_.timeout_s);
+      if (one.ok) {
+        running_.push_back(n);
+        say(fmt::format("started {}", n));
+      } else {
+        failed_.emplace_back(n, "could not start: " + one.message);
+        say(fmt::format("error: controller '{}' could not start: {}", n, one.message));
+      }
+    }
+    if (running_.empty() && o_.inactive.empty()) throw std::runtime_error(failures());
   } catch (const std::exception&) {
     // Undo, even after Ctrl-C (a second one cuts it short); keep the stop request.
     const int sig = clear_stop();
@@ -71,13 +104,13 @@ bool Spawner::teardown(CmClient& cm, double timeout_s) {
   auto left = [&] { return std::max(0.05, double(end - monotonic_us()) / 1e6); };
   bool all_ok = true;
   try {
-    if (started_) {
-      const cm_response_t r = cm.switch_controllers({}, names_, true, left());
+    if (!running_.empty()) {
+      const cm_response_t r = cm.switch_controllers({}, running_, true, left());
       if (!r.ok) {
-        say(fmt::format("stopping [{}] was refused: {}", fmt::join(names_, ", "), r.message));
+        say(fmt::format("stopping [{}] was refused: {}", fmt::join(running_, ", "), r.message));
         all_ok = false;
       }
-      started_ = false;
+      running_.clear();
     }
     while (!loaded_.empty()) {
       const std::string n = loaded_.back();
@@ -93,7 +126,7 @@ bool Spawner::teardown(CmClient& cm, double timeout_s) {
   } catch (const std::exception& e) {
     say(fmt::format("gave up stopping and unloading [{}]: {}", fmt::join(loaded_, ", "), e.what()));
     loaded_.clear();
-    started_ = false;
+    running_.clear();
     return false;
   }
   return all_ok;

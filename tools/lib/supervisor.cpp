@@ -155,8 +155,11 @@ void Supervisor::read_output(Child& c) {
 
 // "[name] line", without repeating a "[name]" or "program: " the line already starts with.
 void Supervisor::print_line(Child& c, std::string line) {
-  if (line.find(c.ready_text) != std::string::npos || (c.ready_text == " ready" && line.rfind("ready", 0) == 0))
+  if (!c.ready &&
+      (line.find(c.ready_text) != std::string::npos || (c.ready_text == " ready" && line.rfind("ready", 0) == 0))) {
     c.ready = true;
+    c.ready_line = line;
+  }
   const std::string prefix = "[" + c.name + "]";
   const std::string program = std::filesystem::path(c.argv[0]).filename().string() + ": ";
   if (line.rfind(program, 0) == 0) line.erase(0, program.size());

@@ -25,6 +25,7 @@ struct Child {
   std::string partial;     // output after the last newline
   std::string ready_text = " ready";  // the line that says it is up
   bool ready = false;      // it printed a line containing ready_text
+  std::string ready_line;  // that line
   bool exited = false;
   bool signalled = false;  // we asked it to stop
   bool killed = false;     // we had to SIGKILL it
