@@ -91,8 +91,11 @@ TEST_F(CmTools, SpawnerNamesTheControllerThatFailsToLoadKeepsTheOthersAndExitsNo
   EXPECT_NE(out.find("joint_state_controller "), std::string::npos) << out;
   EXPECT_NE(out.find("j1_controller "), std::string::npos) << out;
   EXPECT_EQ(out.find("bad_controller"), std::string::npos) << out;
-  for (const auto& l : split(out, '\n'))
-    if (l.rfind("j1_controller ", 0) == 0) EXPECT_NE(l.find(" running "), std::string::npos) << l;
+  for (const auto& l : split(out, '\n')) {
+    if (l.rfind("j1_controller ", 0) == 0) {
+      EXPECT_NE(l.find(" running "), std::string::npos) << l;
+    }
+  }
   EXPECT_EQ(spawner.stop(5.0), 1) << spawner.output();  // the failure shows in the exit status at the end
   EXPECT_NE(spawner.output().find("stopped and unloaded"), std::string::npos) << spawner.output();
   std::tie(rc, out) = run({bin("cmctl"), "list"});
