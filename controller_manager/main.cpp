@@ -28,7 +28,9 @@ int main(int argc, char** argv) {
   double silence_s = 0.25;
   std::string log_level;
   app.add_option("--urdf", urdf, "robot URDF (or .urdf.xacro: --xacro-arg gives its arguments) with <transmission> tags")->required();
-  add_config_flag(app, config, "ros_control YAML (controllers as top-level keys)")->required();
+  add_config_flag(app, config,
+                  "ros_control YAML (controllers as top-level keys) or ROS 2 parameter file; none: the URDF's "
+                  "gz_ros2_control plugin <parameters>");
   add_bus_flags(app, bus_flags);
   add_hardware_url_flag(app, bus_flags);
   add_hardware_reader_flag(app, bus_flags);
@@ -60,6 +62,10 @@ int main(int argc, char** argv) {
     RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
     for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
+    if (model.config_path.empty())
+      throw ModelError(fmt::format("--config is required: the controllers YAML (a URDF's gz_ros2_control plugin may "
+                                   "name it in <parameters>; {}'s does not)",
+                                   urdf));
     Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url, hardware_reader_named(bus_flags.hardware_reader));
     cm::ManagerOptions options;
     options.silence_us = static_cast<int64_t>(silence_s * 1e6);

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 
 #include "description/control_config.hpp"
 #include "description/model_check.hpp"
@@ -142,9 +143,27 @@ RobotModel load_robot_model(const std::string& urdf_path, const std::vector<std:
     model.notes.push_back(fmt::format("{}: namespace '{}' from the gazebo_ros_control plugin's <robotNamespace>; "
                                       "channels are {}/... (give the tools --namespace {})",
                                       urdf_path, model.ns, model.ns, model.ns));
-  if (!config_paths.empty()) {
+  std::vector<std::string> configs = config_paths;
+  if (configs.empty() && parsed) {  // as gz_ros2_control reads them: the plugin's <parameters>
+    for (const auto& written : model.ros2_control_plugin.parameters) {
+      namespace fs = std::filesystem;
+      // Relative: to the working directory, as gz_ros2_control passes it on; else beside the URDF.
+      const fs::path beside = fs::path(urdf_path).parent_path() / written;
+      const std::string p = fs::is_regular_file(written) || fs::path(written).is_absolute() ? written : beside.string();
+      if (fs::is_regular_file(p)) {
+        configs.push_back(p);
+        model.notes.push_back(fmt::format("{}: controllers from the {} plugin's <parameters> {} (no --config given)",
+                                          urdf_path, model.ros2_control_plugin.filename, p));
+      } else {
+        model.warnings.push_back(fmt::format("{}: the {} plugin's <parameters> names {}, which is not a file; no "
+                                             "controllers read from it (give --config)",
+                                             urdf_path, model.ros2_control_plugin.filename, written));
+      }
+    }
+  }
+  if (!configs.empty()) {
     try {
-      load_control_config_into(model, config_paths);
+      load_control_config_into(model, configs);
     } catch (const ModelError& e) {
       parsed = false;
       problems.insert(problems.end(), e.problems().begin(), e.problems().end());

@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "description/robot_model.hpp"
@@ -627,4 +628,27 @@ TEST(Ros2Control, HoldJointsThatIsNotABoolIsRefusedWithItsLine) {
   EXPECT_EQ(l.error, fmt::format("{}:{}: <plugin filename=\"gz_ros2_control-system\">: <hold_joints> 'maybe' is not a "
                                  "bool; write true (joints nobody commands are held still, the default) or false",
                                  l.path, line_of(l.text, "<hold_joints>")));
+}
+
+// Without a config, the controllers come from the gz_ros2_control plugin's <parameters>, as gz_ros2_control reads
+// them (relative: the working directory, else beside the URDF); one that is not a file is a warning, not an error.
+TEST(Ros2Control, WithoutAConfigTheControllersComeFromThePluginParameters) {
+  const RobotModel m = load_robot_model(lcm_control::testing::source("test/robots/switch_arm.urdf"), "");
+  EXPECT_EQ(m.config_paths, std::vector<std::string>{lcm_control::testing::source("test/robots/switch_arm.yaml")});
+  EXPECT_EQ(m.controllers.size(), 3u);
+  EXPECT_TRUE(m.ros2_parameter_file);
+  bool noted = false;
+  for (const auto& n : m.notes) noted |= n.find("plugin's <parameters>") != std::string::npos;
+  EXPECT_TRUE(noted);
+
+  std::ifstream in(lcm_control::testing::source("test/robots/switch_arm.urdf"));
+  std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string dir = lcm_control::testing::temp_dir("plugin_params");
+  std::ofstream(dir + "/moved.urdf") << urdf;  // switch_arm.yaml is not beside it
+  const RobotModel moved = load_robot_model(dir + "/moved.urdf", "");
+  EXPECT_TRUE(moved.controllers.empty());
+  ASSERT_FALSE(moved.warnings.empty());
+  EXPECT_NE(moved.warnings.back().find("<parameters> names switch_arm.yaml, which is not a file"), std::string::npos)
+      << moved.warnings.back();
+  std::filesystem::remove_all(dir);
 }

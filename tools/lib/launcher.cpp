@@ -97,19 +97,12 @@ void ros2_defaults(LaunchPlan& plan, const std::vector<std::string>& path) {
   try {
     model = load_robot_model(plan.urdf, plan.configs, o);
   } catch (const std::exception&) {
-    if (plan.configs.empty())
-      throw ModelError(fmt::format("{}: 'config' is missing: the controllers YAML", plan.file));
-    return;  // the servers say what is wrong
+    return;  // the servers read the same files and say what is wrong
   }
-  if (plan.configs.empty() && !model.ros2_control_plugin.parameters.empty()) {
-    plan.configs = {model.ros2_control_plugin.parameters.front()};
-    launch_say(fmt::format("note: config {} from the URDF's {} plugin <parameters>", plan.configs.front(),
+  if (plan.configs.empty() && !model.config_paths.empty()) {  // load_robot_model took the gz plugin's <parameters>
+    plan.configs = model.config_paths;
+    launch_say(fmt::format("note: config {} from the URDF's {} plugin <parameters>", model.config_path,
                            model.ros2_control_plugin.filename));
-    try {
-      model = load_robot_model(plan.urdf, plan.configs, o);
-    } catch (const std::exception&) {
-      return;
-    }
   }
   if (plan.configs.empty())
     throw ModelError(fmt::format("{}: 'config' is missing: the controllers YAML (a URDF's gz_ros2_control plugin may "
