@@ -59,7 +59,9 @@ int main(int argc, char** argv) {
       scheduling += fmt::format("{}spinning {} us around each real-time state", scheduling.empty() ? "" : ", ", spin_us);
     }
     setup_logging("controller_manager", log_level);
-    RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
+    LoadOptions load = load_options(package_path, bus_flags, args, xacro_args);
+    load.config_from_plugin = true;
+    RobotModel model = load_robot_model(urdf, config, load);
     for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
     if (model.config_path.empty())

@@ -144,7 +144,7 @@ RobotModel load_robot_model(const std::string& urdf_path, const std::vector<std:
                                       "channels are {}/... (give the tools --namespace {})",
                                       urdf_path, model.ns, model.ns, model.ns));
   std::vector<std::string> configs = config_paths;
-  if (configs.empty() && parsed) {  // as gz_ros2_control reads them: the plugin's <parameters>
+  if (configs.empty() && parsed && options.config_from_plugin) {  // as gz_ros2_control: the plugin's <parameters>
     for (const auto& written : model.ros2_control_plugin.parameters) {
       namespace fs = std::filesystem;
       // Relative: to the working directory, as gz_ros2_control passes it on; else beside the URDF.

@@ -118,7 +118,9 @@ int main(int argc, char** argv) {
     if (!opt.lockstep && opt.spin_us > 0)
       scheduling += fmt::format("{}spinning {} us before each deadline", scheduling.empty() ? "" : ", ", opt.spin_us);
     setup_logging("sim_server", log_level);
-    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
+    LoadOptions options = load_options(package_path, bus_flags, args, xacro_args);
+    options.config_from_plugin = true;
+    const RobotModel model = load_robot_model(urdf, config, options);
     for (const auto& n : model.notes) spdlog::info("{}", n);
     for (const auto& w : model.warnings) spdlog::warn("{}", w);
     // A ROS 2 parameter file's update_rate is the control rate (gz_ros2_control runs the manager at it) unless

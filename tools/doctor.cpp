@@ -53,7 +53,9 @@ int main(int argc, char** argv) {
   std::vector<std::string> xacro_args;
   add_xacro_arg_flag(app, xacro_args);
   return run_program(app, argc, argv, [&] {
-    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
+    LoadOptions options = load_options(package_path, bus_flags, args, xacro_args);
+    options.config_from_plugin = true;
+    const RobotModel model = load_robot_model(urdf, config, options);
     std::fputs(describe(model).c_str(), stdout);
     for (const auto& n : model.notes) std::printf("note: %s\n", n.c_str());
 

@@ -633,7 +633,9 @@ TEST(Ros2Control, HoldJointsThatIsNotABoolIsRefusedWithItsLine) {
 // Without a config, the controllers come from the gz_ros2_control plugin's <parameters>, as gz_ros2_control reads
 // them (relative: the working directory, else beside the URDF); one that is not a file is a warning, not an error.
 TEST(Ros2Control, WithoutAConfigTheControllersComeFromThePluginParameters) {
-  const RobotModel m = load_robot_model(lcm_control::testing::source("test/robots/switch_arm.urdf"), "");
+  LoadOptions from_plugin;
+  from_plugin.config_from_plugin = true;
+  const RobotModel m = load_robot_model(lcm_control::testing::source("test/robots/switch_arm.urdf"), "", from_plugin);
   EXPECT_EQ(m.config_paths, std::vector<std::string>{lcm_control::testing::source("test/robots/switch_arm.yaml")});
   EXPECT_EQ(m.controllers.size(), 3u);
   EXPECT_TRUE(m.ros2_parameter_file);
@@ -645,7 +647,8 @@ TEST(Ros2Control, WithoutAConfigTheControllersComeFromThePluginParameters) {
   std::string urdf((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string dir = lcm_control::testing::temp_dir("plugin_params");
   std::ofstream(dir + "/moved.urdf") << urdf;  // switch_arm.yaml is not beside it
-  const RobotModel moved = load_robot_model(dir + "/moved.urdf", "");
+  const RobotModel moved = load_robot_model(dir + "/moved.urdf", "", from_plugin);
+  EXPECT_TRUE(load_robot_model(dir + "/moved.urdf", "").warnings.empty()) << "only when asked";
   EXPECT_TRUE(moved.controllers.empty());
   ASSERT_FALSE(moved.warnings.empty());
   EXPECT_NE(moved.warnings.back().find("<parameters> names switch_arm.yaml, which is not a file"), std::string::npos)

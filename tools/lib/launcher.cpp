@@ -93,6 +93,7 @@ void ros2_defaults(LaunchPlan& plan, const std::vector<std::string>& path) {
   o.package_path = path;
   o.xacro_args = plan.xacro_args;
   o.args = plan.args;
+  o.config_from_plugin = true;
   RobotModel model;
   try {
     model = load_robot_model(plan.urdf, plan.configs, o);
