@@ -51,7 +51,7 @@ class Controller {
     starting(now);
   }
 
-  // The controller's own PIDs by joint, for run-time gains.
+  // The controller's own PIDs by joint, for run-time gains (pid_of for a PID per joint in `joints` order).
   virtual std::vector<std::string> pid_joints() const { return {}; }
   virtual Pid* pid(const std::string& joint) {
     (void)joint;
@@ -121,5 +121,12 @@ class ControllerContext {
   Endpoints& endpoints_;
   Controller* self_ = nullptr;
 };
+
+// The PID of `joint` in `pids`, one per name of `joints` in the same order; nullptr for a joint not among them.
+inline Pid* pid_of(const std::vector<std::string>& joints, std::vector<Pid>& pids, const std::string& joint) {
+  for (size_t k = 0; k < joints.size() && k < pids.size(); ++k)
+    if (joints[k] == joint) return &pids[k];
+  return nullptr;
+}
 
 }  // namespace lcm_control::cm

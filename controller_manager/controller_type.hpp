@@ -46,6 +46,12 @@ struct ParameterInfo {
   bool implemented = true;
 };
 
+// A parameter ROS 2 names and ROS 1 does not have.
+inline ParameterInfo ros2_parameter(const char* name, const char* type, const char* default_value, const char* doc,
+                                    bool implemented = true) {
+  return ParameterInfo{name, type, default_value, "", name, doc, implemented};
+}
+
 // Whose class name a type's name is: ros_controllers' (ROS 1), ros2_controllers' (ROS 2) or both (the same name
 // with either's parameters, e.g. diff_drive_controller/DiffDriveController).
 enum class RosVersion { Ros1, Ros2, Both };

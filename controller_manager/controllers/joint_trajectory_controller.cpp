@@ -196,11 +196,7 @@ class JointTrajectoryController : public Controller {
   std::vector<std::string> pid_joints() const override {
     return iface_ != Interface::Position ? names_ : std::vector<std::string>{};
   }
-  Pid* pid(const std::string& joint) override {
-    for (size_t k = 0; k < pids_.size(); ++k)
-      if (names_[k] == joint) return &pids_[k];
-    return nullptr;
-  }
+  Pid* pid(const std::string& joint) override { return pid_of(names_, pids_, joint); }
 
   void restart(const Time& now) override {
     if (goal_active_)
@@ -623,22 +619,19 @@ ControllerType ros2_joint_trajectory_controller() {
   t.claims.joint_params = {"joints"};
   t.claims.interface_param = "command_interfaces";
   t.command = {"joint_trajectory_t", "command", 0, ""};
-  auto ros2 = [](const char* name, const char* type, const char* fallback, const char* doc, bool implemented = true) {
-    return ParameterInfo{name, type, fallback, "", name, doc, implemented};
-  };
   t.parameters = {
-      ros2("joints", "strings", "", "the joints a goal must name"),
-      ros2("command_interfaces", "strings", "",
+      ros2_parameter("joints", "strings", "", "the joints a goal must name"),
+      ros2_parameter("command_interfaces", "strings", "",
            "[position], [velocity], [effort]; [position, velocity(, acceleration)], [position, effort] command position"),
-      ros2("state_interfaces", "strings", "[position, velocity]", "position(, velocity(, acceleration)), checked"),
-      ros2("gains", "map", "", "<joint>: {p, i, d, i_clamp, ff_velocity_scale, u_clamp_min/max}, [velocity] and [effort]"),
-      ros2("constraints", "map", "", "goal_time, stopped_velocity_tolerance, <joint>: {trajectory, goal} (0: not checked)"),
-      ros2("state_publish_rate", "number", "50", "Hz of <name>/state (0: never)"),
-      ros2("action_monitor_rate", "number", "20", "Hz of <name>/feedback"),
-      ros2("allow_partial_joints_goal", "bool", "false", "goals may leave joints out (they hold)"),
-      ros2("interpolation_method", "string", "splines", "splines, or none: from waypoint to waypoint"),
-      ros2("cmd_timeout", "number", "0", "s after a trajectory's end: hold the measured position (0: never)"),
-      ros2("open_loop_control", "bool", "false", "[velocity]: the desired velocity as it is, no PID"),
+      ros2_parameter("state_interfaces", "strings", "[position, velocity]", "position(, velocity(, acceleration)), checked"),
+      ros2_parameter("gains", "map", "", "<joint>: {p, i, d, i_clamp, ff_velocity_scale, u_clamp_min/max}, [velocity] and [effort]"),
+      ros2_parameter("constraints", "map", "", "goal_time, stopped_velocity_tolerance, <joint>: {trajectory, goal} (0: not checked)"),
+      ros2_parameter("state_publish_rate", "number", "50", "Hz of <name>/state (0: never)"),
+      ros2_parameter("action_monitor_rate", "number", "20", "Hz of <name>/feedback"),
+      ros2_parameter("allow_partial_joints_goal", "bool", "false", "goals may leave joints out (they hold)"),
+      ros2_parameter("interpolation_method", "string", "splines", "splines, or none: from waypoint to waypoint"),
+      ros2_parameter("cmd_timeout", "number", "0", "s after a trajectory's end: hold the measured position (0: never)"),
+      ros2_parameter("open_loop_control", "bool", "false", "[velocity]: the desired velocity as it is, no PID"),
   };
   for (const auto& x : ros2_only_parameters()) t.parameters.push_back(x);
   return {t, [](const std::string&) { return std::make_unique<JointTrajectoryController>(std::nullopt); }};

@@ -141,11 +141,7 @@ class GroupPositionPid : public Controller {
   }
 
   std::vector<std::string> pid_joints() const override { return names_; }
-  Pid* pid(const std::string& joint) override {
-    for (size_t k = 0; k < names_.size(); ++k)
-      if (names_[k] == joint) return &pids_[k];
-    return nullptr;
-  }
+  Pid* pid(const std::string& joint) override { return pid_of(names_, pids_, joint); }
 
   void starting(const Time&) override {
     for (size_t k = 0; k < joints_.size(); ++k) {

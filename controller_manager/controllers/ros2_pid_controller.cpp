@@ -98,11 +98,7 @@ class Ros2PidController : public Controller {
   }
 
   std::vector<std::string> pid_joints() const override { return names_; }
-  Pid* pid(const std::string& joint) override {
-    for (size_t k = 0; k < names_.size(); ++k)
-      if (names_[k] == joint) return &pids_[k];
-    return nullptr;
-  }
+  Pid* pid(const std::string& joint) override { return pid_of(names_, pids_, joint); }
 
   void starting(const Time&) override {
     for (size_t k = 0; k < joints_.size(); ++k) {
@@ -181,21 +177,18 @@ ControllerType ros2_pid_controller() {
   t.claims.joint_params = {"dof_names"};
   t.claims.interface_param = "command_interface";
   t.command = {"float64_array_t", "command", CommandInfo::kOnePerJoint, ""};
-  auto ros2 = [](const char* name, const char* type, const char* fallback, const char* doc) {
-    return ParameterInfo{name, type, fallback, "", name, doc, true};
-  };
   t.parameters = {
-      ros2("dof_names", "strings", "", "the joints, in the order of the reference's values"),
-      ros2("command_interface", "string", "", "position, velocity or effort: what the PID commands"),
-      ros2("reference_and_state_interfaces", "strings", "",
+      ros2_parameter("dof_names", "strings", "", "the joints, in the order of the reference's values"),
+      ros2_parameter("command_interface", "string", "", "position, velocity or effort: what the PID commands"),
+      ros2_parameter("reference_and_state_interfaces", "strings", "",
            "[position], [velocity] or [position, velocity] (the velocity error is the derivative input)"),
-      ros2("gains", "map", "",
+      ros2_parameter("gains", "map", "",
            "<dof>: {p, i, d, i_clamp_max/min, u_clamp_max/min, feedforward_gain, angle_wraparound}, each 0 or "
            "unclamped when left out"),
-      ros2("set_current_state_as_first_setpoint", "bool", "true",
+      ros2_parameter("set_current_state_as_first_setpoint", "bool", "true",
            "on start the reference is the state read then; false: none until a command comes (the joint holds)"),
-      ros2("use_external_measured_states", "bool", "false", "must be false: the state is the joints' own"),
-      ros2("reference_and_state_dof_names", "strings", "[]", "must be empty or dof_names (no chaining)"),
+      ros2_parameter("use_external_measured_states", "bool", "false", "must be false: the state is the joints' own"),
+      ros2_parameter("reference_and_state_dof_names", "strings", "[]", "must be empty or dof_names (no chaining)"),
   };
   return {t, [](const std::string&) { return std::make_unique<Ros2PidController>(); }};
 }

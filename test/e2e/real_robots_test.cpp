@@ -34,26 +34,7 @@ double velocity_of(const joint_state_t& s, const std::string& joint) {
   return NAN;
 }
 
-// A robot in lockstep: controller_manager and the spawner first, then sim_server, all with the same flags.
-class Session : public lt::RobotSession {
- public:
-  Session(std::string urdf, std::string config, std::vector<std::string> flags)
-      : RobotSession(std::move(urdf), std::move(config)), flags_(std::move(flags)) {}
-
-  void start(const std::vector<std::string>& controllers, const std::vector<std::string>& sim_flags = {}) {
-    start_controller_manager(flags_);
-    ASSERT_NO_FATAL_FAILURE(spawn(controllers));
-    start_sim(with(with({"--mode", "lockstep"}, flags_), sim_flags), 20);
-  }
-
-  // send-trajectory's exit code; its output in `output`.
-  int send(const std::vector<std::string>& args, std::string& output) {
-    return run(with({"send-trajectory"}, args), &output);
-  }
-
- private:
-  std::vector<std::string> flags_;
-};
+using Session = lt::LockstepSession;
 
 // Joint positions from the newest joint_states on the session's bus.
 joint_state_t latest_state(const Session& s, double timeout_s = 10) {

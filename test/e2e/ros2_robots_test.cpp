@@ -29,22 +29,7 @@ double position_of(const joint_state_t& s, const std::string& joint) {
   return NAN;
 }
 
-// A ROS 2 robot in lockstep: controller_manager and the spawner, then sim_server, all with the same flags.
-class Session : public lt::RobotSession {
- public:
-  Session(std::string urdf, std::string config, std::vector<std::string> flags)
-      : RobotSession(std::move(urdf), std::move(config)), flags_(std::move(flags)) {}
-
-  void start(const std::vector<std::string>& controllers) {
-    start_controller_manager(flags_);
-    ASSERT_NO_FATAL_FAILURE(spawn(controllers));
-    start_sim(with({"--mode", "lockstep"}, flags_), 30);
-  }
-  const std::vector<std::string>& flags() const { return flags_; }
-
- private:
-  std::vector<std::string> flags_;
-};
+using Session = lt::LockstepSession;
 
 // The newest joint_states once `done` holds for it (at most timeout_s).
 joint_state_t state_when(const Session& s, const std::function<bool(const joint_state_t&)>& done,

@@ -82,6 +82,29 @@ class RobotSession {
   std::unique_ptr<ChildProcess> cm_, sim_, spawner_;
 };
 
+// A robot from its own files in lockstep: controller_manager and the spawner first, then sim_server, all with the
+// same flags (package path, xacro arguments, namespace).
+class LockstepSession : public RobotSession {
+ public:
+  LockstepSession(std::string urdf, std::string config, std::vector<std::string> flags)
+      : RobotSession(std::move(urdf), std::move(config)), flags_(std::move(flags)) {}
+
+  void start(const std::vector<std::string>& controllers, const std::vector<std::string>& sim_flags = {}) {
+    start_controller_manager(flags_);
+    ASSERT_NO_FATAL_FAILURE(spawn(controllers));
+    start_sim(with(with({"--mode", "lockstep"}, flags_), sim_flags), 30);
+  }
+  const std::vector<std::string>& flags() const { return flags_; }
+
+  // send-trajectory's exit code; its output in `output`.
+  int send(const std::vector<std::string>& args, std::string& output) {
+    return run(with({"send-trajectory"}, args), &output);
+  }
+
+ private:
+  std::vector<std::string> flags_;
+};
+
 // turret_bot with the tutorial's three controllers, sim_server last and in the foreground for a bounded stretch.
 class TurretBot : public RobotSession {
  public:
