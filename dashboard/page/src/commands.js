@@ -1,4 +1,4 @@
-import { el } from './dom.js';
+import { el, shown } from './dom.js';
 
 // Command channels of the running controllers (rqt's message publisher): a slider per joint within its URDF limits,
 // and an expression in i and t streamed by the server at a rate, like turret-cmd. What a controller takes is what its
@@ -114,12 +114,12 @@ export class Commands {
     start.onclick = async () => {
       const expressions = text.value.split(';').map((s) => s.trim()).filter(Boolean);
       const r = await this.conn.request({ op: 'expr', channel, expressions, rate: Number(rate.value) });
-      msg.textContent = r.message;
+      msg.textContent = shown(r.message);
       msg.className = r.ok ? 'message' : 'message error';
     };
     stop.onclick = async () => {
       const r = await this.conn.request({ op: 'expr_stop', channel });
-      msg.textContent = r.message;
+      msg.textContent = shown(r.message);
     };
     expr.append(text, ' at ', rate, ' Hz ', start, stop, msg);
     div.appendChild(expr);

@@ -1,4 +1,6 @@
 // The controller manager's controllers (rqt_controller_manager): state, claimed joints, start/stop, a switch.
+import { shown } from './dom.js';
+
 export class Controllers {
   constructor(conn, table, switchButton, message, loadName, loadButton) {
     this.conn = conn;
@@ -21,9 +23,9 @@ export class Controllers {
   }
 
   async call(body) {
-    this.message.textContent = `${body.call} ${[...(body.start || []), ...(body.stop || []), ...(body.names || [])].join(', ')} ...`;
+    this.message.textContent = shown(`${body.call} ${[...(body.start || []), ...(body.stop || []), ...(body.names || [])].join(', ')} ...`);
     const r = await this.conn.request({ op: 'cm', ...body });
-    this.message.textContent = r.message;
+    this.message.textContent = shown(r.message);
     this.message.className = r.ok ? 'message' : 'message error';
   }
 
@@ -57,11 +59,11 @@ export class Controllers {
         actions.append(unload);
       }
       const type = document.createElement('span');
-      type.textContent = c.type.split('/').pop();
+      type.textContent = shown(c.type.split('/').pop());
       const cells = [box, c.name, type, c.state, c.joints.join(' '), actions];
       for (const cell of cells) {
         const td = document.createElement('td');
-        if (typeof cell === 'string') td.textContent = cell;
+        if (typeof cell === 'string') td.textContent = shown(cell);
         else td.appendChild(cell);
         td.title = cell === type ? c.type : td.textContent;
         tr.appendChild(td);

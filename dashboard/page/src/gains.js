@@ -1,4 +1,4 @@
-import { options } from './dom.js';
+import { options, shown } from './dom.js';
 import { fieldsOfType } from './fields.js';
 
 // PID gains of a joint while it runs (rqt_reconfigure, the tune tool): read from the owner, edit, apply; the owner
@@ -76,7 +76,7 @@ export class Gains {
       for (const f of this.switches) msg[f] = this.el.querySelector(`#gains-${f}`).checked ? 1 : 0;
     }
     this.waiting = { id: msg.request_id, channel: `${owner}/gains`, since: performance.now() };
-    this.message.textContent = `asking ${owner} ...`;
+    this.message.textContent = shown(`asking ${owner} ...`);
     this.message.className = 'message';
     this.conn.publish(`${owner}/gains/set`, 'pid_gains_t', msg).then((r) => {
       if (!r.ok) this.show(false, r.message);
@@ -98,7 +98,7 @@ export class Gains {
   }
 
   show(ok, text) {
-    this.message.textContent = text;
+    this.message.textContent = shown(text);
     this.message.className = ok ? 'message' : 'message error';
   }
 }

@@ -8,7 +8,7 @@ import { Channels } from './channels.js';
 import { Controllers } from './controllers.js';
 import { Commands } from './commands.js';
 import { Gains } from './gains.js';
-import { el } from './dom.js';
+import { el, shown } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
 const conn = new Connection(`${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/ws`);
@@ -106,6 +106,6 @@ $('estop').onclick = async () => {
     state.estop = engage;
     estopButton();
   } else {
-    $('cm-message').textContent = r.message;
+    $('cm-message').textContent = shown(r.message);
   }
 };
