@@ -20,6 +20,7 @@
 #include "bench/pingpong.hpp"
 #include "bus/bus.hpp"
 #include "bus/hardware_wire.hpp"
+#include "bus/messages.hpp"
 #include "description/robot_model.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
@@ -51,10 +52,9 @@ class HardwarePinger {
     state_.effort.assign(state_.name.size(), 0.0);
     buf_.resize(size_t(state_.getEncodedSize()));
     // What the controller manager answers: same actuators, mode and command per actuator.
-    cmd_.num_actuators = state_.num_actuators;
+    resize(cmd_, state_.num_actuators);
     cmd_.name = state_.name;
     cmd_.mode = state_.mode;
-    cmd_.command.assign(state_.name.size(), 0.0);
     channel_state_ = channels::kHardwareState;
     if (lc_.good()) lc_.subscribe(channels::kHardwareCommand, &HardwarePinger::on_command, this);
   }

@@ -6,12 +6,16 @@
 //    step and held over it, as a controller in controller_manager sends it
 //    (effort interface); unstable above d*dt/I = 2 in any explicit scheme;
 //  - implicit: the same D term as a position PID in the simulator (pid_gains
-//    p 0, d), which sim_server applies through ImplicitJointDamper.
+//    p 0, d), which sim_server applies through ImplicitJointDamper;
+//  - effort with damping: the explicit effort sent with the damping it holds
+//    (hardware_command_t::damping), as controller_manager's effort PIDs send
+//    it; sim_server applies that part through ImplicitJointDamper too.
 // "Stable" means the speed after 1 s is below the starting speed (a growing oscillation is above it). The largest stable explicit d is found by
 // bisection; the implicit one is tried at the bound times 10, 100, ... up to 10^6.
 //   bench_stiff [--smoke]
 // Prints per inertia:
-//   stiff INERTIA BOUND EXPLICIT_MAX IMPLICIT_MAX_TRIED IMPLICIT_STABLE(1|0)
+//   stiff INERTIA BOUND EXPLICIT_MAX IMPLICIT_MAX_TRIED IMPLICIT_STABLE(1|0) DAMPED_EFFORT_MAX_TRIED
+//         DAMPED_EFFORT_STABLE(1|0)
 #include <unistd.h>
 
 #include <cmath>
@@ -56,8 +60,11 @@ std::string write_robot(const std::string& dir, double inertia, bool effort, dou
   return urdf;
 }
 
-// |v| after kSteps from 1 rad/s, damped by d explicitly (effort) or implicitly (the simulator's PID).
-double final_speed(const std::string& dir, double inertia, double d, bool explicit_d) {
+enum class Damping { Explicit, SimulatorPid, EffortWithDamping };
+
+// |v| after kSteps from 1 rad/s, damped by d as `how` says.
+double final_speed(const std::string& dir, double inertia, double d, Damping how) {
+  const bool explicit_d = how != Damping::SimulatorPid;
   const std::string urdf = write_robot(dir, inertia, explicit_d, d);
   sim::SimulationRates rates;
   rates.physics_hz = rates.control_hz = 1.0 / kDt;
@@ -68,7 +75,8 @@ double final_speed(const std::string& dir, double inertia, double d, bool explic
   act.read(kDt);
   for (int k = 0; k < kSteps; ++k) {
     if (explicit_d)
-      act.set_command(0, hardware_command_t::MODE_EFFORT, -d * act.joint_velocity(0));
+      act.set_command(0, hardware_command_t::MODE_EFFORT, -d * act.joint_velocity(0),
+                      how == Damping::EffortWithDamping ? d : 0.0);
     else  // p 0: only the D term of the PID to a goal at rest acts
       act.set_command(0, hardware_command_t::MODE_POSITION, 0.0);
     sim.step();
@@ -91,16 +99,24 @@ int main(int argc, char** argv) {
     double lo = 0, hi = 10 * bound;
     for (int k = 0; k < (smoke ? 4 : 30); ++k) {
       const double mid = 0.5 * (lo + hi);
-      (final_speed(dir, inertia, mid, true) < 1.0 ? lo : hi) = mid;
+      (final_speed(dir, inertia, mid, Damping::Explicit) < 1.0 ? lo : hi) = mid;
     }
-    double tried = 0;
-    bool stable = true;
-    for (double f = 10; f <= (smoke ? 10 : 1e6) && stable; f *= 10) {
-      tried = f * bound;
-      stable = final_speed(dir, inertia, tried, false) < 1.0;
-    }
-    if (!stable) ++failures;
-    std::printf("stiff %g %g %g %g %d\n", inertia, bound, lo, tried, stable ? 1 : 0);
+    // The largest of 10, 100, ... 10^6 times the bound tried (up to the first unstable one), and whether all were
+    // stable.
+    auto implicit_up_to = [&](Damping how, double* tried) {
+      bool stable = true;
+      for (double f = 10; f <= (smoke ? 10 : 1e6) && stable; f *= 10) {
+        *tried = f * bound;
+        stable = final_speed(dir, inertia, *tried, how) < 1.0;
+      }
+      return stable;
+    };
+    double pid_tried = 0, effort_tried = 0;
+    const bool pid_stable = implicit_up_to(Damping::SimulatorPid, &pid_tried);
+    const bool effort_stable = implicit_up_to(Damping::EffortWithDamping, &effort_tried);
+    failures += !pid_stable + !effort_stable;
+    std::printf("stiff %g %g %g %g %d %g %d\n", inertia, bound, lo, pid_tried, pid_stable ? 1 : 0, effort_tried,
+                effort_stable ? 1 : 0);
     if (smoke) break;
   }
   std::remove((dir + "/effort.urdf").c_str());

@@ -29,13 +29,15 @@ std::string check(const hardware_state_t& m) {
 
 std::string check(const hardware_command_t& m) {
   const int n = m.num_actuators;
-  if (!sized(m.name, n) || !sized(m.mode, n) || !sized(m.command, n))
+  if (!sized(m.name, n) || !sized(m.mode, n) || !sized(m.command, n) || !sized(m.damping, n))
     return fmt::format("num_actuators {} does not match the arrays", n);
   for (int k = 0; k < n; ++k) {
     if (m.mode[k] < hardware_command_t::MODE_NONE || m.mode[k] > hardware_command_t::MODE_EFFORT)
       return fmt::format("actuator '{}' has unknown mode {}", m.name[k], int(m.mode[k]));
     if (m.mode[k] != hardware_command_t::MODE_NONE && !std::isfinite(m.command[k]))
       return fmt::format("actuator '{}' command is NaN or Inf", m.name[k]);
+    if (m.mode[k] == hardware_command_t::MODE_EFFORT && !(m.damping[k] >= 0 && std::isfinite(m.damping[k])))
+      return fmt::format("actuator '{}' damping {} is not a finite value >= 0", m.name[k], m.damping[k]);
   }
   return "";
 }
@@ -68,6 +70,7 @@ void resize(hardware_command_t& m, int n) {
   m.name.resize(n);
   m.mode.resize(n);
   m.command.resize(n);
+  m.damping.resize(n);
 }
 
 PidGains gains_of(const pid_gains_t& m) {

@@ -16,6 +16,10 @@ struct SimpleTransmission {
   double joint_to_actuator_position(double xj) const { return (xj - offset) * reduction; }
   double joint_to_actuator_velocity(double vj) const { return vj * reduction; }
   double joint_to_actuator_effort(double tj) const { return tj / reduction; }
+
+  // A damping (effort per velocity: N*m*s/rad, N*s/m) between the two sides.
+  double actuator_to_joint_damping(double da) const { return da * reduction * reduction; }
+  double joint_to_actuator_damping(double dj) const { return dj / (reduction * reduction); }
 };
 
 }  // namespace lcm_control

@@ -68,6 +68,7 @@ std::string Hardware::bind(const hardware_state_t& state, hardware_command_t& co
   command.name = state.name;
   command.mode.assign(n, hardware_command_t::MODE_NONE);
   command.command.assign(n, 0.0);
+  command.damping.assign(n, 0.0);
   session_ = state.session;
   bound_ = true;
   return "";
@@ -113,6 +114,7 @@ void Hardware::write(const hardware_state_t& s, hardware_command_t& c) const {
   for (int a = 0; a < c.num_actuators; ++a) {
     c.mode[a] = hardware_command_t::MODE_NONE;
     c.command[a] = 0.0;
+    c.damping[a] = 0.0;
   }
   for (size_t k = 0; k < joints_.size(); ++k) {
     const JointData& j = joints_[k];
@@ -134,6 +136,8 @@ void Hardware::write(const hardware_state_t& s, hardware_command_t& c) const {
     if (!std::isfinite(v)) continue;  // never send a NaN: the actuator holds instead
     c.mode[a] = wire_mode(i);
     c.command[a] = v;
+    if (i == Interface::Effort && j.damping > 0 && std::isfinite(j.damping))
+      c.damping[a] = j.map.joint_to_actuator_damping(j.damping);
   }
 }
 

@@ -28,6 +28,9 @@ struct JointData {
   bool continuous = false;
   double position = 0, velocity = 0, effort = 0;  // joint space, from the last read
   double command = 0;                             // joint space, written by the owning controller
+  // Of an effort command, the N*m*s/rad (N*s/m) of -velocity it holds (a PID's D term), written with it: the
+  // hardware may apply that part implicitly (hardware_command_t::damping).
+  double damping = 0;
   const Controller* owner = nullptr;              // the running controller that claims it
   PositionSoftLimits soft_position;               // the previous position command, under soft limits
 };

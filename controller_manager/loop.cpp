@@ -19,8 +19,10 @@ bool Loop::handed_over(const JointData* j, std::optional<Interface> interface) c
 void Loop::start(ControllerSlot& s) {
   for (JointData* j : s.claimed) {
     const std::optional<Interface> interface = s.controller->claim().interface;
-    if (!handed_over(j, interface))
+    if (!handed_over(j, interface)) {
       j->command = interface.value_or(j->offered.front()) == Interface::Position ? j->position : 0.0;
+      j->damping = 0;
+    }
     j->owner = s.controller.get();
     j->soft_position.reset();
   }

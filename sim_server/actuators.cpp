@@ -85,8 +85,9 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
     a.mode = a.mode_for[a.wire_mode];
     if (a.has_pid) a.pid.set_gains(gains->second);
     if (brakeable) a.brake = mb.add_motor(a.link, finite_or(a.effort_limit, kUnlimitedEffort) * dt);
-    if (a.offered[hardware_command_t::MODE_POSITION] && a.mode_for[hardware_command_t::MODE_POSITION] ==
-                                                           ActuatorMode::PositionPid) {
+    const bool pid_position = a.offered[hardware_command_t::MODE_POSITION] &&
+                              a.mode_for[hardware_command_t::MODE_POSITION] == ActuatorMode::PositionPid;
+    if (pid_position || a.offered[hardware_command_t::MODE_EFFORT]) {
       a.damper = mb.add_damper(a.link);  // in the world now, so that putting it back later does not allocate
       a.damper_on = true;
     }
@@ -157,7 +158,7 @@ std::string Actuators::describe(int i) const {
                      a.name, a.joint, how, also, a.map.reduction, a.map.offset, a.effort_limit, a.velocity_limit);
 }
 
-bool Actuators::set_command(int i, int8_t wire_mode, double value) {
+bool Actuators::set_command(int i, int8_t wire_mode, double value, double damping) {
   Actuator& a = actuators_[i];
   a.commanded = wire_mode != hardware_command_t::MODE_NONE;
   if (!a.commanded) return true;
@@ -170,7 +171,11 @@ bool Actuators::set_command(int i, int8_t wire_mode, double value) {
   switch (wire_mode) {
     case hardware_command_t::MODE_POSITION: a.command = a.map.actuator_to_joint_position(value); break;
     case hardware_command_t::MODE_VELOCITY: a.command = a.map.actuator_to_joint_velocity(value); break;
-    default: a.command = a.map.actuator_to_joint_effort(value); break;
+    default:
+      a.command = a.map.actuator_to_joint_effort(value);
+      a.effort_damping = std::isfinite(damping) && damping > 0 ? a.map.actuator_to_joint_damping(damping) : 0.0;
+      a.implicit_effort_d = a.damper && a.inertia > 0 && a.effort_damping * mb_.dt() / a.inertia > kImplicitDamping;
+      break;
   }
   return true;
 }
@@ -236,7 +241,9 @@ void Actuators::apply(double dt) {
     if (a.commanded && a.next_wire_mode != a.wire_mode) switch_mode(a, a.next_wire_mode);
     set_in_world(a.position_motor, a.position_motor_on, a.mode == ActuatorMode::PositionDirect);
     set_in_world(a.velocity_motor, a.velocity_motor_on, a.mode == ActuatorMode::VelocityMotor);
-    set_in_world(a.damper, a.damper_on, a.mode == ActuatorMode::PositionPid && a.implicit_d);
+    set_in_world(a.damper, a.damper_on,
+                 (a.mode == ActuatorMode::PositionPid && a.implicit_d) ||
+                     (a.mode == ActuatorMode::Effort && a.implicit_effort_d && !hold));
     const bool brakeable_mode = a.mode != ActuatorMode::PositionDirect && a.mode != ActuatorMode::VelocityMotor;
     set_in_world(a.brake, a.braking, brakeable_mode && brakes_ && !e_stop_ && (hold_all_ || !a.commanded));
     if (a.braking) {
@@ -282,7 +289,16 @@ void Actuators::apply(double dt) {
         a.velocity_motor->setVelocityTarget(hold ? 0.0 : clamp_abs(a.command, a.velocity_limit), 1.0);
         break;
       case ActuatorMode::Effort:
-        a.effort = hold ? 0.0 : clamp_abs(a.command, e_max);
+        if (hold) {
+          a.effort = 0;
+        } else if (!a.damper_on) {
+          a.effort = clamp_abs(a.command, e_max);
+        } else {
+          // The command's -d*v_then as -d*v_next in the solver; together within the effort limit.
+          const double limit = std::isfinite(e_max) ? e_max : kUnlimitedEffort;
+          a.effort = a.command + a.effort_damping * qd;
+          a.damper->set(a.effort_damping, 0.0, -limit - a.effort, limit - a.effort);
+        }
         break;
     }
     if (!std::isfinite(a.effort)) a.effort = 0;  // Bullet turns one Inf or NaN into NaN everywhere

@@ -41,15 +41,20 @@ class Actuators final : public PlayedHardware {
   int64_t rejected(int i) const { return actuators_[i].rejected; }
   // One line per actuator for the INFO log: mode, reduction, limits, gains.
   std::string describe(int i) const;
-  // Whether a position PID's D term is applied implicitly (d*dt/I above kImplicitDamping).
-  bool implicit_derivative(int i) const { return actuators_[i].implicit_d; }
+  // Whether a position PID's D term, or the damping of the effort command, is applied implicitly (d*dt/I above
+  // kImplicitDamping).
+  bool implicit_derivative(int i) const {
+    return actuators_[i].mode == ActuatorMode::Effort ? actuators_[i].implicit_effort_d : actuators_[i].implicit_d;
+  }
   // Findings worth a WARN (damping capped so the explicit damping torque stays stable).
   const std::vector<std::string>& warnings() const { return warnings_; }
 
   // Commands in actuator units; MODE_NONE holds. Another offered mode switches the actuator at the next physics
   // step: a position servo starts from the measured position (rate-limited from there), a PID starts afresh, the
-  // previous mode's motor leaves the world. A mode not offered holds and returns false. Real-time safe.
-  bool set_command(int i, int8_t wire_mode, double value) override;
+  // previous mode's motor leaves the world. A mode not offered holds and returns false. An effort command's
+  // `damping` (its -damping * velocity part) is applied from the velocity at the end of the step, as a position PID's
+  // D term is, once damping*dt/I passes kImplicitDamping. Real-time safe.
+  bool set_command(int i, int8_t wire_mode, double value, double damping = 0) override;
   // Watchdog or lost controller: every actuator holds while set.
   void set_hold_all(bool hold) override { hold_all_ = hold; }
   bool hold_all() const override { return hold_all_; }
@@ -110,11 +115,13 @@ class Actuators final : public PlayedHardware {
     btMultiBodyJointMotor* position_motor = nullptr;  // position direct
     btMultiBodyJointMotor* velocity_motor = nullptr;  // velocity motor
     btMultiBodyJointMotor* brake = nullptr;
-    // Position PID: its D term as an implicit damper while d*dt/I (I: the joint's effective inertia) is above
-    // kImplicitDamping, where an explicit one nears instability.
+    // Position PID, and an effort command's damping: its D term as an implicit damper while d*dt/I (I: the joint's
+    // effective inertia) is above kImplicitDamping, where an explicit one nears instability.
     ImplicitJointDamper* damper = nullptr;
     double inertia = 0;
     bool implicit_d = false;
+    double effort_damping = 0;  // joint units: the -d*v part of `command` in effort mode
+    bool implicit_effort_d = false;
     bool position_motor_on = false, velocity_motor_on = false, braking = false, damper_on = false;
     double last_goal = 0;
     bool have_last_goal = false;

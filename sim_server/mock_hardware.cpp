@@ -125,7 +125,7 @@ std::string MockHardware::describe(int i) const {
                      a.map.reduction, a.map.offset);
 }
 
-bool MockHardware::set_command(int i, int8_t wire_mode, double value) {
+bool MockHardware::set_command(int i, int8_t wire_mode, double value, double) {
   Actuator& a = actuators_[i];
   a.commanded = wire_mode != hardware_command_t::MODE_NONE;
   if (!a.commanded) return true;

@@ -38,7 +38,7 @@ class MockHardware final : public PlayedHardware {
   int8_t wire_mode(int i) const override { return actuators_[i].wire_mode; }
   bool offers(int i, int8_t wire_mode) const override;
   const char* mode_name(int i) const override;
-  bool set_command(int i, int8_t wire_mode, double value) override;
+  bool set_command(int i, int8_t wire_mode, double value, double damping = 0) override;  // damping: not used
   void set_hold_all(bool hold) override { hold_all_ = hold; }
   bool hold_all() const override { return hold_all_; }
   void set_e_stop(bool engaged) override { e_stop_ = engaged; }

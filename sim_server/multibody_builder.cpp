@@ -17,6 +17,7 @@ namespace {
 constexpr double kGravity = 9.81;
 constexpr double kMasslessLinkMass = 1e-3;   // kg, for moving links the URDF gives no mass
 constexpr double kMasslessLinkInertia = 1e-6;
+constexpr double kMaxCoordinateVelocity = 1e4;  // rad/s, m/s: Bullet's clamp on every coordinate, a safety net only
 // Limits must stop a 1000 N actuator and the momentum of a fast heavy arm within one step; the cap is
 // only a safety net against a runaway solve.
 constexpr double kLimitMaxImpulse = 1e6;
@@ -251,7 +252,6 @@ void Multibody::build(const RobotModel& model, const WorldOptions& world) {
   model_root_ = root->name;
   link_from_com_[root->name] = base.link_from_com;
 
-  double max_velocity = 0;
   for (int i = 0; i < int(order.size()); ++i) {
     const Joint& j = *order[i];
     const LinkInertia& child = inertia[j.child_link];
@@ -289,7 +289,6 @@ void Multibody::build(const RobotModel& model, const WorldOptions& world) {
       mj.link = i;
       if (std::isfinite(j.velocity_limit) && j.velocity_limit > 0) mj.max_velocity = j.velocity_limit;
       joints_.push_back(mj);
-      if (std::isfinite(j.velocity_limit)) max_velocity = std::max(max_velocity, j.velocity_limit);
     }
   }
 
@@ -298,7 +297,10 @@ void Multibody::build(const RobotModel& model, const WorldOptions& world) {
   body_->setAngularDamping(0);
   body_->setCanSleep(false);
   body_->setHasSelfCollision(model.self_collide);  // as Gazebo: links of one model collide only with <self_collide>
-  body_->setMaxCoordinateVelocity(max_velocity > 0 ? max_velocity : 1e4);
+  // Bullet clamps every coordinate to this inside the step, also the velocity after the explicit torques that the
+  // solver's implicit rows (dampers, motors) start from: a URDF velocity limit here would let a light joint's
+  // implicit D term see a fraction of the torque. The limits are applied per joint after the step (step()).
+  body_->setMaxCoordinateVelocity(kMaxCoordinateVelocity);
   world_->addMultiBody(body_.get());
 
   // Colliders on every link: a link without one has island tag -1 and Bullet silently skips its limit

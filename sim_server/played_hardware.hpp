@@ -28,7 +28,9 @@ class PlayedHardware {
   virtual const char* mode_name(int i) const = 0;
 
   // A command in actuator units; MODE_NONE holds. A mode the joint does not offer holds too and returns false.
-  virtual bool set_command(int i, int8_t wire_mode, double value) = 0;
+  // damping: of an effort command, the part -damping * velocity it holds (hardware_command_t::damping), which the
+  // hardware may apply from the velocity at the end of the step instead.
+  virtual bool set_command(int i, int8_t wire_mode, double value, double damping = 0) = 0;
   // Watchdog or lost controller: every actuator holds while set.
   virtual void set_hold_all(bool hold) = 0;
   virtual bool hold_all() const = 0;

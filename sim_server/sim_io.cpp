@@ -63,6 +63,7 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
   rejected_warned_.assign(n, hardware_command_t::MODE_NONE);
   pending_mode_.assign(n, hardware_command_t::MODE_NONE);
   pending_value_.assign(n, 0.0);
+  pending_damping_.assign(n, 0.0);
 
   auto on = [this](Endpoints& e, const std::string& channel, void (SimIo::*handler)(const lcm::ReceiveBuffer&)) {
     e.subscribe_raw(channel, [this, handler](const lcm::ReceiveBuffer& rb) { (this->*handler)(rb); });
@@ -149,7 +150,7 @@ bool SimIo::take_command() {
   if (!has_pending_) return false;
   PlayedHardware& act = sim_.hardware();
   for (int i = 0; i < act.size(); ++i)
-    if (!act.set_command(i, pending_mode_[i], pending_value_[i])) reject_mode(i, pending_mode_[i]);
+    if (!act.set_command(i, pending_mode_[i], pending_value_[i], pending_damping_[i])) reject_mode(i, pending_mode_[i]);
   has_pending_ = false;
   return true;
 }
@@ -224,6 +225,7 @@ void SimIo::on_command(const lcm::ReceiveBuffer& rb) {
   for (int i = 0; i < cmd_.num_actuators; ++i) {
     pending_mode_[i] = cmd_.mode[slot_[i]];
     pending_value_[i] = cmd_.command[slot_[i]];
+    pending_damping_[i] = cmd_.damping[slot_[i]];
   }
   has_pending_ = true;
   last_step_ = cmd_.step;

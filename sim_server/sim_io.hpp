@@ -123,6 +123,7 @@ class SimIo {
   std::vector<int8_t> rejected_warned_;  // per actuator: the refused mode last said
   int64_t rejected_modes_ = 0;
   std::vector<double> pending_value_;
+  std::vector<double> pending_damping_;
   bool has_pending_ = false;
   int64_t expected_step_ = -1, last_step_ = -1, last_command_us_ = -1;
   int64_t foreign_states_ = 0;

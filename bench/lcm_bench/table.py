@@ -82,12 +82,15 @@ def table(b):
     if st:
         row("1b. stiff D on a light link at 1 ms (`bench_stiff`), I = " +
             ", ".join(f'{x["inertia"]:g}' for x in st) + " kg m²: largest stable explicit d / bound 2·I/dt; "
-            "implicit (sim_server's PID) stable up to",
+            "implicit (sim_server's PID) stable up to; effort with its damping (controller_manager's effort PIDs) stable up to",
             lambda d: "; ".join(f'{x["explicit"]:.3g} / {x["bound"]:.3g} = **{x["explicit"] / x["bound"]:.2f}**, '
                                 f'{x["implicit"]:.3g} ({x["implicit"] / x["bound"]:.0f}x)'
-                                + ("" if x["implicit_stable"] else " **unstable**") for x in st)
+                                + ("" if x["implicit_stable"] else " **unstable**")
+                                + f', {x["damped_effort"]:.3g} ({x["damped_effort"] / x["bound"]:.0f}x)'
+                                + ("" if x["damped_effort_stable"] else " **unstable**") for x in st)
             if d is r[names[0]] else "–",
-            "explicit ≤ 1.0x the bound; implicit stable", yes(all(x["implicit_stable"] for x in st)))
+            "explicit ≤ 1.0x the bound; both implicit stable",
+            yes(all(x["implicit_stable"] and x["damped_effort_stable"] for x in st)))
     row("2. payload state / command, bytes", lambda d: "{} / {}".format(*d["rtt"]["sizes"]))
 
     def mpp(k):

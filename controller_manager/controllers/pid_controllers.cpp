@@ -70,10 +70,14 @@ class PidController : public Controller {
       error_dot = 0;
     }
     double cmd;
-    if (out_ == Interface::Effort && position_target_)
+    if (out_ == Interface::Effort && position_target_) {
       cmd = pid_.compute(error, error_dot, period);  // ROS: velocity error as the D input
-    else
+      joint_->damping = period > 0 ? pid_.gains().d : 0.0;  // cmd holds -d*velocity
+    } else {
       cmd = pid_.compute(error, period);
+      // A velocity target to effort: cmd holds -p*velocity.
+      if (out_ == Interface::Effort) joint_->damping = period > 0 ? std::max(0.0, pid_.gains().p) : 0.0;
+    }
     if (joint_->urdf) {
       const double lim = out_ == Interface::Effort ? joint_->urdf->effort_limit : joint_->urdf->velocity_limit;
       if (lim > 0) cmd = std::clamp(cmd, -lim, lim);

@@ -129,10 +129,13 @@ class Ros2PidController : public Controller {
       if (with_derivative_) {
         const double ref_dot = reference_dot_[k];
         u = std::isfinite(ref_dot) ? ref_dot * g.feedforward : 0.0;
-        if (std::isfinite(ref_dot) && std::isfinite(j.velocity))
+        if (std::isfinite(ref_dot) && std::isfinite(j.velocity)) {
           u += pids_[k].compute(error, ref_dot - j.velocity, period);
-        else
+          if (iface_ == Interface::Effort && state_ == Interface::Position)
+            j.damping = period > 0 ? pids_[k].gains().d : 0.0;  // u holds -d*velocity
+        } else {
           u += pids_[k].compute(error, period);
+        }
       } else {
         u = ref * g.feedforward + pids_[k].compute(error, period);
       }

@@ -376,6 +376,35 @@ TEST(ControllerManagerTrajectoryController, AGoalWithoutVelocitiesAfterOneWithTh
   EXPECT_NEAR(rig.actuator("slide_motor").position, 0.2, 1e-9);
 }
 
+// An effort PID's command holds -d*velocity (its D term from the measured velocity); the command says so, so that
+// a simulator can apply that part implicitly (hardware_command_t::damping). Other commands hold none.
+TEST(ControllerManagerPidControllers, EffortCommandsCarryTheDampingTheyHold) {
+  Rig rig;
+  auto damping_of = [&](const std::string& actuator) {
+    const hardware_command_t& c = rig.commands.back();
+    for (int a = 0; a < c.num_actuators; ++a)
+      if (c.name[a] == actuator) return c.damping[a];
+    ADD_FAILURE() << actuator;
+    return -1.0;
+  };
+  rig.start("effort_trajectory");  // gains arm d 50, spin d 10
+  rig.start("slide_position");
+  rig.cycle(2);
+  EXPECT_EQ(damping_of("arm_motor"), 50.0);
+  EXPECT_EQ(damping_of("spin_motor"), 10.0);
+  EXPECT_EQ(damping_of("slide_motor"), 0.0);  // a position command
+  ASSERT_TRUE(rig.load("arm_position").ok);
+  ASSERT_TRUE(rig.load("spin_velocity").ok);
+  ASSERT_TRUE(rig.switch_({"arm_position", "spin_velocity"}, {"effort_trajectory"}).ok);
+  rig.cycle(2);
+  EXPECT_EQ(damping_of("arm_motor"), 50.0);  // effort_controllers/JointPositionController: pid d
+  EXPECT_EQ(damping_of("spin_motor"), 5.0);  // effort_controllers/JointVelocityController: -p*velocity
+  ASSERT_TRUE(rig.switch_({}, {"arm_position", "spin_velocity"}).ok);
+  rig.cycle(1);
+  EXPECT_EQ(damping_of("arm_motor"), 0.0);  // MODE_NONE
+  EXPECT_EQ(damping_of("spin_motor"), 0.0);
+}
+
 TEST(ControllerManagerTrajectoryController, EffortVariantTracksWithItsGains) {
   Rig rig;
   Recorder<trajectory_status_t> result(rig.bus.lcm(), "effort_trajectory/result");

@@ -17,6 +17,9 @@ namespace {
 using namespace testing;
 
 RobotModel diff_bot() { return load_robot_model(std::string(LCM_CONTROL_SOURCE_DIR) + "/config/diff_bot.urdf", ""); }
+RobotModel four_wheel_base() {
+  return load_robot_model(std::string(LCM_CONTROL_SOURCE_DIR) + "/test/robots/four_wheel_base.urdf", "");
+}
 
 struct DiffBot {
   DiffBot() : sim(diff_bot(), {}, {}, WorldOptions{true, true}) {}
@@ -72,7 +75,7 @@ TEST(sim_mobile, AResetPutsTheBaseBackAtItsStart) {
 // A base whose root frame is on the wheel axles, spawned at z = 0: the wheels would start 5 cm inside the ground and
 // Bullet's penetration recovery would throw it up (30+ m for a heavier base). It starts lifted onto its wheels.
 TEST(sim_mobile, ABaseSpawnedInsideTheGroundStartsRestingOnIt) {
-  const RobotModel model = load_robot_model(data("four_wheel_base.urdf"), "");
+  const RobotModel model = four_wheel_base();
   auto settle = [&](double* max_z) {
     auto sim = std::make_unique<Simulation>(model, SimulationRates{}, InitialPositions{}, WorldOptions{true, true});
     *max_z = -1;
@@ -99,7 +102,7 @@ TEST(sim_mobile, ABaseSpawnedInsideTheGroundStartsRestingOnIt) {
 TEST(sim_mobile, ABaseAboveTheGroundIsNotMoved) {
   WorldOptions world{true, true};
   world.base_position = {0, 0, 0.2};
-  Simulation sim(load_robot_model(data("four_wheel_base.urdf"), ""), {}, {}, world);
+  Simulation sim(four_wheel_base(), {}, {}, world);
   EXPECT_TRUE(sim.notes().empty());
   EXPECT_NEAR(sim.multibody().base_pose().translation().z(), 0.2, 1e-12);
 }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <fstream>
 
 #include "description/robot_model.hpp"
@@ -273,7 +274,7 @@ TEST(LaunchFile, RosSpawnerNamespaceArgsAndSpawnModelJ) {
   <param name="robot_description" textfile="$(find turret_bot)/urdf/turret_bot.urdf"/>
   <rosparam command="load" file="$(find turret_bot)/config/config.yaml" subst_value="true"/>
   <node name="urdf_spawner" pkg="gazebo_ros" type="spawn_model"
-        args="-urdf -param robot_description -model x -J j1 0.5 -J j2 -0.25"/>
+        args="-urdf -param robot_description -model x -J j1 0.5 -x 1.5 -J j2 -0.25 -z 0.1 -Y -0.3 -R 0.2"/>
   <group ns="/lab">
     <node name="sp" pkg="controller_manager" type="spawner" ns="rrbot" args="j1_controller"/>
   </group>
@@ -282,16 +283,24 @@ TEST(LaunchFile, RosSpawnerNamespaceArgsAndSpawnModelJ) {
   EXPECT_EQ(plan.ns, "lab/rrbot");
   EXPECT_EQ(plan.initial_positions, (std::vector<std::pair<std::string, double>>{{"j1", 0.5}, {"j2", -0.25}}));
   EXPECT_EQ(plan.args, (std::vector<std::pair<std::string, std::string>>{{"arm_id", "panda"}}));
+  // spawn_model's pose (-x -y -z -Y; -y defaults to 0) for sim_server --base-pose; roll and pitch are named.
+  EXPECT_TRUE(plan.gazebo_spawned);
+  ASSERT_TRUE(plan.base_pose.has_value());
+  EXPECT_EQ(*plan.base_pose, (std::array<double, 4>{1.5, 0, 0.1, -0.3}));
+  bool roll_named = false;
+  for (const auto& n : plan.notes) roll_named = roll_named || n.find("spawn_model -R 0.2 ignored") != std::string::npos;
+  EXPECT_TRUE(roll_named);
 
   const std::string p = problems_of([&] {
     read_launch_file(write(dir, "y.launch", R"L(<launch>
   <param name="robot_description" textfile="$(find turret_bot)/urdf/turret_bot.urdf"/>
   <rosparam command="load" file="$(find turret_bot)/config/config.yaml"/>
-  <node name="s" pkg="gazebo_ros" type="spawn_model" args="-param robot_description -J j1 high"/>
+  <node name="s" pkg="gazebo_ros" type="spawn_model" args="-param robot_description -J j1 high -z low"/>
 </launch>)L"),
                      {lt::source("test/tools/data")});
   });
   EXPECT_NE(p.find("y.launch:4: <node name=\"s\">: -J j1 high: the position must be a number"), std::string::npos) << p;
+  EXPECT_NE(p.find("y.launch:4: <node name=\"s\">: -z low: the pose must be a number"), std::string::npos) << p;
 }
 
 // robot_description from xacro, as ROS launch files load it: the file and its arguments go to our own xacro;

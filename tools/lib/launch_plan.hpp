@@ -2,7 +2,9 @@
 // in, and the bounds launch checks its values against.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -62,6 +64,10 @@ struct LaunchPlan {
   std::vector<std::pair<std::string, std::string>> args;         // $(arg) values for the YAML (`args:`, <arg>)
   std::vector<std::pair<std::string, std::string>> xacro_args;   // a .xacro urdf's arguments (`xacro_args:`, xacro command=)
   std::vector<std::pair<std::string, double>> initial_positions;  // `initial_positions:`, spawn_model's -J
+  // gazebo_ros spawn_model put the robot in: Gazebo leaves a model free unless it is welded to `world`, so sim_server
+  // gets --floating-base when the URDF's root link is not `world`; and where (-x -y -z -Y: m, rad) as --base-pose.
+  bool gazebo_spawned = false;
+  std::optional<std::array<double, 4>> base_pose;
 };
 
 inline constexpr int kRealTimeSpinUs = 150;

@@ -82,8 +82,31 @@ struct RosReader {
       plan.notes.push_back(where(e) + ": robot_state_publisher -> state-publisher (link_poses)");
     } else if (pkg == "gazebo_ros" && type == "spawn_model") {
       spawn_model = true;
+      plan.gazebo_spawned = true;
       for (size_t k = 0; k < words.size(); ++k) {
         if (words[k] == "-unpause") unpause = true;
+        static const std::map<std::string, int> kPose{{"-x", 0}, {"-y", 1}, {"-z", 2}, {"-Y", 3}};
+        if (const auto p = kPose.find(words[k]); p != kPose.end() && k + 1 < words.size()) {
+          double v = 0;
+          if (!parse_double(words[k + 1], v)) {
+            problems.push_back(fmt::format("{}: {} {}: the pose must be a number (m or rad)", where(e), words[k],
+                                           words[k + 1]));
+          } else {
+            if (!plan.base_pose) plan.base_pose = std::array<double, 4>{};
+            (*plan.base_pose)[p->second] = v;
+          }
+          ++k;
+          continue;
+        }
+        if ((words[k] == "-R" || words[k] == "-P") && k + 1 < words.size()) {
+          double v = 0;
+          if (parse_double(words[k + 1], v) && v != 0)
+            plan.notes.push_back(fmt::format("{}: spawn_model {} {} ignored: the base starts level (sim_server "
+                                             "--base-pose takes x, y, z and yaw)",
+                                             where(e), words[k], words[k + 1]));
+          ++k;
+          continue;
+        }
         if (words[k] == "-param" && k + 1 < words.size()) spawn_param = strip_slash(words[k + 1]);
         if (words[k] == "-file" && k + 1 < words.size()) plan.urdf = words[k + 1];
         if (words[k] == "-J" && k + 2 < words.size()) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 
 #include "bus/messages.hpp"
@@ -84,6 +85,28 @@ std::string robot_namespace_of(const LaunchPlan& plan, const std::string& flag, 
   return robot_namespace("", urdf.gazebo_plugin_namespace);
 }
 
+// gazebo_ros spawn_model leaves a robot free unless the URDF welds it to `world`: so does launch, with
+// sim_server --floating-base (which rests it on the ground however low its origin is).
+void gazebo_spawn_defaults(LaunchPlan& plan, const std::vector<std::string>& path) {
+  if (!plan.gazebo_spawned) return;
+  for (const auto& a : plan.sim_args)
+    if (a == "--floating-base") return;
+  LoadOptions o;
+  o.package_path = path;
+  o.xacro_args = plan.xacro_args;
+  RobotModel urdf;
+  try {
+    load_urdf_into(urdf, plan.urdf, o);
+  } catch (const std::exception&) {
+    return;  // the servers read the same file and say what is wrong
+  }
+  if (urdf.root_link == "world") return;
+  plan.sim_args.push_back("--floating-base");
+  launch_say(fmt::format("note: {}: the root link '{}' is not welded to 'world': a free base, as Gazebo spawns it "
+                         "(sim_server --floating-base, on a ground plane)",
+                         std::filesystem::path(plan.urdf).filename().string(), urdf.root_link));
+}
+
 bool spawns(const LaunchPlan& plan) { return !plan.controllers.empty() || !plan.inactive.empty(); }
 
 // For a ROS 2 robot: the config from the gz_ros2_control plugin's <parameters> when the file gives none, and a note
@@ -149,6 +172,10 @@ CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const
     sim.insert(sim.end(), {"--initial-position", fmt::format("{}={}", joint, q)});
   if (plan.mode == "lockstep") sim.insert(sim.end(), {"--mode", "lockstep"});
   if (plan.paused) sim.push_back("--paused");
+  if (plan.base_pose) {
+    sim.push_back("--base-pose");
+    for (double v : *plan.base_pose) sim.push_back(fmt::format("{:g}", v));
+  }
   if (plan.physics_rate > 0) sim.insert(sim.end(), {"--physics-rate", fmt::format("{:g}", plan.physics_rate)});
   if (plan.control_rate > 0) sim.insert(sim.end(), {"--control-rate", fmt::format("{:g}", plan.control_rate)});
   sim.insert(sim.end(), plan.sim_args.begin(), plan.sim_args.end());
@@ -390,6 +417,7 @@ int run_launch(const LaunchOptions& o) {
   if (!o.inactive.empty()) plan.inactive = o.inactive;
   for (const auto& n : plan.notes) launch_say("note: " + n);
   ros2_defaults(plan, o.package_path);
+  gazebo_spawn_defaults(plan, o.package_path);
   if (o.robots > 0) plan.robots = robot_names(o.robots);
   if (!plan.robots.empty()) return run_robots(o, plan);
   const std::string ns = robot_namespace_of(plan, o.bus.ns, o.package_path);

@@ -13,6 +13,7 @@
 #include <functional>
 #include <map>
 
+#include "bus/messages.hpp"
 #include "controller_manager/services.hpp"
 #include "lcm_control/pid_gains_t.hpp"
 #include "lcm_control/sim_clock_t.hpp"
@@ -198,7 +199,7 @@ TEST(Fuzz, SimServerTakesHostilePayloadsOnEveryChannel) {
   const hardware_state_t first = states.messages[0];
   // One genuine lockstep cycle: state k, a command tagged k (j1 to 0.5, j2 to -0.3), step.
   hardware_command_t genuine{};
-  genuine.num_actuators = first.num_actuators;
+  resize(genuine, first.num_actuators);
   genuine.name = first.name;
   genuine.mode = first.mode;
   genuine.command.assign(size_t(first.num_actuators), -0.3);
