@@ -129,6 +129,9 @@ TEST(Limits, RequestsWithinTheLimitsNeitherStallTheLoopNorAnswerOver64KB) {
   ASSERT_TRUE(a && a->ok) << a->message.substr(0, 400);
   a = call("list 1000 loaded", cm_request(cm_request_t::LIST));
   ASSERT_TRUE(a && a->ok);
+  EXPECT_NE(a->message.find(fmt::format(" of {} controllers listed, in load order: an answer is at most 64 KB", kNames)),
+            std::string::npos)
+      << a->message;
   a = call("switch start 1000", cm_request(cm_request_t::SWITCH, {}, names()));
   ASSERT_TRUE(a && a->ok) << a->message.substr(0, 400);
   a = call("switch stop 1000", cm_request(cm_request_t::SWITCH, {}, {}, names()));
@@ -145,8 +148,11 @@ TEST(Limits, RequestsWithinTheLimitsNeitherStallTheLoopNorAnswerOver64KB) {
   ASSERT_TRUE(a && a->ok) << a->message.substr(0, 400);
   hw.stop();
 
-  double worst_period_ms = 0;  // the controller manager's own figure, every 1 s window of the run
-  for (const auto& s : stats.messages) worst_period_ms = std::max(worst_period_ms, s.period_max_us * 1e-3);
+  double worst_period_ms = 0, worst_cycle_ms = 0;  // the controller manager's own figures, every 1 s window of the run
+  for (const auto& s : stats.messages) {
+    worst_period_ms = std::max(worst_period_ms, s.period_max_us * 1e-3);
+    worst_cycle_ms = std::max(worst_cycle_ms, s.exec_max_us * 1e-3);
+  }
   std::string line;
   int largest = 0;
   double longest = 0;
@@ -165,9 +171,10 @@ TEST(Limits, RequestsWithinTheLimitsNeitherStallTheLoopNorAnswerOver64KB) {
   EXPECT_LT(longest, 50.0) << "a request held the loop";
   std::printf("RELIABILITY|limits|requests within the limits against 10,000 configured controllers at 1 kHz|tried=%zu|"
               "ok=%d|crashes=0|hangs=0|largest answer %d B, longest command gap %.2f ms (%.2f ms in 0.5 s without "
-              "requests), controller_manager's longest period %.2f ms; %s\n",
+              "requests), controller_manager's longest period %.2f ms and longest cycle %.2f ms (a switch of 1,000 "
+              "applied in one); %s\n",
               figures.size(), ::testing::Test::HasFailure() ? 0 : int(figures.size()), largest, longest, quiet_ms,
-              worst_period_ms, line.c_str());
+              worst_period_ms, worst_cycle_ms, line.c_str());
   EXPECT_EQ(cm.stop(10), 0) << cm.output().substr(0, 4000);
   std::filesystem::remove_all(folder);
 }
