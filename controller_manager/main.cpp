@@ -5,6 +5,7 @@
 #include <sched.h>
 
 #include <algorithm>
+#include <limits>
 
 #include "cli/cli.hpp"
 #include "rt/log.hpp"
@@ -110,7 +111,9 @@ int main(int argc, char** argv) {
       manager.poll(monotonic_us());
       services.serve(monotonic_us() + kSliceUs);
     }
-    spdlog::info("shutting down: {}", manager.shutdown());
+    const std::string summary = manager.shutdown();
+    services.serve(std::numeric_limits<int64_t>::max());  // what is still queued is refused: shutting down
+    spdlog::info("shutting down: {}", summary);
     return kExitOk;
   });
 }

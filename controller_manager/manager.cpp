@@ -125,6 +125,10 @@ std::string some_names(size_t count, const std::function<const std::string&(size
 }
 }  // namespace
 
+std::string ControllerManager::names_configured() const {
+  return some_names(model_.controllers.size(), [this](size_t k) -> const std::string& { return model_.controllers[k].name; });
+}
+
 Reply ControllerManager::each(const std::vector<std::string>& names, bool load) {
   Batch b;
   b.names = names;
@@ -245,10 +249,7 @@ Reply ControllerManager::load(const std::string& name) {
   if (!spec) {
     return {false, fmt::format("cannot load '{}': there is no '{}' entry with a type in the config {} (configured "
                                "controllers: {})",
-                               clip(name), clip(yaml_key(name)), model_.config_path,
-                               some_names(model_.controllers.size(), [this](size_t k) -> const std::string& {
-                                 return model_.controllers[k].name;
-                               }))};
+                               clip(name), clip(yaml_key(name)), model_.config_path, names_configured())};
   }
   auto slot = std::make_unique<ControllerSlot>();
   slot->name = name;
@@ -422,15 +423,14 @@ void ControllerManager::finish_reload(ReadConfig read) {
   // Ten thousand entries of one YAML document take 40 ms to free: the loop does not wait for it.
   auto old = std::make_pair(std::exchange(model_.controllers, std::move(read.model.controllers)),
                             std::exchange(model_.config_key_files, std::move(read.model.config_key_files)));
-  if (options_.slice_us > 0) disposal_ = std::async(std::launch::async, [old = std::move(old)]() mutable {
+  if (options_.slice_us > 0)
+    disposal_ = std::async(std::launch::async, [old = std::move(old)]() mutable {
       become_background_thread("cm-dispose");
       old = {};
     });
   configured_ = std::move(read.index);
-  const std::string some =
-      some_names(model_.controllers.size(), [this](size_t k) -> const std::string& { return model_.controllers[k].name; });
   done({true, fmt::format("reloaded {}: {} controller(s) configured ({}); unloaded [{}]", model_.config_path,
-                          model_.controllers.size(), some, join_some(reload_unloaded_, 20))});
+                          model_.controllers.size(), names_configured(), join_some(reload_unloaded_, 20))});
 }
 
 std::vector<controller_info_t> ControllerManager::list() const {

@@ -59,7 +59,7 @@ struct Batch {
   Reply reply{true, ""};
   size_t next = 0, shown = 0, done = 0, refused = 0;  // names served; lines in the reply; beyond them, counted
   std::vector<std::string> unknown;
-  size_t near_at = 0, near_distance = 4;  // the "did you mean" scan over the candidates, resumable too
+  size_t near_at = 0, near_distance = 4;  // the "did you mean" scan (within 3 edits) over the candidates, resumable too
   std::string near;
 };
 
@@ -135,6 +135,7 @@ class ControllerManager {
   std::string yaml_key(const std::string& controller) const;  // its key path in the YAML
   void complete_pending();
   std::string names_loaded() const;
+  std::string names_configured() const;  // the first 20, then "(and N more)"
   Reply each(const std::vector<std::string>& names, bool load);
   static std::unordered_map<std::string, size_t> index_of(const std::vector<ControllerSpec>& controllers);
   // Out of the loop; destroyed now, or by poll() in slices.
