@@ -1,7 +1,11 @@
-// controller_manager: flags and wiring only. Loads the URDF and YAML, answers
-// requests, runs the loop on hardware/state, stops and unloads everything on
-// SIGINT/SIGTERM. Exit codes: 0 clean stop, 2 usage, 3 bad URDF/YAML, 4 LCM.
+// controller_manager: flags and wiring only. Loads the URDF and YAML, runs the
+// loop on hardware/state, serves requests between cycles a slice at a time,
+// stops and unloads everything on SIGINT/SIGTERM. Exit codes: 0 clean stop,
+// 2 usage, 3 bad URDF/YAML, 4 LCM.
 #include <sched.h>
+
+#include <algorithm>
+#include <limits>
 
 #include "cli/cli.hpp"
 #include "rt/log.hpp"
@@ -69,14 +73,18 @@ int main(int argc, char** argv) {
                                    "name it in <parameters>; {}'s does not)",
                                    urdf));
     Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url, hardware_reader_named(bus_flags.hardware_reader));
+    // Between two cycles, a request's work (Services) and the destruction of unloaded controllers (poll) take at
+    // most this long each before the next hardware state is looked for.
+    constexpr int64_t kSliceUs = 250;
     cm::ManagerOptions options;
     options.silence_us = static_cast<int64_t>(silence_s * 1e6);
+    options.slice_us = kSliceUs;
     const size_t configured = model.controllers.size();
     const size_t actuated = model.transmissions.size();
     cm::Registry registry = cm::builtin_registry();
     for (const auto& line : cm::load_plugins(registry, cm::plugin_libraries(model))) spdlog::info("{}", line);
     cm::ControllerManager manager(std::move(model), bus, registry, options);
-    cm::Services services(manager, bus);
+    cm::Services services(manager, bus, kSliceUs);
     for (const auto& c : manager.check_configured()) {
       if (c.outcome != cm::ControllerCheck::Loads) spdlog::warn("configured controller will not load: {}", c.message);
       for (const auto& n : c.notes) spdlog::warn("{}", n);
@@ -91,7 +99,9 @@ int main(int argc, char** argv) {
     while (!stop_requested()) {
       // What is queued, the hardware loop first and at most 1,000 messages each, then the housekeeping: silence
       // is measured after the backlog, so other traffic cannot mask a dead hardware.
-      const int64_t wait_us = manager.state_arrivals().sleep_us(monotonic_us(), spin_us, 20000);
+      int64_t wait_us = manager.state_arrivals().sleep_us(monotonic_us(), spin_us, 20000);
+      if (services.has_work() || manager.has_work()) wait_us = 0;
+      else if (manager.reading_config()) wait_us = std::min<int64_t>(wait_us, 1000);
       if (wait_us == 0) sched_yield();  // spinning: the simulator, woken to its deadline on this CPU, runs first
       if (!bus.handle_us(wait_us, 1000) && !stop_requested()) {
         if (++errors > 100) throw std::runtime_error("LCM keeps failing to receive; giving up");
@@ -99,8 +109,11 @@ int main(int argc, char** argv) {
       }
       errors = 0;
       manager.poll(monotonic_us());
+      services.serve(monotonic_us() + kSliceUs);
     }
-    spdlog::info("shutting down: {}", manager.shutdown());
+    const std::string summary = manager.shutdown();
+    services.serve(std::numeric_limits<int64_t>::max());  // what is still queued is refused: shutting down
+    spdlog::info("shutting down: {}", summary);
     return kExitOk;
   });
 }

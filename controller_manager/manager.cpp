@@ -4,14 +4,15 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
-#include <string_view>
-#include <unordered_set>
+#include <limits>
+#include <utility>
 
 #include "bus/hardware_wire.hpp"
 #include "bus/messages.hpp"
 #include "description/text.hpp"
 #include "description/control_config.hpp"
 #include "description/model_check.hpp"
+#include "rt/scheduling.hpp"
 #include "controller_manager/claims.hpp"
 #include "controller_manager/gains.hpp"
 #include "controller_manager/ros_catalog.hpp"
@@ -70,6 +71,7 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       command_pub_(hw_endpoints_.publisher<hardware_command_t>(bus.channel(channels::kHardwareCommand))),
       stats_pub_(endpoints_.publisher<loop_stats_t>(bus.channel(channels::kCmStatistics))) {
   loop_.set_command_sources(&sources_);
+  configured_ = index_of(model_.controllers);
   hw_endpoints_.subscribe<hardware_state_t>(
       bus.channel(channels::kHardwareState),
       [this](const hardware_state_t& m) {
@@ -93,6 +95,12 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
 
 ControllerManager::~ControllerManager() { shutdown(); }
 
+std::unordered_map<std::string, size_t> ControllerManager::index_of(const std::vector<ControllerSpec>& controllers) {
+  std::unordered_map<std::string, size_t> index;
+  for (size_t k = 0; k < controllers.size(); ++k) index.emplace(controllers[k].name, k);
+  return index;
+}
+
 ControllerSlot* ControllerManager::find(const std::string& name) const {
   for (const auto& s : loop_.slots())
     if (s->name == name) return s.get();
@@ -105,41 +113,84 @@ std::string ControllerManager::names_loaded() const {
   return v.empty() ? "none" : join_some(v, 20);
 }
 
+namespace {
+constexpr size_t kShownLines = 20;  // per-name lines in one batch reply; beyond them, counts
+
+// The first 20 of `count` names, then "(and N more)", without copying the others.
+std::string some_names(size_t count, const std::function<const std::string&(size_t)>& name) {
+  if (count == 0) return "none";
+  std::vector<std::string> first;
+  for (size_t k = 0; k < std::min<size_t>(count, 20); ++k) first.push_back(name(k));
+  return join(first) + (count > 20 ? fmt::format(" (and {} more)", count - 20) : "");
+}
+}  // namespace
+
+std::string ControllerManager::names_configured() const {
+  return some_names(model_.controllers.size(), [this](size_t k) -> const std::string& { return model_.controllers[k].name; });
+}
+
 Reply ControllerManager::each(const std::vector<std::string>& names, bool load) {
-  Reply all{true, ""};
-  std::vector<std::string> unknown;
-  std::unordered_set<std::string_view> known;  // one pass over the config and the slots, however many names
-  for (const auto& s : loop_.slots()) known.insert(s->name);
-  if (load)
-    for (const auto& c : model_.controllers) known.insert(c.name);
-  for (const auto& n : names) {
-    if (!known.count(n)) {
-      unknown.push_back(n);
+  Batch b;
+  b.names = names;
+  b.load = load;
+  while (!step(b, std::numeric_limits<int64_t>::max())) {
+  }
+  return b.reply;
+}
+
+bool ControllerManager::step(Batch& b, int64_t deadline_us) {
+  Reply& all = b.reply;
+  while (b.next < b.names.size()) {
+    const std::string& n = b.names[b.next++];
+    if (!(find(n) || (b.load && configured_.count(n)))) {
+      b.unknown.push_back(n);
       continue;
     }
-    const Reply one = load ? this->load(n) : unload(n);
+    const Reply one = b.load ? load(n) : unload(n);
     all.ok = all.ok && one.ok;
-    all.message += (all.message.empty() ? "" : "; ") + one.message;
+    if (b.shown < kShownLines) {
+      all.message += (all.message.empty() ? "" : "; ") + one.message;
+      ++b.shown;
+    } else {
+      ++(one.ok ? b.done : b.refused);
+    }
+    if (monotonic_us() >= deadline_us) return false;
   }
-  if (unknown.empty() || (unknown.size() == 1 && names.size() == 1)) {
-    if (!unknown.empty()) return load ? this->load(unknown[0]) : unload(unknown[0]);
-    return all;
+  if (b.done + b.refused > 0)
+    all.message += fmt::format("; and {} more: {} {}, {} refused", b.done + b.refused, b.done,
+                               b.load ? "loaded" : "unloaded", b.refused);
+  if (b.unknown.empty()) return true;
+  if (b.unknown.size() == 1 && b.names.size() == 1) {
+    all = b.load ? load(b.unknown[0]) : unload(b.unknown[0]);
+    return true;
   }
-  std::vector<std::string> quoted, candidates;
-  for (size_t k = 0; k < std::min<size_t>(unknown.size(), 5); ++k) quoted.push_back("'" + clip(unknown[k], 60) + "'");
-  if (unknown.size() > 5) quoted.push_back(fmt::format("(and {} more)", unknown.size() - 5));
-  if (load)
-    for (const auto& c : model_.controllers) candidates.push_back(c.name);
-  else
-    for (const auto& s : loop_.slots()) candidates.push_back(s->name);
-  const std::string near = unknown[0].size() <= 256 ? closest_name(unknown[0], candidates, 3) : "";
+  const std::string& first = b.unknown[0];
+  const size_t candidates = b.load ? model_.controllers.size() : loop_.slots().size();
+  auto candidate = [&](size_t k) -> const std::string& {
+    return b.load ? model_.controllers[k].name : loop_.slots()[k]->name;
+  };
+  while (first.size() <= 256 && b.near_at < candidates) {
+    const std::string& c = candidate(b.near_at++);
+    const size_t apart = c.size() > first.size() ? c.size() - first.size() : first.size() - c.size();
+    if (apart < b.near_distance) {
+      const size_t d = edit_distance(first, c);
+      if (d < b.near_distance) b.near_distance = d, b.near = c;
+    }
+    if (b.near_at % 64 == 0 && monotonic_us() >= deadline_us) return false;
+  }
+  std::vector<std::string> quoted;
+  for (size_t k = 0; k < std::min<size_t>(b.unknown.size(), 5); ++k)
+    quoted.push_back("'" + clip(b.unknown[k], 60) + "'");
+  if (b.unknown.size() > 5) quoted.push_back(fmt::format("(and {} more)", b.unknown.size() - 5));
+  const std::string listed = some_names(candidates, candidate);
   all.ok = false;
   all.message += (all.message.empty() ? "" : "; ") +
-                 fmt::format("cannot {} {} controller(s) {}: {}{} ({} controllers: {})", load ? "load" : "unload",
-                             unknown.size(), load ? "with no entry in the config " + model_.config_path : "not loaded",
-                             join(quoted), near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
-                             load ? "configured" : "loaded", candidates.empty() ? "none" : join_some(candidates, 20));
-  return all;
+                 fmt::format("cannot {} {} controller(s) {}: {}{} ({} controllers: {})", b.load ? "load" : "unload",
+                             b.unknown.size(),
+                             b.load ? "with no entry in the config " + model_.config_path : "not loaded",
+                             join(quoted), b.near.empty() ? "" : fmt::format(" (did you mean '{}'?)", b.near),
+                             b.load ? "configured" : "loaded", listed);
+  return true;
 }
 
 std::string ControllerManager::yaml_key(const std::string& controller) const {
@@ -193,14 +244,12 @@ Reply ControllerManager::load(const std::string& name) {
   if (shutting_down_) return {false, kShuttingDown};
   if (ControllerSlot* s = find(name))
     return {false, fmt::format("cannot load '{}': it is already loaded (state: {})", name, s->state())};
-  const ControllerSpec* spec = model_.controller(name);
+  const auto at = configured_.find(name);
+  const ControllerSpec* spec = at == configured_.end() ? nullptr : &model_.controllers[at->second];
   if (!spec) {
-    std::vector<std::string> configured;
-    for (const auto& c : model_.controllers) configured.push_back(c.name);
     return {false, fmt::format("cannot load '{}': there is no '{}' entry with a type in the config {} (configured "
                                "controllers: {})",
-                               clip(name), clip(yaml_key(name)), model_.config_path,
-                               configured.empty() ? "none" : join_some(configured, 20))};
+                               clip(name), clip(yaml_key(name)), model_.config_path, names_configured())};
   }
   auto slot = std::make_unique<ControllerSlot>();
   slot->name = name;
@@ -242,10 +291,16 @@ Reply ControllerManager::unload(const std::string& name) {
   auto& slots = loop_.slots();
   for (auto it = slots.begin(); it != slots.end(); ++it)
     if (it->get() == s) {
+      std::unique_ptr<ControllerSlot> gone = std::move(*it);
       slots.erase(it);
+      retire(std::move(gone));
       break;
     }
   return {true, fmt::format("unloaded '{}'", name)};
+}
+
+void ControllerManager::retire(std::unique_ptr<ControllerSlot> slot) {
+  if (options_.slice_us > 0) retired_.push_back(std::move(slot));
 }
 
 void ControllerManager::switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop,
@@ -271,7 +326,8 @@ void ControllerManager::switch_controllers(const std::vector<std::string>& start
   std::vector<std::string> stop_names, start_names;
   for (int k : plan.stop) stop_slots.push_back(loop_.slots()[k].get()), stop_names.push_back(loaded[k].name);
   for (int k : plan.start) start_slots.push_back(loop_.slots()[k].get()), start_names.push_back(loaded[k].name);
-  pending_summary_ = fmt::format("stopped [{}], started [{}]{}", join(stop_names), join(start_names), notes);
+  pending_summary_ =
+      fmt::format("stopped [{}], started [{}]{}", join_some(stop_names, 20), join_some(start_names, 20), notes);
   loop_.set_pending_switch(stop_slots, start_slots);
   pending_done_ = std::move(done);
   if (!ticking()) {
@@ -302,56 +358,102 @@ void ControllerManager::reload(bool force, Done done) {
   }
   if (!loaded.empty() && !force) {
     done({false, fmt::format("cannot reload: {} controller(s) loaded ({}); unload them first or reload with force",
-                             loaded.size(), join(loaded))});
+                             loaded.size(), join_some(loaded, 20))});
     return;
   }
-  auto finish = [this, loaded, done](const Reply& stopped) {
+  auto read = [this, loaded, done](const Reply& stopped) {
     if (!stopped.ok) {
       done({false, "cannot reload: stopping failed: " + stopped.message});
       return;
     }
+    // A copy of the robot without its controllers (thousands of them cost milliseconds to copy), read into off the
+    // loop when slicing.
+    std::vector<ControllerSpec> keep = std::move(model_.controllers);
+    auto keep_files = std::move(model_.config_key_files);
     RobotModel fresh = model_;
+    model_.controllers = std::move(keep);
+    model_.config_key_files = std::move(keep_files);
     fresh.controllers.clear();
+    fresh.config_key_files.clear();
     fresh.pid_gains.clear();
     fresh.config_section.clear();
     fresh.notes.clear();
     fresh.warnings.clear();
-    try {
-      load_control_config_into(fresh, model_.config_paths);
-      validate(fresh);
-    } catch (const ModelError& e) {
-      done({false, fmt::format("cannot reload: {}; nothing was changed", join(e.problems(), "; "))});
+    auto parse = [background = options_.slice_us > 0](RobotModel m) {
+      if (background) become_background_thread("cm-reload");
+      ReadConfig read;
+      try {
+        load_control_config_into(m, m.config_paths);
+        validate(m);
+        read.index = index_of(m.controllers);
+      } catch (const ModelError& e) {
+        read.error = join(e.problems(), "; ");
+      }
+      read.model = std::move(m);
+      return read;
+    };
+    reload_done_ = done;
+    reload_unloaded_ = loaded;
+    if (options_.slice_us > 0) {
+      reload_read_ = std::async(std::launch::async, parse, std::move(fresh));
       return;
     }
-    sources_.end_all("controllers reloaded");
-    loop_.slots().clear();
-    model_.controllers = fresh.controllers;
-    model_.config_key_files = fresh.config_key_files;
-    std::vector<std::string> configured;
-    for (const auto& c : model_.controllers) configured.push_back(c.name);
-    done({true, fmt::format("reloaded {}: {} controller(s) configured ({}); unloaded [{}]", model_.config_path,
-                            configured.size(), join(configured), join(loaded))});
+    finish_reload(parse(std::move(fresh)));
   };
   if (running.empty()) {
-    finish({true, ""});
+    read({true, ""});
     return;
   }
-  switch_controllers({}, running, cm_request_t::STRICT, finish);
+  switch_controllers({}, running, cm_request_t::STRICT, read);
+}
+
+void ControllerManager::finish_reload(ReadConfig read) {
+  Done done = std::move(reload_done_);
+  reload_done_ = nullptr;
+  if (!read.error.empty()) {
+    done({false, fmt::format("cannot reload: {}; nothing was changed", read.error)});
+    return;
+  }
+  sources_.end_all("controllers reloaded");
+  auto& slots = loop_.slots();
+  while (!slots.empty()) {
+    retire(std::move(slots.back()));
+    slots.pop_back();
+  }
+  // Ten thousand entries of one YAML document take 40 ms to free: the loop does not wait for it.
+  auto old = std::make_pair(std::exchange(model_.controllers, std::move(read.model.controllers)),
+                            std::exchange(model_.config_key_files, std::move(read.model.config_key_files)));
+  if (options_.slice_us > 0)
+    disposal_ = std::async(std::launch::async, [old = std::move(old)]() mutable {
+      become_background_thread("cm-dispose");
+      old = {};
+    });
+  configured_ = std::move(read.index);
+  done({true, fmt::format("reloaded {}: {} controller(s) configured ({}); unloaded [{}]", model_.config_path,
+                          model_.controllers.size(), names_configured(), join_some(reload_unloaded_, 20))});
 }
 
 std::vector<controller_info_t> ControllerManager::list() const {
+  return list(std::numeric_limits<size_t>::max());
+}
+
+std::vector<controller_info_t> ControllerManager::list(size_t max_bytes) const {
   std::vector<controller_info_t> out;
-  for (const auto& s : loop_.slots()) {
+  size_t bytes = 0;
+  for (size_t k = 0; k < loop_.slots().size(); ++k) {
+    const ControllerSlot& s = *loop_.slots()[k];
     controller_info_t i;
-    i.name = s->name;
-    i.type = s->type;
-    i.state = s->state();
-    const Claim& c = s->controller->claim();
+    i.name = s.name;
+    i.type = s.type;
+    i.state = s.state();
+    const Claim& c = s.controller->claim();
     i.hardware_interface = c.interface ? to_string(*c.interface) : "";
     i.joints = c.joints;
     i.num_joints = static_cast<int32_t>(i.joints.size());
-    describe_command(registry_.info(s->type), *s->controller, i);
-    out.push_back(i);
+    describe_command(registry_.info(s.type), *s.controller, i);
+    bytes += static_cast<size_t>(i._getEncodedSizeNoHash());
+    if (bytes > max_bytes) break;
+    out.push_back(std::move(i));
   }
   return out;
 }
@@ -448,6 +550,10 @@ void ControllerManager::poll(int64_t now) {
     pending_summary_ = "switched at once (hardware is silent): " + pending_summary_;
     complete_pending();
   }
+  if (reload_read_.valid() && reload_read_.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+    finish_reload(reload_read_.get());
+  }
+  for (const int64_t end = now + options_.slice_us; !retired_.empty() && monotonic_us() < end;) retired_.pop_back();
   if (now - last_stats_us_ >= 1000000) {
     last_stats_us_ = now;
     hw_status_.close_window(now);
@@ -490,6 +596,14 @@ std::string ControllerManager::shutdown() {
     if (s->running) stopped.push_back(s->name);
     unloaded.push_back(s->name);
   }
+  if (reload_read_.valid()) reload_read_.wait();
+  reload_read_ = {};
+  if (Done d = std::move(reload_done_)) {
+    reload_done_ = nullptr;
+    d({false, kShuttingDown});
+  }
+  retired_.clear();
+  if (disposal_.valid()) disposal_.wait();
   loop_.cancel_pending();
   sources_.end_all("the controller manager is shutting down");
   sources_.poll();

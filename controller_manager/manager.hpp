@@ -6,6 +6,8 @@
 
 #include <cstdint>
 #include <functional>
+#include <future>
+#include <unordered_map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -44,6 +46,21 @@ struct ControllerCheck {
 
 struct ManagerOptions {
   int64_t silence_us = 250000;  // no hardware state for this long: the loop is not ticking
+  // 0: every request's work is done when asked (tests). Otherwise the controller manager program's slice: a reload
+  // reads the YAML on a worker thread and unloaded controllers are destroyed by poll() in slices this long.
+  int64_t slice_us = 0;
+};
+
+// A LOAD or UNLOAD of many names, served a few names at a time between cycles (step()); `reply` is final when
+// step() returns true.
+struct Batch {
+  std::vector<std::string> names;
+  bool load = true;
+  Reply reply{true, ""};
+  size_t next = 0, shown = 0, done = 0, refused = 0;  // names served; lines in the reply; beyond them, counted
+  std::vector<std::string> unknown;
+  size_t near_at = 0, near_distance = 4;  // the "did you mean" scan (within 3 edits) over the candidates, resumable too
+  std::string near;
 };
 
 class ControllerManager {
@@ -65,6 +82,8 @@ class ControllerManager {
   // one bounded sentence, however many there are.
   Reply load(const std::vector<std::string>& names) { return each(names, true); }
   Reply unload(const std::vector<std::string>& names) { return each(names, false); }
+  // Serves `batch` until it is done (true) or monotonic_us() passes deadline_us (false: call again).
+  bool step(Batch& batch, int64_t deadline_us);
   // Applied after the next update when hardware is ticking, at once otherwise;
   // `done` gets the reply when the switch has happened or was refused.
   void switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop, int strictness,
@@ -72,13 +91,20 @@ class ControllerManager {
   // Unloads everything (with force: stops the running ones first) and re-reads the config file.
   void reload(bool force, Done done);
   std::vector<controller_info_t> list() const;
+  // The first loaded controllers, in load order, whose encoded size fits in max_bytes.
+  std::vector<controller_info_t> list(size_t max_bytes) const;
+  size_t loaded() const { return loop_.slots().size(); }
   // Every actuated joint's command and state interfaces and which running controller claims it.
   std::vector<joint_interfaces_t> interfaces() const;
   bool from_ros2() const { return model_.from_ros2(); }
   // Tries every configured controller without loading it (doctor, start-up).
   std::vector<ControllerCheck> check_configured();
   std::vector<std::string> types() const { return registry_.types(); }
-  bool busy() const { return static_cast<bool>(pending_done_); }
+  bool busy() const { return static_cast<bool>(pending_done_) || static_cast<bool>(reload_done_); }
+  // Unloaded controllers poll() has still to destroy.
+  bool has_work() const { return !retired_.empty(); }
+  // A reload's YAML is being read on the worker thread: poll() finishes the reload when it is read.
+  bool reading_config() const { return reload_read_.valid(); }
 
   // One hardware/state message (already checked): bind, cycle, publish the command.
   void on_hardware_state(const hardware_state_t& state);
@@ -109,7 +135,18 @@ class ControllerManager {
   std::string yaml_key(const std::string& controller) const;  // its key path in the YAML
   void complete_pending();
   std::string names_loaded() const;
+  std::string names_configured() const;  // the first 20, then "(and N more)"
   Reply each(const std::vector<std::string>& names, bool load);
+  static std::unordered_map<std::string, size_t> index_of(const std::vector<ControllerSpec>& controllers);
+  // Out of the loop; destroyed now, or by poll() in slices.
+  void retire(std::unique_ptr<ControllerSlot> slot);
+  // A reload's config as read: the model, or why not; the index of its controllers by name.
+  struct ReadConfig {
+    RobotModel model;
+    std::string error;
+    std::unordered_map<std::string, size_t> index;
+  };
+  void finish_reload(ReadConfig read);
 
   RobotModel model_;
   Bus& bus_;
@@ -121,6 +158,7 @@ class ControllerManager {
   Outbox outbox_;
   Hardware hw_;
   Loop loop_;
+  std::vector<std::unique_ptr<ControllerSlot>> retired_;  // unloaded, not destroyed yet (slice_us > 0)
   Endpoints endpoints_;
   Endpoints hw_endpoints_;  // hardware/state and hardware/command: the bus's hardware loop
   CommandSources sources_;
@@ -128,6 +166,12 @@ class ControllerManager {
   Publisher<hardware_command_t> command_pub_;
   Publisher<loop_stats_t> stats_pub_;
   Done pending_done_;
+  std::unordered_map<std::string, size_t> configured_;  // name -> model_.controllers index
+  // A reload whose YAML a worker thread reads: its answer, what it unloads, and the result (an error or the model).
+  Done reload_done_;
+  std::vector<std::string> reload_unloaded_;
+  std::future<ReadConfig> reload_read_;
+  std::future<void> disposal_;  // the controllers a reload replaced, destroyed on a worker thread
   bool shutting_down_ = false;  // from shutdown() on, switches and reloads are refused
   BusLog hardware_log_;         // session lines: a peer can send a new session with every message
   HardwareStatus hw_status_;

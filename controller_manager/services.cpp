@@ -4,6 +4,8 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <limits>
+
 namespace lcm_control::cm {
 
 namespace {
@@ -42,8 +44,11 @@ std::string describe(const cm_request_t& r) {
   }
 }
 
-Services::Services(ControllerManager& cm, Bus& bus)
-    : cm_(cm), endpoints_(bus, Endpoints::On::Shared), pub_(endpoints_.publisher<cm_response_t>(bus.channel(channels::kCmResponse))) {
+Services::Services(ControllerManager& cm, Bus& bus, int64_t slice_us)
+    : cm_(cm),
+      endpoints_(bus, Endpoints::On::Shared),
+      pub_(endpoints_.publisher<cm_response_t>(bus.channel(channels::kCmResponse))),
+      slice_us_(slice_us) {
   const std::string channel = bus.channel(channels::kCmRequest);
   endpoints_.subscribe<cm_request_t>(
       channel, [this](const cm_request_t& r) { handle(r); },
@@ -65,9 +70,7 @@ void Services::answer(const cm_request_t& req, const Reply& reply, bool with_typ
   m.request_id = req.request_id;
   m.op = req.op;
   m.ok = reply.ok;
-  m.message = reply.message;
-  m.controllers = cm_.list();
-  m.num_controllers = static_cast<int32_t>(m.controllers.size());
+  m.message = reply.message.size() > kMaxAnswerMessage ? clip(reply.message, kMaxAnswerMessage) : reply.message;
   if (with_types) m.types = cm_.types();
   m.num_types = static_cast<int32_t>(m.types.size());
   const int64_t now = monotonic_us();
@@ -75,7 +78,26 @@ void Services::answer(const cm_request_t& req, const Reply& reply, bool with_typ
   m.hardware_age_us = with_hardware ? cm_.hardware_age_us(now) : -1;
   m.ros2 = cm_.from_ros2();
   if (with_hardware) m.joints = cm_.interfaces();
+  const size_t room = kMaxAnswerBytes - 256;  // 256: the note below
+  size_t bytes = static_cast<size_t>(m.getEncodedSize());
+  size_t joints = 0;
+  for (; joints < m.joints.size(); ++joints) {
+    bytes += static_cast<size_t>(m.joints[joints]._getEncodedSizeNoHash());
+    if (bytes > room / 2) break;
+  }
+  const size_t all_joints = m.joints.size();
+  m.joints.resize(joints);
   m.num_joints = static_cast<int32_t>(m.joints.size());
+  bytes = static_cast<size_t>(m.getEncodedSize());
+  m.controllers = cm_.list(bytes < room ? room - bytes : 0);
+  m.num_controllers = static_cast<int32_t>(m.controllers.size());
+  const size_t loaded = cm_.loaded();
+  if (m.controllers.size() < loaded)
+    m.message += fmt::format(" [{} of {} controllers listed, in load order: an answer is at most {} KB]",
+                             m.controllers.size(), loaded, kMaxAnswerBytes / 1024);
+  if (joints < all_joints)
+    m.message += fmt::format(" [{} of {} joints listed: an answer is at most {} KB]", joints, all_joints,
+                             kMaxAnswerBytes / 1024);
   pub_.publish(m);
   if (req.request_id < 0) return;
   const std::string line = fmt::format("request {}{}: {} -> {}: {}", req.request_id,
@@ -87,19 +109,38 @@ void Services::answer(const cm_request_t& req, const Reply& reply, bool with_typ
   else log_.info(line);
 }
 
-void Services::drain() {
-  while (!deferred_.empty() && !cm_.busy()) {
-    cm_request_t r = std::move(deferred_.front());
-    deferred_.pop_front();
-    handle(r);
-  }
+void Services::handle(const cm_request_t& r) {
+  queue_.push_back(r);
+  if (slice_us_ == 0) serve(std::numeric_limits<int64_t>::max());
 }
 
-void Services::handle(const cm_request_t& r) {
-  if (cm_.busy()) {
-    deferred_.push_back(r);
-    return;
+void Services::serve(int64_t deadline_us) {
+  if (serving_) return;  // an answer given inside start(): the call that started it goes on
+  serving_ = true;
+  while (true) {
+    if (batch_) {
+      if (!cm_.step(batch_->second, deadline_us)) break;
+      const cm_request_t r = std::move(batch_->first);
+      const Reply reply = std::move(batch_->second.reply);
+      batch_.reset();
+      answer(r, reply);
+    } else if (!queue_.empty() && !cm_.busy()) {
+      const cm_request_t r = std::move(queue_.front());
+      queue_.pop_front();
+      start(r);
+    } else {
+      break;
+    }
+    if (monotonic_us() >= deadline_us) break;
   }
+  serving_ = false;
+}
+
+void Services::answered_later() {
+  if (slice_us_ == 0) serve(std::numeric_limits<int64_t>::max());
+}
+
+void Services::start(const cm_request_t& r) {
   auto names_ok = [&](const std::vector<std::string>& v, const char* field) -> std::string {
     if (v.size() > kMaxRequestNames)
       return fmt::format("malformed request: {} names in {}[]; at most {} in one request (docs/reliability.md, "
@@ -111,7 +152,7 @@ void Services::handle(const cm_request_t& r) {
   };
   switch (r.op) {
     case cm_request_t::LIST:
-      answer(r, {true, fmt::format("{} controller(s) loaded", cm_.list().size())}, false, true);
+      answer(r, {true, fmt::format("{} controller(s) loaded", cm_.loaded())}, false, true);
       return;
     case cm_request_t::LIST_TYPES:
       answer(r, {true, fmt::format("{} controller types", cm_.types().size())}, true);
@@ -122,7 +163,10 @@ void Services::handle(const cm_request_t& r) {
         return answer(r, {false, fmt::format("malformed request: {} needs at least one controller name in names[]",
                                              op_name(r.op))});
       if (auto why = names_ok(r.names, "names"); !why.empty()) return answer(r, {false, why});
-      answer(r, r.op == cm_request_t::LOAD ? cm_.load(r.names) : cm_.unload(r.names));
+      Batch b;
+      b.names = r.names;
+      b.load = r.op == cm_request_t::LOAD;
+      batch_.emplace(r, std::move(b));
       return;
     }
     case cm_request_t::SWITCH: {
@@ -131,7 +175,7 @@ void Services::handle(const cm_request_t& r) {
       cm_request_t copy = r;
       cm_.switch_controllers(r.start, r.stop, r.strictness, [this, copy](const Reply& reply) {
         answer(copy, reply);
-        drain();
+        answered_later();
       });
       return;
     }
@@ -139,7 +183,7 @@ void Services::handle(const cm_request_t& r) {
       cm_request_t copy = r;
       cm_.reload(r.force, [this, copy](const Reply& reply) {
         answer(copy, reply);
-        drain();
+        answered_later();
       });
       return;
     }

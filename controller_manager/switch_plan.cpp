@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <string_view>
+#include <unordered_map>
+#include <unordered_set>
 
 #include "controller_manager/claims.hpp"
 #include "description/text.hpp"
@@ -25,11 +28,6 @@ std::string not_loaded_note(const char* verb, const std::vector<std::string>& un
   for (const auto& n : unknown) quoted.push_back("'" + clip(n, 60) + "'");
   return fmt::format("ignored: cannot {} {}: not loaded (loaded: {})", verb, join_some(quoted, 5), names(loaded));
 }
-int index_of(const std::vector<LoadedController>& loaded, const std::string& n) {
-  for (size_t k = 0; k < loaded.size(); ++k)
-    if (loaded[k].name == n) return static_cast<int>(k);
-  return -1;
-}
 }  // namespace
 
 SwitchPlan plan_switch(const std::vector<LoadedController>& loaded, const std::vector<std::string>& start,
@@ -49,13 +47,21 @@ SwitchPlan plan_switch(const std::vector<LoadedController>& loaded, const std::v
   if (strictness != cm_request_t::BEST_EFFORT && strictness != cm_request_t::STRICT)
     return refuse(fmt::format("strictness {} is neither 1 (BEST_EFFORT) nor 2 (STRICT)", strictness));
   const bool strict = strictness == cm_request_t::STRICT;
+  // Hashed: a thousand names against a thousand loaded controllers, between two cycles.
+  const std::unordered_set<std::string_view> stopping(stop.begin(), stop.end());
   for (const auto& s : start)
-    if (std::find(stop.begin(), stop.end(), s) != stop.end())
-      return refuse(fmt::format("'{}' is in both the start and the stop list", clip(s)));
+    if (stopping.count(s)) return refuse(fmt::format("'{}' is in both the start and the stop list", clip(s)));
+  std::unordered_map<std::string_view, int> index;
+  for (size_t k = 0; k < loaded.size(); ++k) index.emplace(loaded[k].name, static_cast<int>(k));
+  auto index_of = [&](const std::string& n) {
+    const auto it = index.find(n);
+    return it == index.end() ? -1 : it->second;
+  };
+  std::vector<bool> in_stop(loaded.size()), in_start(loaded.size());
 
   std::vector<std::string> unknown;
   for (const auto& n : stop) {
-    const int k = index_of(loaded, n);
+    const int k = index_of(n);
     std::string why;
     if (k < 0 && !strict) {
       unknown.push_back(n);
@@ -70,12 +76,12 @@ SwitchPlan plan_switch(const std::vector<LoadedController>& loaded, const std::v
       plan.notes.push_back("ignored: " + why);
       continue;
     }
-    if (std::find(plan.stop.begin(), plan.stop.end(), k) == plan.stop.end()) plan.stop.push_back(k);
+    if (!in_stop[size_t(k)]) plan.stop.push_back(k), in_stop[size_t(k)] = true;
   }
   if (!unknown.empty()) plan.notes.push_back(not_loaded_note("stop", unknown, loaded));
   unknown.clear();
   for (const auto& n : start) {
-    const int k = index_of(loaded, n);
+    const int k = index_of(n);
     std::string why;
     if (k < 0 && !strict) {
       unknown.push_back(n);
@@ -90,7 +96,7 @@ SwitchPlan plan_switch(const std::vector<LoadedController>& loaded, const std::v
       plan.notes.push_back("ignored: " + why);
       continue;
     }
-    if (std::find(plan.start.begin(), plan.start.end(), k) == plan.start.end()) plan.start.push_back(k);
+    if (!in_start[size_t(k)]) plan.start.push_back(k), in_start[size_t(k)] = true;
   }
   if (!unknown.empty()) plan.notes.push_back(not_loaded_note("start", unknown, loaded));
   std::sort(plan.stop.begin(), plan.stop.end());
@@ -99,8 +105,7 @@ SwitchPlan plan_switch(const std::vector<LoadedController>& loaded, const std::v
   // The set running after the switch: controllers kept first, then the started ones.
   std::vector<std::pair<std::string, const Claim*>> after;
   for (size_t k = 0; k < loaded.size(); ++k)
-    if (loaded[k].state == "running" &&
-        std::find(plan.stop.begin(), plan.stop.end(), static_cast<int>(k)) == plan.stop.end())
+    if (loaded[k].state == "running" && !in_stop[k])
       after.emplace_back(loaded[k].name, loaded[k].claim);
   for (int k : plan.start) after.emplace_back(loaded[k].name, loaded[k].claim);
   if (auto c = find_conflict(after))

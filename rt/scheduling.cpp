@@ -1,6 +1,7 @@
 #include "rt/scheduling.hpp"
 
 #include <fmt/format.h>
+#include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
 #include <sys/prctl.h>
@@ -118,6 +119,13 @@ void lower_priority(int nice) {
   // On Linux the nice value is per thread, and a thread starts with its creator's: call this before any thread.
   if (nice > 0 && setpriority(PRIO_PROCESS, 0, nice) != 0)
     throw std::runtime_error(fmt::format("--nice {}: setpriority failed ({})", nice, std::strerror(errno)));
+}
+
+void become_background_thread(const char* name) {
+  sched_param p{};
+  pthread_setschedparam(pthread_self(), SCHED_OTHER, &p);
+  (void)!setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), 19);  // Linux: a thread's own nice value
+  pthread_setname_np(pthread_self(), name);
 }
 
 void set_timer_slack(long ns) {

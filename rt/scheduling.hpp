@@ -26,6 +26,10 @@ std::string apply_scheduling(const SchedulingFlags& f);
 // that watch the loop (the dashboard) and must not take its CPU. Throws std::runtime_error naming the value.
 void lower_priority(int nice);
 
+// Makes the calling thread a background worker named `name`: the normal scheduler (not the loop's SCHED_FIFO, which
+// a thread inherits) at nice 19, so that on a shared CPU the loop thread runs first. Best effort: nothing is thrown.
+void become_background_thread(const char* name);
+
 // How late a timed sleep or poll of the calling thread (and of threads it starts afterwards) may wake, in
 // nanoseconds (>= 1); Linux gives normal threads 50,000 ns, SCHED_FIFO ones none. Throws naming the value.
 void set_timer_slack(long ns);

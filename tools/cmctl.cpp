@@ -117,6 +117,7 @@ int main(int argc, char** argv) {
       r = cm.list(timeout);
       if (r.ok) {
         fmt::print("{}", r.controllers.empty() ? "no controllers loaded\n" : controller_table(r.controllers, r.ros2));
+        if (r.message.find(" listed, in load order: ") != std::string::npos) fmt::print("{}\n", r.message);
         if (!r.hardware.empty()) fmt::print("hardware: {}\n", r.hardware);
       }
     } else if (interfaces->parsed()) {

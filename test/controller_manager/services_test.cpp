@@ -79,3 +79,60 @@ TEST(ControllerManagerServices, ShutdownAnswersThePendingAndTheWaitingSwitchAndL
   }
   rig.cm.reset();  // the manager's destructor shuts down again: no answer to give, nothing to call
 }
+
+// Served in slices (as the controller_manager program does): a LOAD of several names takes several serve() calls, the
+// answers keep the requests' order, a request waits for a switch in progress, and a reload reads its YAML on a worker
+// thread while the loop goes on cycling.
+TEST(ControllerManagerServices, InSlicesABatchSpansSeveralServesAndAnswersKeepTheirOrder) {
+  Rig rig;
+  ManagerOptions options;
+  options.slice_us = 1;  // one name, one answer or one destruction at a time
+  rig.cm.reset();
+  rig.cm = std::make_unique<ControllerManager>(rig.model, rig.bus, builtin_registry(), options);
+  Services services(*rig.cm, rig.bus, options.slice_us);
+  Recorder<cm_response_t> responses(rig.bus.lcm(), "controller_manager/response");
+  auto serve = [&] {
+    services.serve(monotonic_us() + options.slice_us);
+    rig.pump();
+  };
+  rig.cycle(2);
+  rig.publish("controller_manager/request",
+              request(1, cm_request_t::LOAD, {"slide_position", "tilt_position", "wheel_velocity"}));
+  rig.publish("controller_manager/request", request(2, cm_request_t::LIST));
+  EXPECT_TRUE(responses.messages.empty());  // queued, not served by the handler
+  int serves = 0;
+  while (responses.messages.empty() && serves < 100) serve(), ++serves;
+  EXPECT_GE(serves, 3);
+  ASSERT_EQ(responses.messages.size(), 1u);
+  serve();
+  ASSERT_EQ(responses.messages.size(), 2u);
+  EXPECT_EQ(responses.messages[0].request_id, 1);
+  EXPECT_TRUE(responses.messages[0].ok) << responses.messages[0].message;
+  EXPECT_EQ(responses.messages[1].request_id, 2);
+  EXPECT_EQ(responses.messages[1].num_controllers, 3);
+
+  rig.publish("controller_manager/request", request(3, cm_request_t::SWITCH, {}, {"slide_position"}));
+  rig.publish("controller_manager/request", request(4, cm_request_t::UNLOAD, {"slide_position"}));
+  for (int k = 0; k < 5; ++k) serve();
+  EXPECT_EQ(responses.messages.size(), 2u);  // the switch waits for a cycle, the unload for the switch
+  rig.cycle(1);
+  for (int k = 0; k < 5; ++k) serve();
+  ASSERT_EQ(responses.messages.size(), 4u);
+  EXPECT_TRUE(responses.messages[2].ok) << responses.messages[2].message;
+  EXPECT_FALSE(responses.messages[3].ok);
+  EXPECT_NE(responses.messages[3].message.find("it is running"), std::string::npos) << responses.messages[3].message;
+
+  cm_request_t reload = request(5, cm_request_t::RELOAD);
+  reload.force = true;
+  rig.publish("controller_manager/request", reload);
+  for (const int64_t until = monotonic_us() + 10000000; monotonic_us() < until && responses.messages.size() < 5;) {
+    rig.cycle(1);  // the stop, then the YAML read on the worker: the loop keeps cycling meanwhile
+    rig.cm->poll(monotonic_us());
+    serve();
+  }
+  ASSERT_EQ(responses.messages.size(), 5u);
+  EXPECT_TRUE(responses.messages[4].ok) << responses.messages[4].message;
+  EXPECT_TRUE(rig.cm->list().empty());
+  for (int k = 0; k < 100 && rig.cm->has_work(); ++k) rig.cm->poll(monotonic_us());
+  EXPECT_FALSE(rig.cm->has_work());  // the unloaded controllers destroyed, a few per poll
+}
