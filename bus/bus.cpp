@@ -100,7 +100,7 @@ Bus::Bus(const std::string& url, const std::string& ns, const std::string& hardw
     hw_socket_ = std::make_unique<LcmSocket>(hw_url_);
     self_test(*hw_, *hw_socket_);
   }
-  if ((!hw_ || reader == HardwareReader::DirectAll) && udpm(url_)) {
+  if (udpm(url_)) {
     shared_socket_ = std::make_unique<LcmSocket>(url_);
     self_test(*lcm_, *shared_socket_);
   }

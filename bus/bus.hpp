@@ -57,12 +57,12 @@ std::string hardware_url_for(const std::string& value, const std::string& shared
 std::string effective_url(const std::string& url);
 
 // How a program receives. Lcm: LCM's receive thread hands each message over through its pipe; LCM keeps an entry for
-// every channel name it ever received, for good. Direct (sim_server and controller_manager; on udpm:// URLs, Lcm
-// elsewhere): LcmSocket, read on the loop's own thread, for the hardware loop, and for the shared bus too when the
-// hardware loop travels on it, so that one socket keeps the order in which everything was sent (an e-stop or gains
-// published before a command act before it). DirectAll (the tools): LcmSocket for every udpm:// URL, so that what
-// they keep per channel name is bounded (docs/reliability.md, "Limits"). Publishing goes through lcm::LCM always.
-enum class HardwareReader { Lcm, Direct, DirectAll };
+// every channel name it ever received, for good. Direct (every long-running program; on udpm:// URLs, Lcm
+// elsewhere): LcmSocket, read on the program's own thread, for the shared bus and the hardware loop's own URL, so
+// that what is kept per channel name is bounded (docs/reliability.md, "Limits"); when the hardware loop travels on
+// the shared bus, one socket keeps the order in which everything was sent (an e-stop or gains published before a
+// command act before it). Publishing goes through lcm::LCM always.
+enum class HardwareReader { Lcm, Direct };
 HardwareReader hardware_reader_named(const std::string& name);
 
 // A namespace prefix "NS/" (empty for none) applied to every channel name.

@@ -1,7 +1,7 @@
 // LCM's udpm datagrams read on the calling thread, for the hardware loop: no LCM receive thread, no pipe and no
 // queue between the socket and the handler, so each hop of a lockstep exchange costs one thread wake-up less
-// (bench/README.md, "Below the floor"). The tools read through it too (HardwareReader::DirectAll): unlike LCM's
-// receive path, it keeps nothing for good per channel name. The packets are LCM's own (lcm::LCM publishes them), so lcm-spy,
+// (bench/README.md, "Below the floor"). The tools and the loops' shared bus are read through it too
+// (HardwareReader::Direct): unlike LCM's receive path, it keeps nothing for good per channel name. The packets are LCM's own (lcm::LCM publishes them), so lcm-spy,
 // lcm-logger and lcm-logplayer see and replay the same messages.
 // A message LCM sends whole ("LC02") is handed over from the receive buffer; one it split into "LC03" fragments
 // (over 64 kB with Debian's LCM, over 1,400 bytes with some other builds) is put together first, as LCM does: one

@@ -310,7 +310,7 @@ int run(Options& o) {
                  o.bind.c_str());
   lower_priority(o.nice);  // before any thread: LCM's and civetweb's threads inherit it
   install_stop_signals();
-  Bus bus(o.bus.lcm_url, o.bus.ns, "", HardwareReader::DirectAll);
+  Bus bus(o.bus.lcm_url, o.bus.ns, "", HardwareReader::Direct);
   const auto package_path = package_path_for(o.urdf, o.package_path);
   std::unique_ptr<ExpandedUrdf> expanded;
   if (!o.urdf.empty() && is_xacro_file(o.urdf))

@@ -439,7 +439,7 @@ int main(int argc, char** argv) {
                                 ? bus_flags.lcm_url
                                 : hardware_url_for(bus_flags.hardware_lcm_url, effective_url(bus_flags.lcm_url),
                                                    bus_flags.ns);
-    Bus bus(url, bus_flags.ns, "", HardwareReader::DirectAll);
+    Bus bus(url, bus_flags.ns, "", HardwareReader::Direct);
     if (list->parsed()) return cmd_list(bus, list_duration);
     if (record->parsed()) return cmd_record(bus, log_path, record_regex, force, duration);
     if (netcheck->parsed())

@@ -361,7 +361,7 @@ int main(int argc, char** argv) {
       read_log(log_path, collector);
     } else {
       install_stop_signals();
-      Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::DirectAll);
+      Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
       LiveListener listener(bus, collector);
       fmt::print(stderr, "plotter: listening for {} on {}\n", seconds_text(duration), bus.url());
       const int64_t end = monotonic_us() + int64_t(duration * 1e6);

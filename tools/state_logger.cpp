@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
       if (ec) throw std::runtime_error("cannot create " + output_dir + ": " + ec.message());
     }
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::DirectAll);
+    Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
     std::vector<ChannelLog> logs;
     for (const auto& name : channel_names) {
       ChannelLog l;

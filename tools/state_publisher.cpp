@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
   return run_program(app, argc, argv, [&] {
     const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, model.ns, "", HardwareReader::DirectAll);
+    Bus bus(bus_flags.lcm_url, model.ns, "", HardwareReader::Direct);
     StatePublisher pub(bus, model, max_rate);
     fmt::print(stderr, "state-publisher: ready: {} links of '{}', {} -> {}\n", model.links.size(), model.name,
                bus.channel(channels::kJointStates), bus.channel(channels::kLinkPoses));

@@ -98,7 +98,7 @@ int main(int argc, char** argv) {
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::DirectAll);
+    Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
     GainsClient client(bus, owner);
     pid_gains_t q{};
     q.joint = joint;

@@ -362,7 +362,7 @@ int main(int argc, char** argv) {
     if (o.duration > 0 && o.rate <= 0 && !o.sim_time)
       throw std::runtime_error("--duration needs --rate (or --sim-time)");
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, bus_flags.ns, bus_flags.hardware_lcm_url, HardwareReader::DirectAll);
+    Bus bus(bus_flags.lcm_url, bus_flags.ns, bus_flags.hardware_lcm_url, HardwareReader::Direct);
     if (o.sim_time && !is_channel(o)) {
       if (o.array) throw std::runtime_error("--array does not apply with --sim-time and a controller TARGET (the "
                                             "controller manager sends what the controller takes)");

@@ -254,11 +254,12 @@ TEST(HardwareReader, DirectReadsTheHardwareLoopOnItsOwnSocketOnUdpmOnly) {
 
   const std::string shared = lt::unique_lcm_url(), hw = lt::unique_lcm_url();
   {
-    SCOPED_TRACE("on a URL of its own: the shared bus stays with LCM's thread");
+    SCOPED_TRACE("on a URL of its own: a socket for each");
     Bus robot(shared, "r0", hw, HardwareReader::Direct);
     ASSERT_NE(robot.hardware_socket(), nullptr);
-    EXPECT_EQ(robot.shared_socket(), nullptr);
+    ASSERT_NE(robot.shared_socket(), nullptr);
     ASSERT_EQ(robot.fds().size(), 2u);
+    EXPECT_EQ(robot.fds()[0], robot.shared_socket()->fd());
     EXPECT_EQ(robot.fds()[1], robot.hardware_socket()->fd());
     int states = 0;
     robot.hardware_socket()->subscribe("r0/hardware/state", [&](const lcm::ReceiveBuffer&) { ++states; });
@@ -337,15 +338,15 @@ TEST(LcmSocket, PatternSubscriptionsMatchWholeNamesAndRememberABoundedNumber) {
   }
 }
 
-// Bus::subscribe: on the socket read directly with DirectAll (the tools), through LCM elsewhere; the same handler
+// Bus::subscribe: on the socket read directly with Direct (every long-running program), through LCM elsewhere; the same handler
 // either way.
-TEST(HardwareReader, DirectAllReadsEveryUdpmUrlOnItsOwnSocketAndSubscribeWorksEitherWay) {
+TEST(HardwareReader, DirectReadsEveryUdpmUrlOnItsOwnSocketAndSubscribeWorksEitherWay) {
   const std::string shared = lt::unique_lcm_url(), hw = lt::unique_lcm_url();
-  Bus tool(shared, "r0", hw, HardwareReader::DirectAll);
+  Bus tool(shared, "r0", hw, HardwareReader::Direct);
   ASSERT_NE(tool.shared_socket(), nullptr);
   ASSERT_NE(tool.hardware_socket(), nullptr);
   EXPECT_NE(tool.shared_socket(), tool.hardware_socket());
-  Bus memq("memq://", "r0", "", HardwareReader::DirectAll);
+  Bus memq("memq://", "r0", "", HardwareReader::Direct);
   EXPECT_EQ(memq.shared_socket(), nullptr);
   for (Bus* bus : {&tool, &memq}) {
     SCOPED_TRACE(bus->url());

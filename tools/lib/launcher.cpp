@@ -206,7 +206,7 @@ int supervise(const LaunchPlan& plan, const LaunchOptions& o, const CommandLines
               const std::string& hw_url) {
   const auto& [sim, cm, spawner, rsp, dash] = lines;
   install_stop_signals();
-  auto bus = std::make_unique<Bus>(o.bus.lcm_url, ns, hw_url, HardwareReader::DirectAll);
+  auto bus = std::make_unique<Bus>(o.bus.lcm_url, ns, hw_url, HardwareReader::Direct);
   std::vector<std::pair<std::string, std::string>> env{{"LCM_DEFAULT_URL", bus->url()}};
   if (!o.package_path.empty())
     env.emplace_back("LCM_CONTROL_PACKAGE_PATH", fmt::format("{}", fmt::join(o.package_path, ":")));
