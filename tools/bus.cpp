@@ -284,7 +284,10 @@ class Recorder {
     bus.subscribe(regex, &Recorder::on, this, Bus::On::Shared, 1000000);
   }
   int64_t events() const { return events_; }
+  // Channels recorded, counted up to Census::kMaxChannels (anyone on the bus can invent names): the count, and
+  // whether there were more.
   size_t channels() const { return channels_.size(); }
+  bool more_channels() const { return more_channels_; }
   int64_t bytes() const { return bytes_; }
   bool failed() const { return failed_; }
 
@@ -302,12 +305,16 @@ class Recorder {
     }
     ++events_;
     bytes_ += rb->data_size;
-    ++channels_[channel];
+    if (channels_.size() < Census::kMaxChannels || channels_.count(channel))
+      ++channels_[channel];
+    else
+      more_channels_ = true;
   }
   lcm::LogFile log_;
   bool failed_ = false;
   int64_t events_ = 0, bytes_ = 0;
   std::map<std::string, int64_t> channels_;
+  bool more_channels_ = false;
 };
 
 int cmd_record(Bus& bus, const std::string& path, const std::string& regex, bool force, double duration) {
@@ -322,7 +329,8 @@ int cmd_record(Bus& bus, const std::string& path, const std::string& regex, bool
   }
   if (rec.failed())
     throw std::runtime_error(fmt::format("writing '{}' failed after {} messages (disk full?)", path, rec.events()));
-  fmt::print("bus record: {} messages on {} channels, {} -> {}\n", rec.events(), rec.channels(),
+  fmt::print("bus record: {} messages on {}{} channels, {} -> {}\n", rec.events(), rec.more_channels() ? "over " : "",
+             rec.channels(),
              bytes_text(double(rec.bytes())), path);
   return kExitOk;
 }
