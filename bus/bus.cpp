@@ -5,10 +5,13 @@
 #include <poll.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
 #include <ctime>
+
+#include "rt/log.hpp"
 
 namespace lcm_control {
 
@@ -74,10 +77,10 @@ void self_test(lcm::LCM& publisher, LcmSocket& socket) {
     if (socket.wait_for(channel, 50)) return;
   }
   throw BusError(fmt::format(
-      "the hardware loop reads {} on its own socket, and its test datagram did not come back within 0.2 s: for "
+      "{} is read on a socket of this program's own, and its test datagram did not come back within 0.2 s: for "
       "udpm:// on this host, loopback needs a multicast route: run as root `ip link set lo multicast on; ip route add "
-      "224.0.0.0/4 dev lo` (scripts/setup does this); a firewall may also drop it (docs/security.md), or give "
-      "--hardware-reader lcm",
+      "224.0.0.0/4 dev lo` (scripts/setup does this); a firewall may also drop it (docs/security.md); sim_server and "
+      "controller_manager also take --hardware-reader lcm",
       socket.url()));
 }
 }  // namespace
@@ -91,14 +94,45 @@ Bus::Bus(const std::string& url, const std::string& ns, const std::string& hardw
     hw_url_ = hw;
     hw_ = open_lcm(hw, hw, "--hardware-lcm-url");
   }
-  if (reader != HardwareReader::Direct) return;
+  if (reader == HardwareReader::Lcm) return;
   const auto udpm = [](const std::string& u) { return u.rfind("udpm://", 0) == 0; };
   if (hw_ && udpm(hw_url_)) {
     hw_socket_ = std::make_unique<LcmSocket>(hw_url_);
     self_test(*hw_, *hw_socket_);
-  } else if (!hw_ && udpm(url_)) {
+  }
+  if (udpm(url_)) {
     shared_socket_ = std::make_unique<LcmSocket>(url_);
     self_test(*lcm_, *shared_socket_);
+  }
+}
+
+int Bus::subscribe(const std::string& pattern, ChannelHandler handler, On on, int queue) {
+  static std::atomic<int> next_id{1};
+  auto s = std::make_unique<Subscription>();
+  s->id = next_id++;
+  s->handler = std::move(handler);
+  s->socket = on == On::Shared ? shared_socket() : hardware_socket();
+  if (s->socket) {
+    s->socket_id = s->socket->subscribe_pattern(pattern, s->handler);
+  } else {
+    s->lc = on == On::Shared ? &lcm() : &hardware();
+    s->lcm_sub = s->lc->subscribe(pattern, &Subscription::on, s.get());
+    if (!s->lcm_sub)
+      throw BusError(fmt::format("cannot subscribe to '{}' on {}: LCM refused it (not a regular expression?)",
+                                 clip(pattern), on == On::Shared ? url_ : hardware_url()));
+    s->lcm_sub->setQueueCapacity(queue);
+  }
+  subscriptions_.push_back(std::move(s));
+  return subscriptions_.back()->id;
+}
+
+void Bus::unsubscribe(int id) {
+  for (auto it = subscriptions_.begin(); it != subscriptions_.end(); ++it) {
+    if ((*it)->id != id) continue;
+    if ((*it)->socket) (*it)->socket->unsubscribe((*it)->socket_id);
+    if ((*it)->lcm_sub) (*it)->lc->unsubscribe((*it)->lcm_sub);
+    subscriptions_.erase(it);
+    return;
   }
 }
 

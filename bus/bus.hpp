@@ -56,11 +56,12 @@ std::string hardware_url_for(const std::string& value, const std::string& shared
 // The URL in effect for `url` "" (LCM_DEFAULT_URL, else LCM's default).
 std::string effective_url(const std::string& url);
 
-// How sim_server and controller_manager receive. Lcm: LCM's receive thread hands each message over through its
-// pipe (what every tool does). Direct (on udpm:// URLs; Lcm elsewhere): LcmSocket, read on the loop's own thread,
-// for the hardware loop, and for the shared bus too when the hardware loop travels on it, so that one socket keeps
-// the order in which everything was sent (an e-stop or gains published before a command act before it).
-// Publishing goes through lcm::LCM either way.
+// How a program receives. Lcm: LCM's receive thread hands each message over through its pipe; LCM keeps an entry for
+// every channel name it ever received, for good. Direct (every long-running program; on udpm:// URLs, Lcm
+// elsewhere): LcmSocket, read on the program's own thread, for the shared bus and the hardware loop's own URL, so
+// that what is kept per channel name is bounded (docs/reliability.md, "Limits"); when the hardware loop travels on
+// the shared bus, one socket keeps the order in which everything was sent (an e-stop or gains published before a
+// command act before it). Publishing goes through lcm::LCM always.
 enum class HardwareReader { Lcm, Direct };
 HardwareReader hardware_reader_named(const std::string& name);
 
@@ -72,6 +73,24 @@ class Bus {
   // does not come back.
   Bus(const std::string& url, const std::string& ns, const std::string& hardware_url = "",
       HardwareReader reader = HardwareReader::Lcm);
+
+  // Where a subscription listens: the shared bus, or the hardware loop (hardware/state, hardware/command).
+  enum class On { Shared, Hardware };
+
+  // Every message on a channel `pattern` matches whole (a regular expression, as lcm::LCM::subscribe takes it) goes
+  // to `handler`, in the thread that calls handle(): from the socket read directly when there is one (then the
+  // kernel's receive buffer is the queue), else through LCM, which holds up to `queue` messages (0: no limit).
+  // Until unsubscribe(id). Throws BusError when `pattern` is not a regular expression.
+  using ChannelHandler = LcmSocket::ChannelHandler;
+  int subscribe(const std::string& pattern, ChannelHandler handler, On on = On::Shared, int queue = 1000);
+  template <class Obj>
+  int subscribe(const std::string& pattern, void (Obj::*fn)(const lcm::ReceiveBuffer*, const std::string&), Obj* obj,
+                On on = On::Shared, int queue = 1000) {
+    return subscribe(
+        pattern, [fn, obj](const lcm::ReceiveBuffer& rb, const std::string& channel) { (obj->*fn)(&rb, channel); }, on,
+        queue);
+  }
+  void unsubscribe(int id);
 
   lcm::LCM& lcm() { return *lcm_; }
   // Where hardware/state and hardware/command travel: lcm() unless the hardware loop has its own URL.
@@ -110,6 +129,15 @@ class Bus {
   std::unique_ptr<lcm::LCM> lcm_, hw_;
   std::unique_ptr<LcmSocket> shared_socket_, hw_socket_;
   std::string url_, ns_, prefix_, hw_url_;
+  struct Subscription {
+    int id = 0, socket_id = 0;
+    LcmSocket* socket = nullptr;
+    lcm::LCM* lc = nullptr;
+    lcm::Subscription* lcm_sub = nullptr;
+    ChannelHandler handler;
+    void on(const lcm::ReceiveBuffer* rb, const std::string& channel) { handler(*rb, channel); }
+  };
+  std::vector<std::unique_ptr<Subscription>> subscriptions_;
 };
 
 // lcm-gen's decode of bytes the schema walk (wire_fits or wire_problem) has accepted; false if it still fails or
@@ -149,6 +177,14 @@ struct GuardedHandler<Handler> {
 template <auto Handler, class Obj>
 lcm::Subscription* subscribe_guarded(lcm::LCM& lc, const std::string& channel, Obj* obj) {
   return lc.subscribeFunction(channel, &detail::GuardedHandler<Handler>::on, obj);
+}
+// The same through Bus::subscribe (the bus's own reader): an id for Bus::unsubscribe.
+template <auto Handler, class Obj>
+int subscribe_guarded(Bus& bus, const std::string& channel, Obj* obj, Bus::On on = Bus::On::Shared, int queue = 1000) {
+  return bus.subscribe(
+      channel,
+      [obj](const lcm::ReceiveBuffer& rb, const std::string& ch) { detail::GuardedHandler<Handler>::on(&rb, ch, obj); },
+      on, queue);
 }
 
 }  // namespace lcm_control

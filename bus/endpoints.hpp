@@ -72,7 +72,7 @@ class Endpoints {
   // Publishes on lc and subscribes on `socket` when it is not null (read directly), else on lc.
   explicit Endpoints(lcm::LCM& lc, LcmSocket* socket = nullptr) : lc_(lc), socket_(socket) {}
   // On the bus's shared channels, or on its hardware loop (hardware/state, hardware/command).
-  enum class On { Shared, Hardware };
+  using On = Bus::On;
   Endpoints(Bus& bus, On on)
       : Endpoints(on == On::Shared ? bus.lcm() : bus.hardware(),
                   on == On::Shared ? bus.shared_socket() : bus.hardware_socket()) {}

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <netinet/in.h>
 #include <poll.h>
+#include <regex.h>
 #include <sys/socket.h>
 #include <sys/time.h>
 #include <sys/uio.h>
@@ -115,16 +116,52 @@ int LcmSocket::on_lost(const std::string& channel, LostHandler handler) {
   return id;
 }
 
+int LcmSocket::subscribe_pattern(const std::string& pattern, ChannelHandler handler) {
+  auto* re = new regex_t;
+  if (const int rc = regcomp(re, ("^(" + pattern + ")$").c_str(), REG_EXTENDED | REG_NOSUB); rc != 0) {
+    char why[200];
+    regerror(rc, re, why, sizeof(why));
+    delete re;
+    throw BusError(fmt::format("cannot subscribe to '{}' on {}: not a regular expression ({}); escape . * + ? ( ) [ ] "
+                               "{{ }} | ^ $ \\ to match them as they are",
+                               clip(pattern), url_, why));
+  }
+  const int id = next_id++;
+  std::shared_ptr<void> owned(re, [](void* r) {
+    regfree(static_cast<regex_t*>(r));
+    delete static_cast<regex_t*>(r);
+  });
+  patterns_.push_back(PatternEntry{id, std::move(owned), std::move(handler)});
+  matched_.clear();
+  return id;
+}
+
+const std::vector<size_t>& LcmSocket::matching(std::string_view channel) {
+  name_.assign(channel.data(), channel.size());
+  if (auto it = matched_.find(name_); it != matched_.end()) return it->second;
+  if (matched_.size() >= kMatchedChannels) matched_.clear();
+  std::vector<size_t> found;
+  for (size_t i = 0; i < patterns_.size(); ++i)
+    if (regexec(static_cast<const regex_t*>(patterns_[i].regex.get()), name_.c_str(), 0, nullptr, 0) == 0)
+      found.push_back(i);
+  return matched_.emplace(name_, std::move(found)).first->second;
+}
+
 void LcmSocket::unsubscribe(int id) {
   subscribers_.erase(std::remove_if(subscribers_.begin(), subscribers_.end(), [id](const Entry& e) { return e.id == id; }),
                      subscribers_.end());
+  const size_t patterns = patterns_.size();
+  patterns_.erase(std::remove_if(patterns_.begin(), patterns_.end(), [id](const PatternEntry& e) { return e.id == id; }),
+                  patterns_.end());
+  if (patterns_.size() != patterns) matched_.clear();
   lost_handlers_.erase(std::remove_if(lost_handlers_.begin(), lost_handlers_.end(),
                                       [id](const LostEntry& e) { return e.id == id; }),
                        lost_handlers_.end());
 }
 
-bool LcmSocket::subscribed(std::string_view channel) const {
-  return std::any_of(subscribers_.begin(), subscribers_.end(), [&](const Entry& e) { return e.channel == channel; });
+bool LcmSocket::subscribed(std::string_view channel) {
+  return std::any_of(subscribers_.begin(), subscribers_.end(), [&](const Entry& e) { return e.channel == channel; }) ||
+         (!patterns_.empty() && !matching(channel).empty());
 }
 
 bool LcmSocket::parse(int n, const sockaddr_in& from, std::string_view* channel, const uint8_t** payload, int* size) {
@@ -305,6 +342,8 @@ int LcmSocket::handle_queued(int max) {
     const lcm::ReceiveBuffer rb{const_cast<uint8_t*>(payload), uint32_t(size), arrived_us_ >= 0 ? arrived_us_ : wall_us()};
     for (const Entry& e : subscribers_)
       if (e.channel == channel) e.handler(rb);
+    if (!patterns_.empty())
+      for (const size_t i : matching(channel)) patterns_[i].handler(rb, name_);
   }
   return read;
 }

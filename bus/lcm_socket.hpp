@@ -1,6 +1,7 @@
 // LCM's udpm datagrams read on the calling thread, for the hardware loop: no LCM receive thread, no pipe and no
 // queue between the socket and the handler, so each hop of a lockstep exchange costs one thread wake-up less
-// (bench/README.md, "Below the floor"). The packets are LCM's own (lcm::LCM publishes them), so lcm-spy,
+// (bench/README.md, "Below the floor"). The tools and the loops' shared bus are read through it too
+// (HardwareReader::Direct): unlike LCM's receive path, it keeps nothing for good per channel name. The packets are LCM's own (lcm::LCM publishes them), so lcm-spy,
 // lcm-logger and lcm-logplayer see and replay the same messages.
 // A message LCM sends whole ("LC02") is handed over from the receive buffer; one it split into "LC03" fragments
 // (over 64 kB with Debian's LCM, over 1,400 bytes with some other builds) is put together first, as LCM does: one
@@ -20,6 +21,7 @@
 #include <memory>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <vector>
 
 namespace lcm_control {
@@ -64,6 +66,15 @@ class LcmSocket {
   // subscribe(), until unsubscribe(id).
   int on_lost(const std::string& channel, LostHandler handler);
 
+  // Messages on every channel `pattern` matches whole (a POSIX extended regular expression, as lcm::LCM::subscribe
+  // takes it: ".*" for all) go to `handler` with their channel name, as subscribe(). Which subscriptions a channel
+  // matches is remembered for at most kMatchedChannels names, then forgotten and worked out again: unlike LCM's
+  // receive path, which keeps every name it ever received, a sender of ever new names costs no memory here.
+  // Throws BusError naming the pattern when it is not a regular expression.
+  using ChannelHandler = std::function<void(const lcm::ReceiveBuffer&, const std::string& channel)>;
+  int subscribe_pattern(const std::string& pattern, ChannelHandler handler);
+  static constexpr size_t kMatchedChannels = 1024;
+
   // Handles the datagrams already queued, without blocking, at most `max`: how many were read, or -1 on a socket
   // error. No allocation once subscribed.
   int handle_queued(int max = 1000);
@@ -81,6 +92,7 @@ class LcmSocket {
   // Bytes held for messages in progress and kept buffers (what fragments cost in memory).
   size_t reassembly_bytes() const;
   int64_t not_lcm() const { return not_lcm_; }          // datagrams on the port that are not LCM's
+  size_t matched_channels() const { return matched_.size(); }  // names whose pattern matches are remembered
 
  private:
   // Reads one datagram into buf_ without waiting (*n: recvfrom's result): true when it completes a message.
@@ -89,7 +101,9 @@ class LcmSocket {
   // none (a fragment of one still in progress, or not LCM: counted).
   bool parse(int n, const sockaddr_in& from, std::string_view* channel, const uint8_t** payload, int* size);
   bool fragment(int n, const sockaddr_in& from, std::string_view* channel, const uint8_t** payload, int* size);
-  bool subscribed(std::string_view channel) const;
+  bool subscribed(std::string_view channel);
+  // The pattern subscriptions (indices into patterns_) that `channel` matches, remembered as above.
+  const std::vector<size_t>& matching(std::string_view channel);
 
   struct Partial {
     bool active = false;
@@ -123,6 +137,14 @@ class LcmSocket {
     LostHandler handler;
   };
   std::vector<LostEntry> lost_handlers_;
+  struct PatternEntry {
+    int id;
+    std::shared_ptr<void> regex;  // the compiled regex_t
+    ChannelHandler handler;
+  };
+  std::vector<PatternEntry> patterns_;
+  std::unordered_map<std::string, std::vector<size_t>> matched_;  // channel -> patterns_ it matches
+  std::string name_;  // the channel being matched or delivered (reused: no allocation once grown)
   std::vector<uint8_t> buf_ = std::vector<uint8_t>(65536);
   Partial partials_[4];
   int64_t reassembled_ = 0, incomplete_ = 0, too_large_ = 0, not_lcm_ = 0;

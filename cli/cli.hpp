@@ -40,8 +40,9 @@ inline void add_hardware_url_flag(CLI::App& app, BusFlags& f) {
 inline void add_hardware_reader_flag(CLI::App& app, BusFlags& f) {
   app.add_option("--hardware-reader", f.hardware_reader,
                  "how this process receives on udpm:// URLs: `direct` reads LCM's datagrams on the loop's own "
-                 "thread (the hardware loop, and the shared bus too when the loop travels on it: no receive thread, "
-                 "a faster hand-off, the order sent kept); `lcm` through LCM's receive thread (default: direct)")
+                 "thread (the hardware loop and the shared bus: no receive thread, a faster hand-off, the order sent "
+                 "kept on one URL, nothing kept for good per channel name); `lcm` through LCM's receive thread, which "
+                 "keeps every channel name it ever received (default: direct)")
       ->check(CLI::IsMember({"direct", "lcm"}));
 }
 

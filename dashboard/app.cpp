@@ -78,7 +78,7 @@ class Dashboard {
     prefix_ = bus.channel("");
     own_.insert(bus.channel(channels::kCmRequest));
     const std::string pattern = prefix_.empty() ? ".*" : tools::regex_escape(prefix_) + ".*";
-    bus_.lcm().subscribe(pattern, &Dashboard::on_any, this)->setQueueCapacity(10000);
+    bus_.subscribe(pattern, &Dashboard::on_any, this, Bus::On::Shared, 10000);
   }
 
   // What a browser gets first: the bus it looks at, its URDF, the messages' schema (lcmtypes/), and the controllers
@@ -100,8 +100,7 @@ class Dashboard {
     int64_t until = next_flush_;
     for (const auto& [channel, s] : streams_) until = std::min(until, s.next_us);
     tools::sleep_until_us(until);
-    for (int n = 0; n < kMaxDrain && bus_.lcm().handleTimeout(0) > 0; ++n) {
-    }
+    bus_.handle_shared(kMaxDrain);
     for (auto& [conn, text] : opened_.take()) hello(conn);
     for (auto& [conn, text] : closed_.take()) stop_streams_of(conn);
     for (auto& [conn, text] : inbox_.take()) serve(conn, text);
@@ -311,7 +310,7 @@ int run(Options& o) {
                  o.bind.c_str());
   lower_priority(o.nice);  // before any thread: LCM's and civetweb's threads inherit it
   install_stop_signals();
-  Bus bus(o.bus.lcm_url, o.bus.ns);
+  Bus bus(o.bus.lcm_url, o.bus.ns, "", HardwareReader::Direct);
   const auto package_path = package_path_for(o.urdf, o.package_path);
   std::unique_ptr<ExpandedUrdf> expanded;
   if (!o.urdf.empty() && is_xacro_file(o.urdf))

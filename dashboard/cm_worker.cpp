@@ -23,7 +23,7 @@ json controller_list_json(const cm_response_t& r) {
 }
 
 CmWorker::CmWorker(const BusFlags& flags, WebServer& web, double timeout_s)
-    : bus_(flags.lcm_url, flags.ns), web_(web), timeout_s_(timeout_s), thread_([this] { run(); }) {}
+    : bus_(flags.lcm_url, flags.ns, "", HardwareReader::Direct), web_(web), timeout_s_(timeout_s), thread_([this] { run(); }) {}
 
 CmWorker::~CmWorker() {
   {

@@ -77,14 +77,17 @@ int cmd_list(Bus& bus, double duration) {
     fmt::print("{:<{}}  {:<42} {:>8} {:>9} {:>10}/s\n", name, width, s.type, s.count, rate_text(s.rate(window)),
                bytes_text(double(s.bytes) * 1e6 / double(window)));
   fmt::print("{} channels over {:.1f} s on {}\n", census.seen().size(), double(window) * 1e-6, bus.url());
+  if (census.unlisted() > 0)
+    fmt::print("and {} messages on channels past the first {} (not listed: each program keeps at most that many "
+               "names)\n",
+               census.unlisted(), Census::kMaxChannels);
   return kExitOk;
 }
 
 class RateMeter {
  public:
   RateMeter(Bus& bus, const std::string& channel, size_t window) : window_(window) {
-    auto* sub = bus.lcm().subscribe(regex_escape(channel), &RateMeter::on, this);
-    sub->setQueueCapacity(10000);
+    bus.subscribe(regex_escape(channel), &RateMeter::on, this, Bus::On::Shared, 10000);
   }
   int64_t total() const { return total_; }
   // One rostopic-hz line for the messages since the last report, over the window.
@@ -144,8 +147,7 @@ int cmd_hz(Bus& bus, const std::string& name, size_t window, double duration) {
 class Echo {
  public:
   Echo(Bus& bus, const std::string& channel, bool csv) {
-    auto* sub = bus.lcm().subscribe(regex_escape(channel), &Echo::on, this);
-    sub->setQueueCapacity(10000);
+    bus.subscribe(regex_escape(channel), &Echo::on, this, Bus::On::Shared, 10000);
     if (csv) csv_ = std::make_unique<CsvWriter>("-");
   }
   int64_t printed() const { return printed_; }
@@ -279,10 +281,13 @@ class Recorder {
   Recorder(Bus& bus, const std::string& regex, const std::string& path) : log_(path, "w") {
     if (!log_.good())
       throw std::runtime_error("cannot write the log '" + path + "': check the folder exists and is writable");
-    bus.lcm().subscribe(regex, &Recorder::on, this)->setQueueCapacity(1000000);
+    bus.subscribe(regex, &Recorder::on, this, Bus::On::Shared, 1000000);
   }
   int64_t events() const { return events_; }
+  // Channels recorded, counted up to Census::kMaxChannels (anyone on the bus can invent names): the count, and
+  // whether there were more.
   size_t channels() const { return channels_.size(); }
+  bool more_channels() const { return more_channels_; }
   int64_t bytes() const { return bytes_; }
   bool failed() const { return failed_; }
 
@@ -300,12 +305,16 @@ class Recorder {
     }
     ++events_;
     bytes_ += rb->data_size;
-    ++channels_[channel];
+    if (channels_.size() < Census::kMaxChannels || channels_.count(channel))
+      ++channels_[channel];
+    else
+      more_channels_ = true;
   }
   lcm::LogFile log_;
   bool failed_ = false;
   int64_t events_ = 0, bytes_ = 0;
   std::map<std::string, int64_t> channels_;
+  bool more_channels_ = false;
 };
 
 int cmd_record(Bus& bus, const std::string& path, const std::string& regex, bool force, double duration) {
@@ -316,11 +325,12 @@ int cmd_record(Bus& bus, const std::string& path, const std::string& regex, bool
              duration > 0 ? fmt::format(" or {}", seconds_text(duration)) : "");
   std::fflush(stdout);
   pump_until(bus, [&] { return rec.failed(); }, duration > 0 ? duration : 1e12);
-  while (!rec.failed() && bus.lcm().handleTimeout(0) > 0) {  // what LCM had queued when the time was up
+  while (!rec.failed() && bus.handle_shared(1) > 0) {  // what was queued when the time was up
   }
   if (rec.failed())
     throw std::runtime_error(fmt::format("writing '{}' failed after {} messages (disk full?)", path, rec.events()));
-  fmt::print("bus record: {} messages on {} channels, {} -> {}\n", rec.events(), rec.channels(),
+  fmt::print("bus record: {} messages on {}{} channels, {} -> {}\n", rec.events(), rec.more_channels() ? "over " : "",
+             rec.channels(),
              bytes_text(double(rec.bytes())), path);
   return kExitOk;
 }
@@ -437,7 +447,7 @@ int main(int argc, char** argv) {
                                 ? bus_flags.lcm_url
                                 : hardware_url_for(bus_flags.hardware_lcm_url, effective_url(bus_flags.lcm_url),
                                                    bus_flags.ns);
-    Bus bus(url, bus_flags.ns);
+    Bus bus(url, bus_flags.ns, "", HardwareReader::Direct);
     if (list->parsed()) return cmd_list(bus, list_duration);
     if (record->parsed()) return cmd_record(bus, log_path, record_regex, force, duration);
     if (netcheck->parsed())

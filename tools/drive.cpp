@@ -40,7 +40,7 @@ int main(int argc, char** argv) {
   return run_program(app, argc, argv, [&] {
     Expressions exprs({linear, angular});
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
     const std::string channel = without_leading_slashes(controller) + "/cmd_vel";
     const CommandClock clock(bus, 0.3);
     fmt::print(stderr, "drive: twist_t on '{}' at {:g} Hz{} (Ctrl-C to stop)\n", bus.channel(channel), rate,

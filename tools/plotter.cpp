@@ -70,7 +70,7 @@ class Collector {
         decoded = decode_fields(data, size);
         if (!decoded.ok()) return;
         d = &decoded;
-        fields_seen_.emplace(channel, d->fields);
+        if (fields_seen_.size() < kMaxChannels) fields_seen_.emplace(channel, d->fields);
       }
       if (s.channel.empty()) {
         const auto f = match(s.path, channel, d->fields);
@@ -92,7 +92,7 @@ class Collector {
           break;
         }
     }
-    channels_.insert(channel);
+    if (channels_.size() < kMaxChannels) channels_.insert(channel);
   }
   // What the bus or log held, for an error that helps find the right path.
   std::string hint() const {
@@ -119,6 +119,7 @@ class Collector {
  private:
   std::vector<Series>& series_;
   bool use_utime_;
+  static constexpr size_t kMaxChannels = 1000;  // names kept for the hint: anyone on the bus can invent more
   std::map<std::string, std::vector<Field>> fields_seen_;
   std::set<std::string> channels_;
 };
@@ -133,7 +134,7 @@ void read_log(const std::string& path, Collector& c) {
 class LiveListener {
  public:
   LiveListener(Bus& bus, Collector& c) : bus_(bus), c_(c) {
-    bus.lcm().subscribe(".*", &LiveListener::on, this)->setQueueCapacity(10000);
+    bus.subscribe(".*", &LiveListener::on, this, Bus::On::Shared, 10000);
   }
 
  private:
@@ -360,7 +361,7 @@ int main(int argc, char** argv) {
       read_log(log_path, collector);
     } else {
       install_stop_signals();
-      Bus bus(bus_flags.lcm_url, bus_flags.ns);
+      Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
       LiveListener listener(bus, collector);
       fmt::print(stderr, "plotter: listening for {} on {}\n", seconds_text(duration), bus.url());
       const int64_t end = monotonic_us() + int64_t(duration * 1e6);

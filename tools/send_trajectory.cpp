@@ -40,12 +40,12 @@ class NoAnswer : public BusError {
 class CurrentPositions {
  public:
   explicit CurrentPositions(Bus& bus) : bus_(bus), channel_(bus.channel(channels::kJointStates)) {
-    states_ = subscribe_guarded<&CurrentPositions::on_state>(bus.lcm(), channel_, this);
-    any_ = bus.lcm().subscribe(".*", &CurrentPositions::on_any, this);
+    states_ = subscribe_guarded<&CurrentPositions::on_state>(bus, channel_, this);
+    any_ = bus.subscribe(".*", &CurrentPositions::on_any, this);
   }
   ~CurrentPositions() {
-    bus_.lcm().unsubscribe(states_);
-    bus_.lcm().unsubscribe(any_);
+    bus_.unsubscribe(states_);
+    bus_.unsubscribe(any_);
   }
   CurrentPositions(const CurrentPositions&) = delete;
   CurrentPositions& operator=(const CurrentPositions&) = delete;
@@ -99,7 +99,7 @@ class CurrentPositions {
 
   Bus& bus_;
   std::string channel_, invalid_;
-  lcm::Subscription *states_ = nullptr, *any_ = nullptr;
+  int states_ = 0, any_ = 0;
   std::optional<joint_state_t> state_;
   std::set<std::string> seen_;
 };
@@ -119,7 +119,7 @@ int run(const Options& o, const BusFlags& bus_flags) {
   if (!goal.joints.empty()) check_goal(goal);
 
   install_stop_signals();
-  Bus bus(bus_flags.lcm_url, bus_flags.ns);
+  Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
   CmClient cm(bus, "send-trajectory");
   const std::vector<controller_info_t> listed = cm.list(o.timeout).controllers;
   const controller_info_t info = trajectory_controller(listed, controller);

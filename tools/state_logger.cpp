@@ -27,8 +27,7 @@ class Logger {
  public:
   Logger(Bus& bus, std::vector<ChannelLog>& logs, int64_t count) : logs_(logs), count_(count) {
     for (auto& l : logs_) {
-      auto* sub = bus.lcm().subscribe(regex_escape(l.channel), &Logger::on_message, this);
-      sub->setQueueCapacity(1000);
+      bus.subscribe(regex_escape(l.channel), &Logger::on_message, this);
     }
   }
   bool done() const {
@@ -104,7 +103,7 @@ int main(int argc, char** argv) {
       if (ec) throw std::runtime_error("cannot create " + output_dir + ": " + ec.message());
     }
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
     std::vector<ChannelLog> logs;
     for (const auto& name : channel_names) {
       ChannelLog l;

@@ -16,7 +16,7 @@ class StatePublisher {
  public:
   StatePublisher(Bus& bus, const RobotModel& model, double max_rate) : bus_(bus), model_(model) {
     min_period_us_ = max_rate > 0 ? int64_t(1e6 / max_rate) : 0;
-    subscribe_guarded<&StatePublisher::on_joint_states>(bus.lcm(), bus.channel(channels::kJointStates), this);
+    subscribe_guarded<&StatePublisher::on_joint_states>(bus, bus.channel(channels::kJointStates), this);
   }
   int64_t published() const { return published_; }
   int64_t dropped() const { return dropped_; }
@@ -85,7 +85,7 @@ int main(int argc, char** argv) {
   return run_program(app, argc, argv, [&] {
     const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, model.ns);
+    Bus bus(bus_flags.lcm_url, model.ns, "", HardwareReader::Direct);
     StatePublisher pub(bus, model, max_rate);
     fmt::print(stderr, "state-publisher: ready: {} links of '{}', {} -> {}\n", model.links.size(), model.name,
                bus.channel(channels::kJointStates), bus.channel(channels::kLinkPoses));

@@ -14,7 +14,7 @@ namespace {
 class GainsClient {
  public:
   GainsClient(Bus& bus, std::string owner) : bus_(bus), owner_(std::move(owner)) {
-    subscribe_guarded<&GainsClient::on_answer>(bus_.lcm(), bus_.channel(gains_channel(owner_)), this);
+    subscribe_guarded<&GainsClient::on_answer>(bus_, bus_.channel(gains_channel(owner_)), this);
   }
   // Sends req and waits up to timeout_s for the owner's answer, sending it
   // again every second (a query or the same gains twice change nothing) in
@@ -98,7 +98,7 @@ int main(int argc, char** argv) {
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, bus_flags.ns);
+    Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
     GainsClient client(bus, owner);
     pid_gains_t q{};
     q.joint = joint;

@@ -169,7 +169,7 @@ int run_wall(Bus& bus, Publisher& pub, const Options& o, const CommandClock& clo
 class SimTimePacer {
  public:
   SimTimePacer(Bus& bus, Publisher& pub, const Options& o) : pub_(pub), o_(o) {
-    subscribe_guarded<&SimTimePacer::on_state>(bus.hardware(), bus.channel(channels::kHardwareState), this);
+    subscribe_guarded<&SimTimePacer::on_state>(bus, bus.channel(channels::kHardwareState), this, Bus::On::Hardware);
   }
   bool done() const { return done_; }
   bool started() const { return started_; }
@@ -254,7 +254,7 @@ int run_sim_time(Bus& bus, Publisher& pub, const Options& o) {
 class SourceWatcher {
  public:
   SourceWatcher(Bus& bus, const Options& o, const std::string& channel) : o_(o) {
-    if (o.print) bus.lcm().subscribe(channel, &SourceWatcher::on_command, this);
+    if (o.print) bus.subscribe(channel, &SourceWatcher::on_command, this);
   }
   int64_t seen() const { return seen_; }
 
@@ -362,7 +362,7 @@ int main(int argc, char** argv) {
     if (o.duration > 0 && o.rate <= 0 && !o.sim_time)
       throw std::runtime_error("--duration needs --rate (or --sim-time)");
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, bus_flags.ns, bus_flags.hardware_lcm_url);
+    Bus bus(bus_flags.lcm_url, bus_flags.ns, bus_flags.hardware_lcm_url, HardwareReader::Direct);
     if (o.sim_time && !is_channel(o)) {
       if (o.array) throw std::runtime_error("--array does not apply with --sim-time and a controller TARGET (the "
                                             "controller manager sends what the controller takes)");

@@ -254,11 +254,12 @@ TEST(HardwareReader, DirectReadsTheHardwareLoopOnItsOwnSocketOnUdpmOnly) {
 
   const std::string shared = lt::unique_lcm_url(), hw = lt::unique_lcm_url();
   {
-    SCOPED_TRACE("on a URL of its own: the shared bus stays with LCM's thread");
+    SCOPED_TRACE("on a URL of its own: a socket for each");
     Bus robot(shared, "r0", hw, HardwareReader::Direct);
     ASSERT_NE(robot.hardware_socket(), nullptr);
-    EXPECT_EQ(robot.shared_socket(), nullptr);
+    ASSERT_NE(robot.shared_socket(), nullptr);
     ASSERT_EQ(robot.fds().size(), 2u);
+    EXPECT_EQ(robot.fds()[0], robot.shared_socket()->fd());
     EXPECT_EQ(robot.fds()[1], robot.hardware_socket()->fd());
     int states = 0;
     robot.hardware_socket()->subscribe("r0/hardware/state", [&](const lcm::ReceiveBuffer&) { ++states; });
@@ -294,4 +295,83 @@ TEST(HardwareReader, DirectReadsTheHardwareLoopOnItsOwnSocketOnUdpmOnly) {
   Bus memq("memq://", "r0", "", HardwareReader::Direct);
   EXPECT_EQ(memq.hardware_socket(), nullptr);
   EXPECT_EQ(memq.fds().size(), 1u);
+}
+
+// What `bus list`, state-logger and the dashboard subscribe with: LCM's regular expressions, matched whole, with the
+// channel handed over; what is remembered of the names is bounded however many a sender invents (issue 35, item 3).
+TEST(LcmSocket, PatternSubscriptionsMatchWholeNamesAndRememberABoundedNumber) {
+  const std::string url = lt::unique_lcm_url();
+  LcmSocket socket(url);
+  std::vector<std::string> flood, all;
+  const int flood_id =
+      socket.subscribe_pattern("flood/.*", [&](const lcm::ReceiveBuffer&, const std::string& c) { flood.push_back(c); });
+  socket.subscribe_pattern(".*", [&](const lcm::ReceiveBuffer&, const std::string& c) { all.push_back(c); });
+  int exact = 0;
+  socket.subscribe("flood/7", [&](const lcm::ReceiveBuffer&) { ++exact; });
+  lcm::LCM lc(url);
+  const uint8_t b[4] = {};
+  const int names = int(LcmSocket::kMatchedChannels) * 3;
+  for (int k = 0; k < names; ++k) {
+    lc.publish(fmt::format("flood/{}", k), b, 4u);
+    if (k % 200 == 199) {
+      ASSERT_TRUE(pump(socket, [&] { return all.size() == size_t(k + 1); })) << k;
+    }
+  }
+  lc.publish("xflood/1", b, 4u);  // matched whole: not "flood/.*"
+  ASSERT_TRUE(pump(socket, [&] { return all.size() == size_t(names + 1); }));
+  EXPECT_EQ(flood.size(), size_t(names));
+  EXPECT_EQ(flood[7], "flood/7");
+  EXPECT_EQ(all.back(), "xflood/1");
+  EXPECT_EQ(exact, 1);
+  EXPECT_LE(socket.matched_channels(), LcmSocket::kMatchedChannels);
+
+  socket.unsubscribe(flood_id);
+  lc.publish("flood/7", b, 4u);
+  ASSERT_TRUE(pump(socket, [&] { return exact == 2; }));
+  EXPECT_EQ(flood.size(), size_t(names));
+
+  try {
+    socket.subscribe_pattern("flood/(", [](const lcm::ReceiveBuffer&, const std::string&) {});
+    FAIL() << "an unbalanced parenthesis was taken";
+  } catch (const BusError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot subscribe to 'flood/('"), std::string::npos) << e.what();
+  }
+}
+
+// Bus::subscribe: on the socket read directly with Direct (every long-running program), through LCM elsewhere; the same handler
+// either way.
+TEST(HardwareReader, DirectReadsEveryUdpmUrlOnItsOwnSocketAndSubscribeWorksEitherWay) {
+  const std::string shared = lt::unique_lcm_url(), hw = lt::unique_lcm_url();
+  Bus tool(shared, "r0", hw, HardwareReader::Direct);
+  ASSERT_NE(tool.shared_socket(), nullptr);
+  ASSERT_NE(tool.hardware_socket(), nullptr);
+  EXPECT_NE(tool.shared_socket(), tool.hardware_socket());
+  Bus memq("memq://", "r0", "", HardwareReader::Direct);
+  EXPECT_EQ(memq.shared_socket(), nullptr);
+  for (Bus* bus : {&tool, &memq}) {
+    SCOPED_TRACE(bus->url());
+    std::vector<std::string> got;
+    const int id = bus->subscribe("r0/.*", [&](const lcm::ReceiveBuffer&, const std::string& c) { got.push_back(c); });
+    int states = 0;
+    bus->subscribe("r0/hardware/state", [&](const lcm::ReceiveBuffer&, const std::string&) { ++states; },
+                   Bus::On::Hardware);
+    lcm::LCM other_shared(bus == &tool ? shared : "memq://");
+    lcm::LCM& to_shared = bus == &tool ? other_shared : bus->lcm();
+    lcm::LCM other_hw(bus == &tool ? hw : "memq://");
+    lcm::LCM& to_hw = bus == &tool ? other_hw : bus->hardware();
+    const uint8_t b[4] = {};
+    to_shared.publish("r0/a", b, 4u);
+    to_shared.publish("r1/b", b, 4u);
+    to_hw.publish("r0/hardware/state", b, 4u);
+    // memq:// has no hardware loop of its own: its hardware/state is on the shared bus too.
+    const std::vector<std::string> expected =
+        bus == &tool ? std::vector<std::string>{"r0/a"} : std::vector<std::string>{"r0/a", "r0/hardware/state"};
+    for (int i = 0; i < 100 && (got.size() < expected.size() || states == 0); ++i) bus->handle(20, 100);
+    EXPECT_EQ(got, expected);
+    EXPECT_EQ(states, 1);
+    bus->unsubscribe(id);
+    to_shared.publish("r0/a", b, 4u);
+    for (int i = 0; i < 5; ++i) bus->handle(20, 100);
+    EXPECT_EQ(got.size(), expected.size());
+  }
 }

@@ -16,19 +16,27 @@ std::string type_name(const void* data, size_t size) {
 }
 
 Census::Census(Bus& bus) {
-  auto* sub = bus.lcm().subscribe(regex_escape(bus.channel("")) + ".*", &Census::on, this);
-  sub->setQueueCapacity(10000);
+  bus.subscribe(regex_escape(bus.channel("")) + ".*", &Census::on, this, Bus::On::Shared, 10000);
 }
 
 std::string Census::names() const {
   if (seen_.empty()) return "none";
   std::string out;
   for (const auto& [name, s] : seen_) out += (out.empty() ? "" : ", ") + name;
+  if (unlisted_ > 0) out += fmt::format(" and more ({} messages on channels past the first {})", unlisted_, kMaxChannels);
   return out;
 }
 
 void Census::on(const lcm::ReceiveBuffer* rb, const std::string& channel) {
-  auto& s = seen_[channel];
+  auto it = seen_.find(channel);
+  if (it == seen_.end()) {
+    if (seen_.size() >= kMaxChannels) {
+      ++unlisted_;
+      return;
+    }
+    it = seen_.emplace(channel, ChannelSeen{}).first;
+  }
+  auto& s = it->second;
   const int64_t now = monotonic_us();
   if (s.count++ == 0) {
     s.first_us = now;

@@ -28,12 +28,16 @@ class Census {
   explicit Census(Bus& bus);
   Census(const Census&) = delete;
   Census& operator=(const Census&) = delete;
+  // The first kMaxChannels channels heard; messages on others are only counted (docs/reliability.md, "Limits").
+  static constexpr size_t kMaxChannels = 1000;
   const std::map<std::string, ChannelSeen>& seen() const { return seen_; }
+  int64_t unlisted() const { return unlisted_; }  // messages on channels over kMaxChannels
   std::string names() const;  // "a, b, c", or "none"
 
  private:
   void on(const lcm::ReceiveBuffer* rb, const std::string& channel);
   std::map<std::string, ChannelSeen> seen_;
+  int64_t unlisted_ = 0;
 };
 
 }  // namespace lcm_control::tools

@@ -11,11 +11,10 @@
 namespace lcm_control::tools {
 
 CmClient::CmClient(Bus& bus, std::string client) : bus_(bus), client_(std::move(client)) {
-  sub_ = subscribe_guarded<&CmClient::on_response>(bus_.lcm(), response_channel(), this);
-  sub_->setQueueCapacity(100);
+  sub_ = subscribe_guarded<&CmClient::on_response>(bus_, response_channel(), this, Bus::On::Shared, 100);
 }
 
-CmClient::~CmClient() { bus_.lcm().unsubscribe(sub_); }
+CmClient::~CmClient() { bus_.unsubscribe(sub_); }
 
 std::string CmClient::request_channel() const { return bus_.channel(channels::kCmRequest); }
 std::string CmClient::response_channel() const { return bus_.channel(channels::kCmResponse); }

@@ -73,7 +73,7 @@ class CmClient {
 
   Bus& bus_;
   std::string client_;
-  lcm::Subscription* sub_ = nullptr;
+  int sub_ = 0;
   std::map<int64_t, cm_response_t> answers_;
   std::map<int64_t, int64_t> registered_;  // command source request_id -> utime of its registration's answer
   static constexpr double kResendS = 0.5;

@@ -22,8 +22,8 @@ class GoalWatch {
   using Describe = std::function<std::string(const Status&)>;
   GoalWatch(Bus& bus, const std::string& controller, int64_t goal_id, bool verbose, Describe describe)
       : goal_id_(goal_id), verbose_(verbose), describe_(std::move(describe)) {
-    subscribe_guarded<&GoalWatch::on_result>(bus.lcm(), bus.channel(controller + "/result"), this)->setQueueCapacity(100);
-    subscribe_guarded<&GoalWatch::on_feedback>(bus.lcm(), bus.channel(controller + "/feedback"), this);
+    subscribe_guarded<&GoalWatch::on_result>(bus, bus.channel(controller + "/result"), this, Bus::On::Shared, 100);
+    subscribe_guarded<&GoalWatch::on_feedback>(bus, bus.channel(controller + "/feedback"), this);
   }
   const std::optional<Status>& result() const { return result_; }
   size_t feedback() const { return feedback_; }

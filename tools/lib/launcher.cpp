@@ -25,17 +25,17 @@ namespace {
 class ReadinessProbe {
  public:
   explicit ReadinessProbe(Bus& bus) : bus_(bus) {
-    state_sub_ = bus_.hardware().subscribe(bus_.channel(channels::kHardwareState), &ReadinessProbe::on_state, this);
-    bus_.lcm().subscribe(bus_.channel(channels::kCmResponse), &ReadinessProbe::on_cm, this);
+    state_sub_ = bus_.subscribe(bus_.channel(channels::kHardwareState), &ReadinessProbe::on_state, this,
+                                Bus::On::Hardware);
+    bus_.subscribe(bus_.channel(channels::kCmResponse), &ReadinessProbe::on_cm, this);
   }
   std::vector<int> fds() { return bus_.fds(); }
   void handle() {
-    for (lcm::LCM* lc : {&bus_.lcm(), &bus_.hardware()})
-      for (int n = 0; n < 100 && lc->handleTimeout(0) > 0; ++n) {
-      }
+    bus_.handle_shared(100);
+    if (bus_.hardware_apart()) bus_.handle_hardware(100);
     if (state_seen_ && state_sub_) {  // one is enough: stop queueing them
-      bus_.hardware().unsubscribe(state_sub_);
-      state_sub_ = nullptr;
+      bus_.unsubscribe(state_sub_);
+      state_sub_ = 0;
     }
   }
   void ask_manager() {
@@ -62,7 +62,7 @@ class ReadinessProbe {
     }
   }
   Bus& bus_;
-  lcm::Subscription* state_sub_ = nullptr;
+  int state_sub_ = 0;
   bool state_seen_ = false, cm_answered_ = false;
   int64_t list_id_ = 0, last_list_us_ = 0;
   std::string cm_message_;
@@ -233,7 +233,7 @@ int supervise(const LaunchPlan& plan, const LaunchOptions& o, const CommandLines
               const std::string& hw_url) {
   const auto& [sim, cm, spawner, rsp, dash] = lines;
   install_stop_signals();
-  auto bus = std::make_unique<Bus>(o.bus.lcm_url, ns, hw_url);
+  auto bus = std::make_unique<Bus>(o.bus.lcm_url, ns, hw_url, HardwareReader::Direct);
   std::vector<std::pair<std::string, std::string>> env{{"LCM_DEFAULT_URL", bus->url()}};
   if (!o.package_path.empty())
     env.emplace_back("LCM_CONTROL_PACKAGE_PATH", fmt::format("{}", fmt::join(o.package_path, ":")));

@@ -64,10 +64,9 @@ struct Peer {
 class Prober {
  public:
   Prober(Bus& bus, netcheck_t self) : bus_(bus), self_(std::move(self)) {
-    sub_ = subscribe_guarded<&Prober::on>(bus_.lcm(), kChannel, this);
-    sub_->setQueueCapacity(1000);
+    sub_ = subscribe_guarded<&Prober::on>(bus_, kChannel, this);
   }
-  ~Prober() { bus_.lcm().unsubscribe(sub_); }
+  ~Prober() { bus_.unsubscribe(sub_); }
   void probe() {
     self_.utime = wall_us();
     bus_.lcm().publish(kChannel, &self_);
@@ -98,7 +97,7 @@ class Prober {
   }
   Bus& bus_;
   netcheck_t self_;
-  lcm::Subscription* sub_ = nullptr;
+  int sub_ = 0;
   std::map<std::pair<std::string, int32_t>, Peer> peers_;
 };
 
@@ -137,7 +136,7 @@ int cmd_netcheck(Bus& bus, double duration_s, bool answer_only) {
       prober.probe();
       next_probe += 500000;
     }
-    bus.lcm().handleTimeout(50);
+    bus.handle(50, 100);
   }
   int both = 0;
   for (const auto& [who, p] : prober.peers()) {

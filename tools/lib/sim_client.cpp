@@ -10,10 +10,10 @@
 namespace lcm_control::tools {
 
 SimClient::SimClient(Bus& bus, std::string client) : bus_(bus), client_(std::move(client)) {
-  sub_ = subscribe_guarded<&SimClient::on_response>(bus_.lcm(), bus_.channel(channels::kSimResponse), this);
+  sub_ = subscribe_guarded<&SimClient::on_response>(bus_, bus_.channel(channels::kSimResponse), this);
 }
 
-SimClient::~SimClient() { bus_.lcm().unsubscribe(sub_); }
+SimClient::~SimClient() { bus_.unsubscribe(sub_); }
 
 void SimClient::on_response(const lcm::ReceiveBuffer*, const std::string&, const sim_response_t* m) {
   const auto it = answers_.find(m->request_id);

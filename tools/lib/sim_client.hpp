@@ -36,7 +36,7 @@ class SimClient {
   void on_response(const lcm::ReceiveBuffer*, const std::string&, const sim_response_t* m);
   Bus& bus_;
   std::string client_;
-  lcm::Subscription* sub_ = nullptr;
+  int sub_ = 0;
   std::map<int64_t, sim_response_t> answers_;
 };
 

@@ -19,11 +19,11 @@ std::string mixed_clocks(const std::string& channel_a, int64_t utime_a, const st
 }
 
 CommandClock::CommandClock(Bus& bus, double wait_s) : bus_(bus) {
-  sub_ = subscribe_guarded<&CommandClock::on_clock>(bus.lcm(), bus.channel(channels::kClock), this);
+  sub_ = subscribe_guarded<&CommandClock::on_clock>(bus, bus.channel(channels::kClock), this);
   pump_until(bus, [this] { return on_sim(); }, wait_s);
 }
 
-CommandClock::~CommandClock() { bus_.lcm().unsubscribe(sub_); }
+CommandClock::~CommandClock() { bus_.unsubscribe(sub_); }
 
 void CommandClock::on_clock(const lcm::ReceiveBuffer*, const std::string&, const sim_clock_t* m) {
   if (m->utime >= 0 && time_base(m->utime) == TimeBase::Sim) sim_utime_ = m->utime;

@@ -39,7 +39,7 @@ class CommandClock {
  private:
   void on_clock(const lcm::ReceiveBuffer*, const std::string&, const sim_clock_t* m);
   Bus& bus_;
-  lcm::Subscription* sub_ = nullptr;
+  int sub_ = 0;
   int64_t sim_utime_ = -1;
 };
 
