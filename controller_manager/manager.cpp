@@ -420,7 +420,10 @@ void ControllerManager::finish_reload(ReadConfig read) {
     retire(std::move(slots.back()));
     slots.pop_back();
   }
-  // Ten thousand entries of one YAML document take 40 ms to free: the loop does not wait for it.
+  // Ten thousand entries of one YAML document take 40 ms to free, some single entries several ms (yaml-cpp merges
+  // the memory of nodes used together): a worker frees them, in another allocator arena than the loop's (main.cpp
+  // reads the first configuration on a thread of its own, a reload reads on one), so the loop's allocations never
+  // wait for that arena's lock.
   auto old = std::make_pair(std::exchange(model_.controllers, std::move(read.model.controllers)),
                             std::exchange(model_.config_key_files, std::move(read.model.config_key_files)));
   if (options_.slice_us > 0)
