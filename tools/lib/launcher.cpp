@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "bus/messages.hpp"
 #include "description/urdf_reader.hpp"
@@ -68,11 +69,8 @@ class ReadinessProbe {
   std::string cm_message_;
 };
 
-// --namespace, else the file's, else the URDF's robotNamespace: what sim_server and controller_manager will use, so
-// that launch waits for them where they are. A URDF that does not load is left for them to report.
-std::string robot_namespace_of(const LaunchPlan& plan, const std::string& flag, const std::vector<std::string>& path) {
-  const std::string given = flag.empty() ? plan.ns : flag;
-  if (!given.empty()) return normalize_namespace(given);
+// The plan's URDF as the servers will read it (only the URDF), or nothing when it does not load: they report why.
+std::optional<RobotModel> urdf_of(const LaunchPlan& plan, const std::vector<std::string>& path) {
   LoadOptions o;
   o.package_path = path;
   o.xacro_args = plan.xacro_args;
@@ -80,9 +78,18 @@ std::string robot_namespace_of(const LaunchPlan& plan, const std::string& flag, 
   try {
     load_urdf_into(urdf, plan.urdf, o);
   } catch (const std::exception&) {
-    return "";
+    return std::nullopt;
   }
-  return robot_namespace("", urdf.gazebo_plugin_namespace);
+  return urdf;
+}
+
+// --namespace, else the file's, else the URDF's robotNamespace: what sim_server and controller_manager will use, so
+// that launch waits for them where they are.
+std::string robot_namespace_of(const LaunchPlan& plan, const std::string& flag, const std::vector<std::string>& path) {
+  const std::string given = flag.empty() ? plan.ns : flag;
+  if (!given.empty()) return normalize_namespace(given);
+  const std::optional<RobotModel> urdf = urdf_of(plan, path);
+  return urdf ? robot_namespace("", urdf->gazebo_plugin_namespace) : "";
 }
 
 // gazebo_ros spawn_model leaves a robot free unless the URDF welds it to `world`: so does launch, with
@@ -91,20 +98,12 @@ void gazebo_spawn_defaults(LaunchPlan& plan, const std::vector<std::string>& pat
   if (!plan.gazebo_spawned) return;
   for (const auto& a : plan.sim_args)
     if (a == "--floating-base") return;
-  LoadOptions o;
-  o.package_path = path;
-  o.xacro_args = plan.xacro_args;
-  RobotModel urdf;
-  try {
-    load_urdf_into(urdf, plan.urdf, o);
-  } catch (const std::exception&) {
-    return;  // the servers read the same file and say what is wrong
-  }
-  if (urdf.root_link == "world") return;
+  const std::optional<RobotModel> urdf = urdf_of(plan, path);
+  if (!urdf || urdf->root_link == "world") return;
   plan.sim_args.push_back("--floating-base");
   launch_say(fmt::format("note: {}: the root link '{}' is not welded to 'world': a free base, as Gazebo spawns it "
                          "(sim_server --floating-base, on a ground plane)",
-                         std::filesystem::path(plan.urdf).filename().string(), urdf.root_link));
+                         std::filesystem::path(plan.urdf).filename().string(), urdf->root_link));
 }
 
 bool spawns(const LaunchPlan& plan) { return !plan.controllers.empty() || !plan.inactive.empty(); }
