@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
   reload->add_flag("--force,--force-kill", force, "stop and unload running controllers first");
   return run_program(app, argc, argv, [&] {
     install_stop_signals();
-    Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
+    Bus bus(bus_flags.lcm_url, bus_flags.ns);  // LCM's receive thread: a short-lived tool waiting for answers
     for (auto* sc : {pause, resume, step_cmd, reset, sim_status}) {
       if (!sc->parsed()) continue;
       SimClient sim(bus, "cmctl");

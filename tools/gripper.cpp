@@ -35,7 +35,7 @@ int run(const Options& o, const BusFlags& bus_flags) {
   if (controller.empty())
     throw std::runtime_error("CONTROLLER is empty: give the controller's name, e.g. gripper_controller");
   install_stop_signals();
-  Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
+  Bus bus(bus_flags.lcm_url, bus_flags.ns);  // LCM's receive thread: a short-lived tool waiting for answers
   CmClient cm(bus, "gripper");
   gripper_controller(cm.list(o.cm_timeout).controllers, controller);
 

@@ -119,7 +119,7 @@ int run(const Options& o, const BusFlags& bus_flags) {
   if (!goal.joints.empty()) check_goal(goal);
 
   install_stop_signals();
-  Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
+  Bus bus(bus_flags.lcm_url, bus_flags.ns);  // LCM's receive thread: a short-lived tool waiting for answers
   CmClient cm(bus, "send-trajectory");
   const std::vector<controller_info_t> listed = cm.list(o.timeout).controllers;
   const controller_info_t info = trajectory_controller(listed, controller);
