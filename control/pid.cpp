@@ -20,10 +20,12 @@ void Pid::reset() {
   last_error_ = 0;
   last_error_dot_ = 0;
   have_last_error_ = false;
+  applied_ = false;
   p_term_ = i_term_ = d_term_ = 0;
 }
 
 double Pid::compute(double error, double dt) {
+  applied_ = false;
   if (dt <= 0 || !std::isfinite(error) || !std::isfinite(dt)) return 0;
   const double error_dot = have_last_error_ ? (error - last_error_) / dt : 0.0;
   last_error_ = error;
@@ -32,6 +34,7 @@ double Pid::compute(double error, double dt) {
 }
 
 double Pid::compute(double error, double error_dot, double dt) {
+  applied_ = false;
   if (dt <= 0 || !std::isfinite(error) || !std::isfinite(error_dot) || !std::isfinite(dt)) return 0;
   last_error_dot_ = error_dot;
   const PidGains& g = gains_;
@@ -45,7 +48,8 @@ double Pid::compute(double error, double error_dot, double dt) {
   if (!g.antiwindup) i_term_ = std::clamp(i_term_, g.i_clamp_min, g.i_clamp_max);
   d_term_ = g.d * error_dot;
   const double u = p_term_ + i_term_ + d_term_;
-  if (std::isfinite(u)) return u;
+  applied_ = std::isfinite(u);
+  if (applied_) return u;
   reset();  // terms that overflow (gains near 1e308) give no output rather than Inf or NaN
   return 0;
 }

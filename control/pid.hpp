@@ -33,6 +33,11 @@ class Pid {
   // With an explicit error derivative (e.g. -velocity for a constant target).
   double compute(double error, double error_dot, double dt);
 
+  // The gains the last output applied to `error` and to `error_dot` (0 when it gave none: a reset, a bad sample, an
+  // overflow). With error_dot = target rate - velocity, the output holds -applied_d() * velocity; with error = target
+  // velocity - velocity, -applied_p() * velocity: the damping an effort command declares (hardware_command_t).
+  double applied_p() const { return applied_ ? gains_.p : 0.0; }
+  double applied_d() const { return applied_ ? gains_.d : 0.0; }
   double last_p_term() const { return p_term_; }
   double last_i_term() const { return i_term_; }
   double last_d_term() const { return d_term_; }
@@ -42,6 +47,7 @@ class Pid {
   PidGains gains_;
   double i_error_ = 0, last_error_ = 0, last_error_dot_ = 0;
   bool have_last_error_ = false;
+  bool applied_ = false;
   double p_term_ = 0, i_term_ = 0, d_term_ = 0;
 };
 

@@ -126,7 +126,7 @@ class GripperActionController : public Controller {
     if (iface_ == Interface::Effort) {
       effort_ = std::clamp(pid_.compute(error, -velocity, period), -limit_, limit_);
       joint_->command = effort_;
-      joint_->damping = period > 0 ? pid_.gains().d : 0.0;  // the effort holds -d*velocity
+      joint_->damping = pid_.applied_d();
     } else {
       joint_->command = set_point_;
       effort_ = joint_->effort;

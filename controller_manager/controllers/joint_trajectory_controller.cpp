@@ -246,7 +246,7 @@ class JointTrajectoryController : public Controller {
                                                              : j.urdf->velocity_limit;
         if (limit > 0) u = std::clamp(u, -limit, limit);
         j.command = u;
-        if (iface_ == Interface::Effort) j.damping = period > 0 ? pids_[k].gains().d : 0.0;  // u holds -d*velocity
+        if (iface_ == Interface::Effort) j.damping = pids_[k].applied_d();
       }
       if (goal_active_ && std::abs(e) > max_path_err_[k]) max_path_err_[k] = std::abs(e);
       if (goal_active_ && t < current_->end_time() && path_tol_[k] > 0 && std::abs(e) - path_tol_[k] > worst_excess) {

@@ -72,11 +72,10 @@ class PidController : public Controller {
     double cmd;
     if (out_ == Interface::Effort && position_target_) {
       cmd = pid_.compute(error, error_dot, period);  // ROS: velocity error as the D input
-      joint_->damping = period > 0 ? pid_.gains().d : 0.0;  // cmd holds -d*velocity
+      joint_->damping = pid_.applied_d();
     } else {
       cmd = pid_.compute(error, period);
-      // A velocity target to effort: cmd holds -p*velocity.
-      if (out_ == Interface::Effort) joint_->damping = period > 0 ? std::max(0.0, pid_.gains().p) : 0.0;
+      if (out_ == Interface::Effort) joint_->damping = std::max(0.0, pid_.applied_p());  // error = set point - velocity
     }
     if (joint_->urdf) {
       const double lim = out_ == Interface::Effort ? joint_->urdf->effort_limit : joint_->urdf->velocity_limit;

@@ -117,6 +117,7 @@ class Ros2PidController : public Controller {
   void update(const Time&, double period) override {
     for (size_t k = 0; k < joints_.size(); ++k) {
       JointData& j = *joints_[k];
+      j.damping = 0;
       const double ref = reference_[k];
       const double measured = state_ == Interface::Position ? j.position : j.velocity;
       if (!std::isfinite(ref) || !std::isfinite(measured)) {
@@ -131,8 +132,7 @@ class Ros2PidController : public Controller {
         u = std::isfinite(ref_dot) ? ref_dot * g.feedforward : 0.0;
         if (std::isfinite(ref_dot) && std::isfinite(j.velocity)) {
           u += pids_[k].compute(error, ref_dot - j.velocity, period);
-          if (iface_ == Interface::Effort && state_ == Interface::Position)
-            j.damping = period > 0 ? pids_[k].gains().d : 0.0;  // u holds -d*velocity
+          if (iface_ == Interface::Effort && state_ == Interface::Position) j.damping = pids_[k].applied_d();
         } else {
           u += pids_[k].compute(error, period);
         }

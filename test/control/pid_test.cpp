@@ -75,3 +75,21 @@ TEST(Pid, AbsurdGainsGiveAFiniteOutput) {
     EXPECT_TRUE(std::isfinite(u)) << e;
   }
 }
+
+// The gains an output applied, for the damping an effort command declares: none when there was no output.
+TEST(Pid, AppliedGainsAreThoseOfTheLastOutputAndZeroWithoutOne) {
+  Pid pid(PidGains{600, 0, 30, 0, 0, false});
+  EXPECT_EQ(pid.applied_d(), 0.0);
+  EXPECT_DOUBLE_EQ(pid.compute(0.1, -2.0, 0.001), 600 * 0.1 - 30 * 2.0);
+  EXPECT_EQ(pid.applied_p(), 600.0);
+  EXPECT_EQ(pid.applied_d(), 30.0);
+  EXPECT_EQ(pid.compute(0.1, -2.0, 0.0), 0.0);  // no period: no output, nothing applied
+  EXPECT_EQ(pid.applied_d(), 0.0);
+  pid.compute(0.1, -2.0, 0.001);
+  EXPECT_EQ(pid.compute(NAN, -2.0, 0.001), 0.0);
+  EXPECT_EQ(pid.applied_d(), 0.0);
+  pid.compute(0.1, 0.001);
+  EXPECT_EQ(pid.applied_p(), 600.0);
+  pid.reset();
+  EXPECT_EQ(pid.applied_p(), 0.0);
+}
