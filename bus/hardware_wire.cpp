@@ -55,8 +55,10 @@ std::string ActuatorBinding::problem(bool allow_unknown) const {
   return fmt::format("{}", fmt::join(p, "; "));
 }
 
-std::string check_hardware_state_bytes(const void* data, size_t size, int max_actuators) {
-  return wire_problem<hardware_state_t>(data, size, max_actuators, "the robot's actuators");
+std::string check_hardware_state_bytes(const void* data, size_t size, int max_actuators, int max_sensor_values) {
+  if (max_sensor_values <= max_actuators)
+    return wire_problem<hardware_state_t>(data, size, max_actuators, "the robot's actuators");
+  return wire_problem<hardware_state_t>(data, size, max_sensor_values, "the robot's actuators and sensor values");
 }
 
 std::string check_hardware_command_bytes(const void* data, size_t size, int max_actuators) {

@@ -31,8 +31,9 @@ struct ActuatorBinding {
 };
 ActuatorBinding bind_actuators(const std::vector<std::string>& ours, const std::vector<std::string>& theirs);
 
-// "" when the bytes can be the message with num_actuators between 0 and max_actuators; else why not.
-std::string check_hardware_state_bytes(const void* data, size_t size, int max_actuators);
+// "" when the bytes can be the message with num_actuators between 0 and max_actuators (a state's sensor values
+// between 0 and max_sensor_values too); else why not.
+std::string check_hardware_state_bytes(const void* data, size_t size, int max_actuators, int max_sensor_values = 0);
 std::string check_hardware_command_bytes(const void* data, size_t size, int max_actuators);
 
 }  // namespace lcm_control

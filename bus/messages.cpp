@@ -24,6 +24,9 @@ std::string check(const hardware_state_t& m) {
   if (!sized(m.name, n) || !sized(m.mode, n) || !sized(m.position, n) || !sized(m.velocity, n) || !sized(m.effort, n))
     return fmt::format("num_actuators {} does not match the arrays", n);
   if (!all_finite(m.position) || !all_finite(m.velocity) || !all_finite(m.effort)) return "contains NaN or Inf";
+  if (!sized(m.sensor_interface, m.num_sensor_values) || !sized(m.sensor_value, m.num_sensor_values))
+    return fmt::format("num_sensor_values {} does not match the arrays", m.num_sensor_values);
+  if (!all_finite(m.sensor_value)) return "a sensor value is NaN or Inf";
   return "";
 }
 

@@ -1,6 +1,7 @@
 #include "controller_manager/controller.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -41,6 +42,28 @@ const JointData* ControllerContext::read(const std::string& joint, const std::st
   }
   if (self_ && !self_->claim_.interface) self_->claim_.joints.push_back(listed_as.empty() ? joint : listed_as);
   return j;
+}
+
+const SensorData* ControllerContext::sensor(const std::string& name, const std::string& key, SensorKind kind) {
+  const SensorData* s = hw_.sensor(name);
+  if (s && s->kind == kind) return s;
+  std::vector<std::string> same_kind, all;
+  for (const SensorSpec& x : model_.sensors) {
+    all.push_back(fmt::format("{} ({}{})", x.name, to_string(x.kind), x.simulated() ? "" : ", not simulated"));
+    if (x.kind == kind && x.simulated()) same_kind.push_back(x.name);
+  }
+  const SensorSpec* spec = nullptr;
+  for (const SensorSpec& x : model_.sensors)
+    if (x.name == name) spec = &x;
+  std::string why;
+  if (spec && spec->kind != kind)
+    why = fmt::format("sensor '{}' is {}, not {}", name, to_string(spec->kind), to_string(kind));
+  else if (spec)
+    why = fmt::format("sensor '{}' is not simulated: {}", name, spec->not_simulated);
+  else
+    why = fmt::format("{} declares no sensor '{}'", model_.urdf_path, name);
+  throw params_.error(key, fmt::format("{} ({} sensors: {})", why, to_string(kind),
+                                       same_kind.empty() ? "none" : fmt::format("{}", fmt::join(same_kind, ", "))));
 }
 
 std::vector<std::string> ControllerContext::actuated_joints() const { return model_.actuated_joints(); }

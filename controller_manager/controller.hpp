@@ -99,6 +99,9 @@ class ControllerContext {
   // (a mimic joint computed from `joint`).
   const JointData* read(const std::string& joint, const std::string& key, const std::string& listed_as = "");
   std::vector<std::string> actuated_joints() const;
+  // A simulated sensor of `kind` (description/sensors.hpp) to read; throws ControllerError naming the parameter `key`,
+  // why (no such sensor, another kind, not simulated) and the sensors of that kind there are.
+  const SensorData* sensor(const std::string& name, const std::string& key, SensorKind kind);
 
   std::string channel(const std::string& suffix) const { return bus_.channel(name_ + "/" + suffix); }
   std::string root_channel(const std::string& name) const { return bus_.channel(name); }

@@ -23,6 +23,28 @@ Hardware::Hardware(const RobotModel& model) {
     joints_.push_back(j);
   }
   actuator_of_joint_.assign(joints_.size(), -1);
+  for (const SensorSpec& spec : model.sensors) {
+    if (!spec.simulated()) continue;
+    SensorData d;
+    d.name = spec.name;
+    d.kind = spec.kind;
+    d.frame_id = spec.frame_id.empty() ? spec.link : spec.frame_id;
+    d.values.assign(sensor_interfaces(spec.kind).size(), NAN);
+    sensors_.push_back(std::move(d));
+  }
+}
+
+const SensorData* Hardware::sensor(const std::string& name) const {
+  for (const SensorData& s : sensors_)
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+std::vector<std::string> Hardware::missing_sensors() const {
+  std::vector<std::string> out;
+  for (const SensorData& s : sensors_)
+    if (!s.present) out.push_back(s.name);
+  return out;
 }
 
 JointData* Hardware::find(const std::string& joint) {
@@ -69,6 +91,19 @@ std::string Hardware::bind(const hardware_state_t& state, hardware_command_t& co
   command.mode.assign(n, hardware_command_t::MODE_NONE);
   command.command.assign(n, 0.0);
   command.damping.assign(n, 0.0);
+  sensor_slot_.clear();
+  for (SensorData& d : sensors_) {
+    d.present = true;
+    for (const std::string& i : sensor_interfaces(d.kind)) {
+      const std::string name = d.name + "/" + i;
+      int slot = -1;
+      for (int k = 0; k < state.num_sensor_values && slot < 0; ++k)
+        if (state.sensor_interface[k] == name) slot = k;
+      sensor_slot_.push_back(slot);
+      d.present = d.present && slot >= 0;
+    }
+    std::fill(d.values.begin(), d.values.end(), NAN);
+  }
   session_ = state.session;
   bound_ = true;
   return "";
@@ -82,6 +117,12 @@ void Hardware::read(const hardware_state_t& s) {
     j.velocity = j.map.actuator_to_joint_velocity(s.velocity[a]);
     j.effort = j.map.actuator_to_joint_effort(s.effort[a]);
   }
+  size_t v = 0;
+  for (SensorData& d : sensors_)
+    for (double& x : d.values) {
+      const int slot = sensor_slot_[v++];
+      if (slot >= 0 && slot < s.num_sensor_values) x = s.sensor_value[size_t(slot)];
+    }
 }
 
 void Hardware::enforce_soft_limits(double dt) {

@@ -35,6 +35,16 @@ struct JointData {
   PositionSoftLimits soft_position;               // the previous position command, under soft limits
 };
 
+// One simulated sensor of the model as controllers read it: its values in sensor_interfaces(kind) order from the
+// last hardware/state, NaN while the hardware sends none of it.
+struct SensorData {
+  std::string name;
+  SensorKind kind = SensorKind::Other;
+  std::string frame_id;  // the sensor's frame_id, else its link
+  std::vector<double> values;
+  bool present = false;  // the bound hardware sends every value of it
+};
+
 class Hardware {
  public:
   explicit Hardware(const RobotModel& model);
@@ -42,13 +52,17 @@ class Hardware {
   std::vector<JointData>& joints() { return joints_; }
   const std::vector<JointData>& joints() const { return joints_; }
   JointData* find(const std::string& joint);
+  const std::vector<SensorData>& sensors() const { return sensors_; }
+  const SensorData* sensor(const std::string& name) const;
 
   // Matches the message's actuators to the transmissions by name; returns "" or
-  // why this hardware does not fit the URDF. Sizes `command` for this session.
+  // why this hardware does not fit the URDF. Sizes `command` for this session. Sensors match by
+  // "<sensor>/<interface>"; one the hardware does not send stays NaN (missing_sensors() names them).
   std::string bind(const hardware_state_t& state, hardware_command_t& command);
   bool bound() const { return bound_; }
   int64_t session() const { return session_; }
   void unbind() { bound_ = false; }
+  std::vector<std::string> missing_sensors() const;
 
   void read(const hardware_state_t& state);
   // The URDF's soft limits (<safety_controller>) on every owned joint's command, for the interface its controller
@@ -60,6 +74,8 @@ class Hardware {
  private:
   std::vector<JointData> joints_;
   std::vector<int> actuator_of_joint_;  // index in the hardware message (bind_actuators)
+  std::vector<SensorData> sensors_;
+  std::vector<int> sensor_slot_;        // per sensor value, in sensors_ order: its index in the message, -1 none
   bool bound_ = false;
   int64_t session_ = 0;
 };

@@ -88,8 +88,8 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
         if (bad_state_logged_++ % 1000 == 0) spdlog::warn("dropped hardware/state: {}", why);
         ++dropped_;
       },
-      [n = int(model_.transmissions.size())](const void* data, size_t size) {
-        return check_hardware_state_bytes(data, size, n);
+      [n = int(model_.transmissions.size()), m = sensor_value_count(model_.sensors)](const void* data, size_t size) {
+        return check_hardware_state_bytes(data, size, n, m);
       });
 }
 

@@ -37,6 +37,10 @@ void register_builtin(Registry& r) {
   r.add(gripper_action_controller(I::Position, false));
   r.add(gripper_action_controller(I::Effort, false));
   r.add(gripper_action_controller(I::Position, true));  // parallel_gripper_action_controller/GripperActionController
+  r.add(imu_sensor_broadcaster());
+  r.add(force_torque_sensor_broadcaster());
+  r.add(imu_sensor_controller());
+  r.add(force_torque_sensor_controller());
 }
 
 const Registry& builtin_registry() {

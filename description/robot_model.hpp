@@ -18,6 +18,7 @@
 #include "control/transmission.hpp"
 #include "description/initial_positions.hpp"
 #include "description/ros2_control.hpp"
+#include "description/sensors.hpp"
 
 namespace lcm_control {
 
@@ -167,6 +168,7 @@ struct RobotModel {
   std::optional<double> update_rate_hz;             // controller_manager: ros__parameters: update_rate
   bool ros2_parameter_file = false;                 // the config is a ROS 2 parameter file
   bool from_ros2() const { return !ros2_control.empty() || ros2_parameter_file; }  // ROS 2 users' files
+  std::vector<SensorSpec> sensors;             // declared sensors, simulated or not (description/sensors.hpp)
   std::vector<std::string> notes;              // what was resolved and how, one INFO line each
   std::vector<std::string> warnings;           // non-fatal findings, one line each
   std::vector<std::string> hints;              // valid, but often not what was meant (doctor prints them)

@@ -376,11 +376,6 @@ void read_ros2_control(RobotModel& model, const tinyxml2::XMLElement* robot, con
         }
       model.transmissions.push_back(std::move(t));
     }
-    for (const auto& s : block.sensors)
-      model.notes.push_back(fmt::format("{}:{}: ros2_control '{}': sensor '{}' ({} state interface{}) is read but not "
-                                        "yet simulated",
-                                        file, s.line, block.name, s.name, s.state_interfaces.size(),
-                                        s.state_interfaces.size() == 1 ? "" : "s"));
     for (const auto& g : block.gpios)
       model.notes.push_back(fmt::format("{}:{}: ros2_control '{}': gpio '{}' ({} command and {} state interfaces) is "
                                         "read but not yet simulated",

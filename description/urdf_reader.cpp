@@ -309,6 +309,16 @@ void parse_transmissions(RobotModel& model, const tinyxml2::XMLElement* robot, c
                                          no_reduction.size() == 1 ? "has" : "have"));
 }
 
+// Plugins read by ros2_control.cpp (the gz_ros2_control tag) and sensors.cpp (ROS 1's IMU and force-torque
+// plugins), and gz's sensor systems, which only switch on the sensors the URDF declares.
+bool read_elsewhere(const std::string& filename) {
+  for (const char* part : {"ros2_control", "gazebo_ros_imu", "gazebo_ros_ft_sensor", "gz-sim-imu-system",
+                           "gz-sim-forcetorque-system", "gz-sim-contact-system", "ignition-gazebo-imu-system",
+                           "ignition-gazebo-forcetorque-system", "ignition-gazebo-contact-system"})
+    if (filename.find(part) != std::string::npos) return true;
+  return false;
+}
+
 // The <gazebo> extensions read here: self_collide (robot), mu1 and turnGravityOff (per link), and the
 // gazebo_ros_control plugin (a ros2_control plugin is read by ros2_control.cpp). Every other tag is named in one
 // warning: Gazebo would read it, we do not.
@@ -318,8 +328,8 @@ void parse_gazebo_plugin(RobotModel& model, const tinyxml2::XMLElement* robot, c
     const bool per_link = g->Attribute("reference") != nullptr;
     for (auto* c = g->FirstChildElement(); c; c = c->NextSiblingElement()) {
       const std::string tag = c->Name();
-      const bool read = tag == "plugin" || (!per_link && tag == "self_collide") ||
-                        (per_link && (tag == "mu1" || tag == "turnGravityOff"));
+      const bool read = tag == "plugin" || tag == "sensor" || (!per_link && tag == "self_collide") ||
+                        (per_link && (tag == "mu1" || tag == "turnGravityOff" || tag == "provideFeedback"));
       if (!read) ++unread[(per_link ? "<gazebo reference> " : "<gazebo> ") + tag];
     }
     if (const char* sc = child_text(g, "self_collide"); sc && !g->Attribute("reference"))
@@ -337,7 +347,7 @@ void parse_gazebo_plugin(RobotModel& model, const tinyxml2::XMLElement* robot, c
       if (fn && std::string(fn).find("gazebo_ros_control") != std::string::npos) {
         model.has_gazebo_ros_control_plugin = true;
         if (const char* ns = child_text(p, "robotNamespace")) model.gazebo_plugin_namespace = trim(ns);
-      } else if (!fn || std::string(fn).find("ros2_control") == std::string::npos) {  // read by ros2_control.cpp
+      } else if (!fn || !read_elsewhere(fn)) {
         ++unread[fmt::format("<plugin filename=\"{}\">", fn ? fn : "")];
       }
     }
@@ -346,7 +356,7 @@ void parse_gazebo_plugin(RobotModel& model, const tinyxml2::XMLElement* robot, c
   std::vector<std::string> names;
   for (const auto& [tag, n] : unread) names.push_back(n == 1 ? tag : fmt::format("{} (x{})", tag, n));
   model.warnings.push_back(fmt::format("{}: Gazebo tags not simulated here, ignored: {} (read are <self_collide>, "
-                                       "per link <mu1> and <turnGravityOff>, and the ros_control plugins)",
+                                       "per link <mu1> and <turnGravityOff>, the ros_control plugins and the sensors)",
                                        file, fmt::join(names, ", ")));
 }
 
@@ -507,6 +517,7 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
     parse_transmissions(model, robot, urdf_path, problems);
   parse_gazebo_plugin(model, robot, urdf_path);
   read_ros2_control_plugin(model, robot, urdf_path, problems);
+  read_sensors(model, robot, urdf_path);
 }
 
 

@@ -20,6 +20,7 @@
 #include <btBulletDynamicsCommon.h>
 
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -51,6 +52,7 @@ struct WorldOptions {
   bool ground = false;                // a plane at z = 0; contacts with friction 1, or a link's <mu1>
   Eigen::Vector3d base_position = Eigen::Vector3d::Zero();  // the root link frame's start, world frame (m)
   double base_yaw = 0;                                        // rad about z
+  uint64_t noise_seed = 0;            // seeds the sensors' Gaussian noise (sim_server/sensors.hpp)
 };
 
 class Multibody {
@@ -96,6 +98,10 @@ class Multibody {
 
   // Pose of a URDF link frame and position of its centre of mass, in the world.
   Eigen::Isometry3d link_pose(const std::string& link) const;
+  // Bullet's index of a URDF link (-1: the base); throws std::out_of_range for no link of that name.
+  int link_index(const std::string& link) const { return link_index_.at(link); }
+  // A URDF link's Bullet COM frame (its principal axes at its centre of mass) in the link frame.
+  const Eigen::Isometry3d& link_from_com(const std::string& link) const { return link_from_com_.at(link); }
   Eigen::Vector3d com_position(const std::string& link) const;
 
   btMultiBody& body() { return *body_; }

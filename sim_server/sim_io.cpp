@@ -50,6 +50,11 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
     state_.name[i] = act.name(i);
     state_.mode[i] = act.wire_mode(i);
   }
+  if (const SensorBank* sensors = sim.sensors()) {
+    state_.sensor_interface = sensors->names();
+    state_.sensor_value = sensors->values();
+    state_.num_sensor_values = int32_t(sensors->names().size());
+  }
   state_.session = session_;
   state_.lockstep = lockstep;
   state_.period_us = int32_t(std::llround(sim.control_period() * 1e6));
@@ -92,6 +97,8 @@ void SimIo::publish_state(double real_time_factor, bool clock_again) {
     state_.velocity[i] = act.velocity(i);
     state_.effort[i] = act.effort(i);
   }
+  if (const SensorBank* sensors = sim_.sensors())  // the same sensors after a reset
+    std::copy(sensors->values().begin(), sensors->values().end(), state_.sensor_value.begin());
   state_pub_.publish(state_);
   const bool due = clock_step_ < 0 || (state_.step != clock_step_ && state_.step % clock_every_ == 0);
   if (!due && !clock_again) return;

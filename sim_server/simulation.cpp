@@ -47,6 +47,7 @@ Simulation::Simulation(const RobotModel& model, const SimulationRates& rates, co
   actuators_ = std::make_unique<Actuators>(model_, *multibody_);
   multibody_->size_solver_buffers();
   actuators_->read(multibody_->dt());
+  sensors_ = std::make_unique<SensorBank>(model_, *multibody_, world_.noise_seed);
 }
 
 std::vector<std::string> Simulation::reset(const InitialPositions& changes) {
@@ -70,7 +71,9 @@ std::vector<std::string> Simulation::reset(const InitialPositions& changes) {
   multibody->size_solver_buffers();
   actuators->read(multibody->dt());
   actuators->set_e_stop(actuators_->e_stop());
-  actuators_ = std::move(actuators);  // before the multibody it refers to
+  auto sensors = std::make_unique<SensorBank>(model_, *multibody, world_.noise_seed);
+  actuators_ = std::move(actuators);  // before the multibody they refer to
+  sensors_ = std::move(sensors);
   multibody_ = std::move(multibody);
   initial_ = std::move(initial);
   steps_ = 0;
@@ -112,6 +115,7 @@ void Simulation::step() {
     actuators_->apply(dt);
     multibody_->step();
     actuators_->read(dt);
+    sensors_->update();
   }
   ++steps_;
 }

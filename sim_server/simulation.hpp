@@ -15,6 +15,7 @@
 #include "sim_server/actuators.hpp"
 #include "sim_server/mock_hardware.hpp"
 #include "sim_server/multibody_builder.hpp"
+#include "sim_server/sensors.hpp"
 
 namespace lcm_control::sim {
 
@@ -70,6 +71,8 @@ class Simulation {
   Multibody& multibody() { return *multibody_; }
   Actuators& actuators() { return *actuators_; }
   const Actuators& actuators() const { return *actuators_; }
+  // The declared sensors, measured after every physics step (Backend::Bullet; none for Mock).
+  const SensorBank* sensors() const { return sensors_.get(); }
   // Backend::Mock only.
   MockHardware& mock() { return *mock_; }
   // Start positions clamped into the limits, one line each.
@@ -87,6 +90,7 @@ class Simulation {
   WorldOptions world_;
   std::unique_ptr<Multibody> multibody_;
   std::unique_ptr<Actuators> actuators_;
+  std::unique_ptr<SensorBank> sensors_;
   std::unique_ptr<MockHardware> mock_;
   double control_period_;
   double control_hz_;

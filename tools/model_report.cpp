@@ -42,13 +42,7 @@ void describe_ros2_control(const RobotModel& m, std::string& s) {
       fmt::format_to(out, " state {}\n", interfaces(c.state_interfaces));
     }
     for (const Ros2Component& c : b.sensors)
-      fmt::format_to(out, "    sensor {:<19} state {}{} (read, not simulated yet)\n", c.name,
-                     interfaces(c.state_interfaces),
-                     c.params.empty() ? "" : fmt::format(", params {}", [&] {
-                       std::vector<std::string> p;
-                       for (const auto& [k, v] : c.params) p.push_back(k + "=" + v);
-                       return fmt::format("{}", fmt::join(p, " "));
-                     }()));
+      fmt::format_to(out, "    sensor {:<19} state {} (see sensors below)\n", c.name, interfaces(c.state_interfaces));
     for (const Ros2Component& c : b.gpios)
       fmt::format_to(out, "    gpio {:<21} command {} state {} (read, not simulated yet)\n", c.name,
                      interfaces(c.command_interfaces), interfaces(c.state_interfaces));
@@ -75,6 +69,49 @@ void describe_ros2_control(const RobotModel& m, std::string& s) {
                    g.hold_joints ? "" : ", hold_joints false (joints nobody commands are not braked)");
   else
     fmt::format_to(out, "gz_ros2_control plugin tag: no\n");
+}
+
+std::string noise_text(const char* what, const AxisNoise& n) {
+  if (!n[0].any() && !n[1].any() && !n[2].any()) return "";
+  std::vector<std::string> axes;
+  for (const GaussianNoise& g : n) {
+    std::string a = fmt::format("{:g}", g.stddev);
+    if (g.mean != 0) a += fmt::format(" mean {:g}", g.mean);
+    if (g.bias_mean != 0 || g.bias_stddev != 0) a += fmt::format(" bias {:g}/{:g}", g.bias_mean, g.bias_stddev);
+    axes.push_back(a);
+  }
+  return fmt::format(", {} noise sd ({})", what, fmt::join(axes, ", "));
+}
+
+// Every declared sensor: kind, where it sits, its frame, its noise, or why it is not simulated.
+void describe_sensors(const RobotModel& m, std::string& s) {
+  if (m.sensors.empty()) return;
+  auto out = std::back_inserter(s);
+  size_t simulated = 0;
+  for (const SensorSpec& x : m.sensors) simulated += x.simulated();
+  fmt::format_to(out, "\nsensors ({}, {} simulated):\n", m.sensors.size(), simulated);
+  for (const SensorSpec& x : m.sensors) {
+    fmt::format_to(out, "  {:<20} {:<12}", x.name.empty() ? "(unnamed)" : x.name, x.type);
+    if (!x.simulated()) {
+      fmt::format_to(out, " NOT simulated: {}\n", x.not_simulated);
+      continue;
+    }
+    if (x.kind == SensorKind::ForceTorque)
+      fmt::format_to(out, " joint {} (child {}), wrench in the {} frame, {}", x.joint, x.link,
+                     x.frame == WrenchFrame::Child ? "child" : x.frame == WrenchFrame::Parent ? "parent" : "sensor",
+                     x.direction == MeasureDirection::ChildToParent ? "child_to_parent" : "parent_to_child");
+    else
+      fmt::format_to(out, " link {}", x.link);
+    const auto& p = x.pose.translation();
+    if (!x.pose.isApprox(Eigen::Isometry3d::Identity()))
+      fmt::format_to(out, ", pose ({:g}, {:g}, {:g}) rotated", p.x(), p.y(), p.z());
+    fmt::format_to(out, ", frame_id {}", x.frame_id.empty() ? x.link : x.frame_id);
+    s += noise_text("angular_velocity", x.angular_velocity) + noise_text("linear_acceleration", x.linear_acceleration) +
+         noise_text("force", x.force) + noise_text("torque", x.torque);
+    if (!x.hardware_block.empty()) fmt::format_to(out, ", in ros2_control '{}'", x.hardware_block);
+    if (x.update_rate_hz > 0) fmt::format_to(out, " (declared {:g} Hz; computed every control step)", x.update_rate_hz);
+    fmt::format_to(out, "\n");
+  }
 }
 
 }  // namespace
@@ -143,6 +180,7 @@ std::string describe(const RobotModel& m) {
                    m.gazebo_plugin_namespace.empty() ? "" : ", robotNamespace " + m.gazebo_plugin_namespace);
   else
     describe_ros2_control(m, s);
+  describe_sensors(m, s);
   if (m.update_rate_hz) fmt::format_to(out, "\nupdate_rate: {:g} Hz (controller_manager)\n", *m.update_rate_hz);
   fmt::format_to(out, "\ncontrollers ({}):\n", m.controllers.size());
   for (const auto& c : m.controllers) fmt::format_to(out, "  {:<24} {}\n", c.name, c.type);

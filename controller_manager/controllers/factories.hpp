@@ -26,5 +26,10 @@ ControllerType ros2_joint_trajectory_controller();  // the interface from comman
 ControllerType diff_drive_controller();
 // gripper_command_t goals on `joint`: position or effort (ROS 1 / gripper_controllers), or ROS 2's parallel gripper.
 ControllerType gripper_action_controller(Interface command, bool parallel);
+// The sensors' readings (controllers/sensor_broadcasters.cpp): ROS 2's broadcasters and ROS 1's controllers.
+ControllerType imu_sensor_broadcaster();
+ControllerType force_torque_sensor_broadcaster();
+ControllerType imu_sensor_controller();
+ControllerType force_torque_sensor_controller();
 
 }  // namespace lcm_control::cm

@@ -21,6 +21,7 @@
 
 #include "bus/messages.hpp"
 #include "controller_manager/controllers/factories.hpp"
+#include "controller_manager/controllers/publish_rate.hpp"
 #include "lcm_control/joint_state_t.hpp"
 
 namespace lcm_control::cm {
@@ -38,8 +39,8 @@ class JointStateController : public Controller {
     const bool franka = flavour_ == Flavour::Franka, ros2 = flavour_ == Flavour::Ros2;
     const char* rate_key = ros2 ? "update_rate" : "publish_rate";
     if (!ros2 || p.has(rate_key)) {
-      rate_ = p.number(rate_key);
-      if (rate_ <= 0) throw p.error(rate_key, fmt::format("{} Hz: must be > 0", rate_));
+      rate_.hz = p.number(rate_key);
+      if (rate_.hz <= 0) throw p.error(rate_key, fmt::format("{} Hz: must be > 0", rate_.hz));
     }
     const char* joints_key = franka ? "joint_names" : "joints";
     if (franka) {
@@ -104,18 +105,10 @@ class JointStateController : public Controller {
     pub_ = ctx.endpoints().publisher<joint_state_t>(ctx.root_channel(channels::kJointStates));
   }
 
-  void starting(const Time& now) override {
-    if (rate_ > 0) last_ = now.seconds() - 1.001 / rate_;
-  }
+  void starting(const Time& now) override { rate_.start(now.seconds()); }
 
   void update(const Time& now, double) override {
-    if (rate_ > 0) {
-      const double t = now.seconds(), dt = 1.0 / rate_;
-      if (t < last_) last_ = t - 1.001 * dt;
-      if (!(last_ + dt < t)) return;
-      last_ += dt;
-      if (t - last_ > dt) last_ = t;  // fell behind (time jump, slow loop): no burst to catch up
-    }
+    if (!rate_.due(now.seconds())) return;
     msg_.utime = now.utime;
     size_t k = 0;
     for (const JointData* j : joints_) {
@@ -182,7 +175,7 @@ class JointStateController : public Controller {
   };
   Flavour flavour_;
   std::array<bool, 3> show_{true, true, true};  // position, velocity, effort published (else NaN)
-  double rate_ = 0, last_ = 0;                  // rate 0: every cycle
+  PublishRate rate_;
   std::vector<const JointData*> joints_;
   std::vector<MimicJoint> mimics_;
   std::vector<Extra> extra_;

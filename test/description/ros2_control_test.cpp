@@ -290,7 +290,7 @@ TEST(Ros2Control, MimicTrueWithoutAUrdfMimicIsRefused) {
                                  l.path, line_of(l.text, "<joint name=\"joint2\" mimic")));
 }
 
-TEST(Ros2Control, ImuSensorIsReadKeptAndNotedAsNotYetSimulated) {
+TEST(Ros2Control, ImuSensorIsReadAndPlacedOnItsFrameIdLink) {
   const Loaded l = load(R"(
   <ros2_control name="GazeboSimSystem" type="system">
     <hardware><plugin>gz_ros2_control/GazeboSimSystem</plugin></hardware>
@@ -311,10 +311,13 @@ TEST(Ros2Control, ImuSensorIsReadKeptAndNotedAsNotYetSimulated) {
   ASSERT_EQ(b.sensors[0].state_interfaces.size(), 10u);
   EXPECT_EQ(b.sensors[0].state_interfaces[3].name, "orientation.w");
   EXPECT_EQ(b.sensors[0].params, (Ros2Params{{"frame_id", "tool"}}));
-  EXPECT_EQ(l.model->notes, std::vector<std::string>{fmt::format(
-                                "{}:{}: ros2_control 'GazeboSimSystem': sensor 'base_imu' (10 state interfaces) is read "
-                                "but not yet simulated",
-                                l.path, line_of(l.text, "<sensor name=\"base_imu\">"))});
+  EXPECT_TRUE(l.model->notes.empty()) << lines(l.model->notes);
+  ASSERT_EQ(l.model->sensors.size(), 1u);  // no <gazebo><sensor name="base_imu">: frame_id places it
+  const SensorSpec& s = l.model->sensors[0];
+  EXPECT_EQ(s.kind, SensorKind::Imu);
+  EXPECT_EQ(s.link, "tool");
+  EXPECT_EQ(s.hardware_block, "GazeboSimSystem");
+  EXPECT_TRUE(s.simulated()) << s.not_simulated;
 }
 
 TEST(Ros2Control, GpioIsReadKeptAndNotedAsNotYetSimulated) {

@@ -1,5 +1,5 @@
 // The real-time path allocates nothing: a control step (actuators + Bullet) and
-// handing commands to the actuators, counted through operator new and Bullet's
+// handing commands to the actuators, the sensors, counted through operator new and Bullet's
 // allocator hook once the first steps have sized every buffer.
 #include <gtest/gtest.h>
 
@@ -61,6 +61,19 @@ TEST(sim_realtime_path, ControlStepsAllocateNothingOnceWarm) {
     sim.actuators().set_hold_all(false);
     EXPECT_EQ(allocations_during(sim, 500, 2.0), 0) << model.name;
   }
+}
+
+TEST(sim_realtime_path, SensorsAllocateNothing) {
+  btAlignedAllocSetCustom(counted_malloc, counted_free);
+  {
+    Simulation sim(load_robot_model(data("ft_pendulum.urdf"), ""), {});  // force-torque and contact
+    run(sim, 10, {});
+    EXPECT_EQ(allocations_during(sim, 2000, 1.0), 0);
+  }
+  Simulation box(load_robot_model(data("contact_box.urdf"), ""), {}, {}, WorldOptions{true, true});  // imu, contact
+  run(box, 10, {});
+  EXPECT_EQ(allocations_during(box, 2000, 0.0), 0);
+  ASSERT_FALSE(box.sensors()->empty());
 }
 
 TEST(sim_realtime_path, SwitchingCommandInterfacesAllocatesNothing) {
