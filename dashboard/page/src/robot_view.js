@@ -124,6 +124,7 @@ export class RobotView {
         this.world.rotation.x = -Math.PI / 2; // URDF and the base pose are z-up, three.js is y-up
         this.world.add(robot);
         this.robot = robot;
+        this.posed = false;
         if (this.scene) this.scene.add(this.world);
         this.joints = {};
         for (const [name, j] of Object.entries(robot.joints)) {
@@ -162,6 +163,10 @@ export class RobotView {
     names.forEach((n, k) => {
       if (this.robot.joints[n] && Number.isFinite(positions[k])) moved = this.robot.joints[n].setJointValue(positions[k]) || moved;
     });
+    if (!this.posed) {
+      this.posed = true; // framed again as the robot stands (a start pose far from all zeros), unless the user moved
+      if (!this.moved) return this.fit();
+    }
     if (moved) this.invalidate();
   }
 }
