@@ -9,7 +9,7 @@ import { readFileSync } from 'node:fs';
 const moduleUrl = (text) => `data:text/javascript,${encodeURIComponent(text)}`;
 const dom = moduleUrl(readFileSync(process.argv[3], 'utf8'));
 const src = readFileSync(process.argv[2], 'utf8').replace("'./dom.js'", `"${dom}"`);
-const { commandKind, commandable, gripperGoal, commandedValues } = await import(moduleUrl(src));
+const { commandKind, commandable, gripperGoal, commandedValues, setPointValues } = await import(moduleUrl(src));
 
 const controller = (name, type, command_type, command_width, command_quantity, joints, state = 'running') =>
   ({ name, type, state, interface: '', joints, command_type, command_channel: command_type ? 'command' : '',
@@ -53,4 +53,11 @@ assert.equal(commandedValues(arm, 'float64_array_t', { data: [0.1, null] }), nul
 assert.equal(commandedValues(j1, 'float64_t', { data: null }), null);
 assert.equal(commandedValues(j1, 'float64_t', null), null);
 assert.equal(commandedValues(trajectory, 'joint_trajectory_t', { joint_names: ['a', 'b'], points: [] }), null);
+// Before any command, a PID controller's set point (controller_state_t on <name>/state) for its one joint.
+const state = { controller: 'pid', joint: 'j2', set_point: 0.7, process_value: 0.69 };
+assert.deepEqual(setPointValues(listed[3], 'controller_state_t', state), [0.7]);
+assert.equal(setPointValues(listed[3], 'controller_state_t', { ...state, joint: 'j1' }), null);
+assert.equal(setPointValues(listed[3], 'controller_state_t', { ...state, set_point: null }), null);
+assert.equal(setPointValues(arm, 'controller_state_t', { ...state, joint: 'a' }), null);
+assert.equal(setPointValues(listed[3], 'float64_t', { data: 0.7 }), null);
 console.log('commands.js: ok');

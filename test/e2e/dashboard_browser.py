@@ -10,7 +10,8 @@ screenshot.
 --robot tall_arm (test/e2e/data: a 2.1 m arm like rrbot, effort controllers with PIDs, namespace tall_arm) checks that
 the whole arm is in view and the fit button brings it back, that the gains panel opens on a joint with gains (a
 controller's, not sim_server's) listing p, i, d before the clamps, that a slider follows turret-cmd within 0.5 s,
-that no name is cut without a tooltip, and that a browser without WebGL says so in the 3D view while the rest works.
+that no name is cut without a tooltip, and that a browser without WebGL says so in the 3D view while the rest works
+(its sliders starting at the set points the controllers report).
 Exits 77 (skipped) where Chromium or chromedriver is not installed (scripts/setup installs both).
 """
 import argparse
@@ -405,8 +406,12 @@ def tall_arm(wd, a, url, ns, page, chromium, work):
         assert "WebGL" in text and not plain.js("return !!document.querySelector('#view canvas')"), text
         wait_for("the controllers table without WebGL", lambda: len(plain.js(
             "return [...document.querySelectorAll('#controllers tbody tr')]")) == 3, 20)
-        wait_for("joint1's slider without WebGL", lambda: plain.js(
-            "return !!document.getElementById('slider-joint1_position_controller-joint1')"), 20)
+        # A page opened after the commands starts its sliders at the controllers' set points (<name>/state).
+        starts = wait_for("the sliders at the set points turret-cmd gave", lambda: (lambda v: v == ["0.500", "-0.300"]
+                          and v)(plain.js("return ['joint1', 'joint2'].map(j => document.getElementById("
+                                          "`slider-${j}_position_controller-${j}`)?.parentElement.querySelector("
+                                          "'output').textContent)")), 20)
+        print("a new page's sliders start at", starts)
         assert plain.js("return document.getElementById('view-fit').hidden"), "a fit button without a 3D view"
     finally:
         plain.quit()

@@ -5,7 +5,8 @@ import { el, nameEl, shown } from './dom.js';
 // type declares (the controller manager's list): numbers, one (float64_t) or one per joint (float64_array_t), each a
 // position, velocity or effort set point; or a gripper goal (gripper_command_t, a GripperActionController): a slider
 // for its joint's position that sends one goal when released, with the goal's max_effort. The sliders follow what
-// the controller is commanded, by this page or any other tool (turret-cmd, a script), as heard on its channel.
+// the controller is commanded, by this page or any other tool (turret-cmd, a script), as heard on its channel; until
+// a command is heard they start at the set point a controller with a PID reports on <name>/state.
 
 // The set point a controller's sliders give ("position", "velocity", "effort", or "value" when its type does not
 // say; "gripper" for a gripper goal), or null when it does not take one number per joint.
@@ -36,6 +37,13 @@ export function commandedValues(c, type, msg) {
   return Array.isArray(values) && values.length === c.joints.length && values.every(Number.isFinite) ? values : null;
 }
 
+// The values a controller_state_t heard on <c.name>/state sets a single-joint controller's slider to (its set
+// point), or null.
+export function setPointValues(c, type, msg) {
+  if (type !== 'controller_state_t' || !msg || c.joints.length !== 1 || msg.joint !== c.joints[0]) return null;
+  return commandKind(c) && Number.isFinite(msg.set_point) ? [msg.set_point] : null;
+}
+
 // How long after the user last moved a controller's slider the page leaves it alone: the bus echoes the page's own
 // commands late, and an older one would pull the slider back under the user's hand.
 export const kHandsOffMs = 300;
@@ -58,6 +66,8 @@ export class Commands {
     this.values = {}; // controller -> values
     this.lastSend = {};
     this.sliders = {}; // "<controller>/<command channel>" -> {c, values, rows: [{slider, out, digits}], touched}
+    this.states = {}; // "<controller>/state" -> the same, until a command is heard
+    this.heard = new Set(); // controllers whose command channel has spoken
   }
 
   setJoints(joints) {
@@ -75,6 +85,7 @@ export class Commands {
     this.key = key;
     this.el.replaceChildren(...(shown.length ? [] : [el('p', { class: 'hint' }, 'no running position, velocity or effort controller')]));
     this.sliders = {};
+    this.states = {};
     for (const c of shown) this.el.appendChild(this.block(c));
   }
 
@@ -87,6 +98,7 @@ export class Commands {
     div.append(el('h3', { title: c.name }, c.name, ' ', el('small', {}, `${kind} → ${channel}`)));
     const values = (this.values[c.name] ||= c.joints.map(() => 0));
     const follow = (this.sliders[channel] = { c, values, rows: [], touched: -Infinity });
+    if (!this.heard.has(c.name)) this.states[`${c.name}/state`] = follow;
     if (kind === 'gripper') return this.gripperBlock(c, div, channel, values, follow);
     c.joints.forEach((joint, k) => {
       const [lo, hi] = range(kind, this.joints[joint]);
@@ -184,12 +196,18 @@ export class Commands {
   }
 
   // A message on the bus: a command a controller with sliders takes moves them there (unless the user is moving
-  // them). The time it did so is the slider's data-followed-at (ms since the epoch).
+  // them), as does its set point before any command. The time it did so is the slider's data-followed-at (ms since
+  // the epoch).
   message(channel, type, msg) {
-    const follow = this.sliders[channel];
+    const command = this.sliders[channel];
+    const follow = command || this.states[channel];
     if (!follow || performance.now() - follow.touched < kHandsOffMs) return;
-    const values = commandedValues(follow.c, type, msg);
+    const values = command ? commandedValues(follow.c, type, msg) : setPointValues(follow.c, type, msg);
     if (!values) return;
+    if (command) {
+      this.heard.add(follow.c.name);
+      delete this.states[`${follow.c.name}/state`];
+    }
     follow.rows.forEach(({ slider, out, digits }, k) => {
       follow.values[k] = values[k];
       slider.value = values[k];
