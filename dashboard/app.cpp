@@ -81,10 +81,10 @@ class Dashboard {
     bus_.subscribe(pattern, &Dashboard::on_any, this, Bus::On::Shared, 10000);
   }
 
-  // What a browser gets first: the bus it looks at, its URDF, the messages' schema (lcmtypes/), and the controllers
-  // as last listed.
+  // What a browser gets first: the bus it looks at, its URDF, the messages' schema (lcmtypes/, each type's fields in
+  // their order: the page lists pid_gains_t's p, i, d before the clamps), and the controllers as last listed.
   void hello(int conn) {
-    json h = {{"kind", "hello"}, {"namespace", bus_.ns()}, {"lcm_url", bus_.url()}, {"read_only", o_.read_only},
+    nlohmann::ordered_json h = {{"kind", "hello"}, {"namespace", bus_.ns()}, {"lcm_url", bus_.url()}, {"read_only", o_.read_only},
               {"rate_hz", o_.rate_hz}, {"urdf", nullptr}, {"schema", tools::schema_json()}};
     if (!o_.urdf.empty()) h["urdf"] = "/robot/" + served_urdf_name(o_.urdf);
     web_.send(conn, dump(h));

@@ -1,14 +1,15 @@
 // The page's command panel (dashboard/page/src/commands.js) gives sliders from what a controller's type declares in
 // the controller manager's list (command_type, command_width, command_quantity), never from its type's name: a type
 // the page has never heard of gets them, a built-in one that takes no numbers does not. Run by ctest with node:
-// node commands_test.mjs <path of commands.js> <path of dom.js>.
+// node commands_test.mjs <path of commands.js> <path of dom.js>. The sliders follow the commands heard on the
+// controller's channel (commandedValues): only a message of the type the controller takes, one finite number a joint.
 import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 
 const moduleUrl = (text) => `data:text/javascript,${encodeURIComponent(text)}`;
 const dom = moduleUrl(readFileSync(process.argv[3], 'utf8'));
 const src = readFileSync(process.argv[2], 'utf8').replace("'./dom.js'", `"${dom}"`);
-const { commandKind, commandable, gripperGoal } = await import(moduleUrl(src));
+const { commandKind, commandable, gripperGoal, commandedValues, setPointValues } = await import(moduleUrl(src));
 
 const controller = (name, type, command_type, command_width, command_quantity, joints, state = 'running') =>
   ({ name, type, state, interface: '', joints, command_type, command_channel: command_type ? 'command' : '',
@@ -40,4 +41,23 @@ assert.deepEqual(gripperGoal(0.02, NaN, 8), { goal_id: 8, position: 0.02, max_ef
 assert.equal(commandKind(controller('odd', 'x/Y', 'float64_array_t', 2, 'position', ['a', 'b', 'c'])), null);
 assert.equal(commandKind(controller('old', 'position_controllers/JointPositionController', undefined, undefined,
   undefined, ['j1'])), null);
+
+const [, j1, arm, , trajectory, , , , , hand] = listed;
+assert.deepEqual(commandedValues(j1, 'float64_t', { utime: 3, data: 0.5 }), [0.5]);
+assert.deepEqual(commandedValues(arm, 'float64_array_t', { data: [0.1, -0.2] }), [0.1, -0.2]);
+assert.deepEqual(commandedValues(hand, 'gripper_command_t', { goal_id: 4, position: 0.02, max_effort: 0 }), [0.02]);
+// Not what the controller takes: another type, another width, a NaN (null in the JSON), a trajectory.
+assert.equal(commandedValues(j1, 'float64_array_t', { data: [0.5] }), null);
+assert.equal(commandedValues(arm, 'float64_array_t', { data: [0.1] }), null);
+assert.equal(commandedValues(arm, 'float64_array_t', { data: [0.1, null] }), null);
+assert.equal(commandedValues(j1, 'float64_t', { data: null }), null);
+assert.equal(commandedValues(j1, 'float64_t', null), null);
+assert.equal(commandedValues(trajectory, 'joint_trajectory_t', { joint_names: ['a', 'b'], points: [] }), null);
+// Before any command, a PID controller's set point (controller_state_t on <name>/state) for its one joint.
+const state = { controller: 'pid', joint: 'j2', set_point: 0.7, process_value: 0.69 };
+assert.deepEqual(setPointValues(listed[3], 'controller_state_t', state), [0.7]);
+assert.equal(setPointValues(listed[3], 'controller_state_t', { ...state, joint: 'j1' }), null);
+assert.equal(setPointValues(listed[3], 'controller_state_t', { ...state, set_point: null }), null);
+assert.equal(setPointValues(arm, 'controller_state_t', { ...state, joint: 'a' }), null);
+assert.equal(setPointValues(listed[3], 'float64_t', { data: 0.7 }), null);
 console.log('commands.js: ok');

@@ -1,10 +1,17 @@
 #!/usr/bin/env python3
-"""The dashboard in a real browser: turret_bot under launch (real time), the dashboard server, and headless
+"""The dashboard in a real browser: a robot under launch (real time), the dashboard server, and headless
 Chromium driven through chromedriver's WebDriver protocol (HTTP + JSON, the standard library only).
 
-Checks that the page lists the controllers, that moving j1's slider to 0.5 brings j1 there on joint_states
-(read back with `bus echo`, not through the page), that a clicked field's plot grows, that a bad expression is
-refused with the reason, that the banner says the bus is silent once the robot stops, and saves a screenshot.
+--robot turret_bot (the default) checks that the page lists the controllers, that the whole robot is in view, that
+moving j1's slider to 0.5 brings j1 there on joint_states (read back with `bus echo`, not through the page), that
+the slider follows a command turret-cmd sends within 0.5 s, that a clicked field's plot grows, that a bad
+expression is refused with the reason, that the banner says the bus is silent once the robot stops, and saves a
+screenshot.
+--robot tall_arm (test/e2e/data: a 2.1 m arm like rrbot, effort controllers with PIDs, namespace tall_arm) checks that
+the whole arm is in view and the fit button brings it back, that the gains panel opens on a joint with gains (a
+controller's, not sim_server's) listing p, i, d before the clamps, that a slider follows turret-cmd within 0.5 s,
+that no name is cut without a tooltip, and that a browser without WebGL says so in the 3D view while the rest works
+(its sliders starting at the set points the controllers report).
 Exits 77 (skipped) where Chromium or chromedriver is not installed (scripts/setup installs both).
 """
 import argparse
@@ -47,12 +54,13 @@ class WebDriver:
         except urllib.error.HTTPError as e:
             raise RuntimeError(f"WebDriver {method} {path}: {e.code} {e.read()[:400]!r}") from None
 
-    def start(self, chromium, profile):
+    def start(self, chromium, profile, webgl=True):
         # The background-networking flags keep Chromium off the (closed) network: only the page on loopback.
-        args = ["--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--window-size=1500,950",
-                "--use-angle=swiftshader", "--enable-unsafe-swiftshader", "--no-first-run", "--disable-quic",
-                "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                f"--user-data-dir={profile}"]
+        gl = (["--use-angle=swiftshader", "--enable-unsafe-swiftshader"] if webgl
+              else ["--disable-webgl", "--disable-3d-apis"])
+        args = ["--headless=new", "--no-sandbox", "--disable-dev-shm-usage", "--window-size=1500,950", *gl,
+                "--no-first-run", "--disable-quic", "--disable-background-networking", "--disable-component-update",
+                "--disable-sync", f"--user-data-dir={profile}"]
         caps = {"capabilities": {"alwaysMatch": {"browserName": "chrome", "goog:chromeOptions": {
             "binary": chromium, "args": args}}}}
         self.session = self.call("POST", "/session", caps, timeout=60)["sessionId"]
@@ -99,10 +107,52 @@ def joint_positions(bin_dir, url):
     return dict(zip([n.strip() for n in names.group(1).split(",")], [float(x) for x in pos.group(1).split(",")]))
 
 
+def whole_robot_in_view(wd, what):
+    """The robot's bounding box, projected by the page's camera, on the canvas (and not a speck in it)."""
+    box = wait_for(f"{what} in view", lambda: (lambda b: b and b["inside"] and b)(
+        wd.js("return window.dashboard.view.projectedBox()")), 10)
+    print(f"{what}: bounding box on the {box['width']}x{box['height']} canvas at x {box['left']:.0f}..{box['right']:.0f}"
+          f", y {box['top']:.0f}..{box['bottom']:.0f}")
+    assert max((box["right"] - box["left"]) / box["width"], (box["bottom"] - box["top"]) / box["height"]) > 0.4, box
+    return box
+
+
+def slider_follows(wd, bin_dir, url, controller, joint, value, flags=()):
+    """turret-cmd commands the joint from a terminal; the page's slider shows the value within 0.5 s of its exit."""
+    slider = f"slider-{controller}-{joint}"
+    wait_for(f"{slider}", lambda: wd.js("return !!document.getElementById(arguments[0])", slider), 20)
+    cmd = subprocess.run([os.path.join(bin_dir, "turret-cmd"), controller, str(value), "--lcm-url", url, *flags],
+                         capture_output=True, text=True, timeout=20)
+    sent = time.time()
+    assert cmd.returncode == 0, (cmd.stdout, cmd.stderr)
+    shown = f"{value:.3f}"
+    followed_ms = wait_for(f"{slider} at {shown}", lambda: wd.js(
+        "const s = document.getElementById(arguments[0]); const out = s.parentElement.querySelector('output');"
+        "return out.textContent === arguments[1] && Number(s.dataset.followedAt)", slider, shown), 5)
+    lag = followed_ms / 1000 - sent
+    print(f"turret-cmd {controller} {value}: the slider showed {shown} {lag * 1000:.0f} ms after turret-cmd ended")
+    assert lag < 0.5, f"the slider followed {lag:.2f} s after the command"
+
+
+def no_name_cut_without_tooltip(wd):
+    """Every name the layout cuts (scrollWidth past its box) has a title; the selects show theirs in a title."""
+    cut = wd.js("""
+        const names = '.channel-head .name, .channel-head .type, .field .label, .slider .joint, #controllers td';
+        const all = [...document.querySelectorAll(names)].filter(e => e.textContent.trim() &&
+                                                                 e.scrollWidth > e.clientWidth + 1);
+        return {cut: all.map(e => e.textContent), untitled: all.filter(e => !e.title).map(e => e.textContent),
+                selects: [...document.querySelectorAll('#gains select')].map(e => e.value + '=' + e.title)};""")
+    print(f"names cut by the layout: {len(cut['cut'])} ({', '.join(cut['cut'][:4])}, ...), without a tooltip: "
+          f"{cut['untitled']}; selects: {cut['selects']}")
+    assert not cut["untitled"], cut
+    assert all(v.split("=")[0] == v.split("=")[1] for v in cut["selects"]), cut
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bin-dir", required=True)
     ap.add_argument("--source-dir", required=True)
+    ap.add_argument("--robot", choices=["turret_bot", "tall_arm"], default="turret_bot")
     ap.add_argument("--screenshot", help="where to save the page (default: the test's temporary folder)")
     a = ap.parse_args()
 
@@ -130,12 +180,14 @@ def main():
 
     wd = None
     try:
-        launch = start([os.path.join(a.bin_dir, "launch"), os.path.join(a.source_dir, "config/turret_bot.launch.yaml"),
+        files = os.path.join(a.source_dir, "config" if a.robot == "turret_bot" else "test/e2e/data")
+        ns = [] if a.robot == "turret_bot" else ["--namespace", a.robot]
+        launch = start([os.path.join(a.bin_dir, "launch"), os.path.join(files, f"{a.robot}.launch.yaml"),
                         "--lcm-url", url], "launch.log")
         wait_for("launch up", lambda: "[launch] up:" in log("launch.log") or launch.poll() is not None, 60)
         assert launch.poll() is None, "launch ended:\n" + log("launch.log")
-        dash = start([os.path.join(a.bin_dir, "dashboard"), "--lcm-url", url, "--port", "0",
-                      "--urdf", os.path.join(a.source_dir, "config/turret_bot.urdf")], "dashboard.log")
+        dash = start([os.path.join(a.bin_dir, "dashboard"), "--lcm-url", url, "--port", "0", *ns,
+                      "--urdf", os.path.join(files, f"{a.robot}.urdf")], "dashboard.log")
         page = wait_for("the dashboard's URL", lambda: re.search(r"http://127\.0\.0\.1:\d+/", log("dashboard.log"))
                         or dash.poll() is not None, 20)
         assert dash.poll() is None, "dashboard ended:\n" + log("dashboard.log")
@@ -148,6 +200,11 @@ def main():
         wait_for("chromedriver", lambda: _ready(wd), 20)
         wd.start(chromium, os.path.join(work, "profile"))
         wd.go(page)
+        if a.robot == "tall_arm":
+            tall_arm(wd, a, url, ns, page, chromium, work)
+            wd.screenshot(a.screenshot or os.path.join(work, "dashboard.png"))
+            print("dashboard_browser tall_arm: ok")
+            return 0
 
         rows = wait_for("the controllers table", lambda: wd.js(
             "return [...document.querySelectorAll('#controllers tbody tr')].map(r => r.dataset.controller + ':' + "
@@ -157,6 +214,7 @@ def main():
         note = wait_for("the robot model", lambda: wd.js(
             "return window.dashboard && document.getElementById('view-note').textContent"), 20)
         assert "turret_bot" in note, note
+        whole_robot_in_view(wd, "turret_bot")
         # Both loops' 1 Hz statistics, with the period error p99 they publish in real time.
         figures = wait_for("both loops' period error p99", lambda: (lambda t: t if t.count("error p99") >= 2 else None)(
             wd.js("return document.getElementById('stats').textContent")), 20)
@@ -189,6 +247,8 @@ def main():
         reached = wait_for("j1 at 0.5 on joint_states", lambda: (lambda p: p and abs(p.get("j1", 9) - 0.5) < 0.01
                                                                  and p)(joint_positions(a.bin_dir, url)), 15)
         print(f"j1 reached {reached['j1']:.4f} on joint_states {time.monotonic() - t0:.1f} s after the slider moved")
+        slider_follows(wd, a.bin_dir, url, "j1_controller", "j1", 0.25)
+        no_name_cut_without_tooltip(wd)
 
         # A plot: open joint_states and click position[j2] as a user would.
         wd.js("document.querySelector('.channel[data-channel=\"joint_states\"] .channel-head').click()")
@@ -300,6 +360,61 @@ def main():
                 os.killpg(p.pid, signal.SIGKILL)
                 p.wait()
         shutil.rmtree(work, ignore_errors=True)
+
+
+def tall_arm(wd, a, url, ns, page, chromium, work):
+    rows = wait_for("the controllers table", lambda: wd.js(
+        "return [...document.querySelectorAll('#controllers tbody tr')].map(r => r.dataset.controller + ':' + "
+        "r.children[3].textContent)"), 20)
+    print("controllers:", rows)
+    assert set(rows) == {"joint_state_controller:running", "joint1_position_controller:running",
+                         "joint2_position_controller:running"}, rows
+    note = wait_for("the robot model", lambda: wd.js("return document.getElementById('view-note').textContent"), 20)
+    assert "tall_arm" in note, note
+    whole_robot_in_view(wd, "tall_arm")
+    # Turned and zoomed in by hand, the arm is cut; the fit button frames it again.
+    wd.js("const v = window.dashboard.view; v.camera.position.sub(v.controls.target).multiplyScalar(0.25)"
+          ".add(v.controls.target); v.controls.update(); v.moved = true;")
+    close = wd.js("return window.dashboard.view.projectedBox()")
+    print(f"zoomed in: box y {close['top']:.0f}..{close['bottom']:.0f} on a canvas {close['height']} high")
+    assert not close["inside"], close
+    wd.js("document.getElementById('view-fit').click()")
+    whole_robot_in_view(wd, "tall_arm after the fit button")
+
+    # Gains: sim_server has none for these effort joints; the panel opens on the first controller's PID.
+    shown = wait_for("a joint with gains in the panel", lambda: (lambda v: v.endswith("=100") and v)(wd.js(
+        "return document.getElementById('gains-owner').value + '/' + document.getElementById('gains-joint').value"
+        " + '=' + document.getElementById('gains-p').value")), 15)
+    labels = wd.js("return [...document.querySelectorAll('.gains-fields label')].map(l => l.textContent.trim())")
+    message = wd.js("return document.getElementById('gains-message').textContent")
+    print(f"gains shown: {shown} ({message}); fields: {labels}")
+    assert shown == "joint1_position_controller/joint1=100", shown
+    assert labels[:5] == ["p", "i", "d", "i_clamp_min", "i_clamp_max"], labels
+
+    slider_follows(wd, a.bin_dir, url, "joint1_position_controller", "joint1", 0.5, ns)
+    slider_follows(wd, a.bin_dir, url, "joint2_position_controller", "joint2", -0.3, ns)
+    no_name_cut_without_tooltip(wd)
+
+    # A browser without WebGL: the 3D view says so; the controllers and the sliders (from the URDF) still come.
+    plain = WebDriver(wd.base.rsplit(":", 1)[1])
+    plain.start(chromium, os.path.join(work, "profile-no-webgl"), webgl=False)
+    try:
+        plain.go(page)
+        text = wait_for("the no-WebGL message", lambda: plain.js(
+            "const m = document.querySelector('#view .view-message'); return m && m.textContent"), 20)
+        print("without WebGL:", text)
+        assert "WebGL" in text and not plain.js("return !!document.querySelector('#view canvas')"), text
+        wait_for("the controllers table without WebGL", lambda: len(plain.js(
+            "return [...document.querySelectorAll('#controllers tbody tr')]")) == 3, 20)
+        # A page opened after the commands starts its sliders at the controllers' set points (<name>/state).
+        starts = wait_for("the sliders at the set points turret-cmd gave", lambda: (lambda v: v == ["0.500", "-0.300"]
+                          and v)(plain.js("return ['joint1', 'joint2'].map(j => document.getElementById("
+                                          "`slider-${j}_position_controller-${j}`)?.parentElement.querySelector("
+                                          "'output').textContent)")), 20)
+        print("a new page's sliders start at", starts)
+        assert plain.js("return document.getElementById('view-fit').hidden"), "a fit button without a 3D view"
+    finally:
+        plain.quit()
 
 
 def _ready(wd):

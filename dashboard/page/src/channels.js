@@ -1,6 +1,6 @@
 // Every channel on the bus with its type, rate and newest numbers (lcm-spy in the page); a click on a number plots it.
 import { numericFields } from './fields.js';
-import { el } from './dom.js';
+import { el, nameEl } from './dom.js';
 
 export class Channels {
   constructor(el, filter, plots) {
@@ -46,7 +46,7 @@ export class Channels {
   }
 
   renderHead(channel, r) {
-    r.head.replaceChildren(el('span', { class: 'name' }, channel), el('span', { class: 'type' }, r.type),
+    r.head.replaceChildren(nameEl('span', 'name', channel), nameEl('span', 'type', r.type),
       el('span', { class: 'hz' }, `${r.hz.toFixed(1)} Hz`));
   }
 
@@ -92,7 +92,7 @@ export class Channels {
         const line = document.createElement('div');
         line.className = 'field';
         line.dataset.path = f.path;
-        line.append(el('span', { class: 'label' }, f.label), el('span', { class: 'value' }));
+        line.append(nameEl('span', 'label', f.label), el('span', { class: 'value' }));
         line.onclick = () => {
           this.plots.toggle(channel, f.path, f.label);
           line.classList.toggle('plotted', this.plots.has(channel, f.path));

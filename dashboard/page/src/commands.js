@@ -1,10 +1,12 @@
-import { el, shown } from './dom.js';
+import { el, nameEl, shown } from './dom.js';
 
 // Command channels of the running controllers (rqt's message publisher): a slider per joint within its URDF limits,
 // and an expression in i and t streamed by the server at a rate, like turret-cmd. What a controller takes is what its
 // type declares (the controller manager's list): numbers, one (float64_t) or one per joint (float64_array_t), each a
 // position, velocity or effort set point; or a gripper goal (gripper_command_t, a GripperActionController): a slider
-// for its joint's position that sends one goal when released, with the goal's max_effort.
+// for its joint's position that sends one goal when released, with the goal's max_effort. The sliders follow what
+// the controller is commanded, by this page or any other tool (turret-cmd, a script), as heard on its channel; until
+// a command is heard they start at the set point a controller with a PID reports on <name>/state.
 
 // The set point a controller's sliders give ("position", "velocity", "effort", or "value" when its type does not
 // say; "gripper" for a gripper goal), or null when it does not take one number per joint.
@@ -26,6 +28,26 @@ export function gripperGoal(position, maxEffort, goalId) {
   return { goal_id: goalId, position, max_effort: maxEffort > 0 ? maxEffort : 0 };
 }
 
+// The values a message heard on controller c's command channel sets its sliders to (one per joint), or null when it
+// is not a command c takes.
+export function commandedValues(c, type, msg) {
+  const kind = commandKind(c);
+  if (!kind || type !== c.command_type || !msg) return null;
+  const values = kind === 'gripper' ? [msg.position] : type === 'float64_t' ? [msg.data] : msg.data;
+  return Array.isArray(values) && values.length === c.joints.length && values.every(Number.isFinite) ? values : null;
+}
+
+// The values a controller_state_t heard on <c.name>/state sets a single-joint controller's slider to (its set
+// point), or null.
+export function setPointValues(c, type, msg) {
+  if (type !== 'controller_state_t' || !msg || c.joints.length !== 1 || msg.joint !== c.joints[0]) return null;
+  return commandKind(c) && Number.isFinite(msg.set_point) ? [msg.set_point] : null;
+}
+
+// How long after the user last moved a controller's slider the page leaves it alone: the bus echoes the page's own
+// commands late, and an older one would pull the slider back under the user's hand.
+export const kHandsOffMs = 300;
+
 function range(kind, j) {
   if (kind === 'position' || kind === 'gripper') {
     if (!j || j.type === 'continuous' || !(j.upper > j.lower)) return [-Math.PI, Math.PI];
@@ -43,6 +65,9 @@ export class Commands {
     this.key = '';
     this.values = {}; // controller -> values
     this.lastSend = {};
+    this.sliders = {}; // "<controller>/<command channel>" -> {c, values, rows: [{slider, out, digits}], touched}
+    this.states = {}; // "<controller>/state" -> the same, until a command is heard
+    this.heard = new Set(); // controllers whose command channel has spoken
   }
 
   setJoints(joints) {
@@ -59,6 +84,8 @@ export class Commands {
     if (key === this.key) return;
     this.key = key;
     this.el.replaceChildren(...(shown.length ? [] : [el('p', { class: 'hint' }, 'no running position, velocity or effort controller')]));
+    this.sliders = {};
+    this.states = {};
     for (const c of shown) this.el.appendChild(this.block(c));
   }
 
@@ -68,9 +95,11 @@ export class Commands {
     const channel = `${c.name}/${c.command_channel || 'command'}`;
     const div = document.createElement('div');
     div.className = 'command';
-    div.append(el('h3', {}, c.name, ' ', el('small', {}, `${kind} → ${channel}`)));
+    div.append(el('h3', { title: c.name }, c.name, ' ', el('small', {}, `${kind} → ${channel}`)));
     const values = (this.values[c.name] ||= c.joints.map(() => 0));
-    if (kind === 'gripper') return this.gripperBlock(c, div, channel, values);
+    const follow = (this.sliders[channel] = { c, values, rows: [], touched: -Infinity });
+    if (!this.heard.has(c.name)) this.states[`${c.name}/state`] = follow;
+    if (kind === 'gripper') return this.gripperBlock(c, div, channel, values, follow);
     c.joints.forEach((joint, k) => {
       const [lo, hi] = range(kind, this.joints[joint]);
       const row = document.createElement('label');
@@ -84,13 +113,15 @@ export class Commands {
       slider.value = Math.min(hi, Math.max(lo, values[k]));
       const out = document.createElement('output');
       out.textContent = Number(slider.value).toFixed(3);
+      follow.rows.push({ slider, out, digits: 3 });
       slider.oninput = () => {
+        follow.touched = performance.now();
         values[k] = Number(slider.value);
         out.textContent = values[k].toFixed(3);
         this.send(c.name, channel, group, values, false);
       };
       slider.onchange = () => this.send(c.name, channel, group, values, true);
-      row.append(`${joint} `, slider, out);
+      row.append(nameEl('span', 'joint', joint), slider, out);
       div.appendChild(row);
     });
     const expr = document.createElement('div');
@@ -127,7 +158,7 @@ export class Commands {
   }
 
   // One slider for the gripper joint: a goal when it is released (not while it moves: each goal preempts the last).
-  gripperBlock(c, div, channel, values) {
+  gripperBlock(c, div, channel, values, follow) {
     const joint = c.joints[0];
     const [lo, hi] = range('gripper', this.joints[joint]);
     const row = document.createElement('label');
@@ -147,16 +178,42 @@ export class Commands {
     effort.value = 0;
     effort.id = `effort-${c.name}`;
     effort.title = "max_effort of the goal (0: the controller's max_effort, else the URDF's limit)";
-    slider.oninput = () => { out.textContent = Number(slider.value).toFixed(4); };
+    follow.rows.push({ slider, out, digits: 4 });
+    slider.oninput = () => {
+      follow.touched = performance.now();
+      out.textContent = Number(slider.value).toFixed(4);
+    };
     slider.onchange = () => {
+      follow.touched = performance.now();
       values[0] = Number(slider.value);
       this.conn.send({ op: 'publish', channel, type: 'gripper_command_t',
         msg: gripperGoal(values[0], Number(effort.value), Date.now()) });
     };
-    row.append(`${joint} `, slider, out, ' max effort ', effort);
+    row.append(nameEl('span', 'joint', joint), slider, out, ' max effort ', effort);
     div.append(row, el('p', { class: 'hint' },
       `a goal on release; its result on ${c.name}/result (the gripper tool waits for it: gripper ${c.name} --position X)`));
     return div;
+  }
+
+  // A message on the bus: a command a controller with sliders takes moves them there (unless the user is moving
+  // them), as does its set point before any command. The time it did so is the slider's data-followed-at (ms since
+  // the epoch).
+  message(channel, type, msg) {
+    const command = this.sliders[channel];
+    const follow = command || this.states[channel];
+    if (!follow || performance.now() - follow.touched < kHandsOffMs) return;
+    const values = command ? commandedValues(follow.c, type, msg) : setPointValues(follow.c, type, msg);
+    if (!values) return;
+    if (command) {
+      this.heard.add(follow.c.name);
+      delete this.states[`${follow.c.name}/state`];
+    }
+    follow.rows.forEach(({ slider, out, digits }, k) => {
+      follow.values[k] = values[k];
+      slider.value = values[k];
+      out.textContent = values[k].toFixed(digits);
+      slider.dataset.followedAt = Date.now();
+    });
   }
 
   // Slider moves at most 30 a second per controller; the final value (change) always goes.

@@ -1,5 +1,5 @@
 // The controller manager's controllers (rqt_controller_manager): state, claimed joints, start/stop, a switch.
-import { shown } from './dom.js';
+import { kTitleChars, shown } from './dom.js';
 
 export class Controllers {
   constructor(conn, table, switchButton, message, loadName, loadButton) {
@@ -54,7 +54,7 @@ export class Controllers {
       if (!running) {
         const unload = document.createElement('button');
         unload.textContent = '✕';
-        unload.title = `unload ${c.name}`;
+        unload.title = shown(`unload ${c.name}`);
         unload.onclick = () => this.call({ call: 'unload', names: [c.name] });
         actions.append(unload);
       }
@@ -65,7 +65,7 @@ export class Controllers {
         const td = document.createElement('td');
         if (typeof cell === 'string') td.textContent = shown(cell);
         else td.appendChild(cell);
-        td.title = cell === type ? c.type : td.textContent;
+        td.title = shown(cell === type ? c.type : typeof cell === 'string' ? cell : td.textContent, kTitleChars);
         tr.appendChild(td);
       }
       this.body.appendChild(tr);

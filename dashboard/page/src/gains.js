@@ -1,18 +1,29 @@
-import { options, shown } from './dom.js';
+import { kTitleChars, options, shown } from './dom.js';
 import { fieldsOfType } from './fields.js';
 
 // PID gains of a joint while it runs (rqt_reconfigure, the tune tool): read from the owner, edit, apply; the owner
 // (sim_server for gazebo_ros_control/pid_gains, or a controller with its own PID) confirms on <owner>/gains.
-// The inputs are pid_gains_t's numbers (its doubles) and switches (its booleans but the request's own `query` and
-// `ok`), as the schema lists them.
+// The inputs are pid_gains_t's numbers (its doubles: p, i, d, then the clamps) and switches (its booleans but the
+// request's own `query` and `ok`), in the schema's order. The panel opens on the first joint whose owner answers
+// with gains (sim_server's position joints, else the first controller with a PID of its own): only the owner knows.
 const REQUEST_FLAGS = ['query', 'ok'];
+const ANSWER_MS = 3000; // the owner's answer to a click
+const PROBE_MS = 1000; // an owner's answer while looking for a joint with gains (none from a controller without PID)
+const MAX_PROBES = 64;
+
+// The (owner, joint) pairs to ask, in order, when looking for a joint with gains.
+export function gainsCandidates(owners) {
+  return Object.entries(owners).flatMap(([owner, joints]) => joints.map((joint) => [owner, joint])).slice(0, MAX_PROBES);
+}
 
 export class Gains {
   constructor(conn, el) {
     this.conn = conn;
     this.el = el;
     this.owners = {}; // owner -> joints
-    this.waiting = null;
+    this.pending = new Map(); // request_id -> {channel, resolve}
+    this.chosen = null; // {owner, joint}: the joint shown, found with gains or picked by the user
+    this.probing = 0; // a new probe, or the user's pick, ends the one before
     el.innerHTML = `
       <div class="gains-row"><select id="gains-owner"></select><select id="gains-joint"></select>
       <button id="gains-read">Read</button><button id="gains-apply">Apply</button></div>
@@ -23,8 +34,8 @@ export class Gains {
     this.owner = el.querySelector('#gains-owner');
     this.joint = el.querySelector('#gains-joint');
     this.message = el.querySelector('#gains-message');
-    this.owner.onchange = () => this.fillJoints();
-    this.joint.onchange = () => this.fillJoints();
+    this.owner.onchange = () => this.pick();
+    this.joint.onchange = () => this.pick();
     el.querySelector('#gains-read').onclick = () => this.ask(true);
     el.querySelector('#gains-apply').onclick = () => this.ask(false);
   }
@@ -35,8 +46,8 @@ export class Gains {
     this.el.querySelector('.gains-fields').innerHTML =
       this.numbers.map((f) => `<label>${f} <input id="gains-${f}" type="number" step="any"></label>`).join('') +
       this.switches.map((f) => `<label>${f} <input id="gains-${f}" type="checkbox"></label>`).join('');
-    this.shown = null; // read the gains again into the new inputs
-    this.fillJoints();
+    if (this.chosen) this.ask(true); // the gains again, into the new inputs
+    else this.probe();
   }
 
   // Owners: sim_server with every joint, and each running controller that commands joints (its answer says when it
@@ -48,50 +59,92 @@ export class Gains {
     if (key === this.key) return;
     this.key = key;
     this.owners = owners;
-    const keep = this.owner.value;
     options(this.owner, Object.keys(owners));
-    if (keep in owners) this.owner.value = keep;
-    this.fillJoints();
-  }
-
-  fillJoints() {
-    const keep = this.joint.value;
-    const joints = this.owners[this.owner.value] || [];
-    options(this.joint, joints);
-    if (joints.includes(keep)) this.joint.value = keep;
-    const shown = `${this.owner.value}/${this.joint.value}`;
-    if (this.joint.value && shown !== this.shown) {
-      this.shown = shown;
-      this.ask(true);  // the gains in force, without a click
+    if (this.chosen && owners[this.chosen.owner]?.includes(this.chosen.joint)) this.select(this.chosen.owner, this.chosen.joint);
+    else {
+      this.chosen = null;
+      this.probe();
     }
   }
 
-  ask(query) {
+  select(owner, joint) {
+    this.owner.value = owner;
+    options(this.joint, this.owners[owner] || []);
+    this.joint.value = joint;
+    this.owner.title = shown(owner, kTitleChars); // a narrow select cuts the name
+    this.joint.title = shown(joint, kTitleChars);
+  }
+
+  // The user picked an owner or a joint: its gains in force, without a click.
+  pick() {
+    const keep = this.joint.value;
+    const joints = this.owners[this.owner.value] || [];
+    this.select(this.owner.value, joints.includes(keep) ? keep : joints[0] || '');
+    this.chosen = this.joint.value ? { owner: this.owner.value, joint: this.joint.value } : null;
+    if (this.chosen) this.ask(true);
+  }
+
+  // Asks each candidate in turn until one answers with its gains, and shows them.
+  async probe() {
+    const run = ++this.probing;
+    const pairs = gainsCandidates(this.owners);
+    if (!pairs.length || !this.numbers.length) return; // the joints, the controllers and the schema come in any order
+    for (const [owner, joint] of pairs) {
+      this.select(owner, joint);
+      this.show(true, `asking ${owner} for ${joint}'s gains ...`);
+      const a = await this.request({ owner, joint, query: 1 }, PROBE_MS);
+      if (run !== this.probing) return;
+      if (a.refused) return this.show(false, a.refused);
+      if (a.answer?.ok) {
+        this.chosen = { owner, joint };
+        return this.fill(a.answer);
+      }
+    }
+    this.select(...pairs[0]);
+    this.show(false, `no joint with gains: asked ${[...new Set(pairs.map(([o]) => o))].join(', ')} ` +
+      '(a position joint gets them from gazebo_ros_control/pid_gains, a controller from its pid)');
+  }
+
+  async ask(query) {
+    this.probing++;
     const owner = this.owner.value;
     const joint = this.joint.value;
     if (!owner || !joint) return;
-    const msg = { request_id: Math.floor(Math.random() * 1e9), owner, joint, query: query ? 1 : 0 };
+    const msg = { owner, joint, query: query ? 1 : 0 };
     if (!query) {
       for (const f of this.numbers) msg[f] = Number(this.el.querySelector(`#gains-${f}`).value);
       for (const f of this.switches) msg[f] = this.el.querySelector(`#gains-${f}`).checked ? 1 : 0;
     }
-    this.waiting = { id: msg.request_id, channel: `${owner}/gains`, since: performance.now() };
-    this.message.textContent = shown(`asking ${owner} ...`);
-    this.message.className = 'message';
-    this.conn.publish(`${owner}/gains/set`, 'pid_gains_t', msg).then((r) => {
-      if (!r.ok) this.show(false, r.message);
+    this.show(true, `asking ${owner} ...`);
+    const a = await this.request(msg, ANSWER_MS);
+    if (a.refused) this.show(false, a.refused);
+    else if (a.answer) this.fill(a.answer);
+    else this.show(false, `no answer from ${owner} on ${owner}/gains: it has no PID for ${joint}, or is not running`);
+  }
+
+  // One request on <owner>/gains/set: {answer} (null after `ms` without one) or {refused} (the server's reason).
+  async request(msg, ms) {
+    const id = Math.floor(Math.random() * 1e9);
+    const answered = new Promise((resolve) => {
+      this.pending.set(id, { channel: `${msg.owner}/gains`, resolve });
+      setTimeout(() => this.pending.delete(id) && resolve(null), ms);
     });
-    setTimeout(() => {
-      if (this.waiting && this.waiting.id === msg.request_id) {
-        this.show(false, `no answer from ${owner} on ${owner}/gains: it has no PID for ${joint}, or is not running`);
-        this.waiting = null;
-      }
-    }, 3000);
+    const r = await this.conn.publish(`${msg.owner}/gains/set`, 'pid_gains_t', { ...msg, request_id: id });
+    if (!r.ok) {
+      this.pending.delete(id);
+      return { refused: r.message };
+    }
+    return { answer: await answered };
   }
 
   onMessage(channel, msg) {
-    if (!this.waiting || channel !== this.waiting.channel || msg.request_id !== this.waiting.id) return;
-    this.waiting = null;
+    const p = this.pending.get(msg.request_id);
+    if (!p || p.channel !== channel) return;
+    this.pending.delete(msg.request_id);
+    p.resolve(msg);
+  }
+
+  fill(msg) {
     for (const f of this.numbers) this.el.querySelector(`#gains-${f}`).value = msg[f];
     for (const f of this.switches) this.el.querySelector(`#gains-${f}`).checked = !!msg[f];
     this.show(msg.ok, msg.message || (msg.ok ? 'gains in force' : 'refused'));

@@ -12,7 +12,7 @@ import { el, shown } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
 const conn = new Connection(`${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}/ws`);
-const view = new RobotView($('view'), $('view-note'));
+const view = new RobotView($('view'), $('view-note'), $('view-fit'));
 const plots = new Plots($('plot'), { window: $('plot-window'), pause: $('plot-pause'), clear: $('plot-clear'), series: $('plot-series') });
 const channels = new Channels($('channels'), $('channel-filter'), plots);
 const controllers = new Controllers(conn, $('controllers'), $('switch-selected'), $('cm-message'), $('load-name'), $('load-button'));
@@ -20,7 +20,7 @@ const commands = new Commands(conn, $('commands'));
 const gains = new Gains(conn, $('gains'));
 
 const state = { hello: null, status: null, controllersOk: null, cmMessage: '', estop: false, stats: {} };
-window.dashboard = { conn, view, plots, channels, controllers, state };
+window.dashboard = { conn, view, plots, channels, controllers, commands, gains, state };
 
 view.onLoad.push((joints) => {
   commands.setJoints(joints);
@@ -43,6 +43,7 @@ conn.on('hello', (h) => {
 conn.on('msg', (f) => {
   if (!f.msg) return;
   channels.message(f.channel, f.type, f.msg);
+  commands.message(f.channel, f.type, f.msg);
   plots.add(f.channel, f.msg, f.received_s);
   if (f.type === 'joint_state_t' && f.channel.endsWith('joint_states')) view.setJoints(f.msg.name, f.msg.position);
   if (f.type === 'odometry_t' && f.channel.endsWith('sim_server/base_pose')) view.setBase(f.msg.position, f.msg.orientation);

@@ -1,19 +1,27 @@
-// The robot in 3D from the URDF the servers run, its joints moved by joint_states.
+// The robot in 3D from the URDF the servers run, its joints moved by joint_states; the camera frames the whole
+// robot when it loads and at the fit button. Without WebGL the view says so and the URDF still gives the joints.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import URDFLoader from 'urdf-loader';
+import { el } from './dom.js';
+import { fitDistance, screenRect } from './fit.js';
 
 export class RobotView {
-  constructor(el, note) {
-    this.el = el;
+  constructor(container, note, fitButton) {
+    this.el = container;
     this.note = note;
     this.robot = null;
     this.joints = {}; // name -> {type, lower, upper, velocity, effort}
     this.onLoad = [];
+    this.moved = false; // the user turned or zoomed the view since it was last fitted
     try {
       this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
     } catch (e) {
-      note.textContent = `no 3D view: WebGL is not available in this browser (${e.message})`;
+      fitButton.hidden = true;
+      container.appendChild(el('div', { class: 'view-message' },
+        `No 3D view: this browser gives the page no WebGL (${e.message || e}).`,
+        ' Turn on WebGL or hardware acceleration in its settings, or open the page in another browser;',
+        ' the rest of the dashboard works without it.'));
       return;
     }
     this.scene = new THREE.Scene();
@@ -27,12 +35,52 @@ export class RobotView {
     const grid = new THREE.GridHelper(4, 40, 0x999999, 0xcccccc);
     this.scene.add(grid);
     this.scene.add(new THREE.AxesHelper(0.3));
-    el.appendChild(this.renderer.domElement);
+    container.appendChild(this.renderer.domElement);
     this.controls = new OrbitControls(this.camera, this.renderer.domElement);
     this.controls.target.set(0, 0.4, 0);
     this.controls.addEventListener('change', () => this.invalidate());
-    new ResizeObserver(() => this.resize()).observe(el);
+    this.controls.addEventListener('start', () => { this.moved = true; });
+    fitButton.onclick = () => this.fit();
+    new ResizeObserver(() => this.resize()).observe(container);
     this.resize();
+  }
+
+  // The robot's bounding box in the scene: its shapes, and its links' origins (a robot with no visual still has those).
+  box() {
+    this.world.updateMatrixWorld(true);
+    const box = new THREE.Box3().setFromObject(this.world);
+    for (const link of Object.values(this.robot.links || {})) box.expandByPoint(link.getWorldPosition(new THREE.Vector3()));
+    return box;
+  }
+
+  // The camera looks at the robot's bounding sphere from where it looks now, far enough to see all of it.
+  fit() {
+    if (!this.renderer || !this.world) return;
+    const sphere = this.box().getBoundingSphere(new THREE.Sphere());
+    const radius = Math.max(sphere.radius, 0.05);
+    const direction = this.camera.position.clone().sub(this.controls.target);
+    if (direction.lengthSq() < 1e-12) direction.set(1, 0.5, 1);
+    const distance = fitDistance(radius, this.camera.fov, this.camera.aspect);
+    this.controls.target.copy(sphere.center);
+    this.camera.position.copy(sphere.center).addScaledVector(direction.normalize(), distance);
+    this.camera.near = distance / 100;
+    this.camera.far = distance * 100;
+    this.camera.updateProjectionMatrix();
+    this.controls.update();
+    this.moved = false;
+    this.invalidate();
+  }
+
+  // Where the robot's bounding box falls on the canvas, in CSS pixels ({left, top, right, bottom, width, height,
+  // inside}); null without a robot or WebGL. For the browser test, and for anyone asking from the console.
+  projectedBox() {
+    if (!this.renderer || !this.world) return null;
+    const b = this.box();
+    const corners = [];
+    for (const x of [b.min.x, b.max.x]) for (const y of [b.min.y, b.max.y]) for (const z of [b.min.z, b.max.z])
+      corners.push(new THREE.Vector3(x, y, z).project(this.camera));
+    const canvas = this.renderer.domElement;
+    return screenRect(corners, canvas.clientWidth, canvas.clientHeight);
   }
 
   // Draws on the next animation frame, once however often it is asked: a still robot costs the browser nothing.
@@ -53,7 +101,8 @@ export class RobotView {
     this.renderer.setSize(w, h);
     this.camera.aspect = w / h;
     this.camera.updateProjectionMatrix();
-    this.invalidate();
+    if (this.world && !this.moved) this.fit(); // a narrower view needs the camera further away
+    else this.invalidate();
   }
 
   load(url) {
@@ -64,7 +113,7 @@ export class RobotView {
     // Meshes arrive after the URDF: draw again as each one loads.
     const manager = new THREE.LoadingManager();
     manager.onProgress = () => this.invalidate();
-    manager.onLoad = () => this.invalidate();
+    manager.onLoad = () => (this.moved || !this.world ? this.invalidate() : this.fit()); // meshes change the box
     const loader = new URDFLoader(manager);
     loader.packages = (pkg) => `/package/${pkg}`;
     loader.load(
@@ -75,6 +124,7 @@ export class RobotView {
         this.world.rotation.x = -Math.PI / 2; // URDF and the base pose are z-up, three.js is y-up
         this.world.add(robot);
         this.robot = robot;
+        this.posed = false;
         if (this.scene) this.scene.add(this.world);
         this.joints = {};
         for (const [name, j] of Object.entries(robot.joints)) {
@@ -88,7 +138,7 @@ export class RobotView {
           };
         }
         this.note.textContent = `${robot.robotName || 'robot'} from ${url}`;
-        this.invalidate();
+        this.fit();
 
         for (const fn of this.onLoad) fn(this.joints);
       },
@@ -113,6 +163,10 @@ export class RobotView {
     names.forEach((n, k) => {
       if (this.robot.joints[n] && Number.isFinite(positions[k])) moved = this.robot.joints[n].setJointValue(positions[k]) || moved;
     });
+    if (!this.posed) {
+      this.posed = true; // framed again as the robot stands (a start pose far from all zeros), unless the user moved
+      if (!this.moved) return this.fit();
+    }
     if (moved) this.invalidate();
   }
 }
