@@ -52,6 +52,43 @@ TEST(Fields, JointStateColumns) {
   EXPECT_EQ(d.fields[8].text(), "j2");
 }
 
+TEST(Fields, ListRowsTakeTheDashboardsLabelsAndAreSelectedByPathOrLabel) {
+  joint_state_t m{};
+  m.num_joints = 2;
+  m.name = {"j1", "j2"};
+  m.position = {0.1, 0.2};
+  m.velocity = {1.5, -2};
+  m.effort = {3, 4};
+  const auto buf = encode(m);
+  const Decoded d = decode_fields(buf.data(), buf.size());
+  ASSERT_TRUE(d.ok()) << d.skip_reason;
+  EXPECT_EQ(d.fields[2].name(), "position[j2]");
+  EXPECT_EQ(d.fields[0].name(), "utime");
+  auto selected = [&](const std::string& wanted) {
+    std::vector<std::string> out;
+    for (const Field* f : select_fields(d.fields, wanted)) out.push_back(f->path);
+    return out;
+  };
+  EXPECT_EQ(selected("position[j2]"), (std::vector<std::string>{"position[1]"}));
+  EXPECT_EQ(selected("position[1]"), (std::vector<std::string>{"position[1]"}));
+  EXPECT_EQ(selected("/velocity"), (std::vector<std::string>{"velocity[0]", "velocity[1]"}));
+  EXPECT_TRUE(selected("position[j3]").empty());
+  EXPECT_TRUE(selected("pos").empty());
+  EXPECT_EQ(nearest_fields(d.fields, "postion[j2]", 2), (std::vector<std::string>{"position[j2]", "position[j1]"}));
+}
+
+TEST(Fields, RowsWithoutDistinctNamesKeepTheirIndexAsLabel) {
+  joint_state_t m{};
+  m.num_joints = 2;
+  m.name = {"j1", "j1"};
+  m.position = {0.1, 0.2};
+  m.velocity = {0, 0};
+  m.effort = {0, 0};
+  const auto buf = encode(m);
+  const Decoded d = decode_fields(buf.data(), buf.size());
+  EXPECT_EQ(d.fields[2].name(), "position[1]");
+}
+
 TEST(Fields, StringsFollowTheNumbers) {
   trajectory_status_t s{};
   s.utime = 5;
