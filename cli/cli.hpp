@@ -113,9 +113,13 @@ enum ExitCode { kExitOk = 0, kExitFailure = 1, kExitUsage = 2, kExitBadInput = 3
 // value, when it is not a subcommand ("cmctl lst"), as "'lst' is not a command of cmctl; nearest: list, load; the
 // commands: ..."; "" when there is no such word.
 inline std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
-  std::vector<std::string> names;
-  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+  std::vector<std::string> names, aliases;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    names.push_back(sub->get_name());
+    aliases.insert(aliases.end(), sub->get_aliases().begin(), sub->get_aliases().end());
+  }
   if (names.empty()) return "";
+  aliases.insert(aliases.begin(), names.begin(), names.end());
   for (int k = 1; k < argc; ++k) {
     const std::string word = argv[k];
     if (word == "--") return "";
@@ -124,8 +128,8 @@ inline std::string unknown_subcommand(const CLI::App& app, int argc, char** argv
       if (o && o->get_expected_min() > 0 && word.find('=') == std::string::npos) ++k;  // its value
       continue;
     }
-    if (std::find(names.begin(), names.end(), word) != names.end()) return "";
-    const std::vector<std::string> near = closest_names(word, names, 3, std::max<size_t>(2, word.size() / 2));
+    if (std::find(aliases.begin(), aliases.end(), word) != aliases.end()) return "";
+    const std::vector<std::string> near = closest_names(word, aliases, 3, std::max<size_t>(2, word.size() / 2));
     return fmt::format("'{}' is not a command of {}; {}the commands: {}", word, app.get_name(),
                        near.empty() ? "" : "nearest: " + join(near) + "; ", join(names));
   }

@@ -54,6 +54,9 @@ TEST(Conventions, AMistypedSubcommandExits2NamingTheWordAndTheNearestOnes) {
             std::string::npos)
       << bus.out;
   EXPECT_NE(bus.out.find("Run with --help for more information"), std::string::npos) << bus.out;
+  const Outcome alias = run({"cmctl", "list-controllers", "--no-such-flag"});  // a ROS 2 alias is a command
+  EXPECT_EQ(alias.rc, 2) << alias.out;
+  EXPECT_EQ(alias.out.find("is not a command"), std::string::npos) << alias.out;
   const Outcome none = run({"cmctl"});  // no word at all: CLI11's own message
   EXPECT_EQ(none.rc, 2) << none.out;
   EXPECT_NE(none.out.find("A subcommand is required"), std::string::npos) << none.out;
