@@ -63,10 +63,18 @@ class Helps:
 
 
 def code_lines(markdown):
-    """(line number, text) of the commands in code: fenced block lines (continuations joined) and inline spans."""
-    out, fenced, pending, start = [], False, "", 0
+    """(line number, text) of the commands in code: fenced block lines (continuations joined) and inline spans (which
+    may run over a line break within a paragraph)."""
+    out, fenced, pending, start, para, para_start = [], False, "", 0, [], 0
+
+    def end_paragraph():
+        text = " ".join(para)
+        out.extend((para_start, span) for span in re.findall(r"`([^`]+)`", text))
+        para.clear()
+
     for n, line in enumerate(markdown.splitlines(), 1):
         if line.lstrip().startswith("```"):
+            end_paragraph()
             fenced = not fenced
             continue
         if fenced:
@@ -77,8 +85,13 @@ def code_lines(markdown):
                 continue
             out.append((start, pending + line))
             pending = ""
+        elif not line.strip():
+            end_paragraph()
         else:
-            out.extend((n, span) for span in re.findall(r"`([^`\n]+)`", line))
+            if not para:
+                para_start = n
+            para.append(line.strip())
+    end_paragraph()
     return out
 
 
