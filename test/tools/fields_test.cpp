@@ -28,18 +28,22 @@ std::vector<std::string> paths(const Decoded& d) {
   for (const auto& f : d.fields) p.push_back(f.path);
   return p;
 }
-}  // namespace
-
-TEST(Fields, JointStateColumns) {
+// The fields of a joint_state_t of two joints named `names`: position 0.1, 0.2, velocity 1.5, -2, effort 3, 4.
+Decoded two_joints(const std::vector<std::string>& names, int64_t utime = 0) {
   joint_state_t m{};
-  m.utime = 1234567890123456;
+  m.utime = utime;
   m.num_joints = 2;
-  m.name = {"j1", "j2"};
+  m.name = names;
   m.position = {0.1, 0.2};
   m.velocity = {1.5, -2};
   m.effort = {3, 4};
   const auto buf = encode(m);
-  const Decoded d = decode_fields(buf.data(), buf.size());
+  return decode_fields(buf.data(), buf.size());
+}
+}  // namespace
+
+TEST(Fields, JointStateColumns) {
+  const Decoded d = two_joints({"j1", "j2"}, 1234567890123456);
   ASSERT_TRUE(d.ok()) << d.skip_reason;
   EXPECT_EQ(d.type, "lcm_control.joint_state_t");
   EXPECT_EQ(paths(d), (std::vector<std::string>{"utime", "position[0]", "position[1]", "velocity[0]", "velocity[1]",
@@ -53,14 +57,7 @@ TEST(Fields, JointStateColumns) {
 }
 
 TEST(Fields, ListRowsTakeTheDashboardsLabelsAndAreSelectedByPathOrLabel) {
-  joint_state_t m{};
-  m.num_joints = 2;
-  m.name = {"j1", "j2"};
-  m.position = {0.1, 0.2};
-  m.velocity = {1.5, -2};
-  m.effort = {3, 4};
-  const auto buf = encode(m);
-  const Decoded d = decode_fields(buf.data(), buf.size());
+  const Decoded d = two_joints({"j1", "j2"});
   ASSERT_TRUE(d.ok()) << d.skip_reason;
   EXPECT_EQ(d.fields[2].name(), "position[j2]");
   EXPECT_EQ(d.fields[0].name(), "utime");
@@ -78,14 +75,7 @@ TEST(Fields, ListRowsTakeTheDashboardsLabelsAndAreSelectedByPathOrLabel) {
 }
 
 TEST(Fields, RowsWithoutDistinctNamesKeepTheirIndexAsLabel) {
-  joint_state_t m{};
-  m.num_joints = 2;
-  m.name = {"j1", "j1"};
-  m.position = {0.1, 0.2};
-  m.velocity = {0, 0};
-  m.effort = {0, 0};
-  const auto buf = encode(m);
-  const Decoded d = decode_fields(buf.data(), buf.size());
+  const Decoded d = two_joints({"j1", "j1"});
   EXPECT_EQ(d.fields[2].name(), "position[1]");
 }
 
