@@ -555,7 +555,9 @@ int main(int argc, char** argv) {
   double speed = 1;
   bool loop = false;
   auto* play = app.add_subcommand("play", "replay a log on the bus at its recorded pace (lcm-logplayer, rosbag play)");
-  play->add_option("LOG", log_path, "log file written by lcm-logger or bus record")->required();
+  play->add_option("LOG", log_path, "log file written by lcm-logger or bus record (played on its channels as "
+                                    "recorded: no --namespace prefix)")
+      ->required();
   play->add_option("-s,--speed", speed, "playback speed: 1 real time (default), 2 twice as fast, 0.5 half")
       ->check(CLI::PositiveNumber);
   play->add_flag("-l,--loop", loop, "start again from the beginning at the end, until Ctrl-C or --duration");
