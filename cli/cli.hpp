@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -13,6 +14,7 @@
 #include "bus/bus.hpp"
 #include "description/robot_model.hpp"
 #include "description/substitution.hpp"
+#include "description/text.hpp"
 
 namespace lcm_control {
 
@@ -107,6 +109,33 @@ inline LoadOptions load_options(const std::vector<std::string>& package_path, co
 
 enum ExitCode { kExitOk = 0, kExitFailure = 1, kExitUsage = 2, kExitBadInput = 3, kExitBus = 4 };
 
+// For a program with subcommands whose command line names none: the first word that is neither a flag nor a flag's
+// value, when it is not a subcommand ("cmctl lst"), as "'lst' is not a command of cmctl; nearest: list, load; the
+// commands: ..."; "" when there is no such word.
+inline std::string unknown_subcommand(const CLI::App& app, int argc, char** argv) {
+  std::vector<std::string> names, aliases;
+  for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+    names.push_back(sub->get_name());
+    aliases.insert(aliases.end(), sub->get_aliases().begin(), sub->get_aliases().end());
+  }
+  if (names.empty()) return "";
+  aliases.insert(aliases.begin(), names.begin(), names.end());
+  for (int k = 1; k < argc; ++k) {
+    const std::string word = argv[k];
+    if (word == "--") return "";
+    if (word.size() > 1 && word[0] == '-') {
+      const CLI::Option* o = app.get_option_no_throw(word.substr(0, word.find('=')));
+      if (o && o->get_expected_min() > 0 && word.find('=') == std::string::npos) ++k;  // its value
+      continue;
+    }
+    if (std::find(aliases.begin(), aliases.end(), word) != aliases.end()) return "";
+    const std::vector<std::string> near = closest_names(word, aliases, 3, std::max<size_t>(2, word.size() / 2));
+    return fmt::format("'{}' is not a command of {}; {}the commands: {}", word, app.get_name(),
+                       near.empty() ? "" : "nearest: " + join(near) + "; ", join(names));
+  }
+  return "";
+}
+
 // Parses flags and runs body(); every error becomes "<program>: error: ..." lines on stderr.
 template <class Body>
 int run_program(CLI::App& app, int argc, char** argv, Body&& body) {
@@ -114,6 +143,10 @@ int run_program(CLI::App& app, int argc, char** argv, Body&& body) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (const std::string word = e.get_exit_code() == 0 ? "" : unknown_subcommand(app, argc, argv); !word.empty()) {
+      std::fprintf(stderr, "%s: error: %s\nRun with --help for more information.\n", program.c_str(), word.c_str());
+      return kExitUsage;
+    }
     return app.exit(e) == 0 ? kExitOk : kExitUsage;  // --help is a ParseError that exits 0
   }
   try {

@@ -74,4 +74,18 @@ std::string closest_name(const std::string& name, const std::vector<std::string>
   return best;
 }
 
+std::vector<std::string> closest_names(const std::string& name, const std::vector<std::string>& candidates, size_t most,
+                                       size_t max_distance) {
+  std::vector<std::pair<size_t, std::string>> near;
+  for (const auto& c : candidates) {
+    const size_t d = edit_distance(name, c);
+    if (d <= max_distance && std::none_of(near.begin(), near.end(), [&](const auto& n) { return n.second == c; }))
+      near.emplace_back(d, c);
+  }
+  std::stable_sort(near.begin(), near.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<std::string> out;
+  for (size_t k = 0; k < near.size() && k < most; ++k) out.push_back(near[k].second);
+  return out;
+}
+
 }  // namespace lcm_control

@@ -21,5 +21,9 @@ std::string join_some(const std::vector<std::string>& items, size_t max_items, c
 size_t edit_distance(const std::string& a, const std::string& b);
 // The candidate closest to `name`, "" if none is within `max_distance` edits.
 std::string closest_name(const std::string& name, const std::vector<std::string>& candidates, size_t max_distance);
+// Up to `most` distinct candidates nearest to `name`, nearest first (ties in the candidates' order), each within
+// `max_distance` edits: the list a "did you mean" hint offers.
+std::vector<std::string> closest_names(const std::string& name, const std::vector<std::string>& candidates, size_t most,
+                                       size_t max_distance);
 
 }  // namespace lcm_control

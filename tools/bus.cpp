@@ -1,17 +1,20 @@
 // bus: rostopic and rosbag record/info for LCM, headless: list the channels on
 // the bus with their types and rates, measure one channel's rate, print its
 // messages, publish any lcm_control message from field=value pairs, record a
-// log in lcm-logger's format, summarise a log.
+// log in lcm-logger's format, summarise a log, replay one.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
 #include <deque>
 #include <filesystem>
+#include <limits>
 #include <map>
 #include <memory>
+#include <set>
 
 #include "cli/cli.hpp"
+#include "description/text.hpp"
 #include "tools/lib/census.hpp"
 #include "tools/lib/csv.hpp"
 #include "tools/lib/fields.hpp"
@@ -43,17 +46,19 @@ std::string bytes_text(double b) {
 }
 
 // Runs the bus until stop(), Ctrl-C or `duration` seconds (0: no limit); every 5 s without a message on
-// `channel`, says which channels it did see.
+// `channel` (or on any of `also`), says which channels it did see.
 template <class Stop>
-void run_until(Bus& bus, const Census& census, const std::string& channel, double duration, Stop&& stop) {
+void run_until(Bus& bus, const Census& census, const std::string& channel, double duration, Stop&& stop,
+               const std::vector<std::string>& also = {}) {
   const int64_t start = monotonic_us();
   int64_t next_hint = start + 5000000;
   while (!stop_requested() && !stop()) {
     const int64_t now = monotonic_us();
     if (duration > 0 && now - start >= int64_t(duration * 1e6)) break;
     if (now >= next_hint) {
-      auto it = census.seen().find(channel);
-      if (it == census.seen().end())
+      const bool heard = census.seen().count(channel) ||
+                         std::any_of(also.begin(), also.end(), [&](const auto& c) { return census.seen().count(c); });
+      if (!heard)
         fmt::print(stderr, "bus: no message on '{}' yet; channels seen: {}\n", channel, census.names());
       next_hint = now + 5000000;
     }
@@ -144,41 +149,102 @@ int cmd_hz(Bus& bus, const std::string& name, size_t window, double duration) {
   return kExitOk;
 }
 
+// One channel and, optionally, a field path in its messages (`position`, `position[j2]`): what echo prints.
+struct EchoTarget {
+  std::string channel, field;
+};
+
+// What `bus echo NAME [--field F]` may mean: NAME is a channel (its field F, or the whole message); or, as rostopic
+// echo takes /joint_states/position, a channel followed by a field path ('/' between the field's parts as in ROS).
+std::vector<EchoTarget> echo_targets(const Bus& bus, const std::string& name, const std::string& field) {
+  std::vector<EchoTarget> out{{bus.channel(name), field}};
+  if (!field.empty()) return out;
+  for (size_t cut = name.rfind('/'); cut != std::string::npos && cut > 0; cut = name.rfind('/', cut - 1)) {
+    std::string tail = name.substr(cut + 1);
+    std::replace(tail.begin(), tail.end(), '/', '.');
+    out.push_back({bus.channel(name.substr(0, cut)), tail});
+  }
+  return out;
+}
+
 class Echo {
  public:
-  Echo(Bus& bus, const std::string& channel, bool csv) {
-    bus.subscribe(regex_escape(channel), &Echo::on, this, Bus::On::Shared, 10000);
+  Echo(Bus& bus, std::vector<EchoTarget> targets, bool csv) : targets_(std::move(targets)) {
+    for (const auto& t : targets_) bus.subscribe(regex_escape(t.channel), &Echo::on, this, Bus::On::Shared, 10000);
     if (csv) csv_ = std::make_unique<CsvWriter>("-");
   }
   int64_t printed() const { return printed_; }
+  // Why echo stops without printing (a field the channel's messages do not have), "" while it may go on.
+  const std::string& refused() const { return refused_; }
 
  private:
   void on(const lcm::ReceiveBuffer* rb, const std::string& channel) {
+    const auto target = std::find_if(targets_.begin(), targets_.end(), [&](const EchoTarget& t) {
+      return t.channel == channel;
+    });
+    if (target == targets_.end() || !refused_.empty()) return;
+    if (target != targets_.begin() && heard_whole_) return;  // the whole name is a channel: it wins
+    heard_whole_ = heard_whole_ || target == targets_.begin();
     try {
-      if (csv_) {
-        const Decoded d = decode_fields(rb->data, rb->data_size);
-        if (!d.ok()) throw std::runtime_error((d.type.empty() ? "" : d.type + ": ") + d.skip_reason);
-        csv_->write(d.fields);
-        csv_->flush();
-      } else {
+      if (!csv_ && target->field.empty()) {
         fmt::print("{}---\n", message_yaml(rb->data, rb->data_size));
-        std::fflush(stdout);
+      } else {
+        Decoded d = decode_fields(rb->data, rb->data_size);
+        if (!d.ok()) throw std::runtime_error((d.type.empty() ? "" : d.type + ": ") + d.skip_reason);
+        if (!target->field.empty() && !only(d, target->channel, target->field)) return;
+        if (csv_) {
+          csv_->write(d.fields);
+          csv_->flush();
+        } else if (d.fields.size() == 1) {
+          fmt::print("{}\n---\n", d.fields[0].text());
+        } else {
+          for (const auto& f : d.fields) fmt::print("{}: {}\n", f.name(), f.text());
+          fmt::print("---\n");
+        }
       }
+      std::fflush(stdout);
       ++printed_;
     } catch (const std::exception& e) {
       if (skipped_++ == 0 || skipped_ % 1000 == 0)
         fmt::print(stderr, "bus: {}: skipping a message ({} so far): {}\n", channel, skipped_, e.what());
     }
   }
+  // Keeps in d the fields `field` names (and utime, for CSV rows); false, and refused() says why, when it names none.
+  bool only(Decoded& d, const std::string& channel, const std::string& field) {
+    const std::vector<const Field*> picked = select_fields(d.fields, field);
+    if (picked.empty()) {
+      const std::vector<std::string> near = nearest_fields(d.fields, field);
+      refused_ = fmt::format("{} messages ({}) have no field '{}'; {}", channel, d.type, field,
+                             near.empty() ? "bus types " + short_type_name(d.type) + " lists the fields"
+                                          : "nearest: " + join(near));
+      return false;
+    }
+    std::vector<Field> kept;
+    if (csv_)
+      for (const auto& f : d.fields)
+        if (f.path == "utime" && picked.front()->path != "utime") kept.push_back(f);
+    for (const Field* f : picked) kept.push_back(*f);
+    d.fields = std::move(kept);
+    return true;
+  }
+  std::vector<EchoTarget> targets_;
   std::unique_ptr<CsvWriter> csv_;
+  bool heard_whole_ = false;
+  std::string refused_;
   int64_t printed_ = 0, skipped_ = 0;
 };
 
-int cmd_echo(Bus& bus, const std::string& name, bool csv, int64_t count, double duration) {
+int cmd_echo(Bus& bus, const std::string& name, const std::string& field, bool csv, int64_t count, double duration) {
   const std::string channel = bus.channel(name);
   Census census(bus);
-  Echo echo(bus, channel, csv);
-  run_until(bus, census, channel, duration, [&] { return count > 0 && echo.printed() >= count; });
+  const std::vector<EchoTarget> targets = echo_targets(bus, name, without_leading_slashes(field));
+  std::vector<std::string> also;
+  for (const auto& t : targets) also.push_back(t.channel);
+  Echo echo(bus, targets, csv);
+  run_until(
+      bus, census, channel, duration, [&] { return !echo.refused().empty() || (count > 0 && echo.printed() >= count); },
+      also);
+  if (!echo.refused().empty()) throw std::runtime_error(echo.refused());
   if (echo.printed() == 0) {
     if (census.seen().count(channel))
       throw BusError(fmt::format("'{}' carried {} messages, none of an lcm_control type that decodes ({})", channel,
@@ -335,6 +401,47 @@ int cmd_record(Bus& bus, const std::string& path, const std::string& regex, bool
   return kExitOk;
 }
 
+// Publishes a log's events on the bus as lcm-logplayer does: on the channels they were recorded on, at the log's
+// times scaled by 1/speed (the first event at once), again from the start with `loop`, until the end, Ctrl-C or
+// `duration` seconds.
+int cmd_play(Bus& bus, const std::string& path, double speed, bool loop, double duration) {
+  const int64_t start = monotonic_us();
+  const int64_t end = duration > 0 ? start + int64_t(duration * 1e6) : std::numeric_limits<int64_t>::max();
+  int64_t published = 0, passes = 0;
+  std::set<std::string> channels;
+  fmt::print("bus play: {} on {} at {}x real time{}\n", path, bus.url(), speed, loop ? ", looping until Ctrl-C" : "");
+  std::fflush(stdout);
+  bool more = true;
+  while (more && !stop_requested()) {
+    const auto log_file = open_log(path);
+    const int64_t pass_start = monotonic_us();
+    int64_t first = -1, events = 0;
+    for (const lcm::LogEvent* e = log_file->readNextEvent(); e; e = log_file->readNextEvent()) {
+      if (first < 0) first = e->timestamp;
+      const int64_t due = pass_start + int64_t(double(e->timestamp - first) / speed);
+      while (!stop_requested() && monotonic_us() < std::min(due, end))
+        sleep_until_us(std::min({due, end, monotonic_us() + 50000}));
+      if (stop_requested() || monotonic_us() >= end) {
+        more = false;
+        break;
+      }
+      if (bus.lcm().publish(e->channel, e->data, unsigned(std::max<int32_t>(0, e->datalen))) != 0)
+        throw BusError("could not publish on " + e->channel + " (" + bus.url() + ")");
+      ++events;
+      ++published;
+      if (channels.size() < Census::kMaxChannels) channels.insert(e->channel);
+    }
+    if (events == 0 && more)
+      throw ModelError({fmt::format("{}: no events: not a log written by lcm-logger or bus record, or an empty one",
+                                    path)});
+    ++passes;
+    more = more && loop;
+  }
+  fmt::print("bus play: {} messages on {} channels{}\n", published, channels.size(),
+             passes > 1 ? fmt::format(" ({} passes)", passes) : "");
+  return kExitOk;
+}
+
 int cmd_types(const std::string& type) {
   if (type.empty()) {
     for (const auto& t : message_type_names()) fmt::print("{}\n", t);
@@ -356,7 +463,8 @@ int main(int argc, char** argv) {
   using namespace lcm_control::tools;
   CLI::App app{
       "The bus from a terminal (rostopic, rosbag info): list the channels with their types, rates and bandwidth, "
-      "measure a channel's rate, print its messages, publish any lcm_control message, summarise a log. Channel "
+      "measure a channel's rate, print its messages, publish any lcm_control message, record, summarise and replay a "
+      "log. Channel "
       "names may start with '/' as in ROS. A command that sees no message on its channel exits 4 and lists the "
       "channels it did see.\n"
       "Examples:\n"
@@ -365,6 +473,7 @@ int main(int argc, char** argv) {
       "  bus hz hardware/state\n"
       "  bus hz hardware/state --namespace r0 --hardware-lcm-url auto   # a robot of `launch --robots`\n"
       "  bus echo joint_states --count 1\n"
+      "  bus echo /joint_states/position --count 1     # one field (--field position[j2]: one joint's)\n"
       "  bus echo /j2_controller/command --csv --duration 5\n"
       "  bus pub j1_controller/command float64_t data=0.5\n"
       "  bus pub e_stop e_stop_t engaged=true source=me\n"
@@ -372,7 +481,8 @@ int main(int argc, char** argv) {
       "      points[0].positions=[0.5,1.0] points[0].time_from_start=2\n"
       "  bus types joint_trajectory_t                  # the fields pub takes\n"
       "  bus record run.lcmlog -c 'joint_states|j2_controller/command'   # then Ctrl-C\n"
-      "  bus info run.lcmlog",
+      "  bus info run.lcmlog\n"
+      "  bus play run.lcmlog --speed 2 --loop          # replay it (Ctrl-C to stop)",
       "bus"};
   app.require_subcommand(1);
   app.fallthrough();
@@ -396,8 +506,15 @@ int main(int argc, char** argv) {
   hz->add_option("--duration", duration, "stop after S seconds")->check(CLI::PositiveNumber);
 
   bool csv = false;
-  auto* echo = app.add_subcommand("echo", "a channel's messages, decoded (rostopic echo)");
-  echo->add_option("CHANNEL", channel, "channel (the namespace is prefixed)")->required();
+  std::string field;
+  auto* echo = app.add_subcommand("echo", "a channel's messages, decoded, or one field of them (rostopic echo)");
+  echo->add_option("CHANNEL", channel,
+                   "channel (the namespace is prefixed); CHANNEL/FIELD prints that field, as rostopic echo "
+                   "/joint_states/position does")
+      ->required();
+  echo->add_option("--field", field,
+                   "print only this field: a path as log2csv's columns (position[1], position) or the dashboard's "
+                   "label (position[j2])");
   echo->add_option("--count", count, "stop after N messages")->check(CLI::PositiveNumber);
   echo->add_option("--duration", duration, "stop after S seconds")->check(CLI::PositiveNumber);
   echo->add_flag("--csv", csv, "CSV rows (state-logger's columns) instead of YAML");
@@ -435,6 +552,17 @@ int main(int argc, char** argv) {
   record->add_option("--duration", duration, "stop after S seconds (default: at Ctrl-C)")->check(CLI::PositiveNumber);
   record->add_flag("-f,--force", force, "overwrite LOG");
 
+  double speed = 1;
+  bool loop = false;
+  auto* play = app.add_subcommand("play", "replay a log on the bus at its recorded pace (lcm-logplayer, rosbag play)");
+  play->add_option("LOG", log_path, "log file written by lcm-logger or bus record (played on its channels as "
+                                    "recorded: no --namespace prefix)")
+      ->required();
+  play->add_option("-s,--speed", speed, "playback speed: 1 real time (default), 2 twice as fast, 0.5 half")
+      ->check(CLI::PositiveNumber);
+  play->add_flag("-l,--loop", loop, "start again from the beginning at the end, until Ctrl-C or --duration");
+  play->add_option("--duration", duration, "stop after S seconds")->check(CLI::PositiveNumber);
+
   auto* info = app.add_subcommand("info", "channels, counts, rates and duration of an lcm-logger log (rosbag info)");
   info->add_option("LOG", log_path, "log file written by lcm-logger")->required();
 
@@ -450,10 +578,11 @@ int main(int argc, char** argv) {
     Bus bus(url, bus_flags.ns, "", HardwareReader::Direct);
     if (list->parsed()) return cmd_list(bus, list_duration);
     if (record->parsed()) return cmd_record(bus, log_path, record_regex, force, duration);
+    if (play->parsed()) return cmd_play(bus, log_path, speed, loop, duration);
     if (netcheck->parsed())
       return cmd_netcheck(bus, answer_only && netcheck->count("--duration") == 0 ? 0.0 : net_duration, answer_only);
     if (hz->parsed()) return cmd_hz(bus, channel, window, duration);
-    if (echo->parsed()) return cmd_echo(bus, channel, csv, count, duration);
+    if (echo->parsed()) return cmd_echo(bus, channel, field, csv, count, duration);
     return cmd_pub(bus, channel, type, assignments, rate, count);
   });
 }

@@ -104,7 +104,8 @@ int main(int argc, char** argv) {
                  "effort limit of an effort_controllers/GripperActionController (N or N*m; 0: the controller's "
                  "max_effort, else the URDF's limit); a position interface only reports it")
       ->capture_default_str();
-  app.add_option("--timeout", o.timeout, "seconds to wait for the result")
+  app.add_option("--timeout,--result-timeout", o.timeout,
+                 "seconds to wait for the result (--result-timeout as send-trajectory names it)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--cm-timeout", o.cm_timeout, "seconds to wait for the controller manager's answer")

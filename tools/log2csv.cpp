@@ -5,8 +5,10 @@
 #include <map>
 #include <memory>
 #include <regex>
+#include <set>
 
 #include "cli/cli.hpp"
+#include "description/text.hpp"
 #include "tools/lib/csv.hpp"
 #include "tools/lib/fields.hpp"
 #include "tools/lib/support.hpp"
@@ -22,13 +24,18 @@ int main(int argc, char** argv) {
       "Examples:\n"
       "  lcm-logger --lcm-url=udpm://239.255.76.67:7667?ttl=0 run.lcmlog   # record (Ctrl-C to stop)\n"
       "  log2csv run.lcmlog --output-dir run_csv\n"
-      "  log2csv run.lcmlog --channel 'joint_states|j2_controller/.*' --log-time",
+      "  log2csv run.lcmlog --channel 'joint_states|j2_controller/.*' --log-time\n"
+      "  log2csv run.lcmlog -c joint_states --field position[j2] --field velocity[j2]",
       "log2csv"};
   std::string log_path, output_dir = ".", channel_regex;
+  std::vector<std::string> wanted;
   bool log_time = false;
   app.add_option("LOGFILE", log_path, "log file written by lcm-logger")->required();
   app.add_option("--output-dir", output_dir, "folder for the CSV files (created if needed)");
-  app.add_option("--channel", channel_regex, "only channels that this regular expression matches in full");
+  app.add_option("-c,--channel", channel_regex, "only channels that this regular expression matches in full");
+  app.add_option("--field", wanted,
+                 "only these columns (and utime): field paths (position[1], or position for all its elements) or the "
+                 "dashboard's labels (position[j2]); repeatable");
   app.add_flag("--log-time", log_time, "add a first column log_utime: when lcm-logger received the message");
   return run_program(app, argc, argv, [&] {
     std::regex filter;
@@ -46,6 +53,26 @@ int main(int argc, char** argv) {
     std::filesystem::create_directories(output_dir, ec);
     if (ec) throw std::runtime_error("cannot create " + output_dir + ": " + ec.message());
 
+    // Keeps the columns --field names (utime first); notes which --field found a column, and the nearest names of
+    // the first channel that lacked one.
+    std::set<std::string> found;
+    std::map<std::string, std::string> nearest;  // field -> "joint_states: position[j1], ..."
+    auto keep_wanted = [&](Decoded& d, const std::string& channel) {
+      if (wanted.empty()) return;
+      std::vector<Field> kept;
+      for (const auto& f : d.fields)
+        if (f.path == "utime") kept.push_back(f);
+      for (const auto& w : wanted) {
+        const std::vector<const Field*> picked = select_fields(d.fields, w);
+        for (const Field* f : picked)
+          if (f->path != "utime") kept.push_back(*f);
+        if (!picked.empty())
+          found.insert(w);
+        else if (const auto near = nearest_fields(d.fields, w); !nearest.count(w) && !near.empty())
+          nearest[w] = fmt::format("{}: {}", channel, join(near));
+      }
+      d.fields = std::move(kept);
+    };
     struct Channel {
       std::string type, skip_reason;
       std::unique_ptr<CsvWriter> csv;
@@ -62,8 +89,10 @@ int main(int argc, char** argv) {
       Channel& c = seen[ev->channel];
       if (!c.skip_reason.empty()) continue;
       Decoded d = decode_fields(ev->data, size_t(ev->datalen));
+      if (d.ok()) keep_wanted(d, ev->channel);
       if (!c.csv) {
         if (ev->channel == "LCM_SELF_TEST") d.skip_reason = "LCM's own self-test traffic, not a message";
+        if (d.ok() && !wanted.empty() && d.fields.size() <= 1) d.skip_reason = "none of the --field columns";
         if (!d.ok()) {
           c.type = d.type;
           c.skip_reason = d.skip_reason;
@@ -78,9 +107,16 @@ int main(int argc, char** argv) {
         continue;
       }
       if (log_time)
-        d.fields.insert(d.fields.begin(), Field{"log_utime", double(ev->timestamp), ev->timestamp, true, false, ""});
+        d.fields.insert(d.fields.begin(), Field{"log_utime", double(ev->timestamp), ev->timestamp, true, false, "", ""});
       c.csv->write(d.fields);
     }
+    std::string unknown;
+    for (const auto& w : wanted)
+      if (!found.count(w))
+        unknown += fmt::format("\n  --field {}: {}", w,
+                               nearest.count(w) ? "nearest in " + nearest[w] : "no near name in the channels read");
+    if (!unknown.empty())
+      throw std::runtime_error(fmt::format("{}: no column of these names in any channel read:{}", log_path, unknown));
     size_t written = 0;
     for (auto& [name, c] : seen) {
       if (c.csv) {

@@ -20,6 +20,12 @@
 namespace lcm_control::tools {
 namespace {
 
+// "joint_states.position[1]" or "joint_states/position[1]" names a field of channel "joint_states".
+bool under_channel(const std::string& path, const std::string& channel) {
+  return path.size() > channel.size() + 1 && path.compare(0, channel.size(), channel) == 0 &&
+         (path[channel.size()] == '.' || path[channel.size()] == '/');
+}
+
 // One requested path: channel + field, found when the first message of a
 // channel that can hold it arrives.
 struct Series {
@@ -34,14 +40,11 @@ bool any_text(const std::vector<Series>& series) {
   return std::any_of(series.begin(), series.end(), [](const Series& s) { return s.text; });
 }
 
-// "joint_states.velocity[1]" matches channel "joint_states", field "velocity[1]";
-// ROS-style "/joint_states/velocity[1]" too; a bare channel whose message has
-// one number besides utime ("/j2_controller/command") means that number.
+// "joint_states.velocity[1]" matches channel "joint_states", field "velocity[1]" (or its dashboard label
+// "velocity[j2]"); ROS-style "/joint_states/velocity[1]" too; a bare channel whose message has one number besides
+// utime ("/j2_controller/command") means that number. The field's path, or nothing.
 std::optional<std::string> match(std::string path, const std::string& channel, const std::vector<Field>& fields) {
   while (!path.empty() && path[0] == '/') path.erase(0, 1);
-  auto has = [&](const std::string& f) {
-    return std::any_of(fields.begin(), fields.end(), [&](const Field& x) { return x.path == f; });
-  };
   if (path == channel) {
     std::vector<std::string> numbers;
     for (const auto& f : fields)
@@ -49,11 +52,10 @@ std::optional<std::string> match(std::string path, const std::string& channel, c
     if (numbers.size() == 2 && numbers[0] == "utime") return numbers[1];
     return std::nullopt;
   }
-  if (path.size() > channel.size() + 1 && path.compare(0, channel.size(), channel) == 0 &&
-      (path[channel.size()] == '.' || path[channel.size()] == '/')) {
-    const std::string f = path.substr(channel.size() + 1);
-    if (has(f)) return f;
-  }
+  if (!under_channel(path, channel)) return std::nullopt;
+  const std::vector<const Field*> picked = select_fields(fields, path.substr(channel.size() + 1));
+  const std::string field = path.substr(channel.size() + 1);
+  if (picked.size() == 1 && (picked[0]->path == field || picked[0]->label == field)) return picked[0]->path;
   return std::nullopt;
 }
 
@@ -94,20 +96,21 @@ class Collector {
     }
     if (channels_.size() < kMaxChannels) channels_.insert(channel);
   }
-  // What the bus or log held, for an error that helps find the right path.
-  std::string hint() const {
+  // What the bus or log held, for an error that helps find the path `wanted`: the nearest field names (the
+  // dashboard's labels too) of the channel it names, else of every channel heard.
+  std::string hint(const std::string& wanted) const {
+    const std::string path = wanted.substr(std::min(wanted.size(), wanted.find_first_not_of('/')));
+    const bool named = std::any_of(fields_seen_.begin(), fields_seen_.end(),
+                                   [&](const auto& c) { return under_channel(path, c.first); });
     std::string s;
     for (const auto& [ch, fields] : fields_seen_) {
-      s += fmt::format("\n  {}:", ch);
-      size_t shown = 0;
-      for (const auto& f : fields) {
-        if (f.is_text) continue;
-        if (shown++ == 12) {
-          s += " ...";
-          break;
-        }
-        s += " " + ch + "." + f.path;
-      }
+      if (named && !under_channel(path, ch)) continue;
+      std::vector<std::string> near = nearest_fields(fields, named ? path.substr(ch.size() + 1) : path, 6);
+      const bool close = !near.empty();
+      for (const auto& f : fields)
+        if (!close && !f.is_text) near.push_back(f.name());
+      for (auto& n : near) n = ch + "." + n;
+      s += fmt::format("\n  {}: {}", ch, close ? "nearest: " + join(near) : join_some(near, 8));
     }
     std::string others;
     for (const auto& c : channels_)
@@ -267,14 +270,15 @@ int main(int argc, char** argv) {
   using namespace lcm_control::tools;
   CLI::App app{
       "Plot message fields against time (rqt_plot) to PNG or SVG with gnuplot, from an lcm-logger log (--log) or "
-      "live from the bus (--duration). PATH is CHANNEL.FIELD with the field paths of state-logger / log2csv numeric "
-      "columns (text columns such as message cannot be plotted); "
+      "live from the bus (--duration), or as text in the terminal (--terminal). PATH is CHANNEL.FIELD with the field "
+      "paths of state-logger / log2csv numeric columns (text columns such as message cannot be plotted) or the "
+      "dashboard's labels (joint_states.position[j2]); "
       "ROS-style /CHANNEL/FIELD works too, and a bare channel of a one-value message (float64_t) plots its data. "
       "Time on x is seconds from the first message (receive time, or the messages' utime with --time utime).\n"
       "Examples:\n"
       "  plotter j2_controller/command.data joint_states.velocity[1] --log run.lcmlog --output run.png\n"
       "  plotter /j2_controller/command /joint_states/velocity[1] --duration 10 --output live.svg\n"
-      "  plotter joint_states.position[0] --duration 5 --output - --terminal   # ASCII plot in the terminal\n"
+      "  plotter joint_states.position[j2] --duration 5 --terminal   # text plot in the terminal, no file\n"
       "  plotter --xy diff_drive_controller/odom.position.x diff_drive_controller/odom.position.y \\\n"
       "      sim_server/base_pose.position.x sim_server/base_pose.position.y --log run.lcmlog -o path.png\n"
       "  plotter joint_states.velocity[1] --duration 60 --live --output run.png # live text view, PNG at the end",
@@ -285,11 +289,12 @@ int main(int argc, char** argv) {
   int width = 1000, height = 600;
   bool terminal = false, live = false;
   BusFlags bus_flags;
-  app.add_option("PATH", paths, "CHANNEL.FIELD, e.g. joint_states.velocity[1]")->required();
+  app.add_option("PATH", paths, "CHANNEL.FIELD, e.g. joint_states.velocity[1] or joint_states.velocity[j2]")
+      ->required();
   auto* log_opt = app.add_option("--log", log_path, "read an lcm-logger log file");
   auto* dur_opt = app.add_option("--duration", duration, "listen to the bus for S seconds")->check(CLI::PositiveNumber);
   log_opt->excludes(dur_opt);
-  app.add_option("-o,--output", output, "image file: .png or .svg ('-' with --terminal: none)")->required();
+  app.add_option("-o,--output", output, "image file: .png or .svg (none with --terminal: the plot as text only)");
   app.add_option("--data", data_file, "also keep the data gnuplot plots in FILE (blocks of `t value` per path)");
   app.add_option("--title", title, "plot title");
   app.add_option("--time", time_source, "x axis: receive (log or receive time) or utime (the messages' own clock)")
@@ -300,18 +305,22 @@ int main(int argc, char** argv) {
   app.add_flag("--xy", xy,
                "PATHs in pairs X Y: each pair is one curve of Y against X (the values of one message time), on equal "
                "axes: a path in the plane, e.g. odometry against ground truth");
-  app.add_flag("--terminal", terminal, "also draw the plot as text in the terminal");
+  app.add_flag("--terminal", terminal, "draw the plot as text in the terminal (gnuplot's dumb terminal), besides "
+                                       "--output when it is given");
   app.add_flag("--live", live, "with --duration: redraw a text plot in the terminal every second");
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
     if (log_path.empty() && duration <= 0) throw std::runtime_error("give --log FILE or --duration S");
+    if (output.empty() && !terminal)
+      throw CLI::ValidationError("--output", "give an image file (-o run.png or .svg), or --terminal for a text plot");
+    if (output == "-" && terminal) output.clear();  // the spelling before --output was optional
     const std::string ext = std::filesystem::path(output).extension().string();
     std::string term;
     if (ext == ".png")
       term = fmt::format("pngcairo size {},{}", width, height);
     else if (ext == ".svg")
       term = fmt::format("svg size {},{} dynamic", width, height);
-    else if (!(output == "-" && terminal))
+    else if (!output.empty())
       throw std::runtime_error(fmt::format("--output '{}': the name must end in .png or .svg", output));
 
     if (xy && paths.size() % 2 != 0)
@@ -370,7 +379,7 @@ int main(int argc, char** argv) {
           break;
         if (live && !stop_requested() && monotonic_us() < end)
           fmt::print("\033[H\033[2J{}plotter: {:.0f} s left (Ctrl-C ends early and still writes {})\n",
-                     render(false, true), double(end - monotonic_us()) / 1e6, output);
+                     render(false, true), double(end - monotonic_us()) / 1e6, output.empty() ? "the plot" : output);
         std::fflush(stdout);
       }
       clear_stop();
@@ -394,13 +403,16 @@ int main(int argc, char** argv) {
                                          "commands on the sim clock (turret-cmd and bus pub stamp sim time when "
                                          "sim_server's clock is on the bus)");
       }
-    std::string missing;
+    std::string missing, hints;
     for (const auto& s : series)
-      if (s.points.empty()) missing += (missing.empty() ? "" : ", ") + s.path;
+      if (s.points.empty()) {
+        missing += (missing.empty() ? "" : ", ") + s.path;
+        hints += hints.empty() ? collector.hint(s.path) : fmt::format("\n for {}:{}", s.path, collector.hint(s.path));
+      }
     if (!missing.empty()) {
       if (!keep) std::remove(data_file.c_str());
       const std::string why = fmt::format("no data for {} in {}; what there was:{}", missing,
-                                          log_path.empty() ? "the bus" : log_path, collector.hint());
+                                          log_path.empty() ? "the bus" : log_path, hints);
       if (log_path.empty()) throw BusError(why);  // nothing came: exit code 4
       throw std::runtime_error(why);
     }

@@ -319,7 +319,7 @@ int main(int argc, char** argv) {
   CLI::App app{
       "Publish commands to a controller (rqt Message Publisher). EXPR is a muparser expression in i (message count "
       "from 0) and t (seconds since start); one EXPR sends lcm_control.float64_t, several send float64_array_t (group "
-      "controllers). TARGET is a controller name (channel TARGET/command) or, if it contains '/' or with --channel, a "
+      "controllers). TARGET is a controller name (channel TARGET/command) or, if it contains '/' or with --as-channel, a "
       "channel name.\n"
       "Examples:\n"
       "  turret-cmd j1_controller 0.5                                   # once\n"
@@ -337,14 +337,15 @@ int main(int argc, char** argv) {
       "turret-cmd"};
   Options o;
   BusFlags bus_flags;
-  app.add_option("TARGET", o.target, "controller name, or a channel (contains '/', or with --channel)")->required();
+  app.add_option("TARGET", o.target, "controller name, or a channel (contains '/', or with --as-channel)")->required();
   app.add_option("EXPR", o.exprs, "expression(s) in i and t, one per joint")->required();
   app.add_option("--rate", o.rate, "messages per second (default: publish once; with --sim-time: every control step)")
       ->check(CLI::PositiveNumber);
   app.add_option("--count", o.count, "stop after N messages")->check(CLI::PositiveNumber);
   app.add_option("--duration", o.duration, "stop after S seconds (sim seconds with --sim-time)")
       ->check(CLI::PositiveNumber);
-  app.add_flag("--channel", o.raw_channel, "TARGET is a channel name, used as given");
+  app.add_flag("--as-channel", o.raw_channel, "TARGET is a channel name, used as given");
+  app.add_flag("--channel", o.raw_channel)->group("");  // --as-channel's old name, kept for scripts
   app.add_flag("--array", o.array, "send float64_array_t even for one EXPR");
   app.add_flag("--sim-time", o.sim_time,
                "sim time instead of the wall clock: a controller TARGET gets a command source in the controller manager "

@@ -15,6 +15,14 @@ TEST(Text, ClosestNameWithinADistance) {
   EXPECT_EQ(closest_name("zzzzzzzz", {"publish_rate", "joints"}, 3), "");
 }
 
+TEST(Text, ClosestNamesNearestFirstWithinADistance) {
+  EXPECT_EQ(closest_names("lst", {"load", "list", "unload", "lst2", "list"}, 3, 3),
+            (std::vector<std::string>{"list", "lst2", "load"}));
+  EXPECT_EQ(closest_names("lst", {"load", "list", "unload", "lst2"}, 3, 2), (std::vector<std::string>{"list", "lst2"}));
+  EXPECT_EQ(closest_names("lst", {"load", "list", "lst2"}, 1, 2), (std::vector<std::string>{"list"}));
+  EXPECT_TRUE(closest_names("zzzzzzzz", {"list", "load"}, 3, 2).empty());
+}
+
 TEST(Text, TrimJoinSplit) {
   EXPECT_EQ(trim("  a b \n"), "a b");
   EXPECT_EQ(join({"a", "b"}), "a, b");

@@ -6,9 +6,11 @@
 #include <fmt/format.h>
 
 #include <atomic>
+#include <functional>
 #include <thread>
 
 #include "lcm_control/e_stop_t.hpp"
+#include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/link_poses_t.hpp"
 #include "test/support/lcm_test.hpp"
@@ -131,20 +133,24 @@ TEST(MessageText, EveryTypeBuildsAndReadsBack) {
 
 namespace {
 
-// Publishes a float64_t on `channel` every period_ms until destroyed.
+// Publishes on the bus every period_ms until destroyed: a float64_t on `channel` (data 0.5, 1, 1.5, ...), or what
+// `publish` sends.
 class Ticker {
  public:
-  Ticker(const std::string& url, std::string channel, int period_ms) : lc_(url), channel_(std::move(channel)) {
-    thread_ = std::thread([this, period_ms] {
-      float64_t m{};
+  Ticker(const std::string& url, int period_ms, std::function<void(lcm::LCM&)> publish) : lc_(url) {
+    thread_ = std::thread([this, period_ms, publish] {
       while (!stop_) {
-        m.utime += 1000;
-        m.data += 0.5;
-        lc_.publish(channel_, &m);
+        publish(lc_);
         std::this_thread::sleep_for(std::chrono::milliseconds(period_ms));
       }
     });
   }
+  Ticker(const std::string& url, std::string channel, int period_ms)
+      : Ticker(url, period_ms, [channel, m = float64_t{}](lcm::LCM& lc) mutable {
+          m.utime += 1000;
+          m.data += 0.5;
+          lc.publish(channel, &m);
+        }) {}
   ~Ticker() {
     stop_ = true;
     thread_.join();
@@ -152,7 +158,6 @@ class Ticker {
 
  private:
   lcm::LCM lc_;
-  std::string channel_;
   std::atomic<bool> stop_{false};
   std::thread thread_;
 };
@@ -201,6 +206,85 @@ TEST(BusTool, NothingOnTheChannelExits4AndListsWhatWasSeen) {
   lt::ChildProcess list({lt::bin("bus"), "list", "--duration", "0.5"}, env(quiet));
   EXPECT_EQ(list.wait(20), 4) << list.output();
   EXPECT_NE(list.output().find("no messages on"), std::string::npos) << list.output();
+}
+
+TEST(BusTool, EchoPrintsOneFieldByRosPathOrDashboardLabelAndSuggestsTheNearestForATypo) {
+  const std::string url = lt::unique_lcm_url();
+  Ticker states(url, 10, [](lcm::LCM& lc) {
+    joint_state_t js{};
+    js.utime = 7;
+    js.num_joints = 2;
+    js.name = {"j1", "j2"};
+    js.position = {0.25, -1.5};
+    js.velocity = {0, 2};
+    js.effort = {0, 0};
+    lc.publish("joint_states", &js);
+  });
+  lt::ChildProcess ros({lt::bin("bus"), "echo", "/joint_states/position", "--count", "1"}, env(url));
+  ASSERT_EQ(ros.wait(20), 0) << ros.output();
+  EXPECT_EQ(ros.output(), "position[j1]: 0.25\nposition[j2]: -1.5\n---\n");
+  for (const std::string field : {"position[j2]", "position[1]", "/position[j2]"}) {
+    lt::ChildProcess one({lt::bin("bus"), "echo", "joint_states", "--field", field, "--count", "1"}, env(url));
+    ASSERT_EQ(one.wait(20), 0) << field << "\n" << one.output();
+    EXPECT_EQ(one.output(), "-1.5\n---\n") << field;
+  }
+  lt::ChildProcess csv({lt::bin("bus"), "echo", "joint_states", "--field", "velocity[j2]", "--csv", "--count", "1"},
+                       env(url));
+  ASSERT_EQ(csv.wait(20), 0) << csv.output();
+  EXPECT_EQ(csv.output(), "utime,velocity[1]\n7,2\n");
+
+  lt::ChildProcess typo({lt::bin("bus"), "echo", "joint_states", "--field", "postion[j2]", "--duration", "5"},
+                        env(url));
+  EXPECT_EQ(typo.wait(20), 1) << typo.output();
+  EXPECT_NE(typo.output().find("bus: error: joint_states messages (lcm_control.joint_state_t) have no field "
+                               "'postion[j2]'; nearest: position[j2], position[j1], position[0], position[1], "
+                               "position\n"),
+            std::string::npos)
+      << typo.output();
+  lt::ChildProcess ros_typo({lt::bin("bus"), "echo", "/joint_states/postion", "--duration", "5"}, env(url));
+  EXPECT_EQ(ros_typo.wait(20), 1) << ros_typo.output();
+  EXPECT_NE(ros_typo.output().find("have no field 'postion'; nearest: position"), std::string::npos)
+      << ros_typo.output();
+}
+
+TEST(BusTool, PlayReplaysALogAtItsPaceScaledBySpeedLoopsAndStopsAtCtrlC) {
+  const std::string dir = lt::temp_dir("bus_play");
+  {
+    lt::TestLog log(dir + "/run.lcmlog");
+    for (int k = 0; k < 11; ++k) {
+      float64_t m{};
+      m.utime = k;
+      m.data = k * 0.5;
+      log.put_message(k % 2 ? "j1/command" : "j2/command", k * 100000, m);  // 1 s of messages
+    }
+  }
+  const std::string url = lt::unique_lcm_url();
+  lcm::LCM lc(url);
+  lt::Recorder<float64_t> j1(lc, "j1/command"), j2(lc, "j2/command");
+  const auto start = std::chrono::steady_clock::now();
+  lt::ChildProcess once({lt::bin("bus"), "play", dir + "/run.lcmlog", "--speed", "4", "--lcm-url", url});
+  ASSERT_EQ(once.wait(20), 0) << once.output();
+  const double took = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_GE(took, 0.25 * 0.95) << "1 s of log at 4x real time";
+  EXPECT_NE(once.output().find("bus play: 11 messages on 2 channels"), std::string::npos) << once.output();
+  ASSERT_TRUE(lt::pump_until(lc, [&] { return j1.messages.size() + j2.messages.size() >= 11; }, 5));
+  ASSERT_EQ(j2.messages.size(), 6u);
+  for (size_t k = 0; k < j2.messages.size(); ++k) EXPECT_EQ(j2.messages[k].utime, int64_t(2 * k));
+
+  lt::ChildProcess looped({lt::bin("bus"), "play", dir + "/run.lcmlog", "-s", "20", "--loop", "--duration", "0.5",
+                           "--lcm-url", url});
+  ASSERT_EQ(looped.wait(20), 0) << looped.output();
+  EXPECT_NE(looped.output().find(" passes)"), std::string::npos) << "1 s at 20x, for 0.5 s\n" << looped.output();
+
+  lt::ChildProcess endless({lt::bin("bus"), "play", dir + "/run.lcmlog", "--loop", "--lcm-url", url});
+  ASSERT_TRUE(endless.wait_for_output("looping until Ctrl-C", 10)) << endless.output();
+  EXPECT_EQ(endless.stop(10), 0) << endless.output();
+  EXPECT_NE(endless.output().find("bus play: "), std::string::npos) << endless.output();
+
+  lt::ChildProcess missing({lt::bin("bus"), "play", dir + "/none.lcmlog", "--lcm-url", url});
+  EXPECT_EQ(missing.wait(20), 3) << missing.output();
+  lt::ChildProcess still({lt::bin("bus"), "play", dir + "/run.lcmlog", "--speed", "0", "--lcm-url", url});
+  EXPECT_EQ(still.wait(20), 2) << still.output();
 }
 
 TEST(BusTool, PubSendsWhatEchoAndAReceiverRead) {

@@ -41,6 +41,27 @@ TEST(Conventions, EveryProgramHelpsWithAnExampleAndExits2OnAUsageError) {
   }
 }
 
+TEST(Conventions, AMistypedSubcommandExits2NamingTheWordAndTheNearestOnes) {
+  const Outcome cmctl = run({"cmctl", "lst"});
+  EXPECT_EQ(cmctl.rc, 2) << cmctl.out;
+  EXPECT_NE(cmctl.out.find("cmctl: error: 'lst' is not a command of cmctl; nearest: list; the commands: list, "
+                           "list-types,"),
+            std::string::npos)
+      << cmctl.out;
+  const Outcome bus = run({"bus", "--lcm-url", "udpm://239.255.76.67:7667?ttl=0", "plya", "run.lcmlog"});
+  EXPECT_EQ(bus.rc, 2) << bus.out;
+  EXPECT_NE(bus.out.find("bus: error: 'plya' is not a command of bus; nearest: play; the commands: list, hz, echo"),
+            std::string::npos)
+      << bus.out;
+  EXPECT_NE(bus.out.find("Run with --help for more information"), std::string::npos) << bus.out;
+  const Outcome alias = run({"cmctl", "list-controllers", "--no-such-flag"});  // a ROS 2 alias is a command
+  EXPECT_EQ(alias.rc, 2) << alias.out;
+  EXPECT_EQ(alias.out.find("is not a command"), std::string::npos) << alias.out;
+  const Outcome none = run({"cmctl"});  // no word at all: CLI11's own message
+  EXPECT_EQ(none.rc, 2) << none.out;
+  EXPECT_NE(none.out.find("A subcommand is required"), std::string::npos) << none.out;
+}
+
 TEST(Conventions, ABadInputFileExits3NamingIt) {
   const std::string dir = temp_dir("conventions");
   const std::string missing = dir + "/missing";

@@ -21,9 +21,9 @@ std::string parse_error(const std::string& text) {
   }
   return "";
 }
-Field number(const std::string& path, double v) { return Field{path, v, 0, false, false, ""}; }
-Field integer(const std::string& path, int64_t v) { return Field{path, double(v), v, true, false, ""}; }
-Field text(const std::string& path, const std::string& s) { return Field{path, 0, 0, false, true, s}; }
+Field number(const std::string& path, double v) { return Field{path, v, 0, false, false, "", ""}; }
+Field integer(const std::string& path, int64_t v) { return Field{path, double(v), v, true, false, "", ""}; }
+Field text(const std::string& path, const std::string& s) { return Field{path, 0, 0, false, true, s, ""}; }
 }  // namespace
 
 TEST(Csv, QuotesOnlyCellsThatNeedIt) {

@@ -28,18 +28,22 @@ std::vector<std::string> paths(const Decoded& d) {
   for (const auto& f : d.fields) p.push_back(f.path);
   return p;
 }
-}  // namespace
-
-TEST(Fields, JointStateColumns) {
+// The fields of a joint_state_t of two joints named `names`: position 0.1, 0.2, velocity 1.5, -2, effort 3, 4.
+Decoded two_joints(const std::vector<std::string>& names, int64_t utime = 0) {
   joint_state_t m{};
-  m.utime = 1234567890123456;
+  m.utime = utime;
   m.num_joints = 2;
-  m.name = {"j1", "j2"};
+  m.name = names;
   m.position = {0.1, 0.2};
   m.velocity = {1.5, -2};
   m.effort = {3, 4};
   const auto buf = encode(m);
-  const Decoded d = decode_fields(buf.data(), buf.size());
+  return decode_fields(buf.data(), buf.size());
+}
+}  // namespace
+
+TEST(Fields, JointStateColumns) {
+  const Decoded d = two_joints({"j1", "j2"}, 1234567890123456);
   ASSERT_TRUE(d.ok()) << d.skip_reason;
   EXPECT_EQ(d.type, "lcm_control.joint_state_t");
   EXPECT_EQ(paths(d), (std::vector<std::string>{"utime", "position[0]", "position[1]", "velocity[0]", "velocity[1]",
@@ -50,6 +54,29 @@ TEST(Fields, JointStateColumns) {
   EXPECT_FALSE(d.fields[6].is_text);
   EXPECT_TRUE(d.fields[8].is_text);
   EXPECT_EQ(d.fields[8].text(), "j2");
+}
+
+TEST(Fields, ListRowsTakeTheDashboardsLabelsAndAreSelectedByPathOrLabel) {
+  const Decoded d = two_joints({"j1", "j2"});
+  ASSERT_TRUE(d.ok()) << d.skip_reason;
+  EXPECT_EQ(d.fields[2].name(), "position[j2]");
+  EXPECT_EQ(d.fields[0].name(), "utime");
+  auto selected = [&](const std::string& wanted) {
+    std::vector<std::string> out;
+    for (const Field* f : select_fields(d.fields, wanted)) out.push_back(f->path);
+    return out;
+  };
+  EXPECT_EQ(selected("position[j2]"), (std::vector<std::string>{"position[1]"}));
+  EXPECT_EQ(selected("position[1]"), (std::vector<std::string>{"position[1]"}));
+  EXPECT_EQ(selected("/velocity"), (std::vector<std::string>{"velocity[0]", "velocity[1]"}));
+  EXPECT_TRUE(selected("position[j3]").empty());
+  EXPECT_TRUE(selected("pos").empty());
+  EXPECT_EQ(nearest_fields(d.fields, "postion[j2]", 2), (std::vector<std::string>{"position[j2]", "position[j1]"}));
+}
+
+TEST(Fields, RowsWithoutDistinctNamesKeepTheirIndexAsLabel) {
+  const Decoded d = two_joints({"j1", "j1"});
+  EXPECT_EQ(d.fields[2].name(), "position[1]");
 }
 
 TEST(Fields, StringsFollowTheNumbers) {

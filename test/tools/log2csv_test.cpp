@@ -83,6 +83,26 @@ TEST(Log2Csv, ChannelFilterAndLogTime) {
   EXPECT_FALSE(std::filesystem::exists(ros + "/j2_controller__command.csv"));
 }
 
+TEST(Log2Csv, FieldsByPathOrDashboardLabelAndTheNearestForATypo) {
+  const std::string dir = temp_dir("log2csv_fields");
+  write_test_log(dir + "/run.lcmlog");
+  ChildProcess p({bin("log2csv"), dir + "/run.lcmlog", "--output-dir", dir, "-c", "joint_states", "--field",
+                  "position[j2]", "--field", "velocity"});
+  ASSERT_EQ(p.wait(10.0), 0) << p.output();
+  const Csv js = read_csv(dir + "/joint_states.csv");
+  EXPECT_EQ(js.header, (std::vector<std::string>{"utime", "position[1]", "velocity[0]", "velocity[1]"}));
+  ASSERT_EQ(js.rows.size(), 50u);
+  EXPECT_EQ(js.rows[10][2], "0.5");
+
+  ChildProcess typo({bin("log2csv"), dir + "/run.lcmlog", "--output-dir", dir, "--field", "postion[j2]"});
+  EXPECT_EQ(typo.wait(10.0), 1) << typo.output();
+  EXPECT_NE(typo.output().find("log2csv: error: " + dir + "/run.lcmlog: no column of these names in any channel "
+                               "read:\n  --field postion[j2]: nearest in joint_states: position[j2], position[j1], "
+                               "position[0], position[1], position\n"),
+            std::string::npos)
+      << typo.output();
+}
+
 TEST(Log2Csv, FailuresSayWhat) {
   const std::string dir = temp_dir("log2csv_fail");
   ChildProcess missing({bin("log2csv"), dir + "/nope.lcmlog"});

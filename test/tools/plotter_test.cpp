@@ -1,6 +1,7 @@
 // plotter: the PNG exists and the data it fed gnuplot matches log2csv's CSV.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 
 #include "lcm_control/joint_state_t.hpp"
@@ -115,8 +116,39 @@ TEST(Plotter, UnknownPathListsWhatThereWas) {
   EXPECT_EQ(p.wait(30.0), 1);
   const std::string out = p.output();
   EXPECT_NE(out.find("plotter: error: no data for joint_states.speed[0]"), std::string::npos) << out;
-  EXPECT_NE(out.find("joint_states.velocity[1]"), std::string::npos) << out;
+  EXPECT_NE(out.find("joint_states: joint_states.utime, joint_states.position[j1]"), std::string::npos) << out;
+  EXPECT_NE(out.find("joint_states.velocity[j2]"), std::string::npos) << out;
   EXPECT_FALSE(std::filesystem::exists(dir + "/plot.png"));
+}
+
+TEST(Plotter, DashboardLabelsTheTerminalWithoutAFileAndTheNearestFieldsForATypo) {
+  const std::string dir = temp_dir("plotter_labels");
+  write_test_log(dir + "/run.lcmlog");
+  ChildProcess text({bin("plotter"), "joint_states.position[j2]", "/joint_states/velocity[j1]", "--log",
+                     dir + "/run.lcmlog", "--terminal", "--data", dir + "/plot.dat"});
+  ASSERT_EQ(text.wait(30.0), 0) << text.output();
+  EXPECT_NE(text.output().find("joint_states.position[j2] [rad or m]"), std::string::npos) << text.output();
+  const auto blocks = read_blocks(dir + "/plot.dat");
+  ASSERT_EQ(blocks.size(), 2u);
+  ASSERT_EQ(blocks[0].size(), 50u);
+  EXPECT_DOUBLE_EQ(blocks[0][10].second, std::sin(1.0));  // position[1] of the 11th joint_states
+  EXPECT_DOUBLE_EQ(blocks[1][10].second, 0.5);            // velocity[0]
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir), {}), 2) << "no image without --output";
+
+  ChildProcess typo({bin("plotter"), "joint_states.postion[j2]", "--log", dir + "/run.lcmlog", "--terminal"});
+  EXPECT_EQ(typo.wait(30.0), 1) << typo.output();
+  EXPECT_NE(typo.output().find("plotter: error: no data for joint_states.postion[j2] in " + dir +
+                               "/run.lcmlog; what there was:\n  joint_states: nearest: joint_states.position[j2], "
+                               "joint_states.position[j1], joint_states.position[0], joint_states.position[1], joint_states.position\n"),
+            std::string::npos)
+      << typo.output();
+  EXPECT_EQ(typo.output().find("..."), std::string::npos) << typo.output();
+
+  ChildProcess neither({bin("plotter"), "joint_states.position[j2]", "--log", dir + "/run.lcmlog"});
+  EXPECT_EQ(neither.wait(30.0), 2) << neither.output();
+  EXPECT_NE(neither.output().find("give an image file (-o run.png or .svg), or --terminal for a text plot"),
+            std::string::npos)
+      << neither.output();
 }
 
 TEST(Plotter, ATextColumnIsAnErrorThatSaysSo) {

@@ -81,15 +81,23 @@ TEST(TurretCmd, SeveralExpressionsSendAnArrayOnARawChannelWithNamespace) {
   }
 }
 
-TEST(TurretCmd, ChannelFlagAndArrayFlag) {
+TEST(TurretCmd, AsChannelFlagAndArrayFlag) {
   const std::string url = unique_lcm_url();
   lcm::LCM lc(url);
   Recorder<float64_array_t> rec(lc, "setpoint");
-  ChildProcess p({bin("turret-cmd"), "setpoint", "7", "--channel", "--array", "--lcm-url", url});
+  ChildProcess p({bin("turret-cmd"), "setpoint", "7", "--as-channel", "--array", "--lcm-url", url});
   EXPECT_EQ(p.wait(5.0), 0) << p.output();
-  pump_until(lc, [&] { return !rec.messages.empty(); }, 2.0);
-  ASSERT_EQ(rec.messages.size(), 1u);
+  ChildProcess old({bin("turret-cmd"), "setpoint", "8", "--channel", "--array", "--lcm-url", url});  // the old name
+  EXPECT_EQ(old.wait(5.0), 0) << old.output();
+  pump_until(lc, [&] { return rec.messages.size() >= 2; }, 2.0);
+  ASSERT_EQ(rec.messages.size(), 2u);
   EXPECT_EQ(rec.messages[0].data, std::vector<double>{7.0});
+  EXPECT_EQ(rec.messages[1].data, std::vector<double>{8.0});
+  ChildProcess help({bin("turret-cmd"), "--help"});
+  EXPECT_EQ(help.wait(5.0), 0);
+  EXPECT_EQ(help.output().find("--channel"), std::string::npos) << "one meaning of --channel: a regex (bus record, "
+                                                                    "log2csv)\n"
+                                                 << help.output();
 }
 
 TEST(TurretCmd, BadExpressionFailsWithOneLine) {

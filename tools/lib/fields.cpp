@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "bus/bus.hpp"
+#include "description/text.hpp"
 #include "lcm_control/visit.hpp"
 
 namespace lcm_control::tools {
@@ -47,21 +48,25 @@ bool labels_ok(const std::vector<std::string>& names) {
 
 // A visitor (lcm_control/visit.hpp) that appends a message's numbers and strings as fields under a path prefix.
 // A matrix's rows are labelled by the string array the schema says names them (kFieldInfo's labels; link_poses:
-// position[rotor].z) when its names can be, its columns by the schema's component names.
+// position[rotor].z) when its names can be, its columns by the schema's component names; a list's elements
+// keep their index in the path and take the names in their label only (position[0], label position[j1]).
 class Flatten {
  public:
-  Flatten(std::vector<Field>& f, std::string prefix, std::string type)
-      : f_(f), prefix_(std::move(prefix)), type_(std::move(type)) {}
+  Flatten(std::vector<Field>& f, std::string prefix, std::string type, std::string label_prefix)
+      : f_(f), prefix_(std::move(prefix)), label_prefix_(std::move(label_prefix)), type_(std::move(type)) {}
   template <class T>
   void value(const char* name, const T& x) {
-    put(prefix_ + name, x);
+    put(prefix_ + name, x, label_prefix_ + name);
   }
   void count(const char*, int32_t) {}  // array lengths are left out
   template <class T>
   void list(const char* name, const std::vector<T>& xs, const char*) {
     if constexpr (std::is_same_v<T, std::string>)
       strings_[name] = &xs;
-    for (size_t k = 0; k < xs.size(); ++k) put(fmt::format("{}{}[{}]", prefix_, name, k), xs[k]);
+    const std::vector<std::string>* rows = row_names(name, xs.size());
+    for (size_t k = 0; k < xs.size(); ++k)
+      put(fmt::format("{}{}[{}]", prefix_, name, k), xs[k],
+          fmt::format("{}{}[{}]", label_prefix_, name, rows ? (*rows)[k] : std::to_string(k)));
   }
   template <class T>
   void matrix(const char* name, const std::vector<std::vector<T>>& xs, const char*, int) {
@@ -73,35 +78,50 @@ class Flatten {
     for (size_t k = 0; k < xs.size(); ++k) {
       const bool named_row = rows && k < rows->size();
       const std::string row = named_row ? (*rows)[k] : std::to_string(k);
-      for (size_t j = 0; j < xs[k].size(); ++j)
-        put(j < cols.size() && named_row ? fmt::format("{}{}[{}].{}", prefix_, name, row, cols[j])
-                                         : fmt::format("{}{}[{}][{}]", prefix_, name, row, j),
-            xs[k][j]);
+      for (size_t j = 0; j < xs[k].size(); ++j) {
+        const std::string tail = j < cols.size() && named_row ? fmt::format("{}[{}].{}", name, row, cols[j])
+                                                              : fmt::format("{}[{}][{}]", name, row, j);
+        put(prefix_ + tail, xs[k][j], label_prefix_ + tail);
+      }
     }
   }
   template <class S>
   void structs(const char* name, const std::vector<S>& xs, const char*) {
+    const std::vector<std::string>* rows = row_names(name, xs.size());
     for (size_t k = 0; k < xs.size(); ++k) {
-      Flatten sub(f_, fmt::format("{}{}[{}].", prefix_, name, k), S::getTypeName());
+      Flatten sub(f_, fmt::format("{}{}[{}].", prefix_, name, k), S::getTypeName(),
+                  fmt::format("{}{}[{}].", label_prefix_, name, rows ? (*rows)[k] : std::to_string(k)));
       visit(xs[k], sub);
     }
   }
   template <class S>
   void nested(const char* name, const S& x) {
-    Flatten sub(f_, prefix_ + name + ".", S::getTypeName());
+    Flatten sub(f_, prefix_ + name + ".", S::getTypeName(), label_prefix_ + name + ".");
     visit(x, sub);
   }
 
  private:
-  void put(std::string path, double v) { f_.push_back(Field{std::move(path), v, 0, false, false, ""}); }
-  void put(std::string path, float v) { put(std::move(path), double(v)); }
-  void put(std::string path, const std::string& v) { f_.push_back(Field{std::move(path), 0, 0, false, true, v}); }
+  // The names the schema gives the `size` rows of list `name`, when they can label them; else null.
+  const std::vector<std::string>* row_names(const char* name, size_t size) const {
+    const FieldInfo* info = field_info(type_, name);
+    const auto found = strings_.find(info ? info->labels : "");
+    if (found == strings_.end() || found->second->size() != size || !labels_ok(*found->second)) return nullptr;
+    return found->second;
+  }
+  static std::string label_of(std::string path, std::string label) { return label == path ? "" : label; }
+  void put(std::string path, double v, std::string label) {
+    f_.push_back(Field{path, v, 0, false, false, "", label_of(path, std::move(label))});
+  }
+  void put(std::string path, float v, std::string label) { put(std::move(path), double(v), std::move(label)); }
+  void put(std::string path, const std::string& v, std::string label) {
+    f_.push_back(Field{path, 0, 0, false, true, v, label_of(path, std::move(label))});
+  }
   template <class I, class = std::enable_if_t<std::is_integral_v<I>>>
-  void put(std::string path, I v) {
-    f_.push_back(Field{std::move(path), double(v), int64_t(v), true, false, ""});
+  void put(std::string path, I v, std::string label) {
+    f_.push_back(Field{path, double(v), int64_t(v), true, false, "", label_of(path, std::move(label))});
   }
   std::vector<Field>& f_;
-  std::string prefix_, type_;
+  std::string prefix_, label_prefix_, type_;
   std::map<std::string, const std::vector<std::string>*> strings_;  // the string arrays visited so far, by field
 };
 
@@ -121,7 +141,7 @@ Decoded decode_as(const void* data, size_t size) {
     d.skip_reason = "malformed payload (decode failed)";
     return d;
   }
-  Flatten flat(d.fields, "", Msg::getTypeName());
+  Flatten flat(d.fields, "", Msg::getTypeName(), "");
   visit(m, flat);
   // Strings after all the numbers: a numeric column keeps its position in a file without strings.
   std::stable_partition(d.fields.begin(), d.fields.end(), [](const Field& f) { return !f.is_text; });
@@ -182,6 +202,32 @@ std::string csv_file_name(const std::string& channel) {
   for (char c : channel) s += c == '/' ? std::string("__") : std::string(1, c);
   while (!s.empty() && s[0] == '_') s.erase(0, 1);
   return (s.empty() ? std::string("channel") : s) + ".csv";
+}
+
+std::vector<const Field*> select_fields(const std::vector<Field>& fields, const std::string& wanted) {
+  const std::string w = wanted.substr(std::min(wanted.size(), wanted.find_first_not_of("./")));
+  std::vector<const Field*> out;
+  for (const Field& f : fields)
+    if (f.path == w || f.label == w) return {&f};
+  auto under = [&](const std::string& name) {
+    return name.size() > w.size() && name.compare(0, w.size(), w) == 0 && (name[w.size()] == '[' || name[w.size()] == '.');
+  };
+  for (const Field& f : fields)
+    if (!w.empty() && (under(f.path) || under(f.label))) out.push_back(&f);
+  return out;
+}
+
+std::vector<std::string> nearest_fields(const std::vector<Field>& fields, const std::string& wanted, size_t most) {
+  std::vector<std::string> names;
+  for (const Field& f : fields) {
+    if (f.is_text) continue;
+    for (const std::string& n : {f.name(), f.path}) {
+      for (size_t cut = n.find_first_of("[."); cut != std::string::npos; cut = n.find_first_of("[.", cut + 1))
+        names.push_back(n.substr(0, cut));  // what holds it: position, points[0].positions
+      names.push_back(n);
+    }
+  }
+  return closest_names(wanted, names, most, std::max<size_t>(3, wanted.size() / 2));
 }
 
 std::string field_unit(const std::string& type, const std::string& path) {

@@ -1,6 +1,7 @@
 // Field paths of our LCM messages, shared by state-logger, log2csv and plotter:
 // decode a payload by its fingerprint and flatten its numbers and strings to
-// (path, value) pairs such as `utime`, `position[0]`, `data[2]`, `message` (the CSV columns).
+// (path, value) pairs such as `utime`, `position[0]`, `data[2]`, `message` (the CSV columns), each with the label
+// the dashboard shows (`position[j1]`); a field is asked for by either (select_fields).
 #pragma once
 
 #include <cstddef>
@@ -18,7 +19,9 @@ struct Field {
   bool integer = false;
   bool is_text = false;  // a string field: its value is `str`, not a number to plot
   std::string str;
-  std::string text() const;  // exact integers, shortest round-trip doubles, strings as they are (unquoted)
+  std::string label;  // the dashboard's name: rows named by the string array the schema gives (position[j1]); "" = path
+  std::string text() const;
+  const std::string& name() const { return label.empty() ? path : label; }  // exact integers, shortest round-trip doubles, strings as they are (unquoted)
 };
 
 struct Decoded {
@@ -32,6 +35,14 @@ struct Decoded {
 // fields are left out; booleans are 0/1. Strings come after all the numbers, so
 // a numeric column has the same position as in a file without strings.
 Decoded decode_fields(const void* data, size_t size);
+
+// The fields `wanted` names: the one whose path or label it is (`position[1]`, `position[j2]`), else all under it
+// (`position` -> position[0], position[1], ...); none when it names none. A leading '.' or '/' is ignored.
+std::vector<const Field*> select_fields(const std::vector<Field>& fields, const std::string& wanted);
+
+// Up to `most` numeric field names (labels, paths, and what holds them: position) nearest to `wanted`, nearest first:
+// what an unknown field's error suggests.
+std::vector<std::string> nearest_fields(const std::vector<Field>& fields, const std::string& wanted, size_t most = 5);
 
 // The unit the schema gives a field path of a message type ("lcm_control.joint_state_t", "position[1]" ->
 // "rad or m"; "link_poses_t", "position[rotor].z" -> "m"); "" when it gives none.
