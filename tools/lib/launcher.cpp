@@ -181,6 +181,7 @@ CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const
   if (o.duration > 0) sim.insert(sim.end(), {"--duration", fmt::format("{:g}", o.duration)});
   cm = {"controller_manager"};
   cm.insert(cm.end(), file_args.begin(), file_args.end());
+  if (plan.sim) cm.push_back("--quiet-model");  // sim_server reads the same files and prints the same warnings
   cm.insert(cm.end(), plan.cm_args.begin(), plan.cm_args.end());
   // In lockstep the two loop processes take turns; on one CPU each hand-over is a cheaper wake-up (bench/README.md).
   int pin = -1;
@@ -388,8 +389,13 @@ int supervise(const LaunchPlan& plan, const LaunchOptions& o, const CommandLines
     if (!c->clean()) failed.push_back(Supervisor::exit_text(*c));
   launch_say(
       fmt::format("all {} processes stopped in {:.2f} s", sup.children().size(), double(monotonic_us() - t0) / 1e6));
-  if (!failure.empty()) throw std::runtime_error(failure);
-  if (!failed.empty()) throw std::runtime_error(fmt::format("{}", fmt::join(failed, "; ")));
+  // A child that refused a bad file (exit 3) by itself makes launch exit 3 too, as the convention says.
+  const bool bad_file = std::any_of(sup.children().begin(), sup.children().end(), [](const auto& c) {
+    return c->exited && !c->signalled && c->code == int(kExitBadInput);
+  });
+  const std::string message = !failure.empty() ? failure : fmt::format("{}", fmt::join(failed, "; "));
+  if (bad_file && !message.empty()) throw ModelError(message);
+  if (!message.empty()) throw std::runtime_error(message);
   return int(kExitOk);
 }
 
@@ -400,14 +406,44 @@ void launch_say(const std::string& line) {
   std::fflush(stdout);
 }
 
+LaunchPlan plan_from_flags(const LaunchOptions& o) {
+  if (!o.file.empty() && !o.urdf.empty())
+    throw CLI::ValidationError("--urdf", "give a launch FILE or --urdf (with --config), not both");
+  if (o.urdf.empty())
+    throw CLI::ValidationError("FILE", "give a launch FILE, or the robot with --urdf R.urdf --config C.yaml");
+  LaunchPlan plan;
+  plan.file = o.urdf;
+  plan.urdf = std::filesystem::absolute(o.urdf).string();
+  for (const auto& c : o.configs) plan.configs.push_back(std::filesystem::absolute(c).string());
+  if (!o.controllers.empty() || !o.inactive.empty()) return plan;  // run_launch sets them
+  LoadOptions lo;
+  lo.package_path = o.package_path;
+  for (const auto& a : o.xacro_args) lo.xacro_args.push_back(parse_arg(a));
+  for (const auto& a : o.args) lo.args.push_back(parse_arg(a));
+  lo.config_from_plugin = true;
+  try {
+    for (const auto& c : load_robot_model(plan.urdf, plan.configs, lo).controllers) plan.controllers.push_back(c.name);
+  } catch (const std::exception&) {
+    return plan;  // the servers read the same files and say what is wrong (launch exits 3)
+  }
+  return plan;
+}
+
 int run_launch(const LaunchOptions& o) {
-  LaunchPlan plan = read_launch_file(o.file, o.package_path);
+  LaunchPlan plan = o.file.empty() || !o.urdf.empty() ? plan_from_flags(o) : read_launch_file(o.file, o.package_path);
   if (o.dashboard && (o.robots > 0 || !plan.robots.empty()))
     throw CLI::ValidationError("--dashboard",
                                "one dashboard shows one robot: with several, start one per robot "
                                "(dashboard --namespace r0 --port 8080 --urdf FILE, r1 on 8081, ...)");
   if (!o.mode.empty()) plan.mode = o.mode;
   for (const auto& a : o.xacro_args) plan.xacro_args.push_back(parse_arg(a));  // after the file's: the flag wins
+  for (const auto& a : o.args) {
+    const auto given = parse_arg(a);
+    plan.args.erase(std::remove_if(plan.args.begin(), plan.args.end(),
+                                   [&](const auto& f) { return f.first == given.first; }),
+                    plan.args.end());
+    plan.args.push_back(given);
+  }
   if (o.paused) plan.paused = true;
   if (!o.cpu.empty()) plan.cpu = o.cpu;
   if (o.rt_priority >= 0) plan.rt_priority = o.rt_priority;
