@@ -15,8 +15,8 @@ int main(int argc, char** argv) {
   LaunchOptions o;
   CLI::App app{
       "Start sim_server and controller_manager from one launch file, wait until both answer, spawn the controllers, "
-      "and stop everything in order on Ctrl-C or when a process dies (exit 1 if one failed, 3 if one refused a bad file). Reads our YAML launch "
-      "files and ROS launch XML (gazebo_ros_control.launch: <param textfile>, <rosparam load>, $(find PKG), the "
+      "and stop everything in order on Ctrl-C or when a process dies (exit 1 if one failed, 3 if one refused a bad "
+      "file). Reads our YAML launch files and ROS launch XML (gazebo_ros_control.launch: <param textfile>, <rosparam load>, $(find PKG), the "
       "spawner's args; gazebo -> sim_server, robot_state_publisher -> state-publisher). Children get "
       "LCM_DEFAULT_URL; every output line is prefixed with the child's name.\n"
       "Examples:\n"

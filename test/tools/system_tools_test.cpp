@@ -430,6 +430,13 @@ TEST(Launch, FromUrdfAndConfigWithoutAFileEveryControllerAndEachWarningOnce) {
   EXPECT_NE(dry.find("launch: error: --urdf: give a launch FILE or --urdf (with --config), not both"),
             std::string::npos)
       << dry;
+  std::tie(rc, dry) = run({bin("launch"), source("config/turret_bot.launch.yaml"), "--config",
+                           source("config/turret_bot.yaml"), "--dry-run"},
+                          unique_lcm_url());
+  EXPECT_EQ(rc, 2) << dry;
+  EXPECT_NE(dry.find("launch: error: --config: goes with --urdf; a launch FILE names its own config"),
+            std::string::npos)
+      << dry;
   std::tie(rc, dry) = run({bin("launch"), "--dry-run"}, unique_lcm_url());
   EXPECT_EQ(rc, 2) << dry;
   EXPECT_NE(dry.find("give a launch FILE, or the robot with --urdf R.urdf --config C.yaml"), std::string::npos) << dry;

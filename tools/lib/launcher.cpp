@@ -108,11 +108,15 @@ void gazebo_spawn_defaults(LaunchPlan& plan, const std::vector<std::string>& pat
 
 bool spawns(const LaunchPlan& plan) { return !plan.controllers.empty() || !plan.inactive.empty(); }
 
-// For a ROS 2 robot: the config from the gz_ros2_control plugin's <parameters> when the file gives none, and a note
-// when nothing says which controllers to start (ROS 2 says it in the launch file's spawner calls, not in the YAML).
-void ros2_defaults(LaunchPlan& plan, const std::vector<std::string>& path) {
+// What launch takes from the robot's files: for a robot from --urdf/--config (`every_controller`), every controller
+// the YAML configures unless --controllers/--inactive name some; for a ROS 2 robot, the config from the
+// gz_ros2_control plugin's <parameters> when the file gives none, and a note when nothing says which controllers to
+// start (ROS 2 says it in the launch file's spawner calls, not in the YAML).
+void model_defaults(LaunchPlan& plan, const std::vector<std::string>& path, const std::string& ns,
+                    bool every_controller) {
   LoadOptions o;
   o.package_path = path;
+  o.ns = ns;
   o.xacro_args = plan.xacro_args;
   o.args = plan.args;
   o.config_from_plugin = true;
@@ -131,9 +135,10 @@ void ros2_defaults(LaunchPlan& plan, const std::vector<std::string>& path) {
     throw ModelError(fmt::format("{}: 'config' is missing: the controllers YAML (a URDF's gz_ros2_control plugin may "
                                  "name it in <parameters>; {}'s does not)",
                                  plan.file, plan.urdf));
-  if (!model.ros2_parameter_file || spawns(plan)) return;
   std::vector<std::string> names;
   for (const auto& c : model.controllers) names.push_back(c.name);
+  if (every_controller && !spawns(plan)) plan.controllers = names;
+  if (!model.ros2_parameter_file || spawns(plan)) return;
   launch_say(fmt::format("note: {} configures {}; a ROS 2 launch starts controllers in its spawner calls: name them "
                          "with --controllers a,b (and --inactive c), or `controllers:` / `inactive:` in a launch "
                          "file. Starting none.",
@@ -415,22 +420,14 @@ LaunchPlan plan_from_flags(const LaunchOptions& o) {
   plan.file = o.urdf;
   plan.urdf = std::filesystem::absolute(o.urdf).string();
   for (const auto& c : o.configs) plan.configs.push_back(std::filesystem::absolute(c).string());
-  if (!o.controllers.empty() || !o.inactive.empty()) return plan;  // run_launch sets them
-  LoadOptions lo;
-  lo.package_path = o.package_path;
-  for (const auto& a : o.xacro_args) lo.xacro_args.push_back(parse_arg(a));
-  for (const auto& a : o.args) lo.args.push_back(parse_arg(a));
-  lo.config_from_plugin = true;
-  try {
-    for (const auto& c : load_robot_model(plan.urdf, plan.configs, lo).controllers) plan.controllers.push_back(c.name);
-  } catch (const std::exception&) {
-    return plan;  // the servers read the same files and say what is wrong (launch exits 3)
-  }
-  return plan;
+  return plan;  // the controllers: model_defaults
 }
 
 int run_launch(const LaunchOptions& o) {
-  LaunchPlan plan = o.file.empty() || !o.urdf.empty() ? plan_from_flags(o) : read_launch_file(o.file, o.package_path);
+  const bool from_flags = o.file.empty() || !o.urdf.empty();
+  if (!from_flags && !o.configs.empty())
+    throw CLI::ValidationError("--config", "goes with --urdf; a launch FILE names its own config");
+  LaunchPlan plan = from_flags ? plan_from_flags(o) : read_launch_file(o.file, o.package_path);
   if (o.dashboard && (o.robots > 0 || !plan.robots.empty()))
     throw CLI::ValidationError("--dashboard",
                                "one dashboard shows one robot: with several, start one per robot "
@@ -451,7 +448,7 @@ int run_launch(const LaunchOptions& o) {
   if (!o.controllers.empty()) plan.controllers = o.controllers;
   if (!o.inactive.empty()) plan.inactive = o.inactive;
   for (const auto& n : plan.notes) launch_say("note: " + n);
-  ros2_defaults(plan, o.package_path);
+  model_defaults(plan, o.package_path, o.bus.ns.empty() ? plan.ns : o.bus.ns, from_flags);
   gazebo_spawn_defaults(plan, o.package_path);
   if (o.robots > 0) plan.robots = robot_names(o.robots);
   if (!plan.robots.empty()) return run_robots(o, plan);

@@ -32,9 +32,9 @@ struct LaunchOptions {
   BusFlags bus;
 };
 
-// The plan a launch file with only urdf:, config: and controllers: makes, from --urdf, --config and --controllers:
-// sim_server, controller_manager and a spawner of every controller the YAML configures unless --controllers names
-// some. Throws CLI::ValidationError when FILE and --urdf are both given, or neither.
+// The plan a launch file with only urdf: and config: makes, from --urdf and --config: sim_server and
+// controller_manager (run_launch adds a spawner of every controller the YAML configures unless --controllers names
+// some). Throws CLI::ValidationError when FILE and --urdf are both given, or neither.
 LaunchPlan plan_from_flags(const LaunchOptions& o);
 
 // Runs the launch to its end; returns the exit code, throws as run_program expects (CLI::ValidationError for a
