@@ -18,6 +18,9 @@
 
 namespace lcm_control {
 
+// The environment variable every program's --namespace defaults to (the flag wins), as ROS_NAMESPACE.
+inline constexpr const char* kNamespaceEnv = "LCM_CONTROL_NAMESPACE";
+
 struct BusFlags {
   std::string lcm_url;  // "" = LCM_DEFAULT_URL
   std::string ns;
@@ -27,7 +30,10 @@ struct BusFlags {
 
 inline void add_bus_flags(CLI::App& app, BusFlags& f) {
   app.add_option("--lcm-url", f.lcm_url, "LCM URL (default: $LCM_DEFAULT_URL, else LCM's default)");
-  app.add_option("--namespace", f.ns, "prefix every channel with NS/ (one robot per namespace)");
+  app.add_option("--namespace", f.ns,
+                 "prefix every channel with NS/ (one robot per namespace; default: $LCM_CONTROL_NAMESPACE, as "
+                 "ROS_NAMESPACE)")
+      ->envname(kNamespaceEnv);
 }
 
 // For the programs on the hardware loop (sim_server, controller_manager, launch, turret-cmd --sim-time).

@@ -56,6 +56,10 @@ int main(int argc, char** argv) {
                  "CPU to anything else ready on it: on a loaded machine use it with --rt-priority")
       ->check(CLI::Range(int64_t{0}, int64_t{100000}));
   app.add_option("--log-level", log_level, "debug, info, warn, error");
+  bool quiet_model = false;
+  app.add_flag("--quiet-model", quiet_model,
+               "do not print the robot model's notes and warnings: launch gives it when it starts sim_server on the "
+               "same files, which prints the same ones (each warning once per cause, not once per process)");
 
   return run_program(app, argc, argv, [&]() -> int {
     std::string scheduling = apply_scheduling(sched);
@@ -71,8 +75,10 @@ int main(int argc, char** argv) {
     // arena, loading a controller after a reload of 10,000 waited 8-15 ms for it (now 2-3 ms, as much as the
     // machine's own scheduling gaps).
     RobotModel model = std::async(std::launch::async, [&] { return load_robot_model(urdf, config, load); }).get();
-    for (const auto& n : model.notes) spdlog::info("{}", n);
-    for (const auto& w : model.warnings) spdlog::warn("{}", w);
+    if (!quiet_model) {
+      for (const auto& n : model.notes) spdlog::info("{}", n);
+      for (const auto& w : model.warnings) spdlog::warn("{}", w);
+    }
     if (model.config_path.empty())
       throw ModelError(fmt::format("--config is required: the controllers YAML (a URDF's gz_ros2_control plugin may "
                                    "name it in <parameters>; {}'s does not)",

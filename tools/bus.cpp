@@ -16,6 +16,7 @@
 #include "cli/cli.hpp"
 #include "description/text.hpp"
 #include "tools/lib/census.hpp"
+#include "tools/lib/command_check.hpp"
 #include "tools/lib/csv.hpp"
 #include "tools/lib/fields.hpp"
 #include "tools/lib/message_text.hpp"
@@ -52,9 +53,16 @@ void run_until(Bus& bus, const Census& census, const std::string& channel, doubl
                const std::vector<std::string>& also = {}) {
   const int64_t start = monotonic_us();
   int64_t next_hint = start + 5000000;
+  NamespaceProbe other_ns(bus, {channel.substr(bus.channel("").size())});  // says at once when heard elsewhere
+  bool hinted = false;
   while (!stop_requested() && !stop()) {
     const int64_t now = monotonic_us();
     if (duration > 0 && now - start >= int64_t(duration * 1e6)) break;
+    if (!hinted && !census.seen().count(channel))
+      if (const std::string h = other_ns.hint(); !h.empty()) {
+        fmt::print(stderr, "bus: no message on '{}'; {}\n", channel, h);
+        hinted = true;
+      }
     if (now >= next_hint) {
       const bool heard = census.seen().count(channel) ||
                          std::any_of(also.begin(), also.end(), [&](const auto& c) { return census.seen().count(c); });
@@ -271,6 +279,7 @@ int cmd_pub(Bus& bus, const std::string& name, const std::string& type, const st
   };
   std::vector<uint8_t> bytes = make();
   const std::string full_type = type_of_payload(bytes.data(), bytes.size());
+  check_command_channel(bus, name, {full_type.substr(full_type.rfind('.') + 1), 0}, 0.5);
   const char* stamp = clock.on_sim() ? "sim time" : "wall-clock time";
   if (rate <= 0) {
     send(bytes);

@@ -45,8 +45,9 @@ int main(int argc, char** argv) {
   app.add_option("--urdf", urdf, "URDF file (or .urdf.xacro, with --xacro-arg) with <transmission> tags")->required();
   add_config_flag(app, config, "ros_control YAML (controllers, gazebo_ros_control/pid_gains)");
   app.add_option("--namespace", bus_flags.ns,
-                 "the robot's namespace (default: the gazebo_ros_control plugin's <robotNamespace>); the YAML is read "
-                 "under it when it nests there");
+                 "the robot's namespace (default: $LCM_CONTROL_NAMESPACE, else the gazebo_ros_control plugin's "
+                 "<robotNamespace>); the YAML is read under it when it nests there")
+      ->envname(kNamespaceEnv);
   app.add_flag("--strict", strict, "treat warnings as errors (exit 3)");
   add_package_path_flag(app, package_path);
   add_arg_flag(app, args);

@@ -9,6 +9,7 @@
 #include "cli/cli.hpp"
 #include "control/expression.hpp"
 #include "lcm_control/twist_t.hpp"
+#include "tools/lib/command_check.hpp"
 #include "tools/lib/support.hpp"
 #include "tools/lib/time_base.hpp"
 
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
     install_stop_signals();
     Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
     const std::string channel = without_leading_slashes(controller) + "/cmd_vel";
+    check_command_channel(bus, channel, {twist_t::getTypeName(), 0}, 0.5);
     const CommandClock clock(bus, 0.3);
     fmt::print(stderr, "drive: twist_t on '{}' at {:g} Hz{} (Ctrl-C to stop)\n", bus.channel(channel), rate,
                duration > 0 ? fmt::format(" for {:g} s", duration) : "");

@@ -10,6 +10,7 @@
 #include "lcm_control/gripper_command_t.hpp"
 #include "lcm_control/gripper_status_t.hpp"
 #include "tools/lib/cm_client.hpp"
+#include "tools/lib/command_check.hpp"
 #include "tools/lib/goal_watch.hpp"
 #include "tools/lib/gripper_goal.hpp"
 #include "tools/lib/support.hpp"
@@ -37,7 +38,7 @@ int run(const Options& o, const BusFlags& bus_flags) {
   install_stop_signals();
   Bus bus(bus_flags.lcm_url, bus_flags.ns);  // LCM's receive thread: a short-lived tool waiting for answers
   CmClient cm(bus, "gripper");
-  gripper_controller(cm.list(o.cm_timeout).controllers, controller);
+  gripper_controller(cm.list(o.cm_timeout).controllers, controller, bus.channel(""));
 
   const int64_t goal_id = new_request_id();
   GoalWatch<gripper_status_t> watch(bus, controller, goal_id, o.verbose, [](const gripper_status_t& m) {
@@ -61,7 +62,7 @@ int run(const Options& o, const BusFlags& bus_flags) {
                                             r->stalled ? ", stalled" : "", r->reached_goal ? ", reached goal" : "");
     if (r->status != gripper_status_t::SUCCEEDED)
       throw std::runtime_error(
-          fmt::format("{}: {}: {} ({})", controller, gripper_status_name(r->status), message, figures));
+          goal_failure(cm, controller, gripper_status_name(r->status), fmt::format("{} ({})", message, figures)));
     fmt::print("{}: SUCCEEDED: {} ({})\n", controller, message, figures);
     return kExitOk;
   }

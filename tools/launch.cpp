@@ -15,8 +15,8 @@ int main(int argc, char** argv) {
   LaunchOptions o;
   CLI::App app{
       "Start sim_server and controller_manager from one launch file, wait until both answer, spawn the controllers, "
-      "and stop everything in order on Ctrl-C or when a process dies (exit 1 if one failed). Reads our YAML launch "
-      "files and ROS launch XML (gazebo_ros_control.launch: <param textfile>, <rosparam load>, $(find PKG), the "
+      "and stop everything in order on Ctrl-C or when a process dies (exit 1 if one failed, 3 if one refused a bad "
+      "file). Reads our YAML launch files and ROS launch XML (gazebo_ros_control.launch: <param textfile>, <rosparam load>, $(find PKG), the "
       "spawner's args; gazebo -> sim_server, robot_state_publisher -> state-publisher). Children get "
       "LCM_DEFAULT_URL; every output line is prefixed with the child's name.\n"
       "Examples:\n"
@@ -24,10 +24,18 @@ int main(int argc, char** argv) {
       "  launch ~/catkin_ws/src/turret_bot/launch/gazebo_ros_control.launch --package-path ~/catkin_ws/src\n"
       "  launch config/turret_bot.launch.yaml --mode lockstep --dry-run\n"
       "  launch config/turret_bot_demo.launch.yaml --duration 20       # lockstep demo, exits when done\n"
+      "  launch --urdf config/turret_bot.urdf --config config/turret_bot.yaml   # no launch file: every controller\n"
+      "  launch --urdf R.urdf --config C.yaml --controllers joint_state_controller,arm_controller\n"
       "In lockstep mode the controller manager starts first, the controllers are spawned and the file's commands "
       "registered as command sources, and only then sim_server starts: every run is the same from step 0.",
       "launch"};
-  app.add_option("FILE", o.file, "launch file: YAML (see config/turret_bot.launch.yaml) or ROS launch XML")->required();
+  app.add_option("FILE", o.file, "launch file: YAML (see config/turret_bot.launch.yaml) or ROS launch XML");
+  app.add_option("--urdf", o.urdf,
+                 "without a FILE: the robot (.urdf or .xacro) to start with sim_server, controller_manager and a "
+                 "spawner, as a launch file with only urdf:, config: and controllers: would");
+  add_config_flag(app, o.configs,
+                  "with --urdf: the controllers YAML; --controllers defaults to every controller it configures");
+  add_arg_flag(app, o.args);
   app.add_option("--mode", o.mode, "override the file's mode: realtime or lockstep")
       ->check(CLI::IsMember({"realtime", "lockstep"}));
   app.add_flag("--paused", o.paused,

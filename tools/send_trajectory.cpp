@@ -15,6 +15,7 @@
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 #include "tools/lib/cm_client.hpp"
+#include "tools/lib/command_check.hpp"
 #include "tools/lib/goal_watch.hpp"
 #include "tools/lib/support.hpp"
 #include "tools/lib/trajectory_goal.hpp"
@@ -122,7 +123,7 @@ int run(const Options& o, const BusFlags& bus_flags) {
   Bus bus(bus_flags.lcm_url, bus_flags.ns);  // LCM's receive thread: a short-lived tool waiting for answers
   CmClient cm(bus, "send-trajectory");
   const std::vector<controller_info_t> listed = cm.list(o.timeout).controllers;
-  const controller_info_t info = trajectory_controller(listed, controller);
+  const controller_info_t info = trajectory_controller(listed, controller, bus.channel(""));
   if (goal.joints.empty()) {
     goal.joints = info.joints;
     goal.joints_where = fmt::format("the joints of '{}'", controller);
@@ -161,7 +162,7 @@ int run(const Options& o, const BusFlags& bus_flags) {
   if (const auto& r = watch.result()) {
     const std::string message = without_controller_prefix(r->message, controller);
     if (r->status != trajectory_status_t::SUCCEEDED)
-      throw std::runtime_error(fmt::format("{}: {}: {}", controller, status_name(r->status), message));
+      throw std::runtime_error(goal_failure(cm, controller, status_name(r->status), message));
     fmt::print("{}: SUCCEEDED: {}\n", controller, message);
     return kExitOk;
   }

@@ -15,6 +15,7 @@
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "tools/lib/cm_client.hpp"
+#include "tools/lib/command_check.hpp"
 #include "tools/lib/support.hpp"
 #include "tools/lib/time_base.hpp"
 
@@ -48,20 +49,21 @@ std::string controller_of(const Options& o) {
   return name.find('/') == std::string::npos ? name : "";
 }
 
-// Says on stderr when nothing will take the commands: no controller manager answers in this namespace, the
-// controller is not running in it, or the manager has no hardware. The commands are sent regardless (a manager
-// may come later), as rostopic pub does.
-void say_who_takes(Bus& bus, const std::string& controller) {
+// Refuses (std::runtime_error, exit 1) commands of a type the controller does not take, when the controller manager
+// lists it; says on stderr when nothing will take them: no controller manager answers in this namespace, the
+// controller is not running in it, or the manager has no hardware. Those are sent regardless (a manager may come
+// later), as rostopic pub does.
+void say_who_takes(Bus& bus, const std::string& controller, const Sent& sent) {
   CmClient cm(bus, "turret-cmd");
   const std::string channel = bus.channel(controller + "/command");
   cm_response_t r;
   try {
     r = cm.list(0.5);
-  } catch (const CmTimeout&) {
+  } catch (const CmTimeout& e) {
     fmt::print(stderr,
                "turret-cmd: warning: no controller manager answers on '{}': nothing takes the commands on '{}' until "
-               "one runs (launch, or controller_manager and spawner; --namespace and --lcm-url must match)\n",
-               cm.response_channel(), channel);
+               "one runs (launch, or controller_manager and spawner; --namespace and --lcm-url must match){}\n",
+               cm.response_channel(), channel, e.hint.empty() ? "" : "; " + e.hint);
     return;
   }
   std::vector<std::string> loaded;
@@ -70,6 +72,9 @@ void say_who_takes(Bus& bus, const std::string& controller) {
     loaded.push_back(c.name);
     if (c.name == controller) found = &c;
   }
+  if (found)
+    if (const std::string bad = type_mismatch(*found, sent, "command", bus.channel("")); !bad.empty())
+      throw std::runtime_error(bad);
   if (!found)
     fmt::print(stderr,
                "turret-cmd: warning: '{}' is not loaded in the controller manager (loaded: {}): nothing takes the "
@@ -92,6 +97,7 @@ class Publisher {
   }
   const std::string& channel() const { return channel_; }
   const char* type() const { return array_ ? "float64_array_t" : "float64_t"; }
+  Sent what() const { return {type(), array_ ? int(o_.exprs.size()) : 0}; }
   int64_t sent() const { return sent_; }
 
   void send(int64_t i, double t, int64_t utime) {
@@ -370,7 +376,7 @@ int main(int argc, char** argv) {
       return run_command_source(bus, o);
     }
     Publisher pub(bus, o);
-    if (const std::string controller = controller_of(o); !controller.empty()) say_who_takes(bus, controller);
+    if (const std::string controller = controller_of(o); !controller.empty()) say_who_takes(bus, controller, pub.what());
     if (o.rate > 0 || o.sim_time)
       fmt::print(stderr, "turret-cmd: {} on '{}' {}{} (Ctrl-C to stop)\n", pub.type(), bus.channel(pub.channel()),
                  o.rate > 0 ? fmt::format("at {:g} Hz", o.rate) : std::string("every control step"),

@@ -129,8 +129,8 @@ TEST(ControllerTypes, ANewTypeIsListedWithWhatItTakes) {
     trajectory_controller(listed, "tiny");
     ADD_FAILURE() << "tiny taken for a trajectory controller";
   } catch (const std::runtime_error& e) {
-    EXPECT_EQ(std::string(e.what()), "'tiny' is a test_controllers/TinyEffortController, not a "
-                                     "JointTrajectoryController: send it commands with turret-cmd tiny VALUE...");
+    EXPECT_EQ(std::string(e.what()), "tiny takes float64_array_t on tiny/command; joint_trajectory_t was given: use "
+                                     "turret-cmd tiny V1 V2");
   }
 }
 

@@ -83,9 +83,10 @@ TEST(GripperAction, ClosesToAnOpeningAndStallsOnTheBoxAsAllowStallingSays) {
   // A controller that takes no gripper goals is named with its type.
   ChildProcess wrong({bin("gripper"), "joint_state_controller", "--position", "0.01"}, env);
   EXPECT_EQ(wrong.wait(20), 1) << wrong.output();
-  EXPECT_TRUE(has(wrong.output(), "gripper: error: 'joint_state_controller' is a "
-                                  "joint_state_controller/JointStateController and takes no commands, not "
-                                  "gripper_command_t goals"))
+  EXPECT_TRUE(has(wrong.output(), "gripper: error: joint_state_controller "
+                                  "(joint_state_controller/JointStateController) takes no commands (it only reads the "
+                                  "joints and publishes joint_states); gripper_command_t was given on "
+                                  "joint_state_controller/command"))
       << wrong.output();
   ChildProcess stopped({bin("gripper"), "gripper_controller", "--position", "0.01"}, env);
   EXPECT_EQ(stopped.wait(20), 1) << stopped.output();

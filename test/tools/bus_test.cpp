@@ -414,3 +414,19 @@ TEST(BusTool, NetcheckFindsTheOtherNetcheckAndSaysWhenNoneAnswers) {
   EXPECT_NE(lone.output().find("with ttl=0 only programs on this computer can answer"), std::string::npos)
       << lone.output();
 }
+
+// Nothing on the channel in this namespace, but the channel heard under another: the hint comes at once, while bus
+// keeps listening (issue 32, item 2).
+TEST(BusTool, AChannelHeardOnlyUnderAnotherNamespaceIsNamedAtOnce) {
+  const std::string url = lt::unique_lcm_url();
+  Ticker other(url, "rrbot/joint_states", 10);
+  lt::ChildProcess echo({lt::bin("bus"), "echo", "joint_states", "--duration", "1.5"}, env(url));
+  EXPECT_EQ(echo.wait(20), 4) << echo.output();
+  EXPECT_NE(echo.output().find("bus: no message on 'joint_states'; 'rrbot/joint_states' is heard under namespace "
+                               "'rrbot': did you mean --namespace rrbot?\n"),
+            std::string::npos)
+      << echo.output();
+  lt::ChildProcess hz({lt::bin("bus"), "hz", "joint_states", "--duration", "1.5"},
+                      {{"LCM_DEFAULT_URL", url}, {"LCM_CONTROL_NAMESPACE", "rrbot"}});
+  EXPECT_EQ(hz.wait(20), 0) << "the namespace from the environment\n" << hz.output();
+}

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 #include <tuple>
 
 #include "test/support/lcm_test.hpp"
@@ -225,6 +226,43 @@ TEST_F(CmTools, TurretCmdSaysWhenNothingTakesItsCommands) {
                                  "nothing takes the commands on 'j1_controller/command' until one runs"),
             std::string::npos)
       << lonely.output();
+}
+
+// LCM_CONTROL_NAMESPACE is every tool's --namespace unless the flag is given; a tool that hears its robot only under
+// another namespace says which at once, not after its whole --timeout (issue 32, item 2).
+TEST(Namespaces, TheEnvironmentGivesTheDefaultAndAnotherNamespaceIsNamedAtOnce) {
+  const std::string url = unique_lcm_url();
+  ChildProcess cm({bin("controller_manager"), "--urdf", source("config/turret_bot.urdf"), "--config",
+                   source("config/turret_bot.yaml"), "--lcm-url", url, "--namespace", "rrbot"});
+  ASSERT_TRUE(cm.wait_for_output("ready", 10.0)) << cm.output();
+  auto run_with = [&](std::vector<std::string> argv, std::map<std::string, std::string> env) {
+    argv.insert(argv.end(), {"--lcm-url", url});
+    ChildProcess p(argv, env);
+    const int rc = p.wait(20.0);
+    return std::make_pair(rc, p.output());
+  };
+  auto [rc, out] = run_with({bin("cmctl"), "list"}, {{"LCM_CONTROL_NAMESPACE", "rrbot"}});
+  EXPECT_EQ(rc, 0) << out;
+  EXPECT_EQ(out.rfind("no controllers loaded\nhardware: no hardware state received on 'rrbot/hardware/state'", 0), 0u)
+      << out;
+  std::tie(rc, out) = run_with({bin("cmctl"), "list", "--namespace", "rrbot"}, {{"LCM_CONTROL_NAMESPACE", "other"}});
+  EXPECT_EQ(rc, 0) << "the flag wins\n" << out;
+
+  // The manager publishes its statistics once a second: heard under rrbot/ within that, well before --timeout 15.
+  std::tie(rc, out) = run_with({bin("cmctl"), "list", "--timeout", "15"}, {{"LCM_CONTROL_NAMESPACE", ""}});
+  EXPECT_EQ(rc, 4) << out;
+  EXPECT_NE(out.find("cmctl: error: no answer from the controller manager within "), std::string::npos) << out;
+  EXPECT_NE(out.find("; 'rrbot/controller_manager/statistics' is heard under namespace 'rrbot': did you mean "
+                     "--namespace rrbot?\n"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("within 15 s"), std::string::npos) << "named at once, not after the timeout\n" << out;
+  std::tie(rc, out) = run_with({bin("turret-cmd"), "j1_controller", "0.5"}, {{"LCM_CONTROL_NAMESPACE", "r2"}});
+  EXPECT_EQ(rc, 0) << out;  // sent anyway, as rostopic pub does
+  EXPECT_NE(out.find("turret-cmd: warning: no controller manager answers on 'r2/controller_manager/response'"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("turret-cmd: sent 1 message on 'r2/j1_controller/command'"), std::string::npos) << out;
 }
 
 // One validation: what doctor refuses, controller_manager refuses with the same words (issue 12: `jont: j2` and

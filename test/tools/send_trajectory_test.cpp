@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <tuple>
 
 #include "lcm_control/joint_state_t.hpp"
 #include "test/support/lcm_test.hpp"
@@ -168,8 +169,10 @@ TEST_F(SendTrajectory, RefusalsExitNonZeroNamingTheStatusTheJointOrTheController
       << shown(r);
   r = send_trajectory({"joint_state_controller", "--point", "1:0,0"}, url_);
   EXPECT_EQ(r.rc, 1) << shown(r);
-  EXPECT_TRUE(has(r.err, "'joint_state_controller' is a joint_state_controller/JointStateController, not a "
-                         "JointTrajectoryController"))
+  EXPECT_TRUE(has(r.err, "send-trajectory: error: joint_state_controller (joint_state_controller/JointStateController) "
+                         "takes no commands (it only reads the joints and publishes joint_states); joint_trajectory_t "
+                         "was given on joint_state_controller/command: command a controller that drives the joints "
+                         "instead (cmctl list)\n"))
       << shown(r);
 
   // No controller, no waypoints, or two sources: usage.
@@ -181,6 +184,56 @@ TEST_F(SendTrajectory, RefusalsExitNonZeroNamingTheStatusTheJointOrTheController
   EXPECT_TRUE(has(r.err, "give the waypoints with one of: --point TIME:POSITIONS (repeatable), --file goal.yaml or "
                          "--csv goal.csv"))
       << shown(r);
+}
+
+// Every publishing tool asks the controller manager what the controller's command channel takes and refuses another
+// type with exit 1, naming both and the tool to use (issue 32, item 1); a goal that fails under the e-stop says so.
+TEST_F(SendTrajectory, PublishingToolsRefuseTheWrongTypeAndAFailureUnderTheEStopNamesIt) {
+  launch(source("config/turret_bot_trajectory.launch.yaml"));
+  const std::string takes = "trajectory_controller takes joint_trajectory_t on trajectory_controller/command; ";
+  auto run_tool = [&](std::vector<std::string> argv) {
+    argv.insert(argv.end(), {"--lcm-url", url_});
+    ChildProcess p(argv);
+    const int rc = p.wait(10.0);
+    return std::make_pair(rc, p.output());
+  };
+  auto [rc, out] = run_tool({bin("turret-cmd"), "trajectory_controller", "0.5"});
+  EXPECT_EQ(rc, 1) << out;
+  EXPECT_EQ(out, "turret-cmd: error: " + takes + "float64_t was given: use send-trajectory trajectory_controller ...\n");
+  std::tie(rc, out) = run_tool({bin("bus"), "pub", "/trajectory_controller/command", "float64_t", "data=0.5"});
+  EXPECT_EQ(rc, 1) << out;
+  EXPECT_EQ(out, "bus: error: " + takes + "float64_t was given: use send-trajectory trajectory_controller ...\n");
+  std::tie(rc, out) = run_tool({bin("drive"), "trajectory_controller", "0.1", "0", "--duration", "0.2"});
+  EXPECT_EQ(rc, 1) << out;
+  EXPECT_EQ(out, "drive: error: " + takes +
+                     "twist_t was given on trajectory_controller/cmd_vel: use send-trajectory trajectory_controller ...\n");
+  std::tie(rc, out) = run_tool({bin("gripper"), "trajectory_controller", "--position", "0.01"});
+  EXPECT_EQ(rc, 1) << out;
+  EXPECT_EQ(out, "gripper: error: " + takes +
+                     "gripper_command_t was given: use send-trajectory trajectory_controller ...\n");
+  // A channel no controller commands is published as before.
+  std::tie(rc, out) = run_tool({bin("bus"), "pub", "other/command", "float64_t", "data=0.5"});
+  EXPECT_EQ(rc, 0) << out;
+
+  std::tie(rc, out) = run_tool({bin("bus"), "pub", "e_stop", "e_stop_t", "engaged=true", "source=test"});
+  ASSERT_EQ(rc, 0) << out;
+  const Outcome r = send_trajectory({"trajectory_controller", "--point", "1:0.5,0.5"}, url_);
+  EXPECT_EQ(r.rc, 1) << shown(r);
+  EXPECT_TRUE(has(r.err, "send-trajectory: error: trajectory_controller: PATH_TOLERANCE_VIOLATED because the e-stop is "
+                         "engaged: the hardware holds still (release it: bus pub e_stop e_stop_t engaged=false, or the "
+                         "dashboard's e-stop button); the controller says: "))
+      << shown(r);
+
+  // Paused: the goal gets no result, and the reason is the simulator, not the controller.
+  std::tie(rc, out) = run_tool({bin("bus"), "pub", "e_stop", "e_stop_t", "engaged=false", "source=test"});
+  ASSERT_EQ(rc, 0) << out;
+  std::tie(rc, out) = run_tool({bin("cmctl"), "pause"});
+  ASSERT_EQ(rc, 0) << out;
+  const Outcome paused = send_trajectory({"trajectory_controller", "--point", "1:0,0", "--result-timeout", "2"}, url_);
+  EXPECT_EQ(paused.rc, 4) << shown(paused);
+  EXPECT_TRUE(has(paused.err, "it is running but sent no feedback for this goal on 'trajectory_controller/feedback': "
+                              "the simulator is paused: its time does not advance (cmctl resume)\n"))
+      << shown(paused);
 }
 
 TEST_F(SendTrajectory, GoalToleranceViolatedNamesTheJoint) {

@@ -404,3 +404,88 @@ TEST(Launch, AControllerThatFailsToLoadIsNamedAndTheRobotRunsWithTheOthers) {
   EXPECT_NE(launch.stop(8.0, SIGINT), 0) << launch.output();  // the failure shows in the exit status
   for (const auto& [name, pid] : pids) EXPECT_TRUE(gone(pid)) << name;
 }
+
+// A robot without a launch file (issue 32, item 5): --urdf and --config make the plan a launch file with urdf:,
+// config: and controllers: makes, every configured controller by default; the model's warnings, read by sim_server and
+// controller_manager alike, are printed once.
+TEST(Launch, FromUrdfAndConfigWithoutAFileEveryControllerAndEachWarningOnce) {
+  auto [rc, dry] = run({bin("launch"), "--urdf", source("config/turret_bot.urdf"), "--config",
+                        source("config/turret_bot.yaml"), "--dry-run"},
+                       unique_lcm_url());
+  ASSERT_EQ(rc, 0) << dry;
+  EXPECT_NE(("\n" + dry).find("\nspawner: spawner joint_state_controller j1_controller j2_controller"), std::string::npos)
+      << dry;
+  EXPECT_NE(("\n" + dry).find("\nsim_server: sim_server --urdf " + source("config/turret_bot.urdf") + " --config " +
+                     source("config/turret_bot.yaml")),
+            std::string::npos)
+      << dry;
+  std::tie(rc, dry) = run({bin("launch"), "--urdf", source("config/turret_bot.urdf"), "--config",
+                           source("config/turret_bot.yaml"), "--controllers", "j1_controller", "--dry-run"},
+                          unique_lcm_url());
+  EXPECT_NE(("\n" + dry).find("\nspawner: spawner j1_controller"), std::string::npos) << dry;
+  std::tie(rc, dry) = run({bin("launch"), source("config/turret_bot.launch.yaml"), "--urdf",
+                           source("config/turret_bot.urdf"), "--dry-run"},
+                          unique_lcm_url());
+  EXPECT_EQ(rc, 2) << dry;
+  EXPECT_NE(dry.find("launch: error: --urdf: give a launch FILE or --urdf (with --config), not both"),
+            std::string::npos)
+      << dry;
+  std::tie(rc, dry) = run({bin("launch"), source("config/turret_bot.launch.yaml"), "--config",
+                           source("config/turret_bot.yaml"), "--dry-run"},
+                          unique_lcm_url());
+  EXPECT_EQ(rc, 2) << dry;
+  EXPECT_NE(dry.find("launch: error: --config: goes with --urdf; a launch FILE names its own config"),
+            std::string::npos)
+      << dry;
+  std::tie(rc, dry) = run({bin("launch"), "--dry-run"}, unique_lcm_url());
+  EXPECT_EQ(rc, 2) << dry;
+  EXPECT_NE(dry.find("give a launch FILE, or the robot with --urdf R.urdf --config C.yaml"), std::string::npos) << dry;
+
+  // j2 without its transmission: its pid_gains are a model warning both servers find.
+  const std::string dir = temp_dir("launch_flags");
+  std::string urdf = read_text(source("config/turret_bot.urdf"));
+  const auto t2 = urdf.find("<transmission name=\"t2\">");
+  ASSERT_NE(t2, std::string::npos);
+  urdf.erase(t2, urdf.find("</transmission>", t2) + std::string("</transmission>").size() - t2);
+  std::ofstream(dir + "/no_t2.urdf") << urdf;
+  const std::string url = unique_lcm_url();
+  ChildProcess launch({bin("launch"), "--urdf", dir + "/no_t2.urdf", "--config", source("config/turret_bot.yaml"),
+                       "--controllers", "joint_state_controller,j1_controller", "--lcm-url", url});
+  ASSERT_TRUE(launch.wait_for_output("[launch] up: controllers joint_state_controller, j1_controller", 25.0))
+      << launch.output();
+  const std::string out = launch.output();
+  const std::string warning = "gazebo_ros_control/pid_gains/j2: joint has no transmission in " + dir + "/no_t2.urdf";
+  const auto first = out.find(warning);
+  EXPECT_NE(first, std::string::npos) << out;
+  EXPECT_EQ(out.find(warning, first + 1), std::string::npos) << "printed twice\n" << out;
+  EXPECT_EQ(launch.stop(8.0, SIGINT), 0) << launch.output();
+}
+
+// launch takes --arg as every program that reads the robot's files does, for $(arg NAME) in the YAML; a child that
+// refuses a bad file makes launch exit 3, as the convention says (issue 32, item 4).
+TEST(Launch, TakesArgAndExitsThreeWhenAChildRefusesABadFile) {
+  const std::string urdf = source("test/robots/multi_trans_arm.urdf"), yaml = source("test/robots/multi_trans_arm.yaml");
+  auto [rc, dry] = run({bin("launch"), "--urdf", urdf, "--config", yaml, "--arg", "arm_id:=arm", "--dry-run"},
+                       unique_lcm_url());
+  ASSERT_EQ(rc, 0) << dry;
+  EXPECT_NE(("\n" + dry).find("\nsim_server: sim_server --urdf " + urdf + " --config " + yaml + " --arg arm_id=arm"),
+            std::string::npos)
+      << dry;
+  EXPECT_NE(("\n" + dry).find("\nspawner: spawner "), std::string::npos) << "the controllers, read with the arg\n" << dry;
+
+  const std::string url = unique_lcm_url();
+  ChildProcess missing({bin("launch"), "--urdf", urdf, "--config", yaml, "--lcm-url", url});
+  EXPECT_EQ(missing.wait(25.0), 3) << missing.output();
+  EXPECT_NE(missing.output().find("$(arg arm_id) has no value; give its value with --arg arm_id=VALUE"),
+            std::string::npos)
+      << missing.output();
+  for (const auto& [name, pid] : started_pids(missing.output())) EXPECT_TRUE(gone(pid)) << name;
+
+  const std::string dir = temp_dir("launch_bad_file");
+  std::ofstream(dir + "/bad.urdf") << "<robot name=\"bad\"><link name=\"base\">\n";  // not well-formed
+  std::ofstream(dir + "/bad.launch.yaml") << "urdf: " << dir << "/bad.urdf\nconfig: " << source("config/turret_bot.yaml")
+                                          << "\ncontrollers: [j1_controller]\n";
+  ChildProcess bad({bin("launch"), dir + "/bad.launch.yaml", "--lcm-url", unique_lcm_url()});
+  EXPECT_EQ(bad.wait(25.0), 3) << bad.output();
+  EXPECT_NE(bad.output().find("exited with code 3"), std::string::npos) << bad.output();
+}

@@ -245,6 +245,7 @@ TEST(TrajectoryGoal, TheControllerMustBeARunningTrajectoryController) {
     c.state = std::move(state);
     c.joints = {"j1", "j2"};
     c.num_joints = 2;
+    c.command_channel = command_type.empty() ? "" : "command";
     c.command_type = std::move(command_type);
     return c;
   };
@@ -269,8 +270,12 @@ TEST(TrajectoryGoal, TheControllerMustBeARunningTrajectoryController) {
   EXPECT_EQ(error_of("idle_trajectory"),
             "'idle_trajectory' is loaded but initialized, not running: start it with `cmctl start idle_trajectory`");
   EXPECT_EQ(error_of("j1_controller"),
-            "'j1_controller' is a position_controllers/JointPositionController, not a JointTrajectoryController: send "
-            "it commands with turret-cmd j1_controller VALUE...");
+            "j1_controller takes float64_t on j1_controller/command; joint_trajectory_t was given: use turret-cmd "
+            "j1_controller VALUE");
+  EXPECT_EQ(error_of("joint_state_controller"),
+            "joint_state_controller (joint_state_controller/JointStateController) takes no commands (it only reads the "
+            "joints); joint_trajectory_t was given on joint_state_controller/command: command a controller that drives "
+            "the joints instead (cmctl list)");
   EXPECT_TRUE(has([&] {
     try {
       trajectory_controller({}, "x");

@@ -46,4 +46,36 @@ void Census::on(const lcm::ReceiveBuffer* rb, const std::string& channel) {
   s.bytes += rb->data_size;
 }
 
+NamespaceProbe::NamespaceProbe(Bus& bus, std::vector<std::string> channels)
+    : bus_(bus), channels_(std::move(channels)) {
+  sub_ = bus.subscribe(".*", &NamespaceProbe::on, this, Bus::On::Shared, 1000);
+}
+
+NamespaceProbe::~NamespaceProbe() { bus_.unsubscribe(sub_); }
+
+void NamespaceProbe::on(const lcm::ReceiveBuffer*, const std::string& channel) {
+  if (ours_ || others_.size() > 1) return;
+  const std::string own = bus_.channel("");
+  for (const auto& c : channels_) {
+    if (channel == own + c) {
+      ours_ = true;
+    } else if (channel == c) {
+      others_.emplace("", channel);
+    } else if (channel.size() > c.size() + 1 && channel.compare(channel.size() - c.size(), c.size(), c) == 0 &&
+               channel[channel.size() - c.size() - 1] == '/') {
+      others_.emplace(channel.substr(0, channel.size() - c.size() - 1), channel);
+    }
+  }
+}
+
+std::string NamespaceProbe::hint() const {
+  if (ours_ || others_.size() != 1) return "";
+  const auto& [ns, channel] = *others_.begin();
+  if (ns.empty())
+    return fmt::format("'{}' is heard without a namespace: did you mean no --namespace (and LCM_CONTROL_NAMESPACE "
+                       "unset)?",
+                       channel);
+  return fmt::format("'{}' is heard under namespace '{}': did you mean --namespace {}?", channel, ns, ns);
+}
+
 }  // namespace lcm_control::tools

@@ -4,7 +4,9 @@
 
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "bus/bus.hpp"
 
@@ -38,6 +40,28 @@ class Census {
   void on(const lcm::ReceiveBuffer* rb, const std::string& channel);
   std::map<std::string, ChannelSeen> seen_;
   int64_t unlisted_ = 0;
+};
+
+// A robot's own channels heard in other namespaces, for the hint a tool that hears nothing in its own gives at once:
+// "did you mean --namespace rrbot?" when `rrbot/joint_states` is heard and `joint_states` is not.
+class NamespaceProbe {
+ public:
+  // channels: without a namespace (joint_states, controller_manager/statistics); listens to every channel.
+  NamespaceProbe(Bus& bus, std::vector<std::string> channels);
+  ~NamespaceProbe();  // unsubscribes
+  NamespaceProbe(const NamespaceProbe&) = delete;
+  NamespaceProbe& operator=(const NamespaceProbe&) = delete;
+  // "did you mean --namespace NS? (heard NS/CHANNEL)" when the channels were heard under one other namespace and not
+  // in the tool's own; "did you mean no --namespace? ..." when heard without one; else "".
+  std::string hint() const;
+
+ private:
+  void on(const lcm::ReceiveBuffer* rb, const std::string& channel);
+  Bus& bus_;
+  std::vector<std::string> channels_;
+  int sub_ = 0;
+  bool ours_ = false;
+  std::map<std::string, std::string> others_;  // namespace ("" for none) -> a channel heard there
 };
 
 }  // namespace lcm_control::tools

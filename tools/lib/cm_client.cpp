@@ -4,8 +4,11 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "bus/messages.hpp"
+#include "tools/lib/census.hpp"
+#include "tools/lib/command_check.hpp"
 #include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
@@ -143,9 +146,22 @@ cm_response_t CmClient::call(cm_request_t req, double timeout_s) {
   std::set<int64_t> ids, list_ids;
   cm_request_t list_req = cm_request(cm_request_t::LIST);
   std::optional<cm_response_t> answer;
+  // A manager heard in another namespace (and none in ours) is named at once instead of after the whole timeout.
+  NamespaceProbe probe(bus_, {channels::kCmStatistics, channels::kJointStates, channels::kHardwareState});
+  const int64_t start = monotonic_us();
+  auto hint = [&] { return monotonic_us() - start >= kHintAfterUs ? probe.hint() : std::string(); };
   while (!stop_requested() && left() > 0) {
     send(req, ids);
-    if ((answer = wait_answer(ids, std::min(1.0, left())))) break;
+    const int64_t slice_end = monotonic_us() + int64_t(std::min(1.0, left()) * 1e6);
+    while (!answer && monotonic_us() < slice_end && hint().empty())
+      answer = wait_answer(ids, std::min(0.1, double(slice_end - monotonic_us()) / 1e6));
+    if (answer) break;
+    if (const std::string h = hint(); !h.empty()) {
+      for (int64_t id : ids) answers_.erase(id);
+      for (int64_t id : list_ids) answers_.erase(id);
+      const double waited = std::round(double(monotonic_us() - start) / 1e5) / 10;  // "0.3 s"
+      throw CmTimeout(fmt::format("{}; {}", no_answer(what_of(req), waited), h), h);
+    }
     if (!checkable || left() <= 0) continue;
     send(list_req, list_ids);
     const auto listed = wait_answer(list_ids, std::min(1.0, left()));
@@ -212,13 +228,17 @@ std::string no_goal_result(CmClient& cm, const Bus& bus, const std::string& cont
   const std::string head = fmt::format("no result from '{}' on '{}' within {}", controller,
                                        bus.channel(controller + "/result"), seconds_text(timeout_s));
   try {
-    for (const auto& c : cm.list(1.0).controllers) {
+    const cm_response_t listed = cm.list(1.0);
+    for (const auto& c : listed.controllers) {
       if (c.name != controller) continue;
       if (c.state != "running")
         return fmt::format("{}: the controller manager now lists it as {}, not running (cmctl list)", head, c.state);
       if (feedback > 0)
         return fmt::format("{}: it is running and sent {} feedback messages for this goal{}{}", head, feedback,
                            longer.rfind("(", 0) == 0 ? " " : "; ", longer);
+      if (const auto cause = hardware_cause(listed))
+        return fmt::format("{}: it is running but sent no feedback for this goal on '{}': {}", head,
+                           bus.channel(controller + "/feedback"), *cause);
       return fmt::format("{}: it is running but sent no feedback for this goal on '{}': does its time advance? (is "
                          "sim_server running and stepping?)",
                          head, bus.channel(controller + "/feedback"));

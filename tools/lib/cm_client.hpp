@@ -20,7 +20,8 @@ namespace lcm_control::tools {
 // No answer in time. A BusError, so run_program exits with kExitBus.
 class CmTimeout : public BusError {
  public:
-  using BusError::BusError;
+  explicit CmTimeout(const std::string& what, std::string hint = "") : BusError(what), hint(std::move(hint)) {}
+  std::string hint;  // NamespaceProbe's "did you mean --namespace NS?" line, or ""
 };
 
 class CmClient {
@@ -36,7 +37,8 @@ class CmClient {
   // reader's socket), so after each second without an answer it asks LIST:
   // if the list shows the load / unload / switch done, that is the answer
   // (ok, message says so); if not, it sends the request again. LIST and
-  // LIST_TYPES are simply sent again.
+  // LIST_TYPES are simply sent again. When after kHintAfterUs no answer came and a robot is heard only under
+  // another namespace (NamespaceProbe), it throws CmTimeout at once with "did you mean --namespace NS?".
   cm_response_t call(cm_request_t req, double timeout_s);
 
   cm_response_t list(double timeout_s);
@@ -77,6 +79,8 @@ class CmClient {
   std::map<int64_t, cm_response_t> answers_;
   std::map<int64_t, int64_t> registered_;  // command source request_id -> utime of its registration's answer
   static constexpr double kResendS = 0.5;
+  // How long call() waits for its answer before it names a manager heard only in another namespace.
+  static constexpr int64_t kHintAfterUs = 300000;
 };
 
 // `message` without its leading "<controller>: " (a controller's result names itself).

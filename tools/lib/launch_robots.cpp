@@ -28,6 +28,13 @@ std::vector<std::string> passed_flags(const LaunchOptions& o, const LaunchPlan& 
   if (o.duration > 0) pass("--duration", fmt::format("{:g}", o.duration));
   if (!o.package_path.empty()) pass("--package-path", fmt::format("{}", fmt::join(o.package_path, ":")));
   for (const auto& a : o.xacro_args) pass("--xacro-arg", a);
+  for (const auto& a : o.args) pass("--arg", a);
+  if (o.file.empty()) {  // the robot from the flags (plan_from_flags), with the controllers it chose
+    pass("--urdf", o.urdf);
+    for (const auto& c : o.configs) pass("--config", c);
+    if (!plan.controllers.empty()) pass("--controllers", fmt::format("{}", fmt::join(plan.controllers, ",")));
+    if (!plan.inactive.empty()) pass("--inactive", fmt::format("{}", fmt::join(plan.inactive, ",")));
+  }
   pass("--lcm-url", o.bus.lcm_url);
   const std::string hw = !o.bus.hardware_lcm_url.empty()  ? o.bus.hardware_lcm_url
                          : !plan.hardware_lcm_url.empty() ? plan.hardware_lcm_url
@@ -46,7 +53,9 @@ int run_robots(const LaunchOptions& o, const LaunchPlan& plan) {
   const std::string url = effective_url(o.bus.lcm_url);
   std::vector<std::vector<std::string>> argvs;
   for (const auto& r : plan.robots) {
-    std::vector<std::string> argv{"launch", o.file, "--namespace", r};
+    std::vector<std::string> argv{"launch"};
+    if (!o.file.empty()) argv.push_back(o.file);
+    argv.insert(argv.end(), {"--namespace", r});
     argv.insert(argv.end(), args.begin(), args.end());
     argvs.push_back(argv);
   }

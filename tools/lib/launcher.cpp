@@ -108,11 +108,15 @@ void gazebo_spawn_defaults(LaunchPlan& plan, const std::vector<std::string>& pat
 
 bool spawns(const LaunchPlan& plan) { return !plan.controllers.empty() || !plan.inactive.empty(); }
 
-// For a ROS 2 robot: the config from the gz_ros2_control plugin's <parameters> when the file gives none, and a note
-// when nothing says which controllers to start (ROS 2 says it in the launch file's spawner calls, not in the YAML).
-void ros2_defaults(LaunchPlan& plan, const std::vector<std::string>& path) {
+// What launch takes from the robot's files: for a robot from --urdf/--config (`every_controller`), every controller
+// the YAML configures unless --controllers/--inactive name some; for a ROS 2 robot, the config from the
+// gz_ros2_control plugin's <parameters> when the file gives none, and a note when nothing says which controllers to
+// start (ROS 2 says it in the launch file's spawner calls, not in the YAML).
+void model_defaults(LaunchPlan& plan, const std::vector<std::string>& path, const std::string& ns,
+                    bool every_controller) {
   LoadOptions o;
   o.package_path = path;
+  o.ns = ns;
   o.xacro_args = plan.xacro_args;
   o.args = plan.args;
   o.config_from_plugin = true;
@@ -131,9 +135,10 @@ void ros2_defaults(LaunchPlan& plan, const std::vector<std::string>& path) {
     throw ModelError(fmt::format("{}: 'config' is missing: the controllers YAML (a URDF's gz_ros2_control plugin may "
                                  "name it in <parameters>; {}'s does not)",
                                  plan.file, plan.urdf));
-  if (!model.ros2_parameter_file || spawns(plan)) return;
   std::vector<std::string> names;
   for (const auto& c : model.controllers) names.push_back(c.name);
+  if (every_controller && !spawns(plan)) plan.controllers = names;
+  if (!model.ros2_parameter_file || spawns(plan)) return;
   launch_say(fmt::format("note: {} configures {}; a ROS 2 launch starts controllers in its spawner calls: name them "
                          "with --controllers a,b (and --inactive c), or `controllers:` / `inactive:` in a launch "
                          "file. Starting none.",
@@ -181,6 +186,7 @@ CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const
   if (o.duration > 0) sim.insert(sim.end(), {"--duration", fmt::format("{:g}", o.duration)});
   cm = {"controller_manager"};
   cm.insert(cm.end(), file_args.begin(), file_args.end());
+  if (plan.sim) cm.push_back("--quiet-model");  // sim_server reads the same files and prints the same warnings
   cm.insert(cm.end(), plan.cm_args.begin(), plan.cm_args.end());
   // In lockstep the two loop processes take turns; on one CPU each hand-over is a cheaper wake-up (bench/README.md).
   int pin = -1;
@@ -388,8 +394,13 @@ int supervise(const LaunchPlan& plan, const LaunchOptions& o, const CommandLines
     if (!c->clean()) failed.push_back(Supervisor::exit_text(*c));
   launch_say(
       fmt::format("all {} processes stopped in {:.2f} s", sup.children().size(), double(monotonic_us() - t0) / 1e6));
-  if (!failure.empty()) throw std::runtime_error(failure);
-  if (!failed.empty()) throw std::runtime_error(fmt::format("{}", fmt::join(failed, "; ")));
+  // A child that refused a bad file (exit 3) by itself makes launch exit 3 too, as the convention says.
+  const bool bad_file = std::any_of(sup.children().begin(), sup.children().end(), [](const auto& c) {
+    return c->exited && !c->signalled && c->code == int(kExitBadInput);
+  });
+  const std::string message = !failure.empty() ? failure : fmt::format("{}", fmt::join(failed, "; "));
+  if (bad_file && !message.empty()) throw ModelError(message);
+  if (!message.empty()) throw std::runtime_error(message);
   return int(kExitOk);
 }
 
@@ -400,14 +411,36 @@ void launch_say(const std::string& line) {
   std::fflush(stdout);
 }
 
+LaunchPlan plan_from_flags(const LaunchOptions& o) {
+  if (!o.file.empty() && !o.urdf.empty())
+    throw CLI::ValidationError("--urdf", "give a launch FILE or --urdf (with --config), not both");
+  if (o.urdf.empty())
+    throw CLI::ValidationError("FILE", "give a launch FILE, or the robot with --urdf R.urdf --config C.yaml");
+  LaunchPlan plan;
+  plan.file = o.urdf;
+  plan.urdf = std::filesystem::absolute(o.urdf).string();
+  for (const auto& c : o.configs) plan.configs.push_back(std::filesystem::absolute(c).string());
+  return plan;  // the controllers: model_defaults
+}
+
 int run_launch(const LaunchOptions& o) {
-  LaunchPlan plan = read_launch_file(o.file, o.package_path);
+  const bool from_flags = o.file.empty() || !o.urdf.empty();
+  if (!from_flags && !o.configs.empty())
+    throw CLI::ValidationError("--config", "goes with --urdf; a launch FILE names its own config");
+  LaunchPlan plan = from_flags ? plan_from_flags(o) : read_launch_file(o.file, o.package_path);
   if (o.dashboard && (o.robots > 0 || !plan.robots.empty()))
     throw CLI::ValidationError("--dashboard",
                                "one dashboard shows one robot: with several, start one per robot "
                                "(dashboard --namespace r0 --port 8080 --urdf FILE, r1 on 8081, ...)");
   if (!o.mode.empty()) plan.mode = o.mode;
   for (const auto& a : o.xacro_args) plan.xacro_args.push_back(parse_arg(a));  // after the file's: the flag wins
+  for (const auto& a : o.args) {
+    const auto given = parse_arg(a);
+    plan.args.erase(std::remove_if(plan.args.begin(), plan.args.end(),
+                                   [&](const auto& f) { return f.first == given.first; }),
+                    plan.args.end());
+    plan.args.push_back(given);
+  }
   if (o.paused) plan.paused = true;
   if (!o.cpu.empty()) plan.cpu = o.cpu;
   if (o.rt_priority >= 0) plan.rt_priority = o.rt_priority;
@@ -415,7 +448,7 @@ int run_launch(const LaunchOptions& o) {
   if (!o.controllers.empty()) plan.controllers = o.controllers;
   if (!o.inactive.empty()) plan.inactive = o.inactive;
   for (const auto& n : plan.notes) launch_say("note: " + n);
-  ros2_defaults(plan, o.package_path);
+  model_defaults(plan, o.package_path, o.bus.ns.empty() ? plan.ns : o.bus.ns, from_flags);
   gazebo_spawn_defaults(plan, o.package_path);
   if (o.robots > 0) plan.robots = robot_names(o.robots);
   if (!plan.robots.empty()) return run_robots(o, plan);

@@ -13,7 +13,10 @@ namespace lcm_control::tools {
 
 // launch's flags; empty strings and negative numbers leave the file's value.
 struct LaunchOptions {
-  std::string file;  // YAML or ROS launch XML
+  std::string file;  // YAML or ROS launch XML; "": the plan comes from --urdf and --config (plan_from_flags)
+  std::string urdf;                  // --urdf, without a FILE
+  std::vector<std::string> configs;  // --config, with --urdf
+  std::vector<std::string> args;     // --arg NAME=VALUE: $(arg NAME) in the YAML, after the file's
   std::string mode, cpu;
   std::vector<std::string> package_path;
   std::vector<std::string> xacro_args;  // NAME:=VALUE, after the file's
@@ -28,6 +31,11 @@ struct LaunchOptions {
   int dashboard_port = 8080;
   BusFlags bus;
 };
+
+// The plan a launch file with only urdf: and config: makes, from --urdf and --config: sim_server and
+// controller_manager (run_launch adds a spawner of every controller the YAML configures unless --controllers names
+// some). Throws CLI::ValidationError when FILE and --urdf are both given, or neither.
+LaunchPlan plan_from_flags(const LaunchOptions& o);
 
 // Runs the launch to its end; returns the exit code, throws as run_program expects (CLI::ValidationError for a
 // usage error, ModelError for a bad file, runtime_error when a process failed).

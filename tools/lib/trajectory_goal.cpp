@@ -12,6 +12,7 @@
 #include "description/robot_model.hpp"
 #include "description/text.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
+#include "tools/lib/command_check.hpp"
 #include "tools/lib/support.hpp"
 
 namespace lcm_control::tools {
@@ -319,28 +320,10 @@ joint_trajectory_t to_message(const TrajectoryGoal& goal, int64_t goal_id, int64
   return m;
 }
 
-const controller_info_t& trajectory_controller(const std::vector<controller_info_t>& listed, const std::string& name) {
-  std::vector<std::string> names;
-  for (const auto& c : listed) {
-    if (c.name != name) {
-      names.push_back(c.name);
-      continue;
-    }
-    if (c.command_type != joint_trajectory_t::getTypeName())
-      throw std::runtime_error(fmt::format("'{}' is a {}, not a JointTrajectoryController: send it commands with "
-                                           "turret-cmd {} VALUE...",
-                                           name, c.type, name));
-    if (c.state != "running")
-      throw std::runtime_error(fmt::format("'{}' is loaded but {}, not running: start it with `cmctl start {}`", name,
-                                           c.state, name));
-    return c;
-  }
-  const std::string close = closest_name(name, names, 3);
-  throw std::runtime_error(fmt::format(
-      "no controller '{}' in the controller manager ({}): load and start it with `spawner {}` (a controller of the "
-      "ros_control YAML){}",
-      name, names.empty() ? "none loaded" : fmt::format("loaded: {}", fmt::join(names, ", ")), name,
-      close.empty() ? "" : "; did you mean '" + close + "'?"));
+const controller_info_t& trajectory_controller(const std::vector<controller_info_t>& listed, const std::string& name,
+                                              const std::string& prefix) {
+  return commandable(listed, name, {joint_trajectory_t::getTypeName(), 0}, "(a controller of the ros_control YAML)",
+                     prefix);
 }
 
 std::string controller_name(const std::string& target) {

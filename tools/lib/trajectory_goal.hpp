@@ -51,8 +51,10 @@ void add_offsets(TrajectoryGoal& goal, const std::vector<double>& start);
 joint_trajectory_t to_message(const TrajectoryGoal& goal, int64_t goal_id, int64_t utime);
 
 // `name` among the controllers the manager lists, if it is running and takes joint_trajectory_t goals (a
-// JointTrajectoryController); else std::runtime_error saying what to do (spawner, cmctl start, turret-cmd for others).
-const controller_info_t& trajectory_controller(const std::vector<controller_info_t>& listed, const std::string& name);
+// JointTrajectoryController); else std::runtime_error saying what to do (command_check.hpp's commandable); `prefix`
+// is the namespace prefix of the channels it names.
+const controller_info_t& trajectory_controller(const std::vector<controller_info_t>& listed, const std::string& name,
+                                              const std::string& prefix = "");
 
 // The controller a ROS user names: "/arm_controller", "/arm_controller/command" -> "arm_controller".
 std::string controller_name(const std::string& target);

@@ -1,0 +1,130 @@
+#include "tools/lib/command_check.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <stdexcept>
+
+#include "description/text.hpp"
+#include "tools/lib/cm_client.hpp"
+
+namespace lcm_control::tools {
+
+std::string commanded_with(const controller_info_t& c) {
+  const std::string& t = c.command_type;
+  if (t == "joint_trajectory_t") return fmt::format("send-trajectory {} ...", c.name);
+  if (t == "gripper_command_t") return fmt::format("gripper {} --position P", c.name);
+  if (t == "twist_t") return fmt::format("drive {} LINEAR ANGULAR", c.name);
+  if (t == "float64_t") return fmt::format("turret-cmd {} VALUE", c.name);
+  if (t == "float64_array_t") {
+    if (c.command_width <= 0) return fmt::format("turret-cmd {} VALUE... --array", c.name);
+    std::vector<std::string> values;
+    for (int k = 1; k <= c.command_width; ++k) values.push_back(fmt::format("V{}", k));
+    return fmt::format("turret-cmd {} {}{}", c.name, fmt::join(values, " "), c.command_width == 1 ? " --array" : "");
+  }
+  if (t.empty()) return "";
+  return fmt::format("bus pub {}/{} {} FIELD=VALUE...", c.name, c.command_channel.empty() ? "command" : c.command_channel,
+                     t);
+}
+
+std::string type_mismatch(const controller_info_t& c, const Sent& sent, const std::string& channel,
+                          const std::string& prefix) {
+  const std::string use = commanded_with(c);
+  if (c.command_type.empty())
+    return fmt::format("{} ({}) takes no commands (it only reads the joints{}); {} was given on {}{}/{}: command a "
+                       "controller that drives the joints instead (cmctl list)",
+                       c.name, c.type,
+                       c.publishes.empty() ? "" : fmt::format(" and publishes {}", fmt::join(c.publishes, ", ")),
+                       sent.type, prefix, c.name, channel);
+  const std::string own = c.command_channel.empty() ? "command" : c.command_channel;
+  const std::string where = prefix + c.name + "/" + own;
+  if (c.command_type != sent.type || channel != own)
+    return fmt::format("{} takes {} on {}; {} was given{}: use {}", c.name, c.command_type, where, sent.type,
+                       channel == own ? "" : " on " + prefix + c.name + "/" + channel, use);
+  if (sent.width > 0 && c.command_width > 0 && sent.width != c.command_width)
+    return fmt::format("{} takes {} of {} number{} on {} (one {} per joint: {}); {} were given: use {}", c.name,
+                       c.command_type, c.command_width, c.command_width == 1 ? "" : "s", where,
+                       c.command_quantity.empty() ? "value" : c.command_quantity, fmt::join(c.joints, ", "),
+                       sent.width, use);
+  return "";
+}
+
+const controller_info_t& commandable(const std::vector<controller_info_t>& listed, const std::string& name,
+                                     const Sent& sent, const std::string& load_hint, const std::string& prefix) {
+  std::vector<std::string> names;
+  for (const auto& c : listed) {
+    if (c.name != name) {
+      names.push_back(c.name);
+      continue;
+    }
+    if (const std::string bad = type_mismatch(c, sent, c.command_channel.empty() ? "command" : c.command_channel, prefix);
+        !bad.empty())
+      throw std::runtime_error(bad);
+    if (c.state != "running")
+      throw std::runtime_error(fmt::format("'{}' is loaded but {}, not running: start it with `cmctl start {}`", name,
+                                           c.state, name));
+    return c;
+  }
+  const std::string close = closest_name(name, names, 3);
+  throw std::runtime_error(fmt::format(
+      "no controller '{}' in the controller manager ({}): load and start it with `spawner {}`{}{}", name,
+      names.empty() ? "none loaded" : fmt::format("loaded: {}", fmt::join(names, ", ")), name,
+      load_hint.empty() ? "" : " " + load_hint, close.empty() ? "" : "; did you mean '" + close + "'?"));
+}
+
+const controller_info_t* controller_on(const std::vector<controller_info_t>& listed, const std::string& channel,
+                                       std::string* relative) {
+  for (const auto& c : listed) {
+    const std::string head = c.name + "/";
+    if (channel.size() <= head.size() || channel.compare(0, head.size(), head) != 0) continue;
+    const std::string rest = channel.substr(head.size());
+    if (rest != c.command_channel && rest != "command" && rest != "cmd_vel") continue;
+    if (relative) *relative = rest;
+    return &c;
+  }
+  return nullptr;
+}
+
+void check_command_channel(Bus& bus, const std::string& channel, const Sent& sent, double timeout_s) {
+  const auto slash = channel.rfind('/');
+  if (slash == std::string::npos) return;
+  const std::string last = channel.substr(slash + 1);
+  if ((last != "command" && last != "cmd_vel") || channel == "hardware/command") return;
+  cm_response_t r;
+  try {
+    r = CmClient(bus, "bus").list(timeout_s);
+  } catch (const CmTimeout&) {
+    return;
+  }
+  std::string relative;
+  if (const controller_info_t* c = controller_on(r.controllers, channel, &relative))
+    if (const std::string bad = type_mismatch(*c, sent, relative, bus.channel("")); !bad.empty())
+      throw std::runtime_error(bad);
+}
+
+std::optional<std::string> hardware_cause(const cm_response_t& list) {
+  // The words are controller_manager/hardware_status.cpp's (HardwareStatus::describe).
+  const std::string& h = list.hardware;
+  if (h.find("e-stop engaged") != std::string::npos)
+    return std::string("the e-stop is engaged: the hardware holds still (release it: bus pub e_stop e_stop_t "
+                       "engaged=false, or the dashboard's e-stop button)");
+  if (h.find("the hardware is paused") != std::string::npos)
+    return std::string("the simulator is paused: its time does not advance (cmctl resume)");
+  if (h.find("SILENT") != std::string::npos)
+    return std::string("the hardware is silent: the controller manager receives no hardware state (is sim_server "
+                       "running?)");
+  return std::nullopt;
+}
+
+std::string goal_failure(CmClient& cm, const std::string& controller, const std::string& status,
+                         const std::string& message) {
+  std::optional<std::string> cause;
+  try {
+    cause = hardware_cause(cm.list(1.0));
+  } catch (const CmTimeout&) {
+  }
+  if (!cause) return fmt::format("{}: {}: {}", controller, status, message);
+  return fmt::format("{}: {} because {}; the controller says: {}", controller, status, *cause, message);
+}
+
+}  // namespace lcm_control::tools
