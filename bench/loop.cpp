@@ -103,7 +103,7 @@ class HardwarePinger {
 
   lcm::LCM lc_;
   std::string channel_state_;
-  hardware_state_t state_;
+  hardware_state_t state_{};
   hardware_command_t cmd_;  // decoded in place, like SimIo
   std::vector<uint8_t> buf_;
   int64_t step_ = 0;

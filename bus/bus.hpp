@@ -140,12 +140,56 @@ class Bus {
   std::vector<std::unique_ptr<Subscription>> subscriptions_;
 };
 
-// lcm-gen's decode of bytes the schema walk (wire_fits or wire_problem) has accepted; false if it still fails or
-// throws. Only for bytes already walked: decode_guarded is the one to call otherwise.
+namespace detail {
+// lcm-gen's decoder resizes an array only when its count is not 0: decoded into a reused message, an array whose count
+// is 0 keeps the previous message's elements. Cuts every array, nested ones too, to its count (no allocation).
+class FitArraysToCounts {
+ public:
+  template <class T>
+  void value(const char*, T&) {}
+  void count(const char* name, int32_t& n) {
+    if (num_counts_ < counts_.size()) counts_[num_counts_++] = {name, n};
+  }
+  template <class T>
+  void list(const char*, std::vector<T>& v, const char* counter) {
+    v.resize(count_of(counter));
+  }
+  template <class T>
+  void matrix(const char*, std::vector<std::vector<T>>& v, const char* counter, int) {
+    v.resize(count_of(counter));
+  }
+  template <class S>
+  void structs(const char*, std::vector<S>& v, const char* counter) {
+    v.resize(count_of(counter));
+    for (S& x : v) nested("", x);
+  }
+  template <class S>
+  void nested(const char*, S& x) {
+    FitArraysToCounts inner;
+    visit(x, inner);
+  }
+
+ private:
+  size_t count_of(const char* counter) const {
+    for (size_t k = 0; k < num_counts_; ++k)
+      if (std::strcmp(counts_[k].first, counter) == 0) return counts_[k].second > 0 ? size_t(counts_[k].second) : 0;
+    return 0;
+  }
+  std::array<std::pair<const char*, int32_t>, 8> counts_{};
+  size_t num_counts_ = 0;
+};
+}  // namespace detail
+
+// lcm-gen's decode of bytes the schema walk (wire_fits or wire_problem) has accepted, every array then exactly as long
+// as its count; false if it still fails or throws. Only for bytes already walked: decode_guarded is the one to call
+// otherwise.
 template <class Msg>
 bool decode_walked(Msg& msg, const void* data, size_t size) noexcept {
   try {
-    return msg.decode(data, 0, int(size)) >= 0;
+    if (msg.decode(data, 0, int(size)) < 0) return false;
+    detail::FitArraysToCounts fit;
+    visit(msg, fit);
+    return true;
   } catch (const std::exception&) {
     msg = Msg();
     return false;

@@ -60,6 +60,8 @@ void resize(joint_state_t& m, int n) {
 }
 
 void resize(hardware_state_t& m, int n) {
+  m.num_sensor_values = int32_t(m.sensor_value.size());  // the sensors stay as they are
+  m.sensor_interface.resize(m.sensor_value.size());
   m.num_actuators = n;
   m.name.resize(n);
   m.mode.resize(n);

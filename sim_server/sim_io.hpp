@@ -111,7 +111,7 @@ class SimIo {
   pollfd pollfds_[2] = {};  // the shared bus's, and the hardware loop's when it has its own
   int n_pollfds_ = 1;
 
-  hardware_state_t state_;
+  hardware_state_t state_{};
   sim_clock_t clock_;
   odometry_t base_;
   bool floating_base_ = false;

@@ -139,6 +139,40 @@ TEST(GuardedDecode, AStringWithANulInsideIsRefused) {
   EXPECT_FALSE(decode_guarded(out, b.data(), b.size()));
 }
 
+// lcm-gen's decoder resizes an array only when its count is not 0: into a reused message, an empty array after a full
+// one kept the old elements (the controller manager then dropped every later state as malformed, found by the fuzz
+// over LCM once hardware_state_t had sensor values). Every array, nested ones too, now matches its count.
+TEST(GuardedDecode, AReusedMessageKeepsNoElementsOfTheOneBefore) {
+  hardware_state_t with{};
+  resize(with, 2);
+  with.sensor_interface = {"imu/orientation.x"};
+  with.sensor_value = {0.5};
+  with.num_sensor_values = 1;
+  hardware_state_t without{};
+  resize(without, 0);
+  hardware_state_t out;
+  ASSERT_TRUE(decode_guarded(out, bytes_of(with).data(), bytes_of(with).size()));
+  ASSERT_TRUE(decode_guarded(out, bytes_of(without).data(), bytes_of(without).size()));
+  EXPECT_EQ(out.num_sensor_values, 0);
+  EXPECT_TRUE(out.sensor_value.empty());
+  EXPECT_TRUE(out.sensor_interface.empty());
+  EXPECT_TRUE(out.name.empty());
+  EXPECT_EQ(check(out), "");
+  joint_trajectory_t t{};
+  t.num_joints = 1;
+  t.joint_names = {"j"};
+  t.num_points = 1;
+  t.points.resize(1);
+  t.points[0].num_positions = 1;
+  t.points[0].positions = {1.0};
+  joint_trajectory_t t_out;
+  ASSERT_TRUE(decode_guarded(t_out, bytes_of(t).data(), bytes_of(t).size()));
+  t.points[0].num_positions = 0;
+  t.points[0].positions.clear();
+  ASSERT_TRUE(decode_guarded(t_out, bytes_of(t).data(), bytes_of(t).size()));
+  EXPECT_TRUE(t_out.points[0].positions.empty());  // nested
+}
+
 TEST(ActuatorBinding, MatchesByNameInAnyOrderAndNamesWhatDiffers) {
   const std::vector<std::string> ours{"a", "b", "c"};
   const ActuatorBinding same = bind_actuators(ours, {"c", "a", "b"});

@@ -81,6 +81,7 @@ void fill_state(hardware_state_t& s, const std::vector<FakeActuator>& act, int64
   s.e_stop = false;
   s.real_time_factor = 1.0;
   s.num_actuators = static_cast<int32_t>(act.size());
+  s.num_sensor_values = static_cast<int32_t>(s.sensor_value.size());  // a test's sensor values stay
   s.name.resize(act.size());
   s.mode.resize(act.size());
   s.position.resize(act.size());
@@ -174,7 +175,7 @@ void FakeHardware::on_command(const lcm::ReceiveBuffer*, const std::string&, con
 }
 
 void FakeHardware::publish_state() {
-  hardware_state_t s;
+  hardware_state_t s{};
   {
     std::lock_guard<std::mutex> l(mutex_);
     fill_state(s, act_, step_, session_, options_.period_us, options_.lockstep);

@@ -72,7 +72,7 @@ struct Rig {
   std::unique_ptr<cm::ControllerManager> cm;
   std::vector<FakeActuator> act;
   std::vector<hardware_command_t> commands;
-  hardware_state_t state;
+  hardware_state_t state{};
   int64_t step = 0, session = 42, time_offset_us = 0;
   int period_us = 1000;
   bool lockstep = true;
