@@ -283,9 +283,14 @@ class Dashboard {
   int64_t next_flush_ = 0, next_status_ = 0;
 };
 
+// build/bin/dashboard: build/share/lcm_control/dashboard; installed, PREFIX/libexec/lcm_control/dashboard:
+// PREFIX/share/lcm_control/dashboard.
 std::string default_web_root() {
   const fs::path exe_dir = fs::read_symlink("/proc/self/exe").parent_path();
-  return (exe_dir.parent_path() / "share" / "lcm_control" / "dashboard").string();
+  const fs::path page = fs::path("share") / "lcm_control" / "dashboard";
+  std::error_code ec;
+  if (fs::is_directory(exe_dir.parent_path() / page, ec)) return (exe_dir.parent_path() / page).string();
+  return (exe_dir.parent_path().parent_path() / page).string();
 }
 
 }  // namespace

@@ -28,8 +28,8 @@ int main(int argc, char** argv) {
   app.add_option("--rate", o.rate_hz, "messages per second per channel at most (latest wins)")
       ->check(CLI::Range(1.0, 1000.0));
   app.add_flag("--read-only", o.read_only, "show the robot, refuse every command from the page");
-  app.add_option("--web-root", o.web_root, "folder of the built page (default: ../share/lcm_control/dashboard "
-                                           "beside this program)");
+  app.add_option("--web-root", o.web_root, "folder of the built page (default: share/lcm_control/dashboard of "
+                                           "the build tree or of the installation)");
   app.add_option("--nice", o.nice,
                  "run at this nice value (0 to 19; default 10), so that a busy page never takes the CPU of the loop "
                  "it shows")

@@ -1,14 +1,16 @@
-# bash completion for lcm_control's programs: their flags and subcommands, read
-# from the program's own --help, so completion follows the program's version.
+# bash completion for lcm-control, the installed command: the program's name (from `lcm-control --help`), then that
+# program's flags and subcommands, read from its own --help, so completion follows the programs' version.
 _lcm_control() {
   local cur=${COMP_WORDS[COMP_CWORD]} prev=${COMP_WORDS[COMP_CWORD-1]} help words
+  local -a command=("${COMP_WORDS[0]}")
+  ((COMP_CWORD > 1)) && command+=("${COMP_WORDS[1]}")
   case $prev in
     --urdf | --config | -o | --output | --output-dir | --log | --file | --csv | --data | --package-path)
       COMPREPLY=($(compgen -f -- "$cur"))
       return
       ;;
   esac
-  help=$("${COMP_WORDS[0]}" --help 2>/dev/null) || return
+  help=$("${command[@]}" --help 2>/dev/null) || return
   if [[ $cur == -* ]]; then
     words=$(grep -oE -- '--[a-zA-Z0-9][a-zA-Z0-9-]*' <<<"$help" | sort -u)
   else
@@ -22,5 +24,4 @@ _lcm_control() {
     COMPREPLY=($(compgen -W "$words" -- "$cur"))
   fi
 }
-complete -F _lcm_control sim_server controller_manager launch spawner cmctl turret-cmd send-trajectory gripper \
-  state-logger state-publisher log2csv plotter tune doctor tracking-summary bus drive
+complete -F _lcm_control lcm-control

@@ -1,28 +1,48 @@
 #!/usr/bin/env python3
 """Reads joint_states and commands a joint from Python, with the generated types.
 
-    python3 joint_states_example.py [CONTROLLER [POSITION]]   # default: j1_controller 0.5
+    python3 joint_states_example.py [CONTROLLER JOINT [POSITION]]   # default: j1_controller j1 0.5
 
 Prints the joint_states it receives for a moment, sends CONTROLLER/command
-(float64_t) until the joint the controller drives reaches POSITION (within 0.02),
-then prints the final positions. Uses LCM's own Python module when installed,
-else lcm_lite (same wire format). Set LCM_DEFAULT_URL as for the other programs.
-Exit code 0 when the joint got there, 4 when no joint_states came.
+(float64_t) until JOINT, the joint the controller drives, reaches POSITION
+(within 0.02), then prints the final positions. Uses LCM's own Python module
+when installed, else lcm_lite (same wire format). Set LCM_DEFAULT_URL as for the
+other programs. Runs where the build or `cmake --install` put it
+(build/share/python/, PREFIX/share/lcm_control/python/) and from the checkout
+(python/, after the build: it takes the classes from ../build/share/python/).
+Exit code 0 when the joint got there, 1 when it did not or has no such joint,
+2 for bad arguments, 4 when no joint_states came.
 """
+import argparse
 import os
 import sys
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+here = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, here)
+if not os.path.isdir(os.path.join(here, "lcm_control")):  # the checkout's python/: the build's classes
+    sys.path.insert(1, os.path.join(os.path.dirname(here), "build", "share", "python"))
 try:
     import lcm
 except ImportError:
     import lcm_lite as lcm
-from lcm_control import float64_t, joint_state_t
+try:
+    from lcm_control import float64_t, joint_state_t
+except ImportError:
+    sys.exit("%s: error: no Python package lcm_control: build first (./scripts/build writes build/share/python/), "
+             "or put the folder holding it on PYTHONPATH" % os.path.basename(__file__))
 
-controller = sys.argv[1] if len(sys.argv) > 1 else "j1_controller"
-target = float(sys.argv[2]) if len(sys.argv) > 2 else 0.5
-joint = controller[: -len("_controller")] if controller.endswith("_controller") else controller
+parser = argparse.ArgumentParser(description="Read joint_states and command one joint through its controller.")
+parser.add_argument("controller", nargs="?", default="j1_controller", metavar="CONTROLLER", help="its commands go to CONTROLLER/command")
+parser.add_argument("joint", nargs="?", metavar="JOINT", help="the joint CONTROLLER drives, as joint_states names it")
+parser.add_argument("position", nargs="?", type=float, default=0.5, metavar="POSITION", help="the command (default 0.5)")
+args = parser.parse_args()
+if args.joint is None:
+    if args.controller != "j1_controller":
+        parser.error("name the joint %s drives: %s %s JOINT [POSITION]" % (args.controller, parser.prog,
+                                                                             args.controller))
+    args.joint = "j1"
+controller, joint, target = args.controller, args.joint, args.position
 
 bus = lcm.LCM(os.environ.get("LCM_DEFAULT_URL"))
 latest = {}
@@ -44,10 +64,10 @@ while "utime" not in latest and time.time() < deadline:
 if "utime" not in latest:
     print("no joint_states within 5 s: is a robot running on this LCM URL?", file=sys.stderr)
     sys.exit(4)
-print("joint_states at t=%.3f s: %s" % (latest["utime"] * 1e-6,
-                                       ", ".join("%s=%.3f" % (k, v) for k, v in latest.items() if k != "utime")))
+joints = [k for k in latest if k != "utime"]
+print("joint_states at t=%.3f s: %s" % (latest["utime"] * 1e-6, ", ".join("%s=%.3f" % (k, latest[k]) for k in joints)))
 if joint not in latest:
-    print("joint_states has no joint '%s' (the controller's name without _controller)" % joint, file=sys.stderr)
+    print("joint_states has no joint '%s' (it has %s)" % (joint, ", ".join(joints)), file=sys.stderr)
     sys.exit(1)
 
 command = float64_t()

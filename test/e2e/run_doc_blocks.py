@@ -2,7 +2,7 @@
 """Runs every ```sh block of a Markdown guide, as a user would paste it.
 
 The blocks run with bash from a scratch folder that looks like the repository
-root (config/, docs/, scripts/, test/ and build/bin, build/share linked to this build),
+root (config/, docs/, python/, scripts/, test/ and build/bin, build/share linked to this build),
 with LCM_DEFAULT_URL set to a bus of this run's own, next to a running
 turret_bot (launch config/turret_bot.launch.yaml, with j2 driven by turret-cmd).
 
@@ -55,6 +55,23 @@ def heading_lines(markdown):
         elif not fenced and re.match(r"#{1,6} ", line):
             out.append(n)
     return out
+
+
+def contents_problems(markdown):
+    """What a `## Contents` list misses or links wrongly: it links every other `## ` heading by its GitHub anchor."""
+    sections, fenced = [], False
+    for line in markdown.splitlines():
+        if line.startswith("```"):
+            fenced = not fenced
+        elif not fenced and line.startswith("## "):
+            sections.append(line[3:].strip())
+    if "Contents" not in sections:
+        return []
+    body = markdown.split("## Contents", 1)[1].split("\n## ", 1)[0]
+    links = re.findall(r"\]\(#([^)]+)\)", body)
+    anchors = {h: re.sub(r"[^\w\- ]", "", h.lower()).replace(" ", "-") for h in sections if h != "Contents"}
+    return (["## Contents does not link '## %s' (#%s)" % (h, a) for h, a in anchors.items() if a not in links]
+            + ["## Contents links #%s, which no heading has" % a for a in links if a not in anchors.values()])
 
 
 def directives(text):
@@ -124,14 +141,14 @@ def main():
     headings = heading_lines(markdown)
     root = tempfile.mkdtemp(prefix="lcm_control_docs_")
     os.makedirs(os.path.join(root, "build"))
-    for name in ("config", "docs", "scripts", "test"):
+    for name in ("config", "docs", "python", "scripts", "test"):
         os.symlink(os.path.join(args.source_dir, name), os.path.join(root, name))
     os.symlink(args.bin_dir, os.path.join(root, "build", "bin"))
     os.symlink(os.path.join(os.path.dirname(args.bin_dir), "share"), os.path.join(root, "build", "share"))
     env = dict(os.environ, LCM_DEFAULT_URL=free_url())
     print("guide %s: %d blocks, bus %s, in %s" % (args.guide, len(found), env["LCM_DEFAULT_URL"], root))
 
-    failures = []
+    failures = contents_problems(markdown)
     robot = start("build/bin/launch config/turret_bot.launch.yaml", root, env)
     driver = None
     section_robot = None  # (process, env, line of the section's end) of a robot kept up for its section
