@@ -114,6 +114,8 @@ def commands(text, ours):
             pass  # VAR=value before the command
         elif at_start and w in ("sudo", "exec", "time", "nohup", "$"):
             pass
+        elif at_start and os.path.basename(w) == "lcm-control" and k + 1 < len(ws) and ws[k + 1] in ours:
+            pass  # the installed front command: its next word is the program
         else:
             name = os.path.basename(w)
             if (at_start or "/bin/" in w) and name in ours:
