@@ -104,12 +104,13 @@ void describe_sensors(const RobotModel& m, std::string& s) {
       fmt::format_to(out, " link {}", x.link);
     const auto& p = x.pose.translation();
     if (!x.pose.isApprox(Eigen::Isometry3d::Identity()))
-      fmt::format_to(out, ", pose ({:g}, {:g}, {:g}) rotated", p.x(), p.y(), p.z());
+      fmt::format_to(out, ", pose ({:g}, {:g}, {:g}){}", p.x(), p.y(), p.z(),
+                     x.pose.linear().isApprox(Eigen::Matrix3d::Identity()) ? "" : " rotated");
     fmt::format_to(out, ", frame_id {}", x.frame_id.empty() ? x.link : x.frame_id);
     s += noise_text("angular_velocity", x.angular_velocity) + noise_text("linear_acceleration", x.linear_acceleration) +
          noise_text("force", x.force) + noise_text("torque", x.torque);
     if (!x.hardware_block.empty()) fmt::format_to(out, ", in ros2_control '{}'", x.hardware_block);
-    if (x.update_rate_hz > 0) fmt::format_to(out, " (declared {:g} Hz; computed every control step)", x.update_rate_hz);
+    if (x.update_rate_hz > 0) fmt::format_to(out, " (declared {:g} Hz; measured every step)", x.update_rate_hz);
     fmt::format_to(out, "\n");
   }
 }
