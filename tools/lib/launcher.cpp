@@ -123,6 +123,8 @@ void model_defaults(LaunchPlan& plan, const std::vector<std::string>& path, cons
   RobotModel model;
   try {
     model = load_robot_model(plan.urdf, plan.configs, o);
+  } catch (const ModelError&) {
+    throw;  // named here once, before any server starts and names it again
   } catch (const std::exception&) {
     return;  // the servers read the same files and say what is wrong
   }
