@@ -61,7 +61,7 @@ std::optional<Conflict> find_conflict(const std::vector<std::pair<std::string, c
 }
 
 std::string describe(const Claim& claim) {
-  if (!claim.interface) return "nothing (reads joint state only)";
+  if (!claim.interface) return "nothing (reads state only)";
   return fmt::format("{} on {}", to_string(*claim.interface), fmt::join(claim.joints, ", "));
 }
 
