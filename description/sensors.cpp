@@ -239,14 +239,14 @@ struct Reader {
     finish(std::move(s), bad);
   }
 
-  // A model plugin of ROS 1 that is a sensor: gazebo_ros_imu, hector_gazebo_ros_imu, gazebo_ros_ft_sensor. False
-  // for any other plugin.
-  bool plugin_sensor(const tinyxml2::XMLElement* p) {
+  // A model plugin of ROS 1 that is a sensor (gazebo_ros_imu, hector_gazebo_ros_imu, gazebo_ros_ft_sensor); any
+  // other plugin is left to the Gazebo-tags warning.
+  void plugin_sensor(const tinyxml2::XMLElement* p) {
     const std::string fn = attr(p, "filename");
     const bool hector = contains(fn, "hector_gazebo_ros_imu");
     const bool imu = hector || (contains(fn, "gazebo_ros_imu") && !contains(fn, "gazebo_ros_imu_sensor"));
     const bool ft = contains(fn, "gazebo_ros_ft_sensor");
-    if (!imu && !ft) return false;
+    if (!imu && !ft) return;
     SensorSpec s;
     std::vector<std::string> bad;
     Numbers num{bad};
@@ -305,7 +305,6 @@ struct Reader {
         place(s, body);
     }
     finish(std::move(s), bad);
-    return true;
   }
 
   // A <ros2_control> <sensor>: the Gazebo sensor of that name (gz_ros2_control's rule), or, when none, one placed on
