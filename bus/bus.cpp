@@ -43,6 +43,7 @@ std::string effective_url(const std::string& url) {
 
 std::string hardware_url_for(const std::string& value, const std::string& shared_url, const std::string& ns) {
   if (value.empty() || value == "shared") return shared_url;
+  if (is_shm_url(value)) return "shm:" + shm_name_of(value, trim_slashes(ns));
   if (value != "auto") return value;
   // udpm://GROUP[:PORT][?OPTIONS]
   const std::string scheme = "udpm://";
@@ -90,11 +91,17 @@ Bus::Bus(const std::string& url, const std::string& ns, const std::string& hardw
   prefix_ = ns_.empty() ? "" : ns_ + "/";
   lcm_ = open_lcm(url, url_, "--lcm-url or LCM_DEFAULT_URL");
   const std::string hw = hardware_url_for(hardware_url, url_, ns_);
-  if (hw != url_) {
+  if (is_shm_url(hw)) {
+    hw_url_ = hw;
+    shm_ = std::make_unique<ShmLink>(shm_name_of(hw, ns_));
+  } else if (hw != url_) {
     hw_url_ = hw;
     hw_ = open_lcm(hw, hw, "--hardware-lcm-url");
   }
-  if (reader == HardwareReader::Lcm) return;
+  if (reader == HardwareReader::Lcm) {
+    if (shm_) shm_->watch_fd(shared_fd());
+    return;
+  }
   const auto udpm = [](const std::string& u) { return u.rfind("udpm://", 0) == 0; };
   if (hw_ && udpm(hw_url_)) {
     hw_socket_ = std::make_unique<LcmSocket>(hw_url_);
@@ -104,6 +111,17 @@ Bus::Bus(const std::string& url, const std::string& ns, const std::string& hardw
     shared_socket_ = std::make_unique<LcmSocket>(url_);
     self_test(*lcm_, *shared_socket_);
   }
+  if (shm_) shm_->watch_fd(shared_fd());
+}
+
+Bus::~Bus() = default;
+
+void Bus::mirror_hardware(double hz) {
+  if (hz > 0 && !shm_)
+    throw BusError(fmt::format("--hardware-mirror {:g}: the hardware loop is on LCM ({}), where every tool hears it "
+                               "already; the mirror is for --hardware-url shm",
+                               hz, hardware_url()));
+  if (shm_) shm_->mirror_to(lcm_.get(), hz);
 }
 
 int Bus::subscribe(const std::string& pattern, ChannelHandler handler, On on, int queue) {
@@ -112,7 +130,10 @@ int Bus::subscribe(const std::string& pattern, ChannelHandler handler, On on, in
   s->id = next_id++;
   s->handler = std::move(handler);
   s->socket = on == On::Shared ? shared_socket() : hardware_socket();
-  if (s->socket) {
+  s->shm = on == On::Hardware ? shm_.get() : nullptr;
+  if (s->shm) {
+    s->socket_id = s->shm->subscribe_pattern(pattern, s->handler);
+  } else if (s->socket) {
     s->socket_id = s->socket->subscribe_pattern(pattern, s->handler);
   } else {
     s->lc = on == On::Shared ? &lcm() : &hardware();
@@ -129,7 +150,8 @@ int Bus::subscribe(const std::string& pattern, ChannelHandler handler, On on, in
 void Bus::unsubscribe(int id) {
   for (auto it = subscriptions_.begin(); it != subscriptions_.end(); ++it) {
     if ((*it)->id != id) continue;
-    if ((*it)->socket) (*it)->socket->unsubscribe((*it)->socket_id);
+    if ((*it)->shm) (*it)->shm->unsubscribe((*it)->socket_id);
+    if ((*it)->socket && !(*it)->shm) (*it)->socket->unsubscribe((*it)->socket_id);
     if ((*it)->lcm_sub) (*it)->lc->unsubscribe((*it)->lcm_sub);
     subscriptions_.erase(it);
     return;
@@ -159,12 +181,38 @@ int handle_queued(lcm::LCM& lc, LcmSocket* socket, int max) {
 }
 }  // namespace
 
-int Bus::handle_shared(int max) { return handle_queued(*lcm_, shared_socket_.get(), max); }
+int Bus::handle_shared(int max) {
+  const int n = handle_queued(*lcm_, shared_socket_.get(), max);
+  if (shm_ && n < max) shm_->fd_drained();  // all read: its watcher looks again
+  return n;
+}
 
-int Bus::handle_hardware(int max) { return hw_ ? handle_queued(*hw_, hw_socket_.get(), max) : handle_shared(max); }
+int Bus::handle_hardware(int max) {
+  if (shm_) return shm_->handle_queued(max);
+  return hw_ ? handle_queued(*hw_, hw_socket_.get(), max) : handle_shared(max);
+}
+
+int Bus::wait_us(int64_t timeout_us) {
+  timeout_us = std::max<int64_t>(0, timeout_us);
+  if (shm_) {
+    if (!shm_->wait_us(timeout_us)) return 0;
+    return (shm_->has_new() ? kHardwareReady : 0) | (shm_->fd_ready() ? kSharedReady : 0);
+  }
+  pollfd p[2] = {{shared_fd(), POLLIN, 0}, {hardware_fd(), POLLIN, 0}};
+  const timespec ts{static_cast<time_t>(timeout_us / 1000000), static_cast<long>(timeout_us % 1000000) * 1000};
+  const int r = ppoll(p, hw_ ? 2 : 1, &ts, nullptr);
+  if (r < 0) return errno == EINTR ? 0 : -1;
+  return ((p[0].revents & POLLIN) ? kSharedReady : 0) | (hw_ && (p[1].revents & POLLIN) ? kHardwareReady : 0);
+}
 
 bool Bus::handle_us(int64_t timeout_us, int max) {
   timeout_us = std::max<int64_t>(0, timeout_us);
+  if (shm_) {
+    const int ready = wait_us(timeout_us);
+    if ((ready & kHardwareReady) && handle_hardware(max) < 0) return false;
+    if ((ready & kSharedReady) && handle_shared(max) < 0) return false;
+    return true;
+  }
   if (!hw_ && !shared_socket_) {
     const int r = lcm_->handleTimeout(static_cast<int>((timeout_us + 999) / 1000));
     return r >= 0 && (r == 0 || handle_shared(max - 1) >= 0);

@@ -6,6 +6,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "bus/lcm_socket.hpp"
+#include "bus/shm_link.hpp"
 #include "bus/wire_check.hpp"
 #include "rt/clock.hpp"
 
@@ -48,8 +49,9 @@ class BusError : public std::runtime_error {
 // The URL of a robot's hardware loop (hardware/state, hardware/command) for `--hardware-lcm-url VALUE`:
 // "" or "shared" = the shared bus itself; "auto" = the shared udpm URL with its port moved to one the namespace picks
 // (kHardwarePortBase + FNV-1a(ns) % kHardwarePorts), so that every robot's loop has its own socket and the
-// processes on the shared bus do not wake for it; anything else is used as given. Throws BusError when auto meets
-// a URL that is not udpm://.
+// processes on the shared bus do not wake for it; "shm" = shared memory on this host, a segment per namespace
+// ("shm:NAME" as resolved, bus/shm_link.hpp), and "shm:NAME" that segment; anything else is used as given. Throws
+// BusError when auto meets a URL that is not udpm://, or a shm name is not one.
 inline constexpr int kHardwarePortBase = 7700, kHardwarePorts = 2000;
 std::string hardware_url_for(const std::string& value, const std::string& shared_url, const std::string& ns);
 
@@ -73,6 +75,7 @@ class Bus {
   // does not come back.
   Bus(const std::string& url, const std::string& ns, const std::string& hardware_url = "",
       HardwareReader reader = HardwareReader::Lcm);
+  ~Bus();
 
   // Where a subscription listens: the shared bus, or the hardware loop (hardware/state, hardware/command).
   enum class On { Shared, Hardware };
@@ -93,16 +96,27 @@ class Bus {
   void unsubscribe(int id);
 
   lcm::LCM& lcm() { return *lcm_; }
-  // Where hardware/state and hardware/command travel: lcm() unless the hardware loop has its own URL.
+  // Where hardware/state and hardware/command travel: lcm() unless the hardware loop has its own URL (on shared
+  // memory, lcm() too: the mirror's).
   lcm::LCM& hardware() { return hw_ ? *hw_ : *lcm_; }
-  bool hardware_apart() const { return hw_ != nullptr; }
-  const std::string& hardware_url() const { return hw_ ? hw_url_ : url_; }
+  bool hardware_apart() const { return hw_ != nullptr || shm_ != nullptr; }
+  const std::string& hardware_url() const { return hardware_apart() ? hw_url_ : url_; }
   // The sockets read directly (HardwareReader::Direct on udpm://), else null: subscribe there instead of on lcm()
-  // or hardware(). The same socket when the hardware loop travels on the shared bus.
+  // or hardware(). The same socket when the hardware loop travels on the shared bus; none on shared memory.
   LcmSocket* shared_socket() { return shared_socket_.get(); }
-  LcmSocket* hardware_socket() { return hw_ ? hw_socket_.get() : shared_socket_.get(); }
-  // The file descriptors to wait on: the shared bus's, then the hardware loop's when it has a URL of its own.
+  LcmSocket* hardware_socket() { return shm_ ? nullptr : hw_ ? hw_socket_.get() : shared_socket_.get(); }
+  // The hardware loop's shared memory (--hardware-url shm), else null: publish and subscribe there.
+  ShmLink* hardware_shm() { return shm_.get(); }
+  // Shared memory: what is published on the hardware loop is also sent on the shared bus, at most `hz` times a
+  // second per channel (0: not at all, the default), for the tools that listen there.
+  void mirror_hardware(double hz);
+  // The file descriptors to wait on: the shared bus's, then the hardware loop's when it has a URL of its own (on
+  // shared memory, the shared bus's only: wait_us() waits on both).
   std::vector<int> fds();
+  // Waits up to timeout_us for a message on either: kSharedReady | kHardwareReady for where one is, 0 when the time
+  // ran out or a signal came, -1 on an error.
+  static constexpr int kSharedReady = 1, kHardwareReady = 2;
+  int wait_us(int64_t timeout_us);
   // Handle what is queued (at most `max` messages) without blocking: how many, -1 on an error.
   int handle_shared(int max = 1000);
   int handle_hardware(int max = 1000);
@@ -128,10 +142,12 @@ class Bus {
   int hardware_fd();  // -1 without a hardware URL of its own
   std::unique_ptr<lcm::LCM> lcm_, hw_;
   std::unique_ptr<LcmSocket> shared_socket_, hw_socket_;
+  std::unique_ptr<ShmLink> shm_;
   std::string url_, ns_, prefix_, hw_url_;
   struct Subscription {
     int id = 0, socket_id = 0;
     LcmSocket* socket = nullptr;
+    ShmLink* shm = nullptr;
     lcm::LCM* lc = nullptr;
     lcm::Subscription* lcm_sub = nullptr;
     ChannelHandler handler;

@@ -5,10 +5,16 @@ namespace lcm_control {
 Endpoints::~Endpoints() {
   for (auto* s : subs_) lc_.unsubscribe(s);
   for (const int id : socket_subs_) socket_->unsubscribe(id);
+  for (const int id : shm_subs_) shm_->unsubscribe(id);
 }
 
 void Endpoints::subscribe_raw(const std::string& channel, std::function<void(const lcm::ReceiveBuffer&)> handler) {
   handlers_.push_back(std::make_unique<Handler>(Handler{std::move(handler), channel, {}, false}));
+  if (shm_) {
+    Handler* h = handlers_.back().get();
+    shm_subs_.push_back(shm_->subscribe(channel, [h](const lcm::ReceiveBuffer& rb) { h->deliver(rb); }));
+    return;
+  }
   if (socket_) {
     Handler* h = handlers_.back().get();
     socket_subs_.push_back(socket_->subscribe(channel, [h](const lcm::ReceiveBuffer& rb) { h->deliver(rb); }));

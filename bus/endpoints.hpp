@@ -28,14 +28,15 @@ int encode_into(const Msg& m, std::vector<uint8_t>& buf) {
   return n;
 }
 
-// Publishes one message type on one channel: sent at once, or handed to an Outbox when it has one (the loop path
-// then never touches a socket). After the first message of a given size it neither allocates nor formats.
+// Publishes one message type on one channel: sent at once, written to the hardware loop's shared memory when it
+// travels there, or handed to an Outbox when it has one (the loop path then never touches a socket). After the
+// first message of a given size it neither allocates nor formats.
 template <class Msg>
 class Publisher {
  public:
   Publisher() = default;
-  Publisher(lcm::LCM* lc, std::string channel, Outbox* outbox = nullptr)
-      : lc_(lc), outbox_(outbox), channel_(std::move(channel)) {
+  Publisher(lcm::LCM* lc, std::string channel, Outbox* outbox = nullptr, ShmLink* shm = nullptr)
+      : lc_(lc), outbox_(shm ? nullptr : outbox), shm_(shm), channel_(std::move(channel)) {
     if (!outbox_) buf_.resize(256);
   }
   bool valid() const { return lc_ != nullptr; }
@@ -57,25 +58,30 @@ class Publisher {
     }
     const int n = encode_into(m, buf_);
     if (n < 0) return -1;
+    if (shm_) return shm_->publish(channel_, buf_.data(), static_cast<size_t>(n));
     return lc_->publish(channel_, buf_.data(), static_cast<unsigned>(n));
   }
 
  private:
   lcm::LCM* lc_ = nullptr;
   Outbox* outbox_ = nullptr;
+  ShmLink* shm_ = nullptr;
   std::string channel_;
   std::vector<uint8_t> buf_;
 };
 
 class Endpoints {
  public:
-  // Publishes on lc and subscribes on `socket` when it is not null (read directly), else on lc.
-  explicit Endpoints(lcm::LCM& lc, LcmSocket* socket = nullptr) : lc_(lc), socket_(socket) {}
+  // Publishes on lc and subscribes on `socket` when it is not null (read directly), else on lc; both on `shm` when it
+  // is not null.
+  explicit Endpoints(lcm::LCM& lc, LcmSocket* socket = nullptr, ShmLink* shm = nullptr)
+      : lc_(lc), socket_(socket), shm_(shm) {}
   // On the bus's shared channels, or on its hardware loop (hardware/state, hardware/command).
   using On = Bus::On;
   Endpoints(Bus& bus, On on)
       : Endpoints(on == On::Shared ? bus.lcm() : bus.hardware(),
-                  on == On::Shared ? bus.shared_socket() : bus.hardware_socket()) {}
+                  on == On::Shared ? bus.shared_socket() : bus.hardware_socket(),
+                  on == On::Shared ? nullptr : bus.hardware_shm()) {}
   ~Endpoints();
   Endpoints(const Endpoints&) = delete;
   Endpoints& operator=(const Endpoints&) = delete;
@@ -123,7 +129,7 @@ class Endpoints {
 
   template <class Msg>
   Publisher<Msg> publisher(const std::string& channel) {
-    return Publisher<Msg>(&lc_, channel, outbox_);
+    return Publisher<Msg>(&lc_, channel, outbox_, shm_);
   }
 
  private:
@@ -164,10 +170,11 @@ class Endpoints {
   };
   lcm::LCM& lc_;
   LcmSocket* socket_ = nullptr;
+  ShmLink* shm_ = nullptr;
   Outbox* outbox_ = nullptr;
   std::vector<std::unique_ptr<Handler>> handlers_;
   std::vector<lcm::Subscription*> subs_;
-  std::vector<int> socket_subs_;
+  std::vector<int> socket_subs_, shm_subs_;
 };
 
 }  // namespace lcm_control

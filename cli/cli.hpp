@@ -26,6 +26,7 @@ struct BusFlags {
   std::string ns;
   std::string hardware_lcm_url;  // "" = lcm_url; "auto" or a URL (hardware_url_for)
   std::string hardware_reader = "direct";  // hardware_reader_named()
+  double hardware_mirror_hz = 0;  // shared memory: the hardware loop's messages also on the bus, per second
 };
 
 inline void add_bus_flags(CLI::App& app, BusFlags& f) {
@@ -38,10 +39,22 @@ inline void add_bus_flags(CLI::App& app, BusFlags& f) {
 
 // For the programs on the hardware loop (sim_server, controller_manager, launch, turret-cmd --sim-time).
 inline void add_hardware_url_flag(CLI::App& app, BusFlags& f) {
-  app.add_option("--hardware-lcm-url", f.hardware_lcm_url,
-                 "LCM URL of this robot's hardware loop (hardware/state, hardware/command) when it is not the "
-                 "--lcm-url: `auto` moves it to a port of the shared group picked by the namespace, so that N robots "
-                 "on one bus cost each process O(1) (default: the --lcm-url)");
+  app.add_option("--hardware-url,--hardware-lcm-url", f.hardware_lcm_url,
+                 "where this robot's hardware loop (hardware/state, hardware/command) travels when not on the "
+                 "--lcm-url: `shm` is shared memory on this host (a segment per namespace; `shm:NAME` names it), "
+                 "the fastest loop for sim_server and controller_manager on one machine; `auto` moves it to a port of "
+                 "the shared group picked by the namespace, so that N robots on one bus cost each process O(1); or "
+                 "an LCM URL (default: the --lcm-url)");
+}
+
+// For the two loop processes: the shared-memory loop's messages copied to the shared bus for lcm-spy, bus, the
+// dashboard and the logger.
+inline void add_hardware_mirror_flag(CLI::App& app, BusFlags& f) {
+  app.add_option("--hardware-mirror", f.hardware_mirror_hz,
+                 "with --hardware-url shm: also publish what this process sends on the hardware loop on the --lcm-url, "
+                 "at most HZ times a second of wall time per channel, for lcm-spy, bus, the dashboard and lcm-logger "
+                 "(default 0: not at all)")
+      ->check(CLI::NonNegativeNumber);
 }
 
 // For the two loop processes (sim_server, controller_manager).
@@ -57,6 +70,7 @@ inline void add_hardware_reader_flag(CLI::App& app, BusFlags& f) {
 // ", hardware loop on URL", ", read directly" or "" for a program's ready line.
 inline std::string hardware_note(Bus& bus) {
   std::string note = bus.hardware_apart() ? ", hardware loop on " + bus.hardware_url() : "";
+  if (ShmLink* shm = bus.hardware_shm()) note += " (" + shm->path() + ")";
   return note + (bus.hardware_socket() ? ", hardware read directly" : "");
 }
 

@@ -39,6 +39,7 @@ int main(int argc, char** argv) {
   add_bus_flags(app, bus_flags);
   add_hardware_url_flag(app, bus_flags);
   add_hardware_reader_flag(app, bus_flags);
+  add_hardware_mirror_flag(app, bus_flags);
   add_package_path_flag(app, package_path);
   std::vector<std::string> args;
   add_arg_flag(app, args);
@@ -84,6 +85,7 @@ int main(int argc, char** argv) {
                                    "name it in <parameters>; {}'s does not)",
                                    urdf));
     Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url, hardware_reader_named(bus_flags.hardware_reader));
+    bus.mirror_hardware(bus_flags.hardware_mirror_hz);
     // Between two cycles, a request's work (Services) and the destruction of unloaded controllers (poll) take at
     // most this long each before the next hardware state is looked for.
     constexpr int64_t kSliceUs = 250;

@@ -102,6 +102,7 @@ int main(int argc, char** argv) {
   add_bus_flags(app, bus_flags);
   add_hardware_url_flag(app, bus_flags);
   add_hardware_reader_flag(app, bus_flags);
+  add_hardware_mirror_flag(app, bus_flags);
   add_package_path_flag(app, package_path);
   std::vector<std::string> args;
   add_arg_flag(app, args);
@@ -163,6 +164,7 @@ int main(int argc, char** argv) {
     for (const auto& w : sim.warnings()) spdlog::warn("{}", w);
     for (const auto& line : sim.describe()) spdlog::info("{}", line);
     Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url, hardware_reader_named(bus_flags.hardware_reader));
+    bus.mirror_hardware(bus_flags.hardware_mirror_hz);
     sim::SimIo io(bus, sim, opt.lockstep, clock_every);
     io.set_max_command_age(std::max<int64_t>(1, std::llround(opt.watchdog_s * rates.control_hz)));
     sim::Stepper stepper(sim, io, opt);

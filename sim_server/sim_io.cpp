@@ -80,9 +80,6 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
               {[this] { return sim_.time_us(); }, [this] { return fmt::format(" from step {}", sim_.step_count()); },
                [this](const std::string& message) { log_.info(message); }, [this](const std::string& why) { drop(why); }});
   on(endpoints_, bus.channel(channels::kSimRequest), &SimIo::on_request);
-  const std::vector<int> fds = bus.fds();
-  for (size_t i = 0; i < fds.size(); ++i) pollfds_[i] = {fds[i], POLLIN, 0};
-  n_pollfds_ = int(fds.size());
 }
 
 void SimIo::publish_state(double real_time_factor, bool clock_again) {
@@ -134,15 +131,14 @@ bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_reque
   for (int late = 0; late < kMaxMessagesPastDeadline;) {
     const int64_t left = std::max<int64_t>(0, deadline_us - monotonic_us());
     if (left == 0) ++late;
-    const timespec ts{time_t(left / 1000000), long(left % 1000000) * 1000};
-    const int r = ppoll(pollfds_, nfds_t(n_pollfds_), &ts, nullptr);
-    if (r < 0) return errno == EINTR;
-    if (r == 0) return true;
+    const int ready = bus_.wait_us(left);
+    if (ready < 0) return false;
+    if (ready == 0) return true;  // the time ran out, or a signal came
     // One message at a time, so that what was sent after the awaited command waits for the next step.
-    for (int i = 0; i < n_pollfds_; ++i) {
-      if (!(pollfds_[i].revents & POLLIN)) continue;
+    for (const int source : {Bus::kSharedReady, Bus::kHardwareReady}) {
+      if (!(ready & source)) continue;
       for (int k = 0; k < kMessagesPerWake; ++k) {
-        const int n = i == 0 ? bus_.handle_shared(1) : bus_.handle_hardware(1);
+        const int n = source == Bus::kSharedReady ? bus_.handle_shared(1) : bus_.handle_hardware(1);
         if (n < 0) return false;
         if (done()) return true;
         if (n == 0) break;

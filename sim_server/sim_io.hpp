@@ -108,8 +108,6 @@ class SimIo {
   Publisher<odometry_t> base_pub_;
   Publisher<loop_stats_t> stats_pub_;
   Publisher<sim_response_t> response_pub_;
-  pollfd pollfds_[2] = {};  // the shared bus's, and the hardware loop's when it has its own
-  int n_pollfds_ = 1;
 
   hardware_state_t state_{};
   sim_clock_t clock_;

@@ -1,0 +1,370 @@
+// bus/shm_link: the hardware loop's shared memory. Bytes arrive whole and newest-first across threads and processes,
+// a wait ends on a message or a watched descriptor and never outlives its timeout, the file goes with the last user
+// (a killed one too), a writer killed mid-write is taken over, hostile slot contents are skipped, and the Bus and
+// Endpoints carry hardware messages there and mirror them to LCM when asked.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bus/bus.hpp"
+#include "bus/endpoints.hpp"
+#include "bus/shm_link.hpp"
+#include "lcm_control/hardware_state_t.hpp"
+#include "rt/clock.hpp"
+#include "test/support/lcm_test.hpp"
+
+namespace lcm_control {
+namespace {
+
+std::string unique_name() {
+  static int n = 0;
+  return "test-" + std::to_string(getpid()) + "-" + std::to_string(n++);
+}
+
+std::vector<uint8_t> bytes(const std::string& s) { return std::vector<uint8_t>(s.begin(), s.end()); }
+
+struct Inbox {
+  std::vector<std::string> got;
+  ShmLink::Handler handler() {
+    return [this](const lcm::ReceiveBuffer& rb) {
+      got.emplace_back(static_cast<const char*>(rb.data), rb.data_size);
+    };
+  }
+};
+
+TEST(ShmLink, BytesGoToTheOtherEndNotBackAndTheNewestWins) {
+  const std::string name = unique_name();
+  ShmLink a(name), b(name);
+  EXPECT_TRUE(std::filesystem::exists(a.path()));
+  Inbox at_a, at_b;
+  a.subscribe("r/hardware/command", at_a.handler());
+  b.subscribe("r/hardware/state", at_b.handler());
+  a.subscribe("r/hardware/state", at_a.handler());  // a's own messages are not handed back to it
+  const auto one = bytes("state one"), two = bytes("state two, longer");
+  ASSERT_EQ(a.publish("r/hardware/state", one.data(), one.size()), 0);
+  EXPECT_TRUE(b.has_new());
+  EXPECT_FALSE(a.has_new());
+  ASSERT_EQ(a.publish("r/hardware/state", two.data(), two.size()), 0);
+  EXPECT_EQ(b.handle_queued(), 1);
+  EXPECT_EQ(at_b.got, std::vector<std::string>{"state two, longer"});
+  EXPECT_EQ(b.handle_queued(), 0) << "taken once";
+  EXPECT_TRUE(at_a.got.empty());
+  const auto cmd = bytes("command");
+  ASSERT_EQ(b.publish("r/hardware/command", cmd.data(), cmd.size()), 0);
+  EXPECT_EQ(a.handle_queued(), 1);
+  EXPECT_EQ(at_a.got, std::vector<std::string>{"command"});
+  // A message larger than a slot is refused and counted; the slot keeps the last one.
+  std::vector<uint8_t> huge(ShmLink::kSlotBytes + 1);
+  EXPECT_EQ(a.publish("r/hardware/state", huge.data(), huge.size()), -1);
+  EXPECT_EQ(a.too_large(), 1);
+}
+
+TEST(ShmLink, APatternBindsTheSlotsNamedLaterAndUnsubscribeStopsDelivery) {
+  const std::string name = unique_name();
+  ShmLink a(name), b(name);
+  std::vector<std::string> channels;
+  const int id = b.subscribe_pattern("r/hardware/.*", [&](const lcm::ReceiveBuffer&, const std::string& ch) {
+    channels.push_back(ch);
+  });
+  const auto m = bytes("x");
+  a.publish("r/hardware/state", m.data(), m.size());
+  a.publish("other/thing", m.data(), m.size());
+  EXPECT_EQ(b.handle_queued(), 1);
+  EXPECT_EQ(channels, std::vector<std::string>{"r/hardware/state"});
+  b.unsubscribe(id);
+  a.publish("r/hardware/state", m.data(), m.size());
+  EXPECT_EQ(b.handle_queued(), 0);
+  EXPECT_THROW(b.subscribe_pattern("(", [](const lcm::ReceiveBuffer&, const std::string&) {}), BusError);
+}
+
+TEST(ShmLink, AWaitEndsAtAMessageFromAnotherThreadAndOtherwiseAtItsTimeout) {
+  const std::string name = unique_name();
+  ShmLink a(name), b(name);
+  Inbox at_b;
+  b.subscribe("s", at_b.handler());
+  int64_t t0 = monotonic_us();
+  EXPECT_FALSE(b.wait_us(30000));
+  const int64_t waited = monotonic_us() - t0;
+  EXPECT_GE(waited, 29000);
+  EXPECT_LT(waited, 500000);
+  std::thread writer([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const auto m = bytes("hello");
+    a.publish("s", m.data(), m.size());
+  });
+  t0 = monotonic_us();
+  EXPECT_TRUE(b.wait_us(5000000));
+  EXPECT_LT(monotonic_us() - t0, 2000000);
+  writer.join();
+  EXPECT_EQ(b.handle_queued(), 1);
+  // wake() from another thread ends a wait too.
+  std::thread waker([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    b.wake();
+  });
+  t0 = monotonic_us();
+  EXPECT_TRUE(b.wait_us(5000000));
+  EXPECT_LT(monotonic_us() - t0, 2000000);
+  waker.join();
+}
+
+TEST(ShmLink, AWatchedDescriptorEndsTheWaitUntilDrained) {
+  const std::string name = unique_name();
+  ShmLink a(name);
+  int p[2];
+  ASSERT_EQ(pipe(p), 0);
+  a.watch_fd(p[0]);
+  EXPECT_FALSE(a.wait_us(20000));
+  EXPECT_FALSE(a.fd_ready());
+  ASSERT_EQ(write(p[1], "x", 1), 1);
+  EXPECT_TRUE(a.wait_us(5000000));
+  EXPECT_TRUE(a.fd_ready());
+  char c;
+  ASSERT_EQ(read(p[0], &c, 1), 1);
+  a.fd_drained();
+  EXPECT_FALSE(a.wait_us(20000)) << "nothing left to read";
+  close(p[0]);
+  close(p[1]);
+}
+
+// A lockstep exchange between two processes: every state answered once, in order, with the step it answers.
+TEST(ShmLink, TwoProcessesPingPongInOrder) {
+  const std::string name = unique_name();
+  constexpr int kRounds = 2000;
+  const pid_t child = fork();
+  if (child == 0) {
+    ShmLink cm(name);
+    int64_t last = -1;
+    bool ok = true;
+    cm.subscribe("state", [&](const lcm::ReceiveBuffer& rb) {
+      int64_t step;
+      std::memcpy(&step, rb.data, sizeof(step));
+      ok = ok && step == last + 1;
+      last = step;
+      cm.publish("command", &step, sizeof(step));
+    });
+    const int64_t deadline = monotonic_us() + 20000000;
+    while (last < kRounds - 1 && monotonic_us() < deadline)
+      if (cm.wait_us(100000)) cm.handle_queued();
+    _exit(ok && last == kRounds - 1 ? 0 : 1);
+  }
+  ShmLink sim(name);
+  int64_t answered = -1;
+  sim.subscribe("command", [&](const lcm::ReceiveBuffer& rb) { std::memcpy(&answered, rb.data, sizeof(answered)); });
+  int64_t step = 0;
+  int64_t t0 = monotonic_us(), t1 = 0;
+  int64_t republished = 0;
+  while (step < kRounds && monotonic_us() - t0 < 20000000) {
+    if (step == 1) t1 = monotonic_us();  // timed from the first answer: the child is up
+    sim.publish("state", &step, sizeof(step));
+    const int64_t sent = monotonic_us();
+    while (answered != step && monotonic_us() - sent < 100000)
+      if (sim.wait_us(100000)) sim.handle_queued();
+    if (answered == step)
+      ++step;
+    else
+      ++republished;  // the child had not subscribed yet: send it again, as sim_server's lockstep does
+  }
+  const double us = double(monotonic_us() - t1) / (kRounds - 1);
+  int status = 0;
+  waitpid(child, &status, 0);
+  EXPECT_EQ(step, kRounds);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  std::printf("shm ping-pong between two processes: %.2f us a round trip (%lld republished while the peer came up)\n",
+              us, static_cast<long long>(republished));
+}
+
+TEST(ShmLink, TheFileGoesWithTheLastUserEvenAfterAKill) {
+  const std::string name = unique_name();
+  std::string path;
+  {
+    ShmLink a(name);
+    path = a.path();
+    int ready[2];
+    ASSERT_EQ(pipe(ready), 0);
+    const pid_t child = fork();
+    if (child == 0) {
+      ShmLink b(name);
+      const char c = 'r';
+      if (write(ready[1], &c, 1) != 1) _exit(1);
+      pause();
+      _exit(0);
+    }
+    char c;
+    ASSERT_EQ(read(ready[0], &c, 1), 1);
+    kill(child, SIGKILL);
+    waitpid(child, nullptr, 0);
+    close(ready[0]);
+    close(ready[1]);
+    // Its reader place is taken by the next one that comes: kReaders more links open without running out.
+    std::vector<std::unique_ptr<ShmLink>> more;
+    for (int k = 0; k + 1 < ShmLink::kReaders; ++k) more.push_back(std::make_unique<ShmLink>(name));
+    try {
+      ShmLink too_many(name);
+      ADD_FAILURE() << "a link past the reader places";
+    } catch (const BusError& e) {
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("its own --namespace or shm:NAME"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(std::filesystem::exists(path));
+  }
+  EXPECT_FALSE(std::filesystem::exists(path)) << "the last one to close it removes it";
+  ShmLink again(name);  // and the next one makes it again
+  EXPECT_TRUE(std::filesystem::exists(path));
+}
+
+TEST(ShmLink, AWriterKilledWhileWritingIsTakenOver) {
+  const std::string name = unique_name();
+  ShmLink a(name), b(name);
+  Inbox at_b;
+  b.subscribe("s", at_b.handler());
+  const auto m = bytes("first");
+  a.publish("s", m.data(), m.size());
+  EXPECT_EQ(b.handle_queued(), 1);
+  // What a writer killed between its two sequence stores leaves: an odd sequence, for good.
+  const int fd = open(a.path().c_str(), O_RDWR);
+  ASSERT_GE(fd, 0);
+  struct stat st {};
+  fstat(fd, &st);
+  void* map = mmap(nullptr, size_t(st.st_size), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+  ASSERT_NE(map, MAP_FAILED);
+  auto* words = static_cast<std::atomic<uint32_t>*>(map);
+  std::atomic<uint32_t>* seq = nullptr;  // the slot's sequence: the word that changed with the publish
+  const std::vector<uint32_t> before(reinterpret_cast<uint32_t*>(map), reinterpret_cast<uint32_t*>(map) + 4096);
+  a.publish("s", m.data(), m.size());
+  EXPECT_EQ(b.handle_queued(), 1);
+  for (size_t k = 0; k < 4096; ++k)
+    if (words[k].load() == before[k] + 2 && (before[k] % 2) == 0 && before[k] > 0) seq = &words[k];
+  ASSERT_NE(seq, nullptr);
+  seq->fetch_add(1);  // odd: a write begun and never finished
+  EXPECT_FALSE(b.has_new()) << "a slot being written is not read";
+  const auto m2 = bytes("after the dead writer");
+  const int64_t t0 = monotonic_us();
+  ASSERT_EQ(a.publish("s", m2.data(), m2.size()), 0);
+  EXPECT_LT(monotonic_us() - t0, 2000000);
+  EXPECT_EQ(a.stolen(), 1);
+  EXPECT_EQ(b.handle_queued(), 1);
+  EXPECT_EQ(at_b.got.back(), "after the dead writer");
+  munmap(map, size_t(st.st_size));
+  close(fd);
+}
+
+TEST(ShmLink, AHostileSizeIsSkippedAndCountedAndAForeignFileIsNamed) {
+  const std::string name = unique_name();
+  ShmLink a(name), b(name);
+  Inbox at_b;
+  b.subscribe("s", at_b.handler());
+  const auto m = bytes("0123456789abcdef");
+  a.publish("s", m.data(), m.size());
+  EXPECT_EQ(b.handle_queued(), 1);
+  // Find the size word (16) beside the sequence and overwrite it with sizes past the slot, publishing in between.
+  const int fd = open(a.path().c_str(), O_RDWR);
+  struct stat st {};
+  fstat(fd, &st);
+  void* map = mmap(nullptr, size_t(st.st_size), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+  ASSERT_NE(map, MAP_FAILED);
+  auto* words = static_cast<uint32_t*>(map);
+  std::mt19937 rng(7);
+  int size_word = -1;
+  for (int k = 0; k + 1 < 4096; ++k)
+    if (words[k + 1] == 16 && words[k] % 2 == 0 && words[k] > 0) size_word = k + 1;
+  ASSERT_GE(size_word, 0);
+  for (int round = 0; round < 100; ++round) {
+    a.publish("s", m.data(), m.size());
+    words[size_word] = ShmLink::kSlotBytes + 1 + rng() % 1000000;
+    EXPECT_EQ(b.handle_queued(), 0);
+  }
+  EXPECT_EQ(b.malformed(), 100);
+  EXPECT_EQ(at_b.got.size(), 1u);
+  munmap(map, size_t(st.st_size));
+  close(fd);
+
+  const std::string foreign = "/dev/shm/lcm_control." + unique_name();
+  { std::FILE* f = std::fopen(foreign.c_str(), "w"); std::fputs("not ours", f); std::fclose(f); }
+  try {
+    ShmLink c(foreign.substr(std::string("/dev/shm/lcm_control.").size()));
+    ADD_FAILURE() << "a foreign file was taken";
+  } catch (const BusError& e) {
+    EXPECT_NE(std::string(e.what()).find(foreign), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("remove the file"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(foreign);
+}
+
+TEST(ShmLink, UrlsNameASegmentPerNamespaceOrByName) {
+  EXPECT_TRUE(is_shm_url("shm"));
+  EXPECT_TRUE(is_shm_url("shm:robot-1"));
+  EXPECT_FALSE(is_shm_url("udpm://239.255.76.67:7667"));
+  EXPECT_EQ(shm_name_of("shm", "r0"), std::to_string(getuid()) + ".r0");
+  EXPECT_EQ(shm_name_of("shm", ""), std::to_string(getuid()) + ".default");
+  EXPECT_EQ(shm_name_of("shm:my_robot.1", "r0"), "my_robot.1");
+  EXPECT_THROW(shm_name_of("shm:../etc", ""), BusError);
+  EXPECT_THROW(shm_name_of("shm:", ""), BusError);
+  EXPECT_EQ(hardware_url_for("shm", "udpm://239.255.76.67:7667", "/r1/"), "shm:" + std::to_string(getuid()) + ".r1");
+}
+
+TEST(ShmLink, TheBusCarriesTheHardwareLoopThereWakesForTheSharedBusAndMirrors) {
+  const std::string url = testing::unique_lcm_url(), hw = "shm:" + unique_name();
+  Bus sim(url, "r", hw, HardwareReader::Direct), cm(url, "r", hw, HardwareReader::Direct);
+  ASSERT_NE(sim.hardware_shm(), nullptr);
+  EXPECT_TRUE(sim.hardware_apart());
+  EXPECT_EQ(sim.hardware_socket(), nullptr);
+  Endpoints sim_hw(sim, Endpoints::On::Hardware), cm_hw(cm, Endpoints::On::Hardware);
+  std::vector<int64_t> steps;
+  cm_hw.subscribe<hardware_state_t>("r/hardware/state", [&](const hardware_state_t& s) { steps.push_back(s.step); });
+  auto pub = sim_hw.publisher<hardware_state_t>("r/hardware/state");
+  hardware_state_t st{};
+  st.step = 7;
+  ASSERT_EQ(pub.publish(st), 0);
+  EXPECT_EQ(cm.wait_us(1000000), Bus::kHardwareReady);
+  EXPECT_TRUE(cm.handle_us(0, 10));
+  EXPECT_EQ(steps, std::vector<int64_t>{7});
+
+  // The shared bus wakes the same wait.
+  int heard = 0;
+  cm.subscribe("r/e_stop", [&](const lcm::ReceiveBuffer&, const std::string&) { ++heard; });
+  const uint8_t payload[4] = {1, 2, 3, 4};
+  sim.lcm().publish("r/e_stop", payload, 4);
+  const int64_t t0 = monotonic_us();
+  int ready = 0;
+  while (!(ready & Bus::kSharedReady) && monotonic_us() - t0 < 2000000) ready = cm.wait_us(100000);
+  EXPECT_TRUE(ready & Bus::kSharedReady);
+  EXPECT_TRUE(cm.handle_us(0, 10));
+  EXPECT_EQ(heard, 1);
+
+  // Mirrored at most 20 times a second: a burst of 50 gives one copy on LCM.
+  lcm::LCM tap(url);
+  int mirrored = 0;
+  tap.subscribeFunction("r/hardware/state", +[](const lcm::ReceiveBuffer*, const std::string&, int* n) { ++*n; },
+                        &mirrored);
+  sim.mirror_hardware(20);
+  for (int k = 0; k < 50; ++k) pub.publish(st);
+  while (tap.handleTimeout(200) > 0) {
+  }
+  EXPECT_EQ(mirrored, 1);
+  // Not on shared memory: the mirror is refused, naming the flag.
+  Bus plain(url, "r", "", HardwareReader::Direct);
+  try {
+    plain.mirror_hardware(10);
+    ADD_FAILURE() << "a mirror on LCM";
+  } catch (const BusError& e) {
+    EXPECT_NE(std::string(e.what()).find("--hardware-url shm"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace lcm_control
