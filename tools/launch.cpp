@@ -72,6 +72,7 @@ int main(int argc, char** argv) {
   add_xacro_arg_flag(app, o.xacro_args);
   add_bus_flags(app, o.bus);
   add_hardware_url_flag(app, o.bus);
+  add_hardware_mirror_flag(app, o.bus);
   app.add_option("--robots", o.robots,
                  "start this many copies of the robot, in namespaces r0, r1, ..., each with its hardware loop on its "
                  "own port (--hardware-lcm-url auto unless given; `shared` keeps them on the --lcm-url); overrides "

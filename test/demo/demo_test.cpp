@@ -1,6 +1,7 @@
 // scripts/demo, 5 s of sim time instead of 20: two fast (lockstep) runs print
 // the same tracking figures and record the same joint_states CSV, a real-time
-// run's RMS agrees within 5%, and the PNG and its data match the CSV.
+// run's RMS agrees within 5%, a run with the hardware loop over shared memory
+// tracks bit for bit as over LCM, and the PNG and its data match the CSV.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -24,12 +25,13 @@ std::string read(const fs::path& p) {
 }
 
 // Runs the demo into a fresh folder; returns the folder.
-fs::path run_demo(const std::string& name, bool realtime) {
+fs::path run_demo(const std::string& name, bool realtime, const std::vector<std::string>& extra = {}) {
   const fs::path dir = fs::temp_directory_path() / ("lcm_control_demo_test_" + name + "_" + std::to_string(getpid()));
   fs::remove_all(dir);
   std::vector<std::string> argv{"/bin/bash", source("scripts/demo"), "--no-build", "--duration", "5", "--output-dir",
                                 dir.string()};
   if (realtime) argv.push_back("--realtime");
+  argv.insert(argv.end(), extra.begin(), extra.end());
   ChildProcess demo(argv, {{"BIN_DIR", LCM_CONTROL_BIN_DIR}});
   EXPECT_EQ(demo.wait(40.0), 0) << demo.output();
   EXPECT_NE(demo.output().find("tracking over"), std::string::npos) << demo.output();
@@ -70,6 +72,25 @@ TEST(Demo, FastRunsRepeatExactlyAndRealTimeAgrees) {
   ASSERT_GT(fast, 0);
   EXPECT_NEAR(real, fast, 0.05 * fast) << read(r / "summary.txt");
   for (const auto& d : {a, b, r}) fs::remove_all(d);
+}
+
+// The tutorial with the hardware loop over shared memory (--hardware-url shm:NAME): the tracking bounds hold and
+// joint_states and the commands are the same, bit for bit, as over LCM; the segment is gone afterwards.
+TEST(Demo, OverSharedMemoryTheTutorialTracksBitForBitAsOverLcm) {
+  const std::string segment = "demo-test-" + std::to_string(getpid());
+  const fs::path lcm = run_demo("over_lcm", false), shm = run_demo("over_shm", false, {"--hardware-url", "shm:" + segment});
+  EXPECT_NE(read(shm / "launch.out").find("hardware loop on shm:" + segment), std::string::npos) << read(shm / "launch.out");
+  const std::string t = tracking_part(shm);
+  EXPECT_NE(t.find("301 joint_states messages"), std::string::npos) << t;
+  EXPECT_EQ(t, tracking_part(lcm));
+  const double rms = j2_rms(shm);
+  std::printf("over shared memory: j2 rms error over 5 s %.6f\n", rms);
+  EXPECT_GT(rms, 0.0);
+  EXPECT_LT(rms, 0.25) << "j2 follows 3.14*sin(i/100) with the tutorial's gains";
+  EXPECT_EQ(read(shm / "csv/joint_states.csv"), read(lcm / "csv/joint_states.csv"));
+  EXPECT_EQ(read(shm / "csv/j2_controller__command.csv"), read(lcm / "csv/j2_controller__command.csv"));
+  EXPECT_FALSE(fs::exists("/dev/shm/lcm_control." + segment));
+  for (const auto& d : {lcm, shm}) fs::remove_all(d);
 }
 
 // The PNG is there and the plotted points are the CSV's rows (t in sim seconds).

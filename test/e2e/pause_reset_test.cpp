@@ -93,18 +93,32 @@ TEST(PauseStepReset, LockstepSpawnsWhilePausedStepsExactlyAndRepeatsARunAfterARe
 }
 
 // The same scripted run (spawned while paused, inputs on the sim clock, 1,500 steps) with the hardware loop read on
-// the loop threads and through LCM's receive thread: the same trajectory bit for bit.
-TEST(PauseStepReset, LockstepIsBitIdenticalWithEitherHardwareReader) {
+// the loop threads, through LCM's receive thread, and over shared memory (every state mirrored to LCM for the
+// recorder): the same trajectory bit for bit.
+TEST(PauseStepReset, LockstepIsBitIdenticalWithEitherHardwareReaderAndOverSharedMemory) {
   std::vector<std::map<int64_t, std::vector<double>>> runs;
-  for (const std::string reader : {"direct", "lcm"}) {
-    SCOPED_TRACE(reader);
+  for (const std::string way : {"direct", "lcm", "shm"}) {
+    SCOPED_TRACE(way);
     Session s;
     Recorder<hardware_state_t> states(s.lc, "hardware/state");
-    ASSERT_NO_FATAL_FAILURE(s.start({"--mode", "lockstep", "--paused", "--hardware-reader", reader},
-                                    {"--hardware-reader", reader}));
-    EXPECT_EQ(has(s.sim_output(), "hardware read directly"), reader == "direct") << s.sim_output();
-    auto j1 = s.background({"turret-cmd", "--sim-time", "j1_controller", "0.5", "--rate", "60"});
-    auto j2 = s.background({"turret-cmd", "--sim-time", "j2_controller", "3.14*sin(i/100)", "--rate", "60"});
+    const std::string segment = "shm:pause-reset-" + std::to_string(getpid());
+    std::vector<std::string> hw = {"--hardware-reader", way == "lcm" ? "lcm" : "direct"};
+    if (way == "shm") hw.insert(hw.end(), {"--hardware-url", segment});
+    std::vector<std::string> sim = {"--mode", "lockstep", "--paused"};
+    sim.insert(sim.end(), hw.begin(), hw.end());
+    if (way == "shm") sim.insert(sim.end(), {"--hardware-mirror", "1000000"});
+    ASSERT_NO_FATAL_FAILURE(s.start(sim, hw));
+    EXPECT_EQ(has(s.sim_output(), "hardware read directly"), way == "direct") << s.sim_output();
+    EXPECT_EQ(has(s.sim_output(), "hardware loop on " + segment), way == "shm") << s.sim_output();
+    std::vector<std::string> sim_time = {"--sim-time"};
+    if (way == "shm") sim_time.insert(sim_time.end(), {"--hardware-url", segment});
+    auto cmd = [&](const std::string& controller, const std::string& expr) {
+      std::vector<std::string> argv = {"turret-cmd", controller, expr, "--rate", "60"};
+      argv.insert(argv.end(), sim_time.begin(), sim_time.end());
+      return s.background(argv);
+    };
+    auto j1 = cmd("j1_controller", "0.5");
+    auto j2 = cmd("j2_controller", "3.14*sin(i/100)");
     ASSERT_TRUE(j1->wait_for_output("turret-cmd: ", 30)) << j1->output();
     ASSERT_TRUE(j2->wait_for_output("turret-cmd: ", 30)) << j2->output();
     std::string out;
@@ -115,7 +129,8 @@ TEST(PauseStepReset, LockstepIsBitIdenticalWithEitherHardwareReader) {
     EXPECT_NEAR(runs.back().at(1500)[0], 0.5, 0.02);
     EXPECT_FALSE(has(s.sim_output(), "dropped a hardware/command")) << s.sim_output();
   }
-  for (int64_t k = 0; k <= 1500; ++k) ASSERT_EQ(runs[0].at(k), runs[1].at(k)) << "step " << k;
+  for (size_t r = 1; r < runs.size(); ++r)
+    for (int64_t k = 0; k <= 1500; ++k) ASSERT_EQ(runs[0].at(k), runs[r].at(k)) << "run " << r << ", step " << k;
 }
 
 TEST(PauseStepReset, RealTimePauseHoldsTimeSwitchesAndResetRestartsControllersWithoutAJump) {

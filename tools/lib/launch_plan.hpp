@@ -60,7 +60,8 @@ struct LaunchPlan {
   // Several copies of the robot (`robots:`), one per namespace, each with its hardware loop on its own URL; empty:
   // one robot.
   std::vector<std::string> robots;
-  std::string hardware_lcm_url;  // `hardware_lcm_url:` (hardware_url_for); "": the shared bus
+  std::string hardware_lcm_url;  // `hardware_url:` (or `hardware_lcm_url:`; hardware_url_for); "": the shared bus
+  double hardware_mirror_hz = 0;  // `hardware_mirror:` with a shm hardware URL: the loop also on the bus, per second
   std::vector<std::pair<std::string, std::string>> args;         // $(arg) values for the YAML (`args:`, <arg>)
   std::vector<std::pair<std::string, std::string>> xacro_args;   // a .xacro urdf's arguments (`xacro_args:`, xacro command=)
   std::vector<std::pair<std::string, double>> initial_positions;  // `initial_positions:`, spawn_model's -J

@@ -39,7 +39,7 @@ std::vector<std::string> passed_flags(const LaunchOptions& o, const LaunchPlan& 
   const std::string hw = !o.bus.hardware_lcm_url.empty()  ? o.bus.hardware_lcm_url
                          : !plan.hardware_lcm_url.empty() ? plan.hardware_lcm_url
                                                           : "auto";
-  pass("--hardware-lcm-url", hw);
+  pass("--hardware-url", hw);
   if (!plan.ns.empty() || !o.bus.ns.empty())
     launch_say(fmt::format("note: the robots' namespaces ({}) replace namespace '{}'", fmt::join(plan.robots, ", "),
                            o.bus.ns.empty() ? plan.ns : o.bus.ns));

@@ -82,7 +82,7 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
                                        "physics_rate", "control_rate",    "sim_server_args",
                                        "controller_manager_args", "controllers", "spawn", "inactive", "spawner_args",
                                        "state_publisher", "processes",  "commands", "namespace", "args",
-                                       "initial_positions", "paused", "robots", "hardware_lcm_url",
+                                       "initial_positions", "paused", "robots", "hardware_lcm_url", "hardware_url", "hardware_mirror",
                                        "rt_priority", "spin_us", "xacro_args"};
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
@@ -136,8 +136,10 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
         plan.paused = boolean(v, key);
       } else if (key == "namespace") {
         plan.ns = normalize_namespace(str(v, key));
-      } else if (key == "hardware_lcm_url") {
+      } else if (key == "hardware_lcm_url" || key == "hardware_url") {
         plan.hardware_lcm_url = str(v, key);
+      } else if (key == "hardware_mirror") {
+        plan.hardware_mirror_hz = number(v, key);
       } else if (key == "robots") {
         if (v.IsSequence()) {
           for (const auto& r : list(v, key)) plan.robots.push_back(normalize_namespace(r));

@@ -198,7 +198,9 @@ CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const
   const int spin = plan.mode == "realtime" ? effective_spin_us(plan) : 0;
   for (auto [argv, extra] : {std::pair{&sim, &plan.sim_args}, std::pair{&cm, &plan.cm_args}}) {
     if (pin >= 0) argv->insert(argv->end(), {"--cpu", std::to_string(pin)});
-    if (hw_apart) argv->insert(argv->end(), {"--hardware-lcm-url", hw_url});
+    if (hw_apart) argv->insert(argv->end(), {"--hardware-url", hw_url});
+    if (hw_apart && plan.hardware_mirror_hz > 0 && is_shm_url(hw_url))
+      argv->insert(argv->end(), {"--hardware-mirror", fmt::format("{:g}", plan.hardware_mirror_hz)});
     auto unset = [&](const std::string& flag) {
       return std::none_of(extra->begin(), extra->end(),
                           [&](const std::string& e) { return e == flag || e.rfind(flag + "=", 0) == 0; });
@@ -444,6 +446,7 @@ int run_launch(const LaunchOptions& o) {
     plan.args.push_back(given);
   }
   if (o.paused) plan.paused = true;
+  if (o.bus.hardware_mirror_hz > 0) plan.hardware_mirror_hz = o.bus.hardware_mirror_hz;
   if (!o.cpu.empty()) plan.cpu = o.cpu;
   if (o.rt_priority >= 0) plan.rt_priority = o.rt_priority;
   if (o.spin_us >= 0) plan.spin_us = o.spin_us;
@@ -458,6 +461,11 @@ int run_launch(const LaunchOptions& o) {
   const std::string hw_flag = !o.bus.hardware_lcm_url.empty() ? o.bus.hardware_lcm_url : plan.hardware_lcm_url;
   const std::string hw_url = hardware_url_for(hw_flag, effective_url(o.bus.lcm_url), ns);
   const bool hw_apart = hw_url != effective_url(o.bus.lcm_url);
+  if (plan.hardware_mirror_hz > 0 && !is_shm_url(hw_url))
+    throw BusError(fmt::format("hardware mirror {:g}: the hardware loop is on LCM ({}), where every tool hears it "
+                               "already; the mirror is for a shm hardware URL (--hardware-url shm or `hardware_url: "
+                               "shm`)",
+                               plan.hardware_mirror_hz, hw_url));
   const CommandLines lines = command_lines(plan, o, hw_url, hw_apart);
   if (o.dry_run) {
     print_dry_run(plan, o, lines, ns);

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -158,7 +159,10 @@ double first_command_offset(Watcher& w, double t) {
 // following the sine.
 class Robot {
  public:
-  explicit Robot(bool lockstep = false) : url_(lt::unique_lcm_url()), lockstep_(lockstep) {}
+  // hw: --hardware-url for both loop processes ("": the shared bus); on shared memory, both mirror every message of
+  // the loop to the bus, where the watcher hears them.
+  explicit Robot(bool lockstep = false, std::string hw = "")
+      : url_(lt::unique_lcm_url()), lockstep_(lockstep), hw_(std::move(hw)) {}
   std::map<std::string, std::string> env() const { return {{"LCM_DEFAULT_URL", url_}}; }
   const std::string& url() const { return url_; }
 
@@ -167,15 +171,22 @@ class Robot {
                                   lt::source("config/turret_bot.yaml")};
     if (lockstep_) argv.insert(argv.end(), {"--mode", "lockstep"});
     argv.insert(argv.end(), extra.begin(), extra.end());
+    const auto hw = hw_flags();
+    argv.insert(argv.end(), hw.begin(), hw.end());
     return std::make_unique<lt::ChildProcess>(argv, env());
+  }
+  std::vector<std::string> hw_flags() const {
+    if (hw_.empty()) return {};
+    return {"--hardware-url", hw_, "--hardware-mirror", "100000"};
   }
   // controller_manager and a spawner of the three controllers; true once they run.
   bool start_manager() {
     spawner_.reset();
-    cm_ = std::make_unique<lt::ChildProcess>(
-        std::vector<std::string>{lt::bin("controller_manager"), "--urdf", lt::source("config/turret_bot.urdf"),
-                                 "--config", lt::source("config/turret_bot.yaml")},
-        env());
+    std::vector<std::string> argv{lt::bin("controller_manager"), "--urdf", lt::source("config/turret_bot.urdf"),
+                                  "--config", lt::source("config/turret_bot.yaml")};
+    const auto hw = hw_flags();
+    argv.insert(argv.end(), hw.begin(), hw.end());
+    cm_ = std::make_unique<lt::ChildProcess>(argv, env());
     spawner_ = std::make_unique<lt::ChildProcess>(
         std::vector<std::string>{lt::bin("spawner"), "joint_state_controller", "j1_controller", "j2_controller"},
         env());
@@ -206,6 +217,7 @@ class Robot {
  private:
   std::string url_;
   bool lockstep_;
+  std::string hw_;
   std::unique_ptr<lt::ChildProcess> cm_, spawner_, j2_;
 };
 
@@ -216,9 +228,9 @@ int rounds() {
 
 }  // namespace
 
-TEST(Faults, ControllerManagerKilledAndRestartedUnderMotion) {
-  const int n = rounds();
-  Robot robot;
+// The controller manager killed (-9) and restarted `n` times under motion, the hardware loop on `hw`.
+static void controller_manager_killed(const std::string& hw, int n) {
+  Robot robot(false, hw);
   Watcher w(robot.url());
   std::unique_ptr<lt::ChildProcess> sim;
   ASSERT_EQ(robot.bring_up(sim, 1.5), "");
@@ -254,14 +266,18 @@ TEST(Faults, ControllerManagerKilledAndRestartedUnderMotion) {
   const auto last = drift(w.between(w.now() - 1.0, w.now()));
   EXPECT_GT(last.second, 0.05);
   EXPECT_TRUE(sim->running()) << sim->output();
-  std::printf("RELIABILITY|faults|controller_manager kill -9 and restart under motion|tried=%d|ok=%d|crashes=0|"
+  std::printf("RELIABILITY|faults|controller_manager kill -9 and restart under motion%s|tried=%d|ok=%d|crashes=0|"
               "hangs=0|held within %.5f m / %.5f rad while gone; first command %.6f rad from the measured j2; "
               "catching up with the sine: steps up to %.4f rad (the motion's own %.4f)\n",
-              n, survived, worst_hold_j1, worst_hold_j2, worst_offset, worst_jump_j2, base.second);
+              hw.empty() ? "" : ", over shared memory", n, survived, worst_hold_j1, worst_hold_j2, worst_offset,
+              worst_jump_j2, base.second);
 }
 
-TEST(Faults, SimServerKilledAndRestartedUnderARunningControllerManager) {
-  Robot robot;
+TEST(Faults, ControllerManagerKilledAndRestartedUnderMotion) { controller_manager_killed("", rounds()); }
+
+// sim_server killed (-9) and restarted under a running controller manager, the hardware loop on `hw`.
+static void sim_server_killed(const std::string& hw) {
+  Robot robot(false, hw);
   Watcher w(robot.url());
   std::unique_ptr<lt::ChildProcess> sim;
   ASSERT_EQ(robot.bring_up(sim, 1.5), "");
@@ -291,10 +307,22 @@ TEST(Faults, SimServerKilledAndRestartedUnderARunningControllerManager) {
   EXPECT_LT(j1_max, 0.05) << "j1 is held by its PID while j2 swings the rotor on it";
   EXPECT_GT(moved.second, 0.05);
   EXPECT_NE(session, before.back().session);
-  std::printf("RELIABILITY|faults|sim_server kill -9 and restart under a running controller manager|tried=1|ok=%d|"
+  std::printf("RELIABILITY|faults|sim_server kill -9 and restart under a running controller manager%s|tried=1|ok=%d|"
               "crashes=0|hangs=0|new session followed; j1 commanded within %.6f of its new start (moved %.4f as j2 "
               "swings); j2 moving again\n",
-              j1_command_offset < 1e-3 && moved.second > 0.05 ? 1 : 0, j1_command_offset, j1_max);
+              hw.empty() ? "" : ", over shared memory", j1_command_offset < 1e-3 && moved.second > 0.05 ? 1 : 0,
+              j1_command_offset, j1_max);
+}
+
+TEST(Faults, SimServerKilledAndRestartedUnderARunningControllerManager) { sim_server_killed(""); }
+
+// The same two with the hardware loop over shared memory: a peer killed on either side leaves no futex to hang on;
+// the other holds (sim_server's watchdog) or waits for states, and both recover as over LCM.
+TEST(Faults, OverSharedMemoryEitherPeerKilledHoldsAndRecovers) {
+  const std::string hw = "shm:faults-" + std::to_string(getpid());
+  controller_manager_killed(hw, 2);
+  sim_server_killed(hw);
+  EXPECT_FALSE(std::filesystem::exists("/dev/shm/lcm_control." + hw.substr(4))) << "left behind";
 }
 
 TEST(Faults, StoppedFor3sAndContinuedInRealTimeAndLockstep) {

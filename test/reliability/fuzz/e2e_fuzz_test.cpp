@@ -1,9 +1,14 @@
-// The fuzz payloads over real LCM against the running programs (issue 18): a
+// The fuzz payloads over real LCM against the running programs (issue 18), and over shared memory (issue 34): a
 // real-time turret_bot (sim_server, controller_manager with the tutorial's
 // controllers, state-publisher, state-logger) takes 2,400 hostile payloads on
 // every channel they subscribe. Afterwards every process still runs, the
 // robot still follows a command, and joint_states are finite.
 #include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -13,6 +18,7 @@
 #include <cmath>
 #include <thread>
 
+#include "bus/shm_link.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/command_source_t.hpp"
 #include "lcm_control/e_stop_t.hpp"
@@ -183,6 +189,94 @@ TEST(FuzzOverLcm, RunningProgramsSurviveHostilePayloadsOnEveryChannel) {
   EXPECT_EQ(alive, 4) << sim.output().substr(0, 2000) << cm.output().substr(0, 2000);
   EXPECT_EQ(hung, 0) << "sim answers " << sim_answers << ", controller_manager answers " << cm_answers
                      << ", link_poses " << poses.messages.size() << ", state-logger writes " << logger_writes;
+  EXPECT_TRUE(reached) << "j1 at " << (states.messages.empty() ? NAN : states.messages.back().position[0]) << "\n"
+                       << cm.output().substr(cm.output().size() > 3000 ? cm.output().size() - 3000 : 0) << "\n"
+                       << sim.output().substr(sim.output().size() > 3000 ? sim.output().size() - 3000 : 0);
+  EXPECT_TRUE(finite);
+  EXPECT_LT(sim.output().size() + cm.output().size(), 300000u) << "the log grows with the flood";
+}
+
+// The hardware loop over shared memory (--hardware-url shm:NAME): a hostile process attached to the segment writes
+// the fuzz payloads into both slots, and slot sizes past the slot, while the robot runs in real time. The schema walk
+// rejects what is not a message (both programs count and say it), nothing crashes or hangs, and afterwards the loop
+// runs again on the genuine states and the robot follows a command.
+TEST(FuzzOverSharedMemory, HostileBytesInTheSlotsAreRejectedAndTheLoopRecovers) {
+  const char* v = std::getenv("LCM_CONTROL_FUZZ_E2E_PAYLOADS");
+  const int n = v && *v ? std::atoi(v) : 2400;
+  const std::string url = lt::unique_lcm_url(), name = "fuzz-" + std::to_string(getpid());
+  const std::map<std::string, std::string> env{{"LCM_DEFAULT_URL", url}};
+  const std::string urdf = lt::source("config/turret_bot.urdf"), yaml = lt::source("config/turret_bot.yaml");
+  lt::ChildProcess sim({lt::bin("sim_server"), "--urdf", urdf, "--config", yaml, "--hardware-url", "shm:" + name}, env);
+  lt::ChildProcess cm({lt::bin("controller_manager"), "--urdf", urdf, "--config", yaml, "--hardware-url", "shm:" + name},
+                      env);
+  lt::ChildProcess spawner({lt::bin("spawner"), "joint_state_controller", "j1_controller", "j2_controller"}, env);
+  ASSERT_TRUE(spawner.wait_for_output("spawner: ready", 30)) << spawner.output() << cm.output() << sim.output();
+
+  ShmLink hostile(name);
+  lt::Hints hints{{"j1", "j2", "j1_motor", "j2_motor"}, {0, 1, 1000}};
+  lt::Payloads p(272727);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int k = 0; k < n; ++k) {
+    const auto s = p.next<hardware_state_t>(hints), c = p.next<hardware_command_t>(hints);
+    hostile.publish("hardware/state", s.data(), s.size());
+    hostile.publish("hardware/command", c.data(), c.size());
+    std::this_thread::sleep_for(std::chrono::microseconds(500));  // a slot keeps the newest: let each be read
+  }
+  // Sizes past the slot, written over the size word of the command slot (found beside its sequence).
+  {
+    const int fd = open(hostile.path().c_str(), O_RDWR);
+    ASSERT_GE(fd, 0);
+    struct stat st {};
+    fstat(fd, &st);
+    void* map = mmap(nullptr, size_t(st.st_size), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+    ASSERT_NE(map, MAP_FAILED);
+    auto* words = static_cast<uint32_t*>(map);
+    const std::vector<uint8_t> marker(29, 0x5a);
+    hostile.publish("hardware/command", marker.data(), marker.size());
+    int size_word = -1;
+    for (int k = 0; k + 1 < 4096 && size_word < 0; ++k)
+      if (words[k + 1] == 29 && words[k] % 2 == 0 && words[k] > 0) size_word = k + 1;
+    ASSERT_GE(size_word, 0);
+    for (int k = 0; k < 100; ++k) {
+      hostile.publish("hardware/command", marker.data(), marker.size());
+      words[size_word] = 0xfffffff0u;
+      sleep_ms(2);
+    }
+    munmap(map, size_t(st.st_size));
+    close(fd);
+  }
+  const double flood_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+  lcm::LCM lc(url);
+  // A well-formed hostile command may have stopped or unloaded the controllers' joints' targets only; the controllers
+  // themselves are untouched (no request channel here). j1 must reach a new command.
+  lt::Recorder<joint_state_t> states(lc, "joint_states");
+  float64_t cmd{};
+  cmd.data = 0.5;
+  const bool reached = lt::pump_until(
+      lc,
+      [&] {
+        lc.publish("j1_controller/command", &cmd);
+        if (states.messages.size() < 30) return false;
+        const auto& last = states.messages.back();
+        return !last.position.empty() && std::abs(last.position[0] - 0.5) < 0.02;
+      },
+      15);
+  bool finite = true;
+  for (size_t k = states.messages.size() > 20 ? states.messages.size() - 20 : 0; k < states.messages.size(); ++k)
+    for (double x : states.messages[k].position) finite = finite && std::isfinite(x);
+  const bool alive = sim.running() && cm.running();
+  const bool sim_said = sim.output().find("dropped a hardware/command") != std::string::npos;
+  const bool cm_said = cm.output().find("hardware/state") != std::string::npos &&
+                       cm.output().find("dropped") != std::string::npos;
+  std::printf("RELIABILITY|fuzz|over shared memory: sim_server and controller_manager, both slots|tried=%d|ok=%d|"
+              "crashes=%d|hangs=%d|%d payloads and 100 sizes past the slot in %.1f s; afterwards j1 %s 0.5, "
+              "joint_states %s\n",
+              2 * n + 100, alive && reached ? 2 * n + 100 : 0, alive ? 0 : 1, alive && !reached ? 1 : 0, 2 * n,
+              flood_s, reached ? "reached" : "did NOT reach", finite ? "finite" : "NOT finite");
+  EXPECT_TRUE(alive) << sim.output().substr(0, 2000) << cm.output().substr(0, 2000);
+  EXPECT_TRUE(sim_said) << sim.output().substr(0, 3000);
+  EXPECT_TRUE(cm_said) << cm.output().substr(0, 3000);
   EXPECT_TRUE(reached) << "j1 at " << (states.messages.empty() ? NAN : states.messages.back().position[0]) << "\n"
                        << cm.output().substr(cm.output().size() > 3000 ? cm.output().size() - 3000 : 0) << "\n"
                        << sim.output().substr(sim.output().size() > 3000 ? sim.output().size() - 3000 : 0);
