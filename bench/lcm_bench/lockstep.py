@@ -1,5 +1,6 @@
-"""3 and 5. Lockstep throughput as launch runs it (sim_server and controller_manager on one CPU), unpinned and
-through LCM's receive thread, with each process's peak RSS."""
+"""3 and 5. Lockstep throughput as launch runs it (sim_server and controller_manager on one CPU), unpinned,
+through LCM's receive thread and over shared memory, with each process's peak RSS, and the shared-memory floor
+(a bare futex ping-pong between two processes on that CPU)."""
 import os
 
 from .figures import median
@@ -12,39 +13,57 @@ def run(b):
     b.sample_load()
     reps = 1 if b.smoke else 3
     cpus = sorted(os.sched_getaffinity(0))
-    # kinds: pinned, unpinned, pinned with LCM's receive thread on both sides ("lcm")
-    runs = {(name, kind): [] for name in b.names for kind in (True, False, "lcm")}
+    # kinds: pinned, unpinned, pinned with LCM's receive thread on both sides ("lcm"), pinned over shared memory
+    runs = {(name, kind): [] for name in b.names for kind in (True, False, "lcm", "shm")}
     for rep in range(reps):
         order = b.names if rep % 2 == 0 else list(reversed(b.names))
         for name in order:
             # The goals are on turret_bot and chain100 (60 s each); the middle chains only show the scaling.
             duration = 0.3 if b.smoke else 60.0 if name in ("turret_bot", "chain100") else 20.0
-            kinds = (True, "lcm", False) if rep == 0 else (True, "lcm")
+            kinds = (True, "lcm", "shm", False) if rep == 0 else (True, "lcm", "shm")
             for kind in (kinds if rep % 2 == 0 else tuple(reversed(kinds))):
                 cpu = None if kind is False else cpus[-1]
-                cm_key = (name, "lcm") if kind == "lcm" else name
+                cm_key = (name, kind) if kind in ("lcm", "shm") else name
                 pin_threads(b.cms[cm_key][0].pid, {cpu} if cpu is not None else set(cpus))
-                runs[(name, kind)].append(lockstep_run(b, name, duration, cpu, kind == "lcm"))
+                runs[(name, kind)].append(lockstep_run(b, name, duration, cpu, kind == "lcm", kind == "shm"))
                 pin_threads(b.cms[cm_key][0].pid, set(cpus))
         b.sample_load()
     for name in b.names:
         cm = b.cms[name][0]
-        for kind, key in ((False, "lockstep_unpinned"), (True, "lockstep"), ("lcm", "lockstep_lcm")):
+        for kind, key in ((False, "lockstep_unpinned"), (True, "lockstep"), ("lcm", "lockstep_lcm"),
+                          ("shm", "lockstep_shm")):
             rs = runs[(name, kind)]
             b.r.setdefault(name, {})[key] = {
                 "wall": median([x["wall"] for x in rs]), "rtf": median([x["rtf"] for x in rs]),
                 "rtf_lo": min(x["rtf"] for x in rs), "rtf_hi": max(x["rtf"] for x in rs),
                 "duration": rs[0]["duration"]}
         b.r[name]["memory"] = {"sim_kb": max(x["rss"] for x in runs[(name, True)]), "cm_kb": cm.vm_hwm_kb()}
+        b.r[name]["futex"] = futex_floor(b, name, cpus[-1])
 
 
-def lockstep_run(b, name, duration, cpu, lcm_reader=False):
+def futex_floor(b, name, cpu):
+    """The bare futex ping-pong between two processes on `cpu`, the state's and the command's bytes copied each way
+    (from section 2's sizes): the transport floor of the loop over shared memory."""
+    sizes = b.r.get(name, {}).get("rtt", {}).get("sizes") or (128, 64)
+    n, warmup = (200, 20) if b.smoke else (20000, 2000)
+    p = Proc([b.exe("bench_pingpong"), "futex-ping", str(n), str(warmup),
+              str(sizes[0]), str(sizes[1])], f"futex-ping[{name}]", cpus={cpu})
+    rc = p.wait(60)
+    if rc != 0:
+        raise RuntimeError(f"bench_pingpong futex-ping failed ({rc}):\n{p.output()[-2000:]}")
+    f = p.output().split()
+    return {"min": float(f[0]), "p50": float(f[1]), "p99": float(f[2])}
+
+
+def lockstep_run(b, name, duration, cpu, lcm_reader=False, shm=False):
     urdf, config, _ = b.models[name]
-    url = b.cms[(name, "lcm") if lcm_reader else name][1]
+    url = b.cms[(name, "lcm") if lcm_reader else (name, "shm") if shm else name][1]
     argv = [b.exe("sim_server"), "--urdf", urdf, "--config", config, "--lcm-url", url,
             "--mode", "lockstep", "--duration", str(duration), "--log-level", "info"]
     if lcm_reader:
         argv += ["--hardware-reader", "lcm"]
+    if shm:
+        argv += ["--hardware-url", b.shm_url(name)]
     sim = Proc(argv + (["--cpu", str(cpu)] if cpu is not None else []), f"sim_server[{name}]")
     t0 = sim.wait_for("ready (", 30)
     rc = sim.wait(30 if b.smoke else 600)

@@ -40,16 +40,21 @@ class Bench:
     RT_PRIORITY = realtime.RT_PRIORITY
 
     # setup for 2, 3, 5: one controller_manager per model, controllers running
+    def shm_url(self, name):
+        return f"shm:bench-{os.getpid()}-{name}"
+
     def start_managers(self):
         # Each model's manager twice: as shipped (the hardware loop read on the loop thread), and with LCM's receive
         # thread in between (--hardware-reader lcm, as before), for the lockstep comparison in 3.
+        # A third with the hardware loop over shared memory (--hardware-url shm:NAME, issue 34).
         for name in self.names:
             urdf, config, _ = self.models[name]
-            for key, reader in ((name, "direct"), ((name, "lcm"), "lcm")):
+            for key, reader in ((name, "direct"), ((name, "lcm"), "lcm"), ((name, "shm"), "direct")):
                 url = lcm_url()
+                extra = ["--hardware-url", self.shm_url(name)] if key == (name, "shm") else []
                 p = Proc([self.exe("controller_manager"), "--urdf", urdf, "--config", config, "--lcm-url", url,
-                          "--hardware-reader", reader, "--log-level", "warn" if not self.smoke else "info"],
-                         f"controller_manager[{name}, {reader}]")
+                          "--hardware-reader", reader, "--log-level", "warn" if not self.smoke else "info"] + extra,
+                         f"controller_manager[{name}, {reader}{', shm' if extra else ''}]")
                 self.cms[key] = (p, url)
         for key in self.cms:
             name = key if isinstance(key, str) else key[0]

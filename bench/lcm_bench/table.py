@@ -131,6 +131,34 @@ def table(b):
     row("3. lockstep real-time factor through LCM's receive thread (`--hardware-reader lcm` on both, the way before) "
         "/ direct ÷ that",
         lambda d: "{:.1f}x / {:.2f}".format(d["lockstep_lcm"]["rtf"], d["lockstep"]["rtf"] / d["lockstep_lcm"]["rtf"]))
+    # Issue 34: the hardware loop over shared memory, against LCM (direct reader) in the same run, and its floor.
+    shm = {n: r[n] for n in names if "lockstep_shm" in r.get(n, {}) and "lockstep" in r[n]}
+    shm_goals = {"turret_bot": (100, 2.5), "chain100": (None, 1.5)}
+    shm_met = []
+    for n, (rtf_goal, ratio_goal) in shm_goals.items():
+        if n in shm:
+            rtf, ratio = shm[n]["lockstep_shm"]["rtf"], shm[n]["lockstep_shm"]["rtf"] / shm[n]["lockstep"]["rtf"]
+            ok = ratio >= ratio_goal and (rtf_goal is None or rtf >= rtf_goal)
+            shm_met.append(f"{n.replace('_bot', '')} {yes(ok)}")
+    row("3. **lockstep over shared memory** (`--hardware-url shm`, both on one CPU as launch runs them; range) / "
+        "÷ over LCM (direct reader, the row above)",
+        lambda d: "**{:.1f}x** ({:.1f}–{:.1f}) / **{:.2f}**".format(
+            d["lockstep_shm"]["rtf"], d["lockstep_shm"]["rtf_lo"], d["lockstep_shm"]["rtf_hi"],
+            d["lockstep_shm"]["rtf"] / d["lockstep"]["rtf"]),
+        "turret ≥ 100x and ≥ 2.5x; chain100 ≥ 1.5x", "; ".join(shm_met))
+
+    def shm_floor(d):
+        us = d["lockstep_shm"]["wall"] / (d["lockstep_shm"]["duration"] * 1000) * 1e6
+        floor = d["futex"]["p50"] + d["physics"]["bare"]
+        return f"{fmt(us)} / ({fmt(d['futex']['p50'])} + {fmt(d['physics']['bare'])}) = **{us / floor:.2f}**"
+    floor_ok = [n for n in shm if "futex" in r[n]]
+    row("3. over shared memory: µs per step / floor (bare futex ping-pong p50 between two processes on that CPU, "
+        "the state's and command's bytes copied, + bare Bullet step) = ratio", shm_floor, "≤ 1.3",
+        "; ".join(f"{n.replace('_bot', '')} " + yes(
+            r[n]["lockstep_shm"]["wall"] / (r[n]["lockstep_shm"]["duration"] * 1000) * 1e6
+            <= 1.3 * (r[n]["futex"]["p50"] + r[n]["physics"]["bare"])) for n in floor_ok))
+    row("3. floor: bare futex ping-pong min / p50 / p99, µs", lambda d: "{} / {} / {}".format(
+        *(fmt(d["futex"][k]) for k in ("min", "p50", "p99"))))
     row("3. lockstep real-time factor, not pinned (launch's `cpu: none`; one run)",
         lambda d: "{:.1f}x".format(d["lockstep_unpinned"]["rtf"]))
     for key, label, how in (("realtime", "4.", ""),
