@@ -1,6 +1,7 @@
 """4. Real-time pacing: a minute at 1 kHz with a listener taking every state, against a bare clock_nanosleep loop
 and its datagram in the same minute (as shipped, and at SCHED_FIFO as launch --rt-priority runs it); 4b. the
 hardware loop on its own URL, each process's own period error against the bare loop's."""
+import os
 import subprocess
 
 from .ports import lcm_url
@@ -82,18 +83,20 @@ def quiet(b, fifo):
     """The real-time loop as one runs a robot that tools watch: the hardware loop on a URL of its own
     (--hardware-lcm-url), a listener taking only the 1 Hz statistics, and the bare loop sleeping to its deadlines in
     the same seconds; nothing else wakes at 1 kHz. Each process's own period error p99 per 1 s window (the figure
-    both publish), median over the windows, against the bare loop's. Three ways, alternated three times: as
-    shipped; --spin-us on both; and launch's real-time profile (--rt-priority with --spin-us on both, the bare loop
+    both publish), median over the windows, against the bare loop's. Four ways, alternated three times: as
+    shipped; as shipped over shared memory (--hardware-url shm:NAME); --spin-us on both; and launch's real-time profile (--rt-priority with --spin-us on both, the bare loop
     at the same SCHED_FIFO priority) where SCHED_FIFO is permitted."""
     name = "turret_bot"
     urdf, config, ctrl = b.models[name]
     duration = 1.0 if b.smoke else 15.0
-    ways = ["shipped", "spin"] + (["fifo"] if fifo else [])
+    ways = ["shipped", "shm", "spin"] + (["fifo"] if fifo else [])
     runs = {w: [] for w in ways}
     for way in ways * (1 if b.smoke else 3):
         b.sample_load()
         url, hw = lcm_url(), lcm_url()
-        flags = [] if way == "shipped" else ["--spin-us", str(SPIN_US)]
+        if way == "shm":  # the hardware loop over shared memory (issue 34), as shipped otherwise
+            hw = f"shm:bench-quiet-{os.getpid()}"
+        flags = [] if way in ("shipped", "shm") else ["--spin-us", str(SPIN_US)]
         if way == "fifo":
             flags += ["--rt-priority", str(RT_PRIORITY)]
         cm = Proc([b.exe("controller_manager"), "--urdf", urdf, "--config", config, "--lcm-url", url,

@@ -174,7 +174,8 @@ def table(b):
         def verdict(runs, holds, median_holds):
             """Decided by the median run, so that one run a VM stall spoiled does not decide; how many held beside."""
             return f"{yes(median_holds)} ({sum(1 for x in runs if holds(x))} of {len(runs)} runs)"
-        ways = {"shipped": "as shipped", "spin": f"`--spin-us {b.SPIN_US}` on both",
+        ways = {"shipped": "as shipped", "shm": "over shared memory (`--hardware-url shm`), as shipped otherwise",
+                "spin": f"`--spin-us {b.SPIN_US}` on both",
                 "fifo": f"`launch --rt-priority {b.RT_PRIORITY}` (SCHED_FIFO {b.RT_PRIORITY} and `--spin-us "
                         f"{b.SPIN_US}` on both; the bare loop at SCHED_FIFO {b.RT_PRIORITY} too)"}
         for way, how in ways.items():
@@ -194,6 +195,13 @@ def table(b):
                 "of the excess decides)",
                 quiet(way, lambda x: f'**{x["missed"]}** / {x["floor_missed"]} / {x["cm_missed"]}'),
                 "≤ the floor's", verdict(runs, lambda x: x["missed"] <= x["floor_missed"], over <= 0))
+    if q and q["runs"].get("shm") and q["runs"].get("shipped"):
+        shm_cm = statistics.median(x["cm"] for x in q["runs"]["shm"])
+        lcm_cm = statistics.median(x["cm"] for x in q["runs"]["shipped"])
+        row("4b. real time 1 kHz **over shared memory against LCM** (its own URL), as shipped, the same minutes: "
+            "controller_manager's period error p99 per window, median over the runs, µs: shm / LCM = ratio",
+            lambda d: f"{fmt(shm_cm)} / {fmt(lcm_cm)} = **{shm_cm / lcm_cm:.2f}**" if d is r["turret_bot"] else "–",
+            "≤ 1", yes(shm_cm <= lcm_cm))
     row("5. peak RSS sim_server (lockstep run), MB", lambda d: f'{d["memory"]["sim_kb"] / 1024:.1f}')
     row("5. peak RSS controller_manager, MB", lambda d: f'{d["memory"]["cm_kb"] / 1024:.1f}')
     if r.get("floor_rss_kb"):
