@@ -4,10 +4,7 @@
 // Endpoints carry hardware messages there and mirror them to LCM when asked.
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
 #include <signal.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -26,6 +23,7 @@
 #include "lcm_control/hardware_state_t.hpp"
 #include "rt/clock.hpp"
 #include "test/support/lcm_test.hpp"
+#include "test/support/shm_segment.hpp"
 
 namespace lcm_control {
 namespace {
@@ -236,20 +234,11 @@ TEST(ShmLink, AWriterKilledWhileWritingIsTakenOver) {
   a.publish("s", m.data(), m.size());
   EXPECT_EQ(b.handle_queued(), 1);
   // What a writer killed between its two sequence stores leaves: an odd sequence, for good.
-  const int fd = open(a.path().c_str(), O_RDWR);
-  ASSERT_GE(fd, 0);
-  struct stat st {};
-  fstat(fd, &st);
-  void* map = mmap(nullptr, size_t(st.st_size), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-  ASSERT_NE(map, MAP_FAILED);
-  auto* words = static_cast<std::atomic<uint32_t>*>(map);
-  std::atomic<uint32_t>* seq = nullptr;  // the slot's sequence: the word that changed with the publish
-  const std::vector<uint32_t> before(reinterpret_cast<uint32_t*>(map), reinterpret_cast<uint32_t*>(map) + 4096);
-  a.publish("s", m.data(), m.size());
-  EXPECT_EQ(b.handle_queued(), 1);
-  for (size_t k = 0; k < 4096; ++k)
-    if (words[k].load() == before[k] + 2 && (before[k] % 2) == 0 && before[k] > 0) seq = &words[k];
-  ASSERT_NE(seq, nullptr);
+  testing::MappedSegment seg(a.path());
+  ASSERT_TRUE(seg.ok());
+  const int size_word = seg.size_word(uint32_t(m.size()));
+  ASSERT_GE(size_word, 1);
+  auto* seq = reinterpret_cast<std::atomic<uint32_t>*>(&seg.words()[size_word - 1]);
   seq->fetch_add(1);  // odd: a write begun and never finished
   EXPECT_FALSE(b.has_new()) << "a slot being written is not read";
   const auto m2 = bytes("after the dead writer");
@@ -259,8 +248,6 @@ TEST(ShmLink, AWriterKilledWhileWritingIsTakenOver) {
   EXPECT_EQ(a.stolen(), 1);
   EXPECT_EQ(b.handle_queued(), 1);
   EXPECT_EQ(at_b.got.back(), "after the dead writer");
-  munmap(map, size_t(st.st_size));
-  close(fd);
 }
 
 TEST(ShmLink, AHostileSizeIsSkippedAndCountedAndAForeignFileIsNamed) {
@@ -272,26 +259,18 @@ TEST(ShmLink, AHostileSizeIsSkippedAndCountedAndAForeignFileIsNamed) {
   a.publish("s", m.data(), m.size());
   EXPECT_EQ(b.handle_queued(), 1);
   // Find the size word (16) beside the sequence and overwrite it with sizes past the slot, publishing in between.
-  const int fd = open(a.path().c_str(), O_RDWR);
-  struct stat st {};
-  fstat(fd, &st);
-  void* map = mmap(nullptr, size_t(st.st_size), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-  ASSERT_NE(map, MAP_FAILED);
-  auto* words = static_cast<uint32_t*>(map);
-  std::mt19937 rng(7);
-  int size_word = -1;
-  for (int k = 0; k + 1 < 4096; ++k)
-    if (words[k + 1] == 16 && words[k] % 2 == 0 && words[k] > 0) size_word = k + 1;
+  testing::MappedSegment seg(a.path());
+  ASSERT_TRUE(seg.ok());
+  const int size_word = seg.size_word(16);
   ASSERT_GE(size_word, 0);
+  std::mt19937 rng(7);
   for (int round = 0; round < 100; ++round) {
     a.publish("s", m.data(), m.size());
-    words[size_word] = ShmLink::kSlotBytes + 1 + rng() % 1000000;
+    seg.words()[size_word] = ShmLink::kSlotBytes + 1 + rng() % 1000000;
     EXPECT_EQ(b.handle_queued(), 0);
   }
   EXPECT_EQ(b.malformed(), 100);
   EXPECT_EQ(at_b.got.size(), 1u);
-  munmap(map, size_t(st.st_size));
-  close(fd);
 
   const std::string foreign = "/dev/shm/lcm_control." + unique_name();
   { std::FILE* f = std::fopen(foreign.c_str(), "w"); std::fputs("not ours", f); std::fclose(f); }

@@ -5,11 +5,6 @@
 // robot still follows a command, and joint_states are finite.
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
@@ -32,6 +27,7 @@
 #include "lcm_control/sim_response_t.hpp"
 #include "test/reliability/fuzz/payloads.hpp"
 #include "test/support/lcm_test.hpp"
+#include "test/support/shm_segment.hpp"
 #include "test/support/process.hpp"
 
 namespace lt = lcm_control::testing;
@@ -48,6 +44,29 @@ void send(lcm::LCM& lc, lt::Payloads& p, const lt::Hints& h, const std::string& 
     lc.publish(channel, b.data(), unsigned(b.size()));
     if (k % 50 == 49) std::this_thread::sleep_for(std::chrono::milliseconds(5));  // 10,000 a second, not a burst
   }
+}
+
+// Commands j1 to `target` until joint_states show it there (within 0.02), at most 15 s: the robot still follows.
+bool j1_reaches(lcm::LCM& lc, const lt::Recorder<joint_state_t>& states, double target) {
+  float64_t cmd{};
+  cmd.data = target;
+  return lt::pump_until(
+      lc,
+      [&] {
+        lc.publish("j1_controller/command", &cmd);
+        if (states.messages.size() < 30) return false;
+        const auto& last = states.messages.back();
+        return !last.position.empty() && std::abs(last.position[0] - target) < 0.02;
+      },
+      15);
+}
+
+// The last 20 joint_states hold finite positions.
+bool last_positions_finite(const lt::Recorder<joint_state_t>& states) {
+  bool finite = true;
+  for (size_t k = states.messages.size() > 20 ? states.messages.size() - 20 : 0; k < states.messages.size(); ++k)
+    for (double x : states.messages[k].position) finite = finite && std::isfinite(x);
+  return finite;
 }
 
 }  // namespace
@@ -158,17 +177,7 @@ TEST(FuzzOverLcm, RunningProgramsSurviveHostilePayloadsOnEveryChannel) {
   lt::Recorder<joint_state_t> states(lc, "joint_states");
   lt::Recorder<link_poses_t> poses(lc, "link_poses");
   const auto logged_before = std::filesystem::file_size(dir + "/joint_states.csv");
-  float64_t cmd{};
-  cmd.data = 0.5;
-  const bool reached = lt::pump_until(
-      lc,
-      [&] {
-        lc.publish("j1_controller/command", &cmd);
-        if (states.messages.size() < 30) return false;
-        const auto& last = states.messages.back();
-        return !last.position.empty() && std::abs(last.position[0] - 0.5) < 0.02;
-      },
-      15);
+  const bool reached = j1_reaches(lc, states, 0.5);
   sleep_ms(300);  // state-logger writes what it has
   // Alive: the process runs. Hung: it runs but no longer does its job (answers, publishes, writes).
   const bool logger_writes = std::filesystem::file_size(dir + "/joint_states.csv") > logged_before;
@@ -179,9 +188,7 @@ TEST(FuzzOverLcm, RunningProgramsSurviveHostilePayloadsOnEveryChannel) {
     alive += proc->running();
     hung += proc->running() && !works;
   }
-  bool finite = true;
-  for (size_t k = states.messages.size() > 20 ? states.messages.size() - 20 : 0; k < states.messages.size(); ++k)
-    for (double x : states.messages[k].position) finite = finite && std::isfinite(x);
+  const bool finite = last_positions_finite(states);
   std::printf("RELIABILITY|fuzz|over LCM: sim_server, controller_manager, state-publisher, state-logger, 10 channels|"
               "tried=%d|ok=%d|crashes=%d|hangs=%d|%d payloads in %.1f s; afterwards j1 %s 0.5, joint_states %s\n",
               10 * n, alive == 4 && hung == 0 ? 10 * n : 0, 4 - alive, hung, 10 * n, flood_s, reached ? "reached" : "did NOT reach",
@@ -224,26 +231,17 @@ TEST(FuzzOverSharedMemory, HostileBytesInTheSlotsAreRejectedAndTheLoopRecovers) 
   }
   // Sizes past the slot, written over the size word of the command slot (found beside its sequence).
   {
-    const int fd = open(hostile.path().c_str(), O_RDWR);
-    ASSERT_GE(fd, 0);
-    struct stat st {};
-    fstat(fd, &st);
-    void* map = mmap(nullptr, size_t(st.st_size), PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
-    ASSERT_NE(map, MAP_FAILED);
-    auto* words = static_cast<uint32_t*>(map);
+    lt::MappedSegment seg(hostile.path());
+    ASSERT_TRUE(seg.ok());
     const std::vector<uint8_t> marker(29, 0x5a);
     hostile.publish("hardware/command", marker.data(), marker.size());
-    int size_word = -1;
-    for (int k = 0; k + 1 < 4096 && size_word < 0; ++k)
-      if (words[k + 1] == 29 && words[k] % 2 == 0 && words[k] > 0) size_word = k + 1;
+    const int size_word = seg.size_word(29);
     ASSERT_GE(size_word, 0);
     for (int k = 0; k < 100; ++k) {
       hostile.publish("hardware/command", marker.data(), marker.size());
-      words[size_word] = 0xfffffff0u;
+      seg.words()[size_word] = 0xfffffff0u;
       sleep_ms(2);
     }
-    munmap(map, size_t(st.st_size));
-    close(fd);
   }
   const double flood_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
@@ -251,20 +249,8 @@ TEST(FuzzOverSharedMemory, HostileBytesInTheSlotsAreRejectedAndTheLoopRecovers) 
   // A well-formed hostile command may have stopped or unloaded the controllers' joints' targets only; the controllers
   // themselves are untouched (no request channel here). j1 must reach a new command.
   lt::Recorder<joint_state_t> states(lc, "joint_states");
-  float64_t cmd{};
-  cmd.data = 0.5;
-  const bool reached = lt::pump_until(
-      lc,
-      [&] {
-        lc.publish("j1_controller/command", &cmd);
-        if (states.messages.size() < 30) return false;
-        const auto& last = states.messages.back();
-        return !last.position.empty() && std::abs(last.position[0] - 0.5) < 0.02;
-      },
-      15);
-  bool finite = true;
-  for (size_t k = states.messages.size() > 20 ? states.messages.size() - 20 : 0; k < states.messages.size(); ++k)
-    for (double x : states.messages[k].position) finite = finite && std::isfinite(x);
+  const bool reached = j1_reaches(lc, states, 0.5);
+  const bool finite = last_positions_finite(states);
   const bool alive = sim.running() && cm.running();
   const bool sim_said = sim.output().find("dropped a hardware/command") != std::string::npos;
   const bool cm_said = cm.output().find("hardware/state") != std::string::npos &&
