@@ -284,7 +284,6 @@ int ShmLink::subscribe_pattern(const std::string& pattern, ChannelHandler handle
     delete static_cast<regex_t*>(p);
   });
   subs_.push_back(Sub{next_id_++, "", compiled, {}, std::move(handler)});
-  for (int s = 0; s < kSlots; ++s) bound_[s] = bound_[s] && !slot_name_[s].empty();
   bind_slots();
   for (int s = 0; s < kSlots; ++s) {  // the slots already bound by this process
     if (!bound_[s] || regexec(re, slot_name_[s].c_str(), 0, nullptr, 0) != 0) continue;
@@ -378,12 +377,9 @@ int ShmLink::publish(const std::string& channel, const void* data, size_t size) 
 
 bool ShmLink::has_new() {
   static_assert(kSlots <= 32);
-  if (seg_->names.load(std::memory_order_relaxed) != 0) {
-    for (int s = 0; s < kSlots; ++s)
-      if (!bound_[s] && seg_->slot[s].named.load(std::memory_order_relaxed)) {
-        bind_slots();
-        break;
-      }
+  if (const uint32_t names = seg_->names.load(std::memory_order_acquire); names != names_seen_) {
+    names_seen_ = names;  // a slot was named since: a pattern may want it
+    bind_slots();
   }
   for (int s = 0; s < kSlots; ++s) {
     if (slot_subs_[s].empty()) continue;

@@ -104,6 +104,7 @@ class ShmLink {
   std::string slot_name_[kSlots];
   bool bound_[kSlots] = {};
   uint32_t seen_[kSlots] = {};
+  uint32_t names_seen_ = 0;  // the segment's count of named slots when bind_slots() last ran
   std::vector<uint8_t> buf_;
   int next_id_ = 1;
 
