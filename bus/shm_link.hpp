@@ -36,7 +36,7 @@ class ShmLink {
   const std::string& path() const { return path_; }
 
   // The newest message on `channel` is now these bytes; each other process subscribed to it is woken. -1 when the
-  // message is over kSlotBytes or the segment has no slot left for a new channel (counted, said by the caller).
+  // message is over kSlotBytes (counted: too_large()) or the segment has no slot left for a new channel.
   int publish(const std::string& channel, const void* data, size_t size);
 
   // Messages on `channel` from other processes go to `handler` (recv_utime: the wall clock when it was taken) in the
