@@ -236,7 +236,7 @@ TEST(ShmLink, AWriterKilledWhileWritingIsTakenOver) {
   // What a writer killed between its two sequence stores leaves: an odd sequence, for good.
   testing::MappedSegment seg(a.path());
   ASSERT_TRUE(seg.ok());
-  const int size_word = seg.size_word(uint32_t(m.size()));
+  const int size_word = seg.size_word("s");
   ASSERT_GE(size_word, 1);
   auto* seq = reinterpret_cast<std::atomic<uint32_t>*>(&seg.words()[size_word - 1]);
   seq->fetch_add(1);  // odd: a write begun and never finished
@@ -261,7 +261,7 @@ TEST(ShmLink, AHostileSizeIsSkippedAndCountedAndAForeignFileIsNamed) {
   // Find the size word (16) beside the sequence and overwrite it with sizes past the slot, publishing in between.
   testing::MappedSegment seg(a.path());
   ASSERT_TRUE(seg.ok());
-  const int size_word = seg.size_word(16);
+  const int size_word = seg.size_word("s");
   ASSERT_GE(size_word, 0);
   std::mt19937 rng(7);
   for (int round = 0; round < 100; ++round) {

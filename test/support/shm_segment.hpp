@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <string>
 
 namespace lcm_control::testing {
@@ -32,12 +33,13 @@ class MappedSegment {
   // The header's 32-bit words (the first 16 KiB).
   uint32_t* words() const { return static_cast<uint32_t*>(map_); }
   static constexpr int kHeaderWords = 4096;
-  // The index of a slot's size word holding `size`: a slot header is {named = 1, sequence (even, not 0 once
-  // written), size, writer, channel}. -1 if none.
-  int size_word(uint32_t size) const {
+  // The index of the size word of the slot named `channel`: a slot header is {named = 1, sequence, size, writer,
+  // channel name} in 32-bit words, 64-byte aligned. -1 if no slot has that name.
+  int size_word(const std::string& channel) const {
     const uint32_t* w = words();
-    for (int k = 1; k + 1 < kHeaderWords; ++k)
-      if (w[k + 1] == size && w[k - 1] == 1 && w[k] % 2 == 0 && w[k] > 0) return k + 1;
+    for (int k = 0; k + 4 + int(channel.size() / 4) + 1 < kHeaderWords; k += 16)
+      if (w[k] == 1 && std::strncmp(reinterpret_cast<const char*>(&w[k + 4]), channel.c_str(), channel.size() + 1) == 0)
+        return k + 2;
     return -1;
   }
 
