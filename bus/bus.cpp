@@ -48,7 +48,7 @@ std::string hardware_url_for(const std::string& value, const std::string& shared
   // udpm://GROUP[:PORT][?OPTIONS]
   const std::string scheme = "udpm://";
   if (shared_url.rfind(scheme, 0) != 0)
-    throw BusError(fmt::format("--hardware-lcm-url auto derives a port from the shared bus's udpm:// URL, and that "
+    throw BusError(fmt::format("--hardware-url auto derives a port from the shared bus's udpm:// URL, and that "
                                "is '{}': give the hardware loop's URL itself",
                                shared_url));
   const size_t query = shared_url.find('?');
@@ -96,22 +96,18 @@ Bus::Bus(const std::string& url, const std::string& ns, const std::string& hardw
     shm_ = std::make_unique<ShmLink>(shm_name_of(hw, ns_));
   } else if (hw != url_) {
     hw_url_ = hw;
-    hw_ = open_lcm(hw, hw, "--hardware-lcm-url");
-  }
-  if (reader == HardwareReader::Lcm) {
-    if (shm_) shm_->watch_fd(shared_fd());
-    return;
+    hw_ = open_lcm(hw, hw, "--hardware-url");
   }
   const auto udpm = [](const std::string& u) { return u.rfind("udpm://", 0) == 0; };
-  if (hw_ && udpm(hw_url_)) {
+  if (reader == HardwareReader::Direct && hw_ && udpm(hw_url_)) {
     hw_socket_ = std::make_unique<LcmSocket>(hw_url_);
     self_test(*hw_, *hw_socket_);
   }
-  if (udpm(url_)) {
+  if (reader == HardwareReader::Direct && udpm(url_)) {
     shared_socket_ = std::make_unique<LcmSocket>(url_);
     self_test(*lcm_, *shared_socket_);
   }
-  if (shm_) shm_->watch_fd(shared_fd());
+  if (shm_) shm_->watch_fd(shared_fd());  // one wait covers the shared bus and the shared memory
 }
 
 Bus::~Bus() = default;
@@ -151,7 +147,7 @@ void Bus::unsubscribe(int id) {
   for (auto it = subscriptions_.begin(); it != subscriptions_.end(); ++it) {
     if ((*it)->id != id) continue;
     if ((*it)->shm) (*it)->shm->unsubscribe((*it)->socket_id);
-    if ((*it)->socket && !(*it)->shm) (*it)->socket->unsubscribe((*it)->socket_id);
+    if ((*it)->socket) (*it)->socket->unsubscribe((*it)->socket_id);
     if ((*it)->lcm_sub) (*it)->lc->unsubscribe((*it)->lcm_sub);
     subscriptions_.erase(it);
     return;
@@ -207,22 +203,14 @@ int Bus::wait_us(int64_t timeout_us) {
 
 bool Bus::handle_us(int64_t timeout_us, int max) {
   timeout_us = std::max<int64_t>(0, timeout_us);
-  if (shm_) {
-    const int ready = wait_us(timeout_us);
-    if ((ready & kHardwareReady) && handle_hardware(max) < 0) return false;
-    if ((ready & kSharedReady) && handle_shared(max) < 0) return false;
-    return true;
-  }
-  if (!hw_ && !shared_socket_) {
+  if (!hw_ && !shm_ && !shared_socket_) {
     const int r = lcm_->handleTimeout(static_cast<int>((timeout_us + 999) / 1000));
     return r >= 0 && (r == 0 || handle_shared(max - 1) >= 0);
   }
-  pollfd p[2] = {{shared_fd(), POLLIN, 0}, {hardware_fd(), POLLIN, 0}};
-  const timespec ts{static_cast<time_t>(timeout_us / 1000000), static_cast<long>(timeout_us % 1000000) * 1000};
-  const int r = ppoll(p, hw_ ? 2 : 1, &ts, nullptr);
-  if (r < 0) return errno == EINTR;
-  if (hw_ && (p[1].revents & POLLIN) && handle_hardware(max) < 0) return false;
-  if ((p[0].revents & POLLIN) && handle_shared(max) < 0) return false;
+  const int ready = wait_us(timeout_us);
+  if (ready < 0) return false;
+  if ((ready & kHardwareReady) && handle_hardware(max) < 0) return false;
+  if ((ready & kSharedReady) && handle_shared(max) < 0) return false;
   return true;
 }
 

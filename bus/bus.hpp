@@ -46,7 +46,7 @@ class BusError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The URL of a robot's hardware loop (hardware/state, hardware/command) for `--hardware-lcm-url VALUE`:
+// The URL of a robot's hardware loop (hardware/state, hardware/command) for `--hardware-url VALUE`:
 // "" or "shared" = the shared bus itself; "auto" = the shared udpm URL with its port moved to one the namespace picks
 // (kHardwarePortBase + FNV-1a(ns) % kHardwarePorts), so that every robot's loop has its own socket and the
 // processes on the shared bus do not wake for it; "shm" = shared memory on this host, a segment per namespace

@@ -116,7 +116,7 @@ int LcmSocket::on_lost(const std::string& channel, LostHandler handler) {
   return id;
 }
 
-int LcmSocket::subscribe_pattern(const std::string& pattern, ChannelHandler handler) {
+ChannelPattern::ChannelPattern(const std::string& pattern, const std::string& where) {
   auto* re = new regex_t;
   if (const int rc = regcomp(re, ("^(" + pattern + ")$").c_str(), REG_EXTENDED | REG_NOSUB); rc != 0) {
     char why[200];
@@ -124,14 +124,22 @@ int LcmSocket::subscribe_pattern(const std::string& pattern, ChannelHandler hand
     delete re;
     throw BusError(fmt::format("cannot subscribe to '{}' on {}: not a regular expression ({}); escape . * + ? ( ) [ ] "
                                "{{ }} | ^ $ \\ to match them as they are",
-                               clip(pattern), url_, why));
+                               clip(pattern), where, why));
   }
-  const int id = next_id++;
-  std::shared_ptr<void> owned(re, [](void* r) {
-    regfree(static_cast<regex_t*>(r));
-    delete static_cast<regex_t*>(r);
+  regex_ = std::shared_ptr<const void>(re, [](const void* r) {
+    regfree(const_cast<regex_t*>(static_cast<const regex_t*>(r)));
+    delete static_cast<const regex_t*>(r);
   });
-  patterns_.push_back(PatternEntry{id, std::move(owned), std::move(handler)});
+}
+
+bool ChannelPattern::matches(const char* channel) const {
+  return regexec(static_cast<const regex_t*>(regex_.get()), channel, 0, nullptr, 0) == 0;
+}
+
+int LcmSocket::subscribe_pattern(const std::string& pattern, ChannelHandler handler) {
+  ChannelPattern compiled(pattern, url_);
+  const int id = next_id++;
+  patterns_.push_back(PatternEntry{id, std::move(compiled), std::move(handler)});
   matched_.clear();
   return id;
 }
@@ -142,7 +150,7 @@ const std::vector<size_t>& LcmSocket::matching(std::string_view channel) {
   if (matched_.size() >= kMatchedChannels) matched_.clear();
   std::vector<size_t> found;
   for (size_t i = 0; i < patterns_.size(); ++i)
-    if (regexec(static_cast<const regex_t*>(patterns_[i].regex.get()), name_.c_str(), 0, nullptr, 0) == 0)
+    if (patterns_[i].pattern.matches(name_.c_str()))
       found.push_back(i);
   return matched_.emplace(name_, std::move(found)).first->second;
 }

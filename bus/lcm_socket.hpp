@@ -36,6 +36,18 @@ struct UdpmAddress {
 // Throws BusError naming the URL when it is not a udpm:// URL LCM would take.
 UdpmAddress parse_udpm_url(const std::string& url);
 
+// A channel pattern as lcm::LCM::subscribe takes it: a POSIX extended regular expression matched against the whole
+// channel name. Shared by the readers of LCM's sockets and of the hardware loop's shared memory.
+class ChannelPattern {
+ public:
+  // Throws BusError naming the pattern and `where` (the URL or file read) when it is not a regular expression.
+  ChannelPattern(const std::string& pattern, const std::string& where);
+  bool matches(const char* channel) const;
+
+ private:
+  std::shared_ptr<const void> regex_;  // the compiled regex_t
+};
+
 class LcmSocket {
  public:
   // Joins the URL's group on its port beside any other LCM socket there. Throws BusError with the URL and the fix.
@@ -139,7 +151,7 @@ class LcmSocket {
   std::vector<LostEntry> lost_handlers_;
   struct PatternEntry {
     int id;
-    std::shared_ptr<void> regex;  // the compiled regex_t
+    ChannelPattern pattern;
     ChannelHandler handler;
   };
   std::vector<PatternEntry> patterns_;

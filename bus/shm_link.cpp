@@ -5,7 +5,6 @@
 #include <fcntl.h>
 #include <linux/futex.h>
 #include <poll.h>
-#include <regex.h>
 #include <sched.h>
 #include <signal.h>
 #include <sys/eventfd.h>
@@ -83,8 +82,7 @@ struct ShmLink::Segment {
 
 namespace {
 constexpr size_t kHeaderBytes = 16384;  // the data starts here, page-aligned
-size_t data_offset() { return kHeaderBytes; }
-size_t segment_bytes() { return data_offset() + size_t(ShmLink::kSlots) * ShmLink::kSlotBytes; }
+constexpr size_t kSegmentBytes = kHeaderBytes + size_t(ShmLink::kSlots) * ShmLink::kSlotBytes;
 
 // Held around naming a slot or taking a reader place; one left by a process that died is taken over.
 class NamingLock {
@@ -127,13 +125,13 @@ ShmLink::ShmLink(const std::string& name) : path_("/dev/shm/lcm_control." + name
       const int t = open(tmp.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
       if (t < 0) fail(fmt::format("cannot create it: {} (is /dev/shm mounted and writable?)", std::strerror(errno)));
       void* m = MAP_FAILED;
-      if (ftruncate(t, off_t(segment_bytes())) == 0)
-        m = mmap(nullptr, segment_bytes(), PROT_READ | PROT_WRITE, MAP_SHARED, t, 0);
+      if (ftruncate(t, off_t(kSegmentBytes)) == 0)
+        m = mmap(nullptr, kSegmentBytes, PROT_READ | PROT_WRITE, MAP_SHARED, t, 0);
       if (m == MAP_FAILED) {
         const int e = errno;
         close(t);
         unlink(tmp.c_str());
-        fail(fmt::format("cannot size it to {} bytes: {}", segment_bytes(), std::strerror(e)));
+        fail(fmt::format("cannot size it to {} bytes: {}", kSegmentBytes, std::strerror(e)));
       }
       auto* s = new (m) Segment{};
       std::memcpy(s->magic, kMagic, sizeof(kMagic));
@@ -141,7 +139,7 @@ ShmLink::ShmLink(const std::string& name) : path_("/dev/shm/lcm_control." + name
       s->slot_bytes = kSlotBytes;
       s->slots = kSlots;
       s->readers = kReaders;
-      munmap(m, segment_bytes());
+      munmap(m, kSegmentBytes);
       flock(t, LOCK_SH);
       const bool linked = link(tmp.c_str(), path_.c_str()) == 0;
       unlink(tmp.c_str());
@@ -161,17 +159,17 @@ ShmLink::ShmLink(const std::string& name) : path_("/dev/shm/lcm_control." + name
   }
   struct stat st {};
   fstat(fd_, &st);
-  if (size_t(st.st_size) != segment_bytes())
+  if (size_t(st.st_size) != kSegmentBytes)
     fail(fmt::format("it is {} bytes, not the {} of this lcm_control's segment: another program's, or a version's "
                      "that is running; stop that, or remove the file",
-                     st.st_size, segment_bytes()));
-  void* m = mmap(nullptr, segment_bytes(), PROT_READ | PROT_WRITE, MAP_SHARED, fd_, 0);
+                     st.st_size, kSegmentBytes));
+  void* m = mmap(nullptr, kSegmentBytes, PROT_READ | PROT_WRITE, MAP_SHARED, fd_, 0);
   if (m == MAP_FAILED) fail(fmt::format("cannot map it: {}", std::strerror(errno)));
   seg_ = static_cast<Segment*>(m);
-  data_ = static_cast<uint8_t*>(m) + data_offset();
+  data_ = static_cast<uint8_t*>(m) + kHeaderBytes;
   if (std::memcmp(seg_->magic, kMagic, sizeof(kMagic)) != 0 || seg_->version != kVersion ||
       seg_->slot_bytes != kSlotBytes || seg_->slots != kSlots || seg_->readers != kReaders) {
-    munmap(m, segment_bytes());
+    munmap(m, kSegmentBytes);
     seg_ = nullptr;
     fail("it is not a segment of this lcm_control version: stop the program using it, or remove the file");
   }
@@ -189,7 +187,7 @@ ShmLink::ShmLink(const std::string& name) : path_("/dev/shm/lcm_control." + name
     }
   }
   if (me_ < 0) {
-    munmap(seg_, segment_bytes());
+    munmap(seg_, kSegmentBytes);
     seg_ = nullptr;
     fail(fmt::format("{} processes have it open already, the most it takes: is a program started many times on "
                      "one hardware URL? give each robot its own --namespace or shm:NAME",
@@ -201,9 +199,7 @@ ShmLink::ShmLink(const std::string& name) : path_("/dev/shm/lcm_control." + name
 ShmLink::~ShmLink() {
   if (watcher_.joinable()) {
     stop_watch_ = true;
-    const uint64_t one = 1;
-    if (write(watch_stop_fd_, &one, sizeof(one)) < 0) {
-    }
+    eventfd_write(watch_stop_fd_, 1);
     fd_drained();
     watcher_.join();
   }
@@ -211,7 +207,7 @@ ShmLink::~ShmLink() {
   if (seg_) {
     seg_->reader[me_].mask.store(0);
     seg_->reader[me_].pid.store(0);
-    munmap(seg_, segment_bytes());
+    munmap(seg_, kSegmentBytes);
   }
   if (fd_ >= 0) {
     // Nobody else holds it open: remove it, still under the lock, so that a process opening it now makes a new one.
@@ -267,26 +263,18 @@ int ShmLink::subscribe(const std::string& channel, Handler handler) {
     throw BusError(fmt::format("shared memory {}: no slot for channel '{}' ({} channels at most, names under {} "
                                "bytes): give this robot a segment of its own (--hardware-url shm:NAME)",
                                path_, channel, kSlots, kChannelBytes));
-  subs_.push_back(Sub{next_id_++, channel, nullptr, std::move(handler), {}});
+  subs_.push_back(Sub{next_id_++, std::nullopt, std::move(handler), {}});
   slot_subs_[s].push_back(int(subs_.size()) - 1);
   update_mask();
   return subs_.back().id;
 }
 
 int ShmLink::subscribe_pattern(const std::string& pattern, ChannelHandler handler) {
-  auto* re = new regex_t;
-  if (regcomp(re, ("^(" + pattern + ")$").c_str(), REG_EXTENDED | REG_NOSUB) != 0) {
-    delete re;
-    throw BusError(fmt::format("'{}' is not a regular expression", pattern));
-  }
-  std::shared_ptr<void> compiled(re, [](void* p) {
-    regfree(static_cast<regex_t*>(p));
-    delete static_cast<regex_t*>(p);
-  });
-  subs_.push_back(Sub{next_id_++, "", compiled, {}, std::move(handler)});
+  subs_.push_back(Sub{next_id_++, ChannelPattern(pattern, path_), {}, std::move(handler)});
+  const ChannelPattern& compiled = *subs_.back().pattern;
   bind_slots();
   for (int s = 0; s < kSlots; ++s) {  // the slots already bound by this process
-    if (!bound_[s] || regexec(re, slot_name_[s].c_str(), 0, nullptr, 0) != 0) continue;
+    if (!bound_[s] || !compiled.matches(slot_name_[s].c_str())) continue;
     auto& v = slot_subs_[s];
     if (std::find(v.begin(), v.end(), int(subs_.size()) - 1) == v.end()) v.push_back(int(subs_.size()) - 1);
   }
@@ -301,8 +289,7 @@ void ShmLink::bind_slots() {
     const std::string name(h.channel, strnlen(h.channel, kChannelBytes));
     bool wanted = false;
     for (size_t k = 0; k < subs_.size(); ++k) {
-      if (!subs_[k].regex || regexec(static_cast<regex_t*>(subs_[k].regex.get()), name.c_str(), 0, nullptr, 0) != 0)
-        continue;
+      if (!subs_[k].pattern || !subs_[k].pattern->matches(name.c_str())) continue;
       wanted = true;
       slot_subs_[s].push_back(int(k));
     }
@@ -316,7 +303,7 @@ void ShmLink::unsubscribe(int id) {
     if (subs_[k].id != id) continue;
     subs_[k].handler = {};  // indices stay valid; the entry is kept empty
     subs_[k].channel_handler = {};
-    subs_[k].regex.reset();
+    subs_[k].pattern.reset();
     for (auto& v : slot_subs_) v.erase(std::remove(v.begin(), v.end(), int(k)), v.end());
   }
   update_mask();
@@ -375,23 +362,27 @@ int ShmLink::publish(const std::string& channel, const void* data, size_t size) 
   return 0;
 }
 
+bool ShmLink::news(int s, uint32_t& q) {
+  if (slot_subs_[s].empty()) return false;
+  const SlotHeader& h = seg_->slot[s];
+  q = h.seq.load(std::memory_order_acquire);
+  if (q == seen_[s] || (q & 1)) return false;
+  if (h.writer.load(std::memory_order_relaxed) == me_) {  // our own message
+    seen_[s] = q;
+    return false;
+  }
+  return true;
+}
+
 bool ShmLink::has_new() {
   static_assert(kSlots <= 32);
   if (const uint32_t names = seg_->names.load(std::memory_order_acquire); names != names_seen_) {
     names_seen_ = names;  // a slot was named since: a pattern may want it
     bind_slots();
   }
-  for (int s = 0; s < kSlots; ++s) {
-    if (slot_subs_[s].empty()) continue;
-    const SlotHeader& h = seg_->slot[s];
-    const uint32_t q = h.seq.load(std::memory_order_acquire);
-    if (q == seen_[s] || (q & 1)) continue;
-    if (h.writer.load(std::memory_order_relaxed) == me_) {  // our own message
-      seen_[s] = q;
-      continue;
-    }
-    return true;
-  }
+  uint32_t q = 0;
+  for (int s = 0; s < kSlots; ++s)
+    if (news(s, q)) return true;
   return false;
 }
 
@@ -417,7 +408,6 @@ bool ShmLink::take(int s, uint32_t q) {
       }
       return true;
     }
-    ++torn_;
     if (again & 1) return false;  // being written again: it rings when done
     q = again;
   }
@@ -427,13 +417,9 @@ bool ShmLink::take(int s, uint32_t q) {
 int ShmLink::handle_queued(int max) {
   if (!has_new()) return 0;
   int handled = 0;
-  for (int s = 0; s < kSlots && handled < max; ++s) {
-    if (slot_subs_[s].empty()) continue;
-    const SlotHeader& h = seg_->slot[s];
-    const uint32_t q = h.seq.load(std::memory_order_acquire);
-    if (q == seen_[s] || (q & 1) || h.writer.load(std::memory_order_relaxed) == me_) continue;
-    if (take(s, q)) ++handled;
-  }
+  uint32_t q = 0;
+  for (int s = 0; s < kSlots && handled < max; ++s)
+    if (news(s, q) && take(s, q)) ++handled;
   return handled;
 }
 
@@ -442,7 +428,7 @@ bool ShmLink::wait_us(int64_t timeout_us) {
   const int64_t deadline = monotonic_us() + std::max<int64_t>(0, timeout_us);
   for (;;) {
     const uint32_t bell = r.doorbell.load();
-    if (has_new() || fd_ready() || woken_.exchange(false)) return true;
+    if (has_new() || fd_ready()) return true;
     const int64_t left = deadline - monotonic_us();
     if (left <= 0) return false;
     r.waiting.store(1);
@@ -456,11 +442,6 @@ bool ShmLink::wait_us(int64_t timeout_us) {
     r.waiting.store(0);
     if (rc != 0 && err == EINTR) return has_new() || fd_ready();  // a signal: the caller looks at its stop flag
   }
-}
-
-void ShmLink::wake() {
-  woken_.store(true);
-  ring_self();
 }
 
 void ShmLink::ring_self() {

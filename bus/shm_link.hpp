@@ -13,9 +13,12 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
+
+#include "bus/lcm_socket.hpp"
 
 namespace lcm_control {
 
@@ -44,8 +47,8 @@ class ShmLink {
   // newest, as a real-time loop wants it). An id for unsubscribe().
   using Handler = std::function<void(const lcm::ReceiveBuffer&)>;
   int subscribe(const std::string& channel, Handler handler);
-  // The same for every channel `pattern` (a POSIX extended regular expression) matches whole, checked as slots are
-  // bound. Throws BusError when it is not one.
+  // The same for every channel `pattern` (a ChannelPattern) matches, checked as slots are bound. Throws BusError when
+  // it is not a regular expression.
   using ChannelHandler = std::function<void(const lcm::ReceiveBuffer&, const std::string& channel)>;
   int subscribe_pattern(const std::string& pattern, ChannelHandler handler);
   void unsubscribe(int id);
@@ -55,11 +58,9 @@ class ShmLink {
   // True when a subscribed slot holds a message not taken yet.
   bool has_new();
 
-  // Waits up to timeout_us for a message on a subscribed channel, a watched file descriptor becoming readable, or
-  // wake(): true unless the time ran out. Never longer than timeout_us, so a dead writer cannot hold it.
+  // Waits up to timeout_us for a message on a subscribed channel or a watched file descriptor becoming readable:
+  // true unless the time ran out or a signal came. Never longer than timeout_us, so a dead writer cannot hold it.
   bool wait_us(int64_t timeout_us);
-  // Ends a wait_us() of this process now, or the next one (from any thread).
-  void wake();
 
   // A thread of its own polls `fd` and ends wait_us() when it is readable: fd_ready() says so until fd_drained(),
   // after which it polls again. For the shared bus's socket, so that one wait covers both.
@@ -71,7 +72,6 @@ class ShmLink {
   // time per channel, for lcm-spy, bus, the dashboard and the logger; 0: none.
   void mirror_to(lcm::LCM* lcm, double hz);
 
-  int64_t torn() const { return torn_; }           // a read overwritten while copied, read again
   int64_t malformed() const { return malformed_; }  // a slot whose size is not a message size: skipped
   int64_t too_large() const { return too_large_; }  // publish() refused: over kSlotBytes
   int64_t stolen() const { return stolen_; }        // a slot taken over from a writer that died while writing
@@ -83,6 +83,9 @@ class ShmLink {
   void ring(int slot);
   void ring_self();
   void update_mask();
+  // Whether slot `s` holds a message for this process not taken yet (subscribed, written whole, by another process),
+  // its sequence in `seq`; marks this process's own messages taken.
+  bool news(int s, uint32_t& seq);
   bool take(int slot, uint32_t seq);
 
   std::string path_;
@@ -94,8 +97,7 @@ class ShmLink {
 
   struct Sub {
     int id;
-    std::string channel;               // "" for a pattern
-    std::shared_ptr<void> regex;       // the compiled regex_t of a pattern
+    std::optional<ChannelPattern> pattern;  // none: one channel, bound when subscribed
     Handler handler;
     ChannelHandler channel_handler;
   };
@@ -112,11 +114,10 @@ class ShmLink {
   int64_t mirror_period_us_ = 0, mirrored_us_[kSlots] = {};
 
   std::atomic<uint32_t> fd_ready_{0};
-  std::atomic<bool> woken_{false};
   std::atomic<bool> stop_watch_{false};
   int watch_stop_fd_ = -1;
   std::thread watcher_;
-  int64_t torn_ = 0, malformed_ = 0, too_large_ = 0, stolen_ = 0;
+  int64_t malformed_ = 0, too_large_ = 0, stolen_ = 0;
 };
 
 // The segment name for `--hardware-url` "shm" (the namespace's, per user) or "shm:NAME"; "" when the URL is not

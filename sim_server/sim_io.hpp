@@ -11,8 +11,6 @@
 // Handlers run inside poll_until(), i.e. between control steps.
 #pragma once
 
-#include <poll.h>
-
 #include <cstdint>
 #include <deque>
 #include <string>

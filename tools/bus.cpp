@@ -41,7 +41,7 @@ std::string bytes_text(double b) {
   throw BusError(fmt::format("no message on '{}' ({}); channels seen: {}. Check the channel name, --namespace and "
                              "--lcm-url (or LCM_DEFAULT_URL){}",
                              channel, bus.url(), census.names(),
-                             hardware ? "; a robot's hardware loop may have a URL of its own: add --hardware-lcm-url "
+                             hardware ? "; a robot's hardware loop may have a URL of its own: add --hardware-url "
                                         "auto (or the URL sim_server's ready line gives)"
                                       : ""));
 }
@@ -480,7 +480,7 @@ int main(int argc, char** argv) {
       "  bus list                                      # what is on the bus (2 s)\n"
       "  bus netcheck --lcm-url 'udpm://239.255.76.67:7667?ttl=1'   # on two computers at once: can they hear each other?\n"
       "  bus hz hardware/state\n"
-      "  bus hz hardware/state --namespace r0 --hardware-lcm-url auto   # a robot of `launch --robots`\n"
+      "  bus hz hardware/state --namespace r0 --hardware-url auto   # a robot of `launch --robots`\n"
       "  bus echo joint_states --count 1\n"
       "  bus echo /joint_states/position --count 1     # one field (--field position[j2]: one joint's)\n"
       "  bus echo /j2_controller/command --csv --duration 5\n"
@@ -497,9 +497,10 @@ int main(int argc, char** argv) {
   app.fallthrough();
   BusFlags bus_flags;
   add_bus_flags(app, bus_flags);
-  app.add_option("--hardware-lcm-url", bus_flags.hardware_lcm_url,
+  app.add_option("--hardware-url,--hardware-lcm-url", bus_flags.hardware_lcm_url,
                  "listen and publish on a robot's hardware loop instead of the --lcm-url: `auto` for the one "
-                 "--hardware-lcm-url auto gives the --namespace (as launch --robots does), or its URL");
+                 "--hardware-url auto gives the --namespace (as launch --robots does), or its LCM URL (a loop in "
+                 "shared memory is seen through sim_server's and controller_manager's --hardware-mirror)");
 
   double list_duration = 2;
   auto* list = app.add_subcommand("list", "channels seen on the bus: type, messages, rate, bandwidth (like lcm-spy)");
@@ -580,6 +581,11 @@ int main(int argc, char** argv) {
     if (info->parsed()) return cmd_info(log_path);
     if (types->parsed()) return cmd_types(type);
     install_stop_signals();
+    if (is_shm_url(bus_flags.hardware_lcm_url))
+      throw BusError(fmt::format("--hardware-url {}: bus reads LCM, and a hardware loop in shared memory is not on it; "
+                                 "start sim_server and controller_manager with --hardware-mirror HZ (launch: "
+                                 "hardware_mirror: HZ) and read hardware/state on the --lcm-url",
+                                 bus_flags.hardware_lcm_url));
     const std::string url = bus_flags.hardware_lcm_url.empty()
                                 ? bus_flags.lcm_url
                                 : hardware_url_for(bus_flags.hardware_lcm_url, effective_url(bus_flags.lcm_url),

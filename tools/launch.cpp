@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
   add_hardware_mirror_flag(app, o.bus);
   app.add_option("--robots", o.robots,
                  "start this many copies of the robot, in namespaces r0, r1, ..., each with its hardware loop on its "
-                 "own port (--hardware-lcm-url auto unless given; `shared` keeps them on the --lcm-url); overrides "
+                 "own port (--hardware-url auto unless given; `shared` keeps them on the --lcm-url); overrides "
                  "the file's `robots:`")
       ->check(CLI::Range(1, kMaxRobots));
   app.add_flag("--dashboard", o.dashboard,

@@ -242,7 +242,7 @@ int run_sim_time(Bus& bus, Publisher& pub, const Options& o) {
       if (!pacer.started())
         throw std::runtime_error(fmt::format(
             "no hardware_state_t on '{}' ({}) for {}: is sim_server running on this --lcm-url/--namespace, with this "
-            "--hardware-lcm-url?",
+            "--hardware-url?",
             bus.channel(channels::kHardwareState), bus.hardware_url(), seconds_text(o.timeout)));
       throw std::runtime_error(fmt::format(
           "sim time on '{}' stopped at {:.6f} s for {} after {} messages (sim_server paused or gone?)",

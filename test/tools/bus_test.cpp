@@ -208,6 +208,15 @@ TEST(BusTool, NothingOnTheChannelExits4AndListsWhatWasSeen) {
   EXPECT_NE(list.output().find("no messages on"), std::string::npos) << list.output();
 }
 
+// A hardware loop in shared memory is not on LCM: bus names the mirror instead of failing to open "shm:..." as a URL.
+TEST(BusTool, AHardwareLoopInSharedMemoryIsRefusedNamingTheMirror) {
+  lt::ChildProcess hz({lt::bin("bus"), "hz", "hardware/state", "--hardware-url", "shm", "--duration", "1"},
+                      env(lt::unique_lcm_url()));
+  EXPECT_EQ(hz.wait(20), 4) << hz.output();
+  EXPECT_NE(hz.output().find("--hardware-url shm: bus reads LCM"), std::string::npos) << hz.output();
+  EXPECT_NE(hz.output().find("--hardware-mirror HZ"), std::string::npos) << hz.output();
+}
+
 TEST(BusTool, EchoPrintsOneFieldByRosPathOrDashboardLabelAndSuggestsTheNearestForATypo) {
   const std::string url = lt::unique_lcm_url();
   Ticker states(url, 10, [](lcm::LCM& lc) {
