@@ -190,15 +190,22 @@ int Bus::handle_hardware(int max) {
 
 int Bus::wait_us(int64_t timeout_us) {
   timeout_us = std::max<int64_t>(0, timeout_us);
-  if (shm_) {
-    if (!shm_->wait_us(timeout_us)) return 0;
-    return (shm_->has_new() ? kHardwareReady : 0) | (shm_->fd_ready() ? kSharedReady : 0);
-  }
+  if (shm_) return ready(shm_->wait_us(timeout_us));
   pollfd p[2] = {{shared_fd(), POLLIN, 0}, {hardware_fd(), POLLIN, 0}};
   const timespec ts{static_cast<time_t>(timeout_us / 1000000), static_cast<long>(timeout_us % 1000000) * 1000};
   const int r = ppoll(p, hw_ ? 2 : 1, &ts, nullptr);
   if (r < 0) return errno == EINTR ? 0 : -1;
   return ((p[0].revents & POLLIN) ? kSharedReady : 0) | (hw_ && (p[1].revents & POLLIN) ? kHardwareReady : 0);
+}
+
+int Bus::wait_until_us(int64_t deadline_us) {
+  if (shm_) return ready(shm_->wait_until_us(deadline_us));
+  return wait_us(deadline_us - monotonic_us());
+}
+
+int Bus::ready(bool woken) {
+  if (!woken) return 0;
+  return (shm_->has_new() ? kHardwareReady : 0) | (shm_->fd_ready() ? kSharedReady : 0);
 }
 
 bool Bus::handle_us(int64_t timeout_us, int max) {

@@ -117,6 +117,8 @@ class Bus {
   // ran out or a signal came, -1 on an error.
   static constexpr int kSharedReady = 1, kHardwareReady = 2;
   int wait_us(int64_t timeout_us);
+  // The same until monotonic_us() reaches deadline_us (over shared memory without reading the clock).
+  int wait_until_us(int64_t deadline_us);
   // Handle what is queued (at most `max` messages) without blocking: how many, -1 on an error.
   int handle_shared(int max = 1000);
   int handle_hardware(int max = 1000);
@@ -140,6 +142,7 @@ class Bus {
  private:
   int shared_fd();
   int hardware_fd();  // -1 without a hardware URL of its own
+  int ready(bool woken);  // wait_us()'s result from the shared memory's wait
   std::unique_ptr<lcm::LCM> lcm_, hw_;
   std::unique_ptr<LcmSocket> shared_socket_, hw_socket_;
   std::unique_ptr<ShmLink> shm_;

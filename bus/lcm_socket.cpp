@@ -2,6 +2,7 @@
 
 #include <arpa/inet.h>
 #include <fmt/format.h>
+#include <linux/filter.h>
 #include <netinet/in.h>
 #include <poll.h>
 #include <regex.h>
@@ -12,9 +13,11 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
+#include <set>
 
 #include "bus/bus.hpp"
 #include "bus/wire_check.hpp"
@@ -107,6 +110,7 @@ std::atomic<int> next_id{1};  // subscription ids, unique in the process
 int LcmSocket::subscribe(const std::string& channel, Handler handler) {
   const int id = next_id++;
   subscribers_.push_back(Entry{id, channel, std::move(handler)});
+  refilter();
   return id;
 }
 
@@ -130,6 +134,18 @@ ChannelPattern::ChannelPattern(const std::string& pattern, const std::string& wh
     regfree(const_cast<regex_t*>(static_cast<const regex_t*>(r)));
     delete static_cast<const regex_t*>(r);
   });
+  std::string name;
+  for (size_t i = 0; i < pattern.size(); ++i) {
+    const char c = pattern[i];
+    if (c == '\\' && i + 1 < pattern.size() && !std::isalnum(static_cast<unsigned char>(pattern[i + 1]))) {
+      name += pattern[++i];
+    } else if (std::strchr(".[]()*+?{}|^$\\", c)) {
+      return;
+    } else {
+      name += c;
+    }
+  }
+  literal_ = std::move(name);
 }
 
 bool ChannelPattern::matches(const char* channel) const {
@@ -141,6 +157,7 @@ int LcmSocket::subscribe_pattern(const std::string& pattern, ChannelHandler hand
   const int id = next_id++;
   patterns_.push_back(PatternEntry{id, std::move(compiled), std::move(handler)});
   matched_.clear();
+  refilter();
   return id;
 }
 
@@ -165,6 +182,66 @@ void LcmSocket::unsubscribe(int id) {
   lost_handlers_.erase(std::remove_if(lost_handlers_.begin(), lost_handlers_.end(),
                                       [id](const LostEntry& e) { return e.id == id; }),
                        lost_handlers_.end());
+  refilter();
+}
+
+namespace {
+// A classic BPF program for a UDP socket (offset 0: the UDP header, 8 bytes) that admits a datagram unless it is a
+// whole LCM message ("LC02") on none of `names`; fragments and foreign datagrams go to the program, which counts them.
+std::vector<sock_filter> channel_filter(const std::set<std::string>& names) {
+  constexpr uint32_t kUdpHeader = 8, kAdmit = 0xffffffffu;
+  std::vector<sock_filter> prog;
+  auto stmt = [&](uint16_t code, uint32_t k) { prog.push_back(sock_filter{code, 0, 0, k}); };
+  stmt(BPF_LD | BPF_W | BPF_ABS, kUdpHeader);
+  prog.push_back(sock_filter{BPF_JMP | BPF_JEQ | BPF_K, 1, 0, read_be<uint32_t>(kShort)});
+  stmt(BPF_RET | BPF_K, kAdmit);
+  for (const std::string& name : names) {
+    // The name and its NUL, compared 4, 2 and 1 bytes at a time; a mismatch jumps to the next name's first load.
+    const std::string bytes = name + '\0';
+    std::vector<std::pair<uint16_t, uint32_t>> loads;  // (size, offset)
+    for (size_t at = 0; at < bytes.size();) {
+      const size_t left = bytes.size() - at, size = left >= 4 ? 4 : left >= 2 ? 2 : 1;
+      loads.emplace_back(uint16_t(size), uint32_t(at));
+      at += size;
+    }
+    const size_t block = 2 * loads.size() + 1;
+    for (size_t i = 0; i < loads.size(); ++i) {
+      const auto [size, at] = loads[i];
+      uint32_t value = 0;
+      for (size_t b = 0; b < size; ++b) value = value << 8 | uint8_t(bytes[at + b]);
+      stmt(uint16_t(BPF_LD | BPF_ABS | (size == 4 ? BPF_W : size == 2 ? BPF_H : BPF_B)),
+           kUdpHeader + uint32_t(kShortHeader) + at);
+      const size_t to_next = block - 2 * i - 2;  // from the instruction after this jump to the next name
+      prog.push_back(sock_filter{BPF_JMP | BPF_JEQ | BPF_K, 0, uint8_t(to_next), value});
+    }
+    stmt(BPF_RET | BPF_K, kAdmit);
+  }
+  stmt(BPF_RET | BPF_K, 0);
+  return prog;
+}
+}  // namespace
+
+void LcmSocket::refilter() {
+  std::set<std::string> names;
+  bool every = subscribers_.empty() && patterns_.empty();
+  for (const Entry& e : subscribers_) names.insert(e.channel);
+  for (const PatternEntry& p : patterns_) {
+    if (p.pattern.literal()) names.insert(*p.pattern.literal());
+    else every = true;
+  }
+  // LCM caps a channel name at 63 bytes: a longer one never comes whole, but the jumps must stay within 8 bits.
+  for (const std::string& n : names) every = every || n.size() > 100;
+  std::vector<sock_filter> prog;
+  if (!every) prog = channel_filter(names);
+  const sock_fprog fprog{uint16_t(prog.size()), prog.data()};
+  if (every || prog.size() > BPF_MAXINSNS || setsockopt(fd_, SOL_SOCKET, SO_ATTACH_FILTER, &fprog, sizeof(fprog)) != 0) {
+    // Every datagram is read: the handlers still pick their channels, only the wake-ups stay.
+    const int unused = 0;
+    if (!filter_names_.empty()) setsockopt(fd_, SOL_SOCKET, SO_DETACH_FILTER, &unused, sizeof(unused));
+    filter_names_.clear();
+    return;
+  }
+  filter_names_.assign(names.begin(), names.end());
 }
 
 bool LcmSocket::subscribed(std::string_view channel) {

@@ -3,6 +3,9 @@
 // (bench/README.md, "Below the floor"). The tools and the loops' shared bus are read through it too
 // (HardwareReader::Direct): unlike LCM's receive path, it keeps nothing for good per channel name. The packets are LCM's own (lcm::LCM publishes them), so lcm-spy,
 // lcm-logger and lcm-logplayer see and replay the same messages.
+// While every subscription names its channel (no pattern operator), a kernel socket filter admits only whole messages
+// on those channels (and every fragment, and what is not LCM's): a datagram nobody here reads neither wakes the
+// program nor takes room in its receive buffer, however busy the bus is with other robots and tools.
 // A message LCM sends whole ("LC02") is handed over from the receive buffer; one it split into "LC03" fragments
 // (over 64 kB with Debian's LCM, over 1,400 bytes with some other builds) is put together first, as LCM does: one
 // message in progress per sender, its fragments in the order LCM sends them. What a forged or broken sender can
@@ -19,6 +22,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -43,9 +47,12 @@ class ChannelPattern {
   // Throws BusError naming the pattern and `where` (the URL or file read) when it is not a regular expression.
   ChannelPattern(const std::string& pattern, const std::string& where);
   bool matches(const char* channel) const;
+  // The one channel name the pattern matches when it has no operator (backslash escapes undone), else none.
+  const std::optional<std::string>& literal() const { return literal_; }
 
  private:
   std::shared_ptr<const void> regex_;  // the compiled regex_t
+  std::optional<std::string> literal_;
 };
 
 class LcmSocket {
@@ -92,7 +99,7 @@ class LcmSocket {
   int handle_queued(int max = 1000);
 
   // Waits up to timeout_ms for a message on `channel`, skipping (not handling) every other datagram: its payload,
-  // or nullptr on timeout. For start-up checks and benchmarks, not for a socket with subscribers.
+  // or nullptr on timeout. For start-up checks and benchmarks, not for a socket with subscribers (its filter admits only theirs).
   const uint8_t* wait_for(std::string_view channel, int timeout_ms, int* size = nullptr);
 
   static constexpr uint32_t kMaxMessageBytes = 4u << 20;        // a larger message is refused (counted, told)
@@ -103,7 +110,11 @@ class LcmSocket {
   int64_t too_large() const { return too_large_; }      // fragmented messages refused for their size
   // Bytes held for messages in progress and kept buffers (what fragments cost in memory).
   size_t reassembly_bytes() const;
-  int64_t not_lcm() const { return not_lcm_; }          // datagrams on the port that are not LCM's
+  // Datagrams on the port that are not LCM's (under a filter, a broken whole message naming no channel here is dropped
+  // by the kernel, uncounted).
+  int64_t not_lcm() const { return not_lcm_; }
+  // The channels the kernel's filter admits whole messages on; empty when it admits every datagram.
+  const std::vector<std::string>& filtered_to() const { return filter_names_; }
   size_t matched_channels() const { return matched_.size(); }  // names whose pattern matches are remembered
 
  private:
@@ -114,6 +125,8 @@ class LcmSocket {
   bool parse(int n, const sockaddr_in& from, std::string_view* channel, const uint8_t** payload, int* size);
   bool fragment(int n, const sockaddr_in& from, std::string_view* channel, const uint8_t** payload, int* size);
   bool subscribed(std::string_view channel);
+  // Installs the socket filter for the subscriptions as they are now, or removes it when one is a pattern.
+  void refilter();
   // The pattern subscriptions (indices into patterns_) that `channel` matches, remembered as above.
   const std::vector<size_t>& matching(std::string_view channel);
 
@@ -160,6 +173,7 @@ class LcmSocket {
   std::vector<uint8_t> buf_ = std::vector<uint8_t>(65536);
   Partial partials_[4];
   int64_t reassembled_ = 0, incomplete_ = 0, too_large_ = 0, not_lcm_ = 0;
+  std::vector<std::string> filter_names_;
   int64_t arrived_us_ = -1;  // the kernel's arrival stamp of the datagram receive() read last, -1 without one
 };
 

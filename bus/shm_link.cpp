@@ -30,8 +30,8 @@ constexpr char kMagic[32] = "lcm_control hardware loop shm";
 constexpr uint32_t kVersion = 1;
 constexpr int64_t kStuckUs = 100000;  // a slot or the naming lock held this long by a writer is taken over
 
-long futex(std::atomic<uint32_t>* word, int op, uint32_t value, const timespec* timeout = nullptr) {
-  return syscall(SYS_futex, reinterpret_cast<uint32_t*>(word), op, value, timeout, nullptr, 0);
+long futex(std::atomic<uint32_t>* word, int op, uint32_t value, const timespec* timeout = nullptr, uint32_t bits = 0) {
+  return syscall(SYS_futex, reinterpret_cast<uint32_t*>(word), op, value, timeout, nullptr, bits);
 }
 
 bool alive(int32_t pid) { return pid > 0 && (kill(pid, 0) == 0 || errno == EPERM); }
@@ -424,23 +424,28 @@ int ShmLink::handle_queued(int max) {
 }
 
 bool ShmLink::wait_us(int64_t timeout_us) {
+  if (has_new() || fd_ready()) return true;  // no clock read on the hot path: the message is often there already
+  return wait_until_us(monotonic_us() + std::max<int64_t>(0, timeout_us));
+}
+
+bool ShmLink::wait_until_us(int64_t deadline_us) {
   ReaderPlace& r = seg_->reader[me_];
-  const int64_t deadline = monotonic_us() + std::max<int64_t>(0, timeout_us);
+  deadline_us = std::max<int64_t>(0, deadline_us);
+  const timespec until{time_t(deadline_us / 1000000), long(deadline_us % 1000000) * 1000};  // CLOCK_MONOTONIC
   for (;;) {
     const uint32_t bell = r.doorbell.load();
     if (has_new() || fd_ready()) return true;
-    const int64_t left = deadline - monotonic_us();
-    if (left <= 0) return false;
     r.waiting.store(1);
     if (has_new() || fd_ready()) {
       r.waiting.store(0);
       return true;
     }
-    const timespec ts{time_t(left / 1000000), long(left % 1000000) * 1000};
-    const long rc = futex(&r.doorbell, FUTEX_WAIT, bell, &ts);
+    // An absolute deadline (FUTEX_WAIT_BITSET): the kernel ends a wait whose time has passed, no clock read here.
+    const long rc = futex(&r.doorbell, FUTEX_WAIT_BITSET, bell, &until, FUTEX_BITSET_MATCH_ANY);
     const int err = errno;
     r.waiting.store(0);
-    if (rc != 0 && err == EINTR) return has_new() || fd_ready();  // a signal: the caller looks at its stop flag
+    // The time ran out, or a signal came (the caller looks at its stop flag); EAGAIN: rung before the wait began.
+    if (rc != 0 && err != EAGAIN) return has_new() || fd_ready();
   }
 }
 

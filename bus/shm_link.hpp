@@ -61,6 +61,8 @@ class ShmLink {
   // Waits up to timeout_us for a message on a subscribed channel or a watched file descriptor becoming readable:
   // true unless the time ran out or a signal came. Never longer than timeout_us, so a dead writer cannot hold it.
   bool wait_us(int64_t timeout_us);
+  // The same until monotonic_us() reaches deadline_us.
+  bool wait_until_us(int64_t deadline_us);
 
   // A thread of its own polls `fd` and ends wait_us() when it is readable: fd_ready() says so until fd_drained(),
   // after which it polls again. For the shared bus's socket, so that one wait covers both.

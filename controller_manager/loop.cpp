@@ -74,11 +74,14 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
       if (s->running) s->controller->restart(now_);
   }
   if (sources_) sources_->before_update(now_);
+  int64_t mark = -1;  // one clock read between two updates times both
   for (auto& s : slots_) {
     if (!s->running) continue;
-    const int64_t c0 = monotonic_us();
+    if (mark < 0) mark = monotonic_us();
     s->controller->update(now_, period);
-    s->exec.add(static_cast<double>(monotonic_us() - c0));
+    const int64_t done = monotonic_us();
+    s->exec.add(static_cast<double>(done - mark));
+    mark = done;
   }
   if (pending_) {
     apply_switch();

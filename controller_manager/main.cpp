@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
     while (!stop_requested()) {
       // What is queued, the hardware loop first and at most 1,000 messages each, then the housekeeping: silence
       // is measured after the backlog, so other traffic cannot mask a dead hardware.
-      int64_t wait_us = manager.state_arrivals().sleep_us(monotonic_us(), spin_us, 20000);
+      int64_t wait_us = spin_us > 0 ? manager.state_arrivals().sleep_us(monotonic_us(), spin_us, 20000) : 20000;
       if (services.has_work() || manager.has_work()) wait_us = 0;
       else if (manager.reading_config()) wait_us = std::min<int64_t>(wait_us, 1000);
       if (wait_us == 0) sched_yield();  // spinning: the simulator, woken to its deadline on this CPU, runs first
@@ -121,8 +121,9 @@ int main(int argc, char** argv) {
         continue;
       }
       errors = 0;
-      manager.poll(monotonic_us());
-      services.serve(monotonic_us() + kSliceUs);
+      const int64_t now = monotonic_us();
+      manager.poll(now);
+      services.serve(now + kSliceUs);
     }
     const std::string summary = manager.shutdown();
     services.serve(std::numeric_limits<int64_t>::max());  // what is still queued is refused: shutting down

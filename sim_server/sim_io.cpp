@@ -126,10 +126,9 @@ bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_reque
   auto done = [&] {
     return (until_command && has_pending_ && last_step_ >= answering_step) || (until_request && has_request());
   };
-  for (int late = 0; late < kMaxMessagesPastDeadline;) {
-    const int64_t left = std::max<int64_t>(0, deadline_us - monotonic_us());
-    if (left == 0) ++late;
-    const int ready = bus_.wait_us(left);
+  for (int late = 0, pass = 0; late < kMaxMessagesPastDeadline; ++pass) {
+    if (pass > 0 && monotonic_us() >= deadline_us) ++late;  // the first pass reads no clock: the wait needs none
+    const int ready = bus_.wait_until_us(deadline_us);
     if (ready < 0) return false;
     if (ready == 0) return true;  // the time ran out, or a signal came
     // One message at a time, so that what was sent after the awaited command waits for the next step.

@@ -34,25 +34,28 @@ bool Stepper::run(const std::atomic<bool>& stop) {
 
 bool Stepper::done() const { return opt_.duration_s > 0 && sim_.time() >= opt_.duration_s - 1e-9; }
 
-double Stepper::real_time_factor() const {
-  const int64_t wall = monotonic_us() - start_us_;
+double Stepper::real_time_factor(int64_t now_us) const {
+  const int64_t wall = now_us - start_us_;
   return wall > 0 ? double(sim_.step_count() - start_step_) * period_us_ / double(wall) : 0.0;
 }
 
-int64_t Stepper::step_timed() {
+int64_t Stepper::step_timed(int64_t* end_us) {
   const int64_t t0 = monotonic_us();
   sim_.step();
-  const int64_t us = monotonic_us() - t0;
-  step_exec_.add(double(us));
-  return us;
+  const int64_t t1 = monotonic_us();
+  step_exec_.add(double(t1 - t0));
+  if (end_us) *end_us = t1;
+  return t1 - t0;
 }
 
-void Stepper::publish_timed(int64_t step_us, int64_t late_after_us) {
-  const int64_t t0 = monotonic_us();
-  publish(real_time_factor());
+int64_t Stepper::publish_timed(int64_t step_us, int64_t late_after_us, int64_t start_us) {
+  const int64_t t0 = start_us >= 0 ? start_us : monotonic_us();
+  io_.publish_state(real_time_factor(t0), false);
   const int64_t t1 = monotonic_us();
+  last_publish_us_ = t1;
   publish_exec_.add(double(t1 - t0));
   stats_.add_cycle(t0, step_us + (t1 - t0), late_after_us > 0 && t1 > late_after_us);
+  return t1;
 }
 
 bool Stepper::run_lockstep(const std::atomic<bool>& stop) {
@@ -65,11 +68,12 @@ bool Stepper::run_lockstep(const std::atomic<bool>& stop) {
       if (!wait_paused()) return false;
       continue;
     }
-    int64_t published = monotonic_us();
+    const int64_t waited_from = monotonic_us();
+    int64_t published = waited_from;
     bool said = false;
-    while (!io_.has_command() && !io_.has_request()) {
+    for (bool first = true; !io_.has_command() && !io_.has_request(); first = false) {
       if (stop) return true;
-      const int64_t now = monotonic_us();
+      const int64_t now = first ? waited_from : monotonic_us();
       if (now - published >= timeout_us) {
         publish(real_time_factor());
         published = now;
@@ -88,9 +92,11 @@ bool Stepper::run_lockstep(const std::atomic<bool>& stop) {
     if (!io_.has_command()) continue;  // a request first: it may pause or reset
     if (said) spdlog::info("lockstep: command for step {} arrived; stepping", sim_.step_count());
     io_.take_command();
-    publish_timed(step_timed(), 0);
+    int64_t stepped = 0;
+    const int64_t step_us = step_timed(&stepped);
+    const int64_t published_at = publish_timed(step_us, 0, stepped);
     after_step();
-    tick_statistics(monotonic_us());
+    tick_statistics(published_at);
   }
   return true;
 }

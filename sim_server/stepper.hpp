@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "rt/clock.hpp"
 #include "rt/log.hpp"
 #include "rt/loop_stats.hpp"
 #include "sim_server/sim_io.hpp"
@@ -65,12 +66,14 @@ class Stepper {
   // Real time, Overrun::Skip: the steps due by `now_us` but the last, taken without publishing; how many.
   int64_t skip_to(int64_t now_us);
   bool done() const;
-  double real_time_factor() const;
-  // One physics step, its time counted: how long it took (us).
-  int64_t step_timed();
+  double real_time_factor() const { return real_time_factor(monotonic_us()); }
+  double real_time_factor(int64_t now_us) const;
+  // One physics step, its time counted: how long it took (us); *end_us, when given: the clock after it.
+  int64_t step_timed(int64_t* end_us = nullptr);
   // Publishes the state of the step just taken, counting a cycle of step_us + the publish; late when the publish
-  // ends after late_after_us (0: never).
-  void publish_timed(int64_t step_us, int64_t late_after_us);
+  // ends after late_after_us (0: never). start_us: the clock now if just read (-1: read here). Returns the clock
+  // after the publish. (The lockstep loop reads the clock a few times a step, not a dozen: each read is 40 ns.)
+  int64_t publish_timed(int64_t step_us, int64_t late_after_us, int64_t start_us = -1);
   // Real time: handles messages and the statistics window until until_us (sleeping to --spin-us before it, then
   // polling), or, with answer_to >= 0, until the controller's answer to that step is here (sleeping throughout:
   // spinning for an answer would hold the CPU from a controller manager that shares it); false when LCM fails.

@@ -125,7 +125,9 @@ TEST(LcmSocket, CountsWhatIsNotLcmAndDeliversNoneOfIt) {
   LcmSocket socket(url);
   lcm::LCM lc(url);
   int delivered = 0;
-  socket.subscribe("hardware/state", [&](const lcm::ReceiveBuffer&) { ++delivered; });
+  // A pattern: with exact names only, the kernel's filter drops a whole message that names none of them (these
+  // broken ones too) before it is read or counted.
+  socket.subscribe_pattern("hardware/stat.", [&](const lcm::ReceiveBuffer&, const std::string&) { ++delivered; });
 
   lt::RawSender raw(url);
   const uint8_t garbage[] = "not LCM at all";
@@ -228,6 +230,68 @@ TEST(LcmSocket, ReassemblyIsBoundedAndTellsTheSubscriberWhatWasLost) {
   EXPECT_EQ(lost[17], fmt::format("goal 2400000 incomplete {}", 4000 * 599));
   EXPECT_LE(socket.reassembly_bytes(), LcmSocket::kKeptBytes * 4);
   EXPECT_EQ(delivered, 0);
+}
+
+TEST(LcmSocket, WhileNoSubscriptionIsAPatternTheKernelAdmitsOnlyTheirChannels) {
+  const std::string url = lt::unique_lcm_url();
+  LcmSocket socket(url);
+  lcm::LCM lc(url);
+  std::vector<std::string> got;
+  // Names of 1 to 19 bytes: the filter compares 4, 2 and 1 bytes at a time, the NUL included.
+  const std::vector<std::string> wanted = {"a", "abc", "abcdefg", "robot/joint_states", "sim.x"};
+  for (const std::string name : {"a", "abc", "abcdefg", "robot/joint_states"})
+    socket.subscribe(name, [&got, name](const lcm::ReceiveBuffer&) { got.push_back(name); });
+  const int literal = socket.subscribe_pattern("sim\\.x", [&](const lcm::ReceiveBuffer&, const std::string& ch) {
+    got.push_back(ch);
+  });
+  EXPECT_EQ(socket.filtered_to(), wanted);
+  const uint8_t b[1] = {7};
+  int read = 0;
+  auto settle = [&](size_t delivered) {  // reads until `delivered` and what else arrives in 50 ms
+    const int64_t end = monotonic_us() + 2000000;
+    while (got.size() < delivered && monotonic_us() < end) {
+      pollfd p{socket.fd(), POLLIN, 0};
+      poll(&p, 1, 20);
+      read += socket.handle_queued();
+    }
+    EXPECT_EQ(got.size(), delivered);
+    usleep(50000);
+    read += socket.handle_queued();
+  };
+  auto send_all = [&] {
+    for (const char* name : {"b", "ab", "abd", "abcdefgh", "abcdef", "robot/joint_state", "robot/joint_statesX",
+                             "other/joint_states", "simax", "sim.x", "a", "abc", "abcdefg", "robot/joint_states"})
+      lc.publish(name, b, 1u);
+  };
+  send_all();
+  lt::RawSender raw(url);
+  raw.send(std::vector<uint8_t>{'n', 'o', 't', ' ', 'l', 'c', 'm'});  // not LCM's: admitted, counted
+  raw.send(lt::lcm_fragment(1, 100000, 0, 0, 2, lt::named_payload("elsewhere", 1000)));  // fragments: admitted
+  settle(5);
+  EXPECT_EQ(got, (std::vector<std::string>{"sim.x", "a", "abc", "abcdefg", "robot/joint_states"}));
+  EXPECT_EQ(read, 7) << "the five wanted, the datagram that is not LCM's and the fragment";
+  EXPECT_EQ(socket.not_lcm(), 1);
+
+  // A pattern with an operator: every datagram is read again, until it goes.
+  const int all = socket.subscribe_pattern("robot/.*", [](const lcm::ReceiveBuffer&, const std::string&) {});
+  EXPECT_TRUE(socket.filtered_to().empty());
+  got.clear();
+  read = 0;
+  send_all();
+  settle(5);
+  EXPECT_EQ(read, 14);
+  socket.unsubscribe(all);
+  socket.unsubscribe(literal);
+  EXPECT_EQ(socket.filtered_to(), (std::vector<std::string>{"a", "abc", "abcdefg", "robot/joint_states"}));
+  got.clear();
+  read = 0;
+  send_all();
+  settle(4);
+  EXPECT_EQ(read, 4);
+  EXPECT_EQ(ChannelPattern("sim\\.x", "test").literal(), "sim.x");
+  EXPECT_EQ(ChannelPattern("a/b_c-1", "test").literal(), "a/b_c-1");
+  EXPECT_FALSE(ChannelPattern("a.b", "test").literal());
+  EXPECT_FALSE(ChannelPattern("a\\d", "test").literal()) << "an escaped letter may be an operator";
 }
 
 TEST(LcmSocket, WaitForSkipsOtherChannelsAndTimesOut) {
