@@ -7,21 +7,10 @@
 //   bench_pingpong futex-ping N WARMUP PING_BYTES PONG_BYTES
 //     (the shared-memory floor: a forked echo, a futex word and the bytes copied each way, no library)
 // The ping side prints "min_us p50_us p99_us max_us lost".
-#include <linux/futex.h>
-#include <sys/mman.h>
-#include <sys/syscall.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
-#include <atomic>
-#include <chrono>
-#include <climits>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
-#include <stdexcept>
 #include <string>
-#include <vector>
 
 #include "bench/pingpong.hpp"
 
@@ -46,62 +35,6 @@ int ping_lcm(char** argv, const char* echo) {
   }
   return ping(p, std::atoi(argv[3]), std::atoi(argv[4]));
 }
-
-// The bare futex ping-pong between two processes: the ping copies PING_BYTES into shared memory, bumps the word and
-// wakes; the echo copies them out, PONG_BYTES back, bumps and wakes. What ShmLink's round trip is measured against.
-class FutexPinger {
- public:
-  FutexPinger(int ping_bytes, int pong_bytes) : ping_(size_t(ping_bytes), 1), pong_(size_t(pong_bytes), 2) {
-    map_ = mmap(nullptr, kBytes, PROT_READ | PROT_WRITE, MAP_SHARED | MAP_ANONYMOUS, -1, 0);
-    if (map_ == MAP_FAILED) throw std::runtime_error("mmap failed");
-    word_ = new (map_) std::atomic<uint32_t>(0);
-    data_ = static_cast<uint8_t*>(map_) + 64;
-    child_ = fork();
-    if (child_ == 0) echo();
-  }
-  ~FutexPinger() {
-    word_->store(UINT32_MAX);
-    wake();
-    waitpid(child_, nullptr, 0);
-    munmap(map_, kBytes);
-  }
-  double round_trip_us(int = 1000) {
-    const auto t0 = std::chrono::steady_clock::now();
-    std::memcpy(data_, ping_.data(), ping_.size());
-    const uint32_t sent = seq_ + 1;
-    word_->store(sent);
-    wake();
-    wait_for(sent + 1);
-    std::memcpy(ping_.data(), data_, pong_.size() < ping_.size() ? pong_.size() : ping_.size());
-    seq_ = sent + 1;
-    return std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count();
-  }
-
- private:
-  static constexpr size_t kBytes = 1 << 20;
-  void wake() { syscall(SYS_futex, reinterpret_cast<uint32_t*>(word_), FUTEX_WAKE, INT_MAX, nullptr, nullptr, 0); }
-  void wait_for(uint32_t v) {
-    for (uint32_t w = word_->load(); w != v && w != UINT32_MAX; w = word_->load())
-      syscall(SYS_futex, reinterpret_cast<uint32_t*>(word_), FUTEX_WAIT, w, nullptr, nullptr, 0);
-  }
-  [[noreturn]] void echo() {
-    std::vector<uint8_t> in(ping_.size());
-    for (uint32_t next = 1;; next += 2) {
-      wait_for(next);
-      if (word_->load() == UINT32_MAX) _exit(0);
-      std::memcpy(in.data(), data_, in.size());
-      std::memcpy(data_, pong_.data(), pong_.size());
-      word_->store(next + 1);
-      wake();
-    }
-  }
-  std::vector<uint8_t> ping_, pong_;
-  void* map_ = nullptr;
-  std::atomic<uint32_t>* word_ = nullptr;
-  uint8_t* data_ = nullptr;
-  uint32_t seq_ = 0;
-  pid_t child_ = -1;
-};
 
 }  // namespace
 

@@ -10,6 +10,11 @@
 // Prints one line per model and round, then a sanity line per model:
 //   physics NAME NDOF ROUND BARE_US_PER_STEP FULL_US_PER_STEP
 //   physics-check NAME ok|diverged MAX_ABS_JOINT_POSITION
+// With --futex-loop STATE_BYTES COMMAND_BYTES (one model, run pinned to one CPU), the full variant is instead the
+// bare step followed by a bare futex round trip to a forked echo (bench_pingpong futex-ping's), the bytes copied
+// each way: the lockstep floor over shared memory measured as one loop, so that the caches and TLB the physics
+// loses to the other process at each switch count too:
+//   physics-futex NAME ROUND BARE_US_PER_STEP BARE_PLUS_ROUND_TRIP_US_PER_STEP
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -98,18 +103,27 @@ void step_bare(Case& c) {
   ++c.bare_steps;
 }
 
+bench::FutexPinger* futex_loop = nullptr;  // --futex-loop: the full variant is a bare step and a round trip
+
 double run_block(Case& c, bool full, int64_t steps) {
   const int64_t t0 = now_ns();
-  if (full)
+  if (full && futex_loop) {
+    for (int64_t k = 0; k < steps; ++k) {
+      step_bare(c);
+      futex_loop->round_trip_us();
+    }
+  } else if (full) {
     for (int64_t k = 0; k < steps; ++k) step_full(c);
-  else
+  } else {
     for (int64_t k = 0; k < steps; ++k) step_bare(c);
+  }
   return double(now_ns() - t0) / 1e3 / double(steps);
 }
 
 int usage() {
   std::fprintf(stderr,
-               "usage: bench_physics [--rounds R] [--sub-blocks B] [--block-ms T] [--min-steps S] NAME URDF YAML ...\n");
+               "usage: bench_physics [--rounds R] [--sub-blocks B] [--block-ms T] [--min-steps S] "
+               "[--futex-loop STATE_BYTES COMMAND_BYTES] NAME URDF YAML ...\n");
   return 2;
 }
 
@@ -118,7 +132,9 @@ int usage() {
 int main(int argc, char** argv) {
   int rounds = 9, min_steps = 5, sub_blocks = 8;
   double block_ms = 0.5;
+  int state_bytes = -1, command_bytes = -1;
   std::vector<Case> cases;
+  std::unique_ptr<bench::FutexPinger> pinger;
   try {
     for (int k = 1; k < argc; ++k) {
       const std::string a = argv[k];
@@ -130,6 +146,10 @@ int main(int argc, char** argv) {
         min_steps = std::atoi(argv[++k]);
       else if (a == "--sub-blocks" && k + 1 < argc)
         sub_blocks = std::max(1, std::atoi(argv[++k]));
+      else if (a == "--futex-loop" && k + 2 < argc) {
+        state_bytes = std::atoi(argv[++k]);
+        command_bytes = std::atoi(argv[++k]);
+      }
       else if (a.rfind("--", 0) != 0 && k + 2 < argc) {
         Case c;
         c.name = a;
@@ -139,8 +159,13 @@ int main(int argc, char** argv) {
       } else
         return usage();
     }
-    if (cases.empty() || rounds < 1) return usage();
+    if (cases.empty() || rounds < 1 || (state_bytes >= 0 && (cases.size() != 1 || state_bytes < 1 || command_bytes < 1)))
+      return usage();
     for (Case& c : cases) prepare(c);
+    if (state_bytes > 0) {
+      pinger = std::make_unique<bench::FutexPinger>(state_bytes, command_bytes);
+      futex_loop = pinger.get();
+    }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_physics: %s\n", e.what());
     return 1;
@@ -168,8 +193,11 @@ int main(int argc, char** argv) {
           bare = std::min(bare, run_block(c, false, c.steps_per_block));
         }
       }
-      std::printf("physics %s %zu %d %.4f %.4f\n", c.name.c_str(), c.full->multibody().joints().size(), r, bare,
-                  full);
+      if (futex_loop)
+        std::printf("physics-futex %s %d %.4f %.4f\n", c.name.c_str(), r, bare, full);
+      else
+        std::printf("physics %s %zu %d %.4f %.4f\n", c.name.c_str(), c.full->multibody().joints().size(), r, bare,
+                    full);
       std::fflush(stdout);
     }
   // Sanity: neither variant blew up (a timing of a diverged simulation means nothing).

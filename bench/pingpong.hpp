@@ -1,13 +1,16 @@
-// Round-trip floors for the loop benchmark, shared by bench_pingpong and
-// bench_loop: a raw UDP ping-pong on loopback and a bare LCM ping-pong (raw
-// bytes on PING, answered on PONG), with echo servers that answer with as many
-// bytes as the first 4 bytes of the ping ask for.
+// Round-trip floors for the loop benchmark, shared by bench_pingpong, bench_loop
+// and bench_physics: a raw UDP ping-pong on loopback and a bare LCM ping-pong
+// (raw bytes on PING, answered on PONG), with echo servers that answer with as
+// many bytes as the first 4 bytes of the ping ask for; a bare futex ping-pong.
 #pragma once
 
 #include <lcm/lcm-cpp.hpp>
 
 #include "bus/lcm_socket.hpp"
 
+#include <sys/types.h>
+
+#include <atomic>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -89,6 +92,30 @@ class LcmDirectPinger {
   lcm::LCM lc_;
   LcmSocket reader_;
   std::vector<uint8_t> ping_;
+};
+
+// The bare futex ping-pong between two processes: the ping copies PING_BYTES into shared memory, bumps the word and
+// wakes; the echo (forked here) copies them out, PONG_BYTES back, bumps and wakes. What ShmLink's round trip is
+// measured against.
+class FutexPinger {
+ public:
+  FutexPinger(int ping_bytes, int pong_bytes);
+  ~FutexPinger();
+  FutexPinger(const FutexPinger&) = delete;
+  FutexPinger& operator=(const FutexPinger&) = delete;
+  double round_trip_us(int = 1000);
+
+ private:
+  static constexpr size_t kBytes = 1 << 20;
+  void wake();
+  void wait_for(uint32_t v);
+  [[noreturn]] void echo();
+  std::vector<uint8_t> ping_, pong_;
+  void* map_ = nullptr;
+  std::atomic<uint32_t>* word_ = nullptr;
+  uint8_t* data_ = nullptr;
+  uint32_t seq_ = 0;
+  pid_t child_ = -1;
 };
 
 // Echo servers; they run until killed.

@@ -1,6 +1,6 @@
 """3 and 5. Lockstep throughput as launch runs it (sim_server and controller_manager on one CPU), unpinned,
 through LCM's receive thread and over shared memory, with each process's peak RSS, and the shared-memory floor
-(a bare futex ping-pong between two processes on that CPU)."""
+(a bare futex ping-pong between two processes on that CPU; and the same with a bare Bullet step in one loop)."""
 import os
 
 from .figures import median
@@ -39,6 +39,7 @@ def run(b):
                 "duration": rs[0]["duration"]}
         b.r[name]["memory"] = {"sim_kb": max(x["rss"] for x in runs[(name, True)]), "cm_kb": cm.vm_hwm_kb()}
         b.r[name]["futex"] = futex_floor(b, name, cpus[-1])
+        b.r[name]["futex_loop"] = futex_loop_floor(b, name, cpus[-1])
 
 
 def futex_floor(b, name, cpu):
@@ -53,6 +54,24 @@ def futex_floor(b, name, cpu):
         raise RuntimeError(f"bench_pingpong futex-ping failed ({rc}):\n{p.output()[-2000:]}")
     f = p.output().split()
     return {"min": float(f[0]), "p50": float(f[1]), "p99": float(f[2])}
+
+
+def futex_loop_floor(b, name, cpu):
+    """The same floor as one loop on `cpu`: a bare Bullet step of the model, then a bare futex round trip to a forked
+    echo (bench_physics --futex-loop), so that what the physics loses to the other process at each switch (its caches,
+    its TLB) counts, as it does in the lockstep loop."""
+    sizes = b.r.get(name, {}).get("rtt", {}).get("sizes") or (128, 64)
+    urdf, config, _ = b.models[name]
+    argv = [b.exe("bench_physics")]
+    argv += ["--rounds", "1", "--sub-blocks", "2", "--block-ms", "0.2", "--min-steps", "2"] if b.smoke else \
+        ["--rounds", "11", "--sub-blocks", "8", "--block-ms", "2"]
+    p = Proc(argv + ["--futex-loop", str(sizes[0]), str(sizes[1]), name, urdf, config], f"futex-loop[{name}]",
+             cpus={cpu})
+    rc = p.wait(60 if b.smoke else 240)
+    if rc != 0:
+        raise RuntimeError(f"bench_physics --futex-loop failed ({rc}):\n{p.output()[-2000:]}")
+    rounds = [line.split() for line in p.output().splitlines() if line.startswith("physics-futex ")]
+    return {"bare": median([float(f[3]) for f in rounds]), "loop": median([float(f[4]) for f in rounds])}
 
 
 def lockstep_run(b, name, duration, cpu, lcm_reader=False, shm=False):

@@ -159,6 +159,15 @@ def table(b):
             <= 1.3 * (r[n]["futex"]["p50"] + r[n]["physics"]["bare"])) for n in floor_ok))
     row("3. floor: bare futex ping-pong min / p50 / p99, µs", lambda d: "{} / {} / {}".format(
         *(fmt(d["futex"][k]) for k in ("min", "p50", "p99"))))
+
+    def shm_loop_floor(d):
+        us = d["lockstep_shm"]["wall"] / (d["lockstep_shm"]["duration"] * 1000) * 1e6
+        f = d["futex_loop"]
+        return f"{fmt(us)} / {fmt(f['loop'])} = **{us / f['loop']:.2f}** (bare step alone there {fmt(f['bare'])})"
+    if any("futex_loop" in r[n] and "lockstep_shm" in r[n] for n in r):
+        row("3. over shared memory: µs per step / the same floor as one loop on that CPU (a bare Bullet step, then the "
+            "bare futex round trip to a forked echo: `bench_physics --futex-loop`; the physics pays for the switches "
+            "in caches and TLB as in the loop) = ratio", shm_loop_floor)
     row("3. lockstep real-time factor, not pinned (launch's `cpu: none`; one run)",
         lambda d: "{:.1f}x".format(d["lockstep_unpinned"]["rtf"]))
     for key, label, how in (("realtime", "4.", ""),
