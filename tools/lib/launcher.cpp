@@ -49,7 +49,12 @@ class ReadinessProbe {
     r.client = "launch";
     bus_.publish(channels::kCmRequest, r);
   }
-  bool hardware_seen() const { return state_seen_; }
+  bool hardware_seen() {
+    // A state in shared memory makes no descriptor readable (and the bus's socket admits only the channels read
+    // here): look at each pump until one is seen.
+    if (!state_seen_ && bus_.hardware_shm()) handle();
+    return state_seen_;
+  }
   bool manager_answered() const { return cm_answered_; }
   const std::string& manager_message() const { return cm_message_; }  // its answer to LIST
 
