@@ -120,6 +120,17 @@ void Bus::mirror_hardware(double hz) {
   if (shm_) shm_->mirror_to(lcm_.get(), hz);
 }
 
+std::string Bus::hardware_skipped_note() {
+  const int64_t skipped = hardware_skipped();
+  if (skipped == skipped_noted_) return "";
+  const int64_t now = skipped - skipped_noted_;
+  skipped_noted_ = skipped;
+  return fmt::format("skipped {} message(s) in {} whose size is past its {} MiB slot ({} so far): a program other "
+                     "than sim_server and controller_manager writes that file; stop it, or give this robot another "
+                     "--hardware-url shm:NAME",
+                     now, shm_->path(), ShmLink::kSlotBytes >> 20, skipped);
+}
+
 int Bus::subscribe(const std::string& pattern, ChannelHandler handler, On on, int queue) {
   static std::atomic<int> next_id{1};
   auto s = std::make_unique<Subscription>();

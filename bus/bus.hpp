@@ -110,6 +110,11 @@ class Bus {
   // Shared memory: what is published on the hardware loop is also sent on the shared bus, at most `hz` times a
   // second per channel (0: not at all, the default), for the tools that listen there.
   void mirror_hardware(double hz);
+  // Messages on the hardware loop skipped before any handler saw them: over shared memory, a slot whose size word is
+  // past the slot (ShmLink::malformed()); 0 on LCM. Counted with the programs' dropped messages.
+  int64_t hardware_skipped() const { return shm_ ? shm_->malformed() : 0; }
+  // One line naming the segment and what to do when hardware_skipped() grew since the last call, else "".
+  std::string hardware_skipped_note();
   // The file descriptors to wait on: the shared bus's, then the hardware loop's when it has a URL of its own (on
   // shared memory, the shared bus's only: wait_us() waits on both).
   std::vector<int> fds();
@@ -157,6 +162,7 @@ class Bus {
     void on(const lcm::ReceiveBuffer* rb, const std::string& channel) { handler(*rb, channel); }
   };
   std::vector<std::unique_ptr<Subscription>> subscriptions_;
+  int64_t skipped_noted_ = 0;
 };
 
 namespace detail {

@@ -569,7 +569,8 @@ loop_stats_t ControllerManager::statistics() {
   m.utime = wall_us();
   m.process = "controller_manager";
   loop_.stats().fill_and_reset(m);
-  int64_t dropped = dropped_;
+  int64_t dropped = dropped_ + bus_.hardware_skipped();
+  if (const std::string note = bus_.hardware_skipped_note(); !note.empty()) hardware_log_.warn(note);
   for (const auto& s : loop_.slots()) {
     m.item.push_back(s->name);
     m.item_exec_mean_us.push_back(s->exec.mean_us());

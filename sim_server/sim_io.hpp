@@ -78,6 +78,7 @@ class SimIo {
   int64_t last_command_us() const { return last_command_us_; }
 
   int64_t dropped() const { return dropped_; }  // malformed, NaN, wrong size or session
+  Bus& bus() { return bus_; }
   int64_t rejected_modes() const { return rejected_modes_; }  // actuator commands in a mode not offered (held)
   int64_t stale() const { return stale_; }      // well-formed but for another step
   int64_t foreign_states() const { return foreign_states_; }  // hardware/state of another simulator on our channel

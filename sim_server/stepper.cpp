@@ -28,7 +28,7 @@ Stepper::Stepper(Simulation& sim, SimIo& io, const StepperOptions& options)
 bool Stepper::run(const std::atomic<bool>& stop) {
   start_us_ = monotonic_us();
   start_step_ = sim_.step_count();
-  w_ = Window{start_us_, start_step_, io_.dropped()};
+  w_ = Window{start_us_, start_step_, io_.dropped() + io_.bus().hardware_skipped()};
   return opt_.lockstep ? run_lockstep(stop) : run_real_time(stop);
 }
 
@@ -332,7 +332,8 @@ void Stepper::tick_statistics(int64_t now) {
   loop_stats_t s{};
   s.utime = sim_.time_us();
   s.process = "sim_server";
-  const int64_t dropped = io_.dropped();
+  const int64_t dropped = io_.dropped() + io_.bus().hardware_skipped();
+  if (const std::string note = io_.bus().hardware_skipped_note(); !note.empty()) spdlog::warn("{}", note);
   stats_.add_dropped(dropped - w_.dropped_before);
   stats_.set_real_time_factor(double(sim_.step_count() - w_.start_step) * period_us_ / double(now - w_.start_us));
   stats_.fill_and_reset(s);
