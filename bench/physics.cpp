@@ -47,6 +47,7 @@ struct Case {
   std::vector<BareJoint> bare_joints;
   int64_t bare_steps = 0;
   int64_t steps_per_block = 1;
+  bench::FutexPinger* futex_loop = nullptr;  // --futex-loop: the full variant is a bare step and a round trip
 };
 
 // Both variants start away from every limit (turret_bot's slider rests on its lower limit) and follow the same
@@ -103,14 +104,12 @@ void step_bare(Case& c) {
   ++c.bare_steps;
 }
 
-bench::FutexPinger* futex_loop = nullptr;  // --futex-loop: the full variant is a bare step and a round trip
-
 double run_block(Case& c, bool full, int64_t steps) {
   const int64_t t0 = now_ns();
-  if (full && futex_loop) {
+  if (full && c.futex_loop) {
     for (int64_t k = 0; k < steps; ++k) {
       step_bare(c);
-      futex_loop->round_trip_us();
+      c.futex_loop->round_trip_us();
     }
   } else if (full) {
     for (int64_t k = 0; k < steps; ++k) step_full(c);
@@ -164,7 +163,7 @@ int main(int argc, char** argv) {
     for (Case& c : cases) prepare(c);
     if (state_bytes > 0) {
       pinger = std::make_unique<bench::FutexPinger>(state_bytes, command_bytes);
-      futex_loop = pinger.get();
+      cases.front().futex_loop = pinger.get();
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bench_physics: %s\n", e.what());
@@ -193,7 +192,7 @@ int main(int argc, char** argv) {
           bare = std::min(bare, run_block(c, false, c.steps_per_block));
         }
       }
-      if (futex_loop)
+      if (c.futex_loop)
         std::printf("physics-futex %s %d %.4f %.4f\n", c.name.c_str(), r, bare, full);
       else
         std::printf("physics %s %zu %d %.4f %.4f\n", c.name.c_str(), c.full->multibody().joints().size(), r, bare,

@@ -89,6 +89,7 @@ int main(int argc, char** argv) {
     // Between two cycles, a request's work (Services) and the destruction of unloaded controllers (poll) take at
     // most this long each before the next hardware state is looked for.
     constexpr int64_t kSliceUs = 250;
+    constexpr int64_t kLongestWaitUs = 20000;  // housekeeping (silence, statistics) runs at least this often
     cm::ManagerOptions options;
     options.silence_us = static_cast<int64_t>(silence_s * 1e6);
     options.slice_us = kSliceUs;
@@ -112,7 +113,9 @@ int main(int argc, char** argv) {
     while (!stop_requested()) {
       // What is queued, the hardware loop first and at most 1,000 messages each, then the housekeeping: silence
       // is measured after the backlog, so other traffic cannot mask a dead hardware.
-      int64_t wait_us = spin_us > 0 ? manager.state_arrivals().sleep_us(monotonic_us(), spin_us, 20000) : 20000;
+      // (Without --spin-us there is no window to wake for: no clock read.)
+      int64_t wait_us =
+          spin_us > 0 ? manager.state_arrivals().sleep_us(monotonic_us(), spin_us, kLongestWaitUs) : kLongestWaitUs;
       if (services.has_work() || manager.has_work()) wait_us = 0;
       else if (manager.reading_config()) wait_us = std::min<int64_t>(wait_us, 1000);
       if (wait_us == 0) sched_yield();  // spinning: the simulator, woken to its deadline on this CPU, runs first

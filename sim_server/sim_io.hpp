@@ -77,7 +77,8 @@ class SimIo {
   // monotonic_us() when the newest command was accepted, -1 before the first.
   int64_t last_command_us() const { return last_command_us_; }
 
-  int64_t dropped() const { return dropped_; }  // malformed, NaN, wrong size or session
+  // Malformed, NaN, wrong size or session, and what the hardware loop skipped before decoding (Bus::hardware_skipped).
+  int64_t dropped() const { return dropped_ + bus_.hardware_skipped(); }
   Bus& bus() { return bus_; }
   int64_t rejected_modes() const { return rejected_modes_; }  // actuator commands in a mode not offered (held)
   int64_t stale() const { return stale_; }      // well-formed but for another step

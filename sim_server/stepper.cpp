@@ -28,7 +28,7 @@ Stepper::Stepper(Simulation& sim, SimIo& io, const StepperOptions& options)
 bool Stepper::run(const std::atomic<bool>& stop) {
   start_us_ = monotonic_us();
   start_step_ = sim_.step_count();
-  w_ = Window{start_us_, start_step_, io_.dropped() + io_.bus().hardware_skipped()};
+  w_ = Window{start_us_, start_step_, io_.dropped()};
   return opt_.lockstep ? run_lockstep(stop) : run_real_time(stop);
 }
 
@@ -50,9 +50,7 @@ int64_t Stepper::step_timed(int64_t* end_us) {
 
 int64_t Stepper::publish_timed(int64_t step_us, int64_t late_after_us, int64_t start_us) {
   const int64_t t0 = start_us >= 0 ? start_us : monotonic_us();
-  io_.publish_state(real_time_factor(t0), false);
-  const int64_t t1 = monotonic_us();
-  last_publish_us_ = t1;
+  const int64_t t1 = publish(real_time_factor(t0));
   publish_exec_.add(double(t1 - t0));
   stats_.add_cycle(t0, step_us + (t1 - t0), late_after_us > 0 && t1 > late_after_us);
   return t1;
@@ -202,9 +200,10 @@ void Stepper::rebase(int64_t now) {
   base_step_ = sim_.step_count();
 }
 
-void Stepper::publish(double real_time_factor, bool clock_again) {
+int64_t Stepper::publish(double real_time_factor, bool clock_again) {
   io_.publish_state(real_time_factor, clock_again);
   last_publish_us_ = monotonic_us();
+  return last_publish_us_;
 }
 
 bool Stepper::wait_paused() {
@@ -332,7 +331,7 @@ void Stepper::tick_statistics(int64_t now) {
   loop_stats_t s{};
   s.utime = sim_.time_us();
   s.process = "sim_server";
-  const int64_t dropped = io_.dropped() + io_.bus().hardware_skipped();
+  const int64_t dropped = io_.dropped();
   if (const std::string note = io_.bus().hardware_skipped_note(); !note.empty()) spdlog::warn("{}", note);
   stats_.add_dropped(dropped - w_.dropped_before);
   stats_.set_real_time_factor(double(sim_.step_count() - w_.start_step) * period_us_ / double(now - w_.start_us));

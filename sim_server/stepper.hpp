@@ -55,7 +55,8 @@ class Stepper {
   // Paused with no steps to take: the state is republished, requests are served.
   bool holding() const { return paused_ && steps_left_ == 0; }
   bool wait_paused();
-  void publish(double real_time_factor, bool clock_again = false);
+  // Publishes the state (and the clock when due or clock_again): the clock after it, kept as the last publish.
+  int64_t publish(double real_time_factor, bool clock_again = false);
   void serve_requests();
   void serve(const sim_request_t& req);
   sim_response_t response_to(const sim_request_t& req, bool ok, std::string message) const;
