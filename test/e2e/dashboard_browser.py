@@ -406,12 +406,33 @@ def tall_arm(wd, a, url, ns, page, chromium, work):
         assert "WebGL" in text and not plain.js("return !!document.querySelector('#view canvas')"), text
         wait_for("the controllers table without WebGL", lambda: len(plain.js(
             "return [...document.querySelectorAll('#controllers tbody tr')]")) == 3, 20)
-        # A page opened after the commands starts its sliders at the controllers' set points (<name>/state).
-        starts = wait_for("the sliders at the set points turret-cmd gave", lambda: (lambda v: v == ["0.500", "-0.300"]
-                          and v)(plain.js("return ['joint1', 'joint2'].map(j => document.getElementById("
-                                          "`slider-${j}_position_controller-${j}`)?.parentElement.querySelector("
-                                          "'output').textContent)")), 20)
-        print("a new page's sliders start at", starts)
+        # A page opened after the commands starts its sliders at the controllers' set points (<name>/state):
+        # those turret-cmd gave, unless a stall of the loaded machine made controller_manager restart the
+        # controllers from the current state (its log says so); then at the set points they report now.
+        def sliders():
+            return plain.js("return ['joint1', 'joint2'].map(j => document.getElementById("
+                            "`slider-${j}_position_controller-${j}`)?.parentElement.querySelector('output').textContent)")
+
+        def set_points():
+            if "running controllers restart from the current state" not in open(os.path.join(work, "launch.log")).read():
+                return ["0.500", "-0.300"]
+            echo = [subprocess.run([os.path.join(a.bin_dir, "bus"), "echo", f"joint{k}_position_controller/state",
+                                    "--field", "set_point", "--count", "1", "--lcm-url", url, *ns],
+                                   capture_output=True, text=True, timeout=10).stdout for k in (1, 2)]
+            return [f"{float(e.split()[0]):.3f}" if e.split() else None for e in echo]
+
+        seen = {}
+
+        def at_set_points():
+            seen["new page"], seen["set points"] = v, expected = sliders(), set_points()
+            return v == expected and v
+
+        try:
+            starts = wait_for("the sliders at the controllers' set points", at_set_points, 20)
+        except AssertionError as e:
+            raise AssertionError(f"{e}; {seen}") from None
+        print("a new page's sliders start at", starts,
+              "(the controllers restarted after a stall)" if starts != ["0.500", "-0.300"] else "(turret-cmd's)")
         assert plain.js("return document.getElementById('view-fit').hidden"), "a fit button without a 3D view"
     finally:
         plain.quit()

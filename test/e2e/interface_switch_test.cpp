@@ -114,6 +114,9 @@ TEST(InterfaceSwitch, MockHardwareInLockstepFollowsCommandsExactlyWithTheMimicJo
   ASSERT_EQ(to.wait(20), 0) << to.output();
   ASSERT_TRUE(pump_until(lc, [&] { return hw.last.position[1] == -0.4 && joint_state(js.last, "j2") == -0.4; }, 10))
       << hw.last.position[1];
+  // The step that reached the command carries the finite difference (-200 rad/s); the next stands still.
+  const int64_t reached_us = hw.last.utime;
+  ASSERT_TRUE(pump_until(lc, [&] { return hw.last.utime > reached_us; }, 10));
   EXPECT_EQ(hw.last.position[0], 0.3);  // exactly: no physics in between
   EXPECT_EQ(hw.last.velocity[0], 0.0);  // calculate_dynamics: the finite difference, 0 once it stands
   EXPECT_EQ(hw.last.mode[0], hardware_command_t::MODE_POSITION);
