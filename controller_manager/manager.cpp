@@ -496,13 +496,19 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
   const int64_t now = monotonic_us();
   if (hw_.bound() && st.session != hw_.session() && loop_.has_state() && !silent_ &&
       now - last_state_us_ < options_.silence_us) {
-    // A second session while the one we follow is alive: two simulators on one namespace. Keep following the first.
+    // A second session while the one we follow counts as alive: kept until that one speaks again (two simulators on
+    // one namespace: keep following the first) or falls silent (it had ended: a sweep; poll() answers this one).
     ++dropped_;  // counted in controller_manager/statistics
+    waiting_ = st;
+    has_waiting_ = true;
+    return;
+  }
+  if (has_waiting_ && st.session == hw_.session()) {
+    has_waiting_ = false;
     hardware_log_.warn(fmt::format("two hardware sessions publish {}: following {:x}, ignoring {:x} while the first "
                                    "keeps publishing. Two sim_servers on one namespace? Stop one, or give each robot "
                                    "its own --namespace",
-                                   bus_.channel(channels::kHardwareState), hw_.session(), st.session));
-    return;
+                                   bus_.channel(channels::kHardwareState), hw_.session(), waiting_.session));
   }
   last_state_us_ = now;
   if (!hw_.bound() || st.session != hw_.session() || st.num_actuators != command_.num_actuators) {
@@ -547,6 +553,12 @@ void ControllerManager::poll(int64_t now) {
     silent_ = true;
     spdlog::warn("no hardware/state for {} ms (last step {}): controllers are not updated until it resumes",
                  (now - last_state_us_) / 1000, loop_.step());
+    if (has_waiting_) {
+      spdlog::info("answering hardware session {:x}, which began before {:x} counted as silent", waiting_.session,
+                   hw_.session());
+      on_hardware_state(waiting_);
+    }
+    has_waiting_ = false;
   }
   if (pending_done_ && !ticking()) {
     loop_.apply_now();

@@ -180,6 +180,11 @@ class ControllerManager {
   int64_t last_state_us_ = 0, last_stats_us_ = 0, bad_session_ = 0, dropped_ = 0, bad_state_logged_ = 0,
           reported_dropped_ = 0, reported_unpublished_ = 0;
   bool silent_ = false;
+  // The newest state of a session ignored while the followed one counted as alive: reported as a second simulator
+  // if the followed one speaks again, else answered as soon as it falls silent, so a simulator started right after
+  // another ended (a sweep) does not wait until it republishes (lockstep: every --lockstep-timeout, 1 s).
+  hardware_state_t waiting_{};
+  bool has_waiting_ = false;
 };
 
 }  // namespace lcm_control::cm

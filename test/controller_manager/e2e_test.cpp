@@ -554,6 +554,40 @@ TEST(ControllerManagerE2E, SilenceIsReportedAndANewSessionRestartsFromTheCurrent
   EXPECT_DOUBLE_EQ(hw.actuator("slide_motor").position, 0.8);
 }
 
+// A sweep against one controller manager: a simulator started right after another ended sends its first state
+// while the ended one still counts as alive. It is answered as soon as that one falls silent (the silence timeout),
+// not when it next republishes (here after 10 s), its controllers start from its own state, and no second
+// simulator is reported.
+TEST(ControllerManagerE2E, ASessionStartedRightAfterAnotherEndedIsAnsweredAtTheSilenceTimeout) {
+  Session s(data("test_bot.yaml"), {"--silence-timeout", "0.5"});
+  ASSERT_TRUE(s.ready) << s.proc.output();
+  {
+    FakeHardware first(s.url, actuators_for(test_bot()));
+    first.start();
+    ASSERT_TRUE(first.run_steps(10, 10));
+    s.load_and_start({"slide_position"});
+    s.command("slide_position", 0.6);
+    ASSERT_TRUE(first.run_steps(100, 10));
+    EXPECT_DOUBLE_EQ(first.actuator("slide_motor").position, 0.6);
+  }
+  FakeHardwareOptions slow;
+  slow.republish_s = 10;
+  auto actuators = actuators_for(test_bot());
+  find_actuator(actuators, "slide_motor").position = 0.2;
+  FakeHardware second(s.url, actuators, slow);
+  const auto started = std::chrono::steady_clock::now();
+  second.start();
+  ASSERT_TRUE(second.run_steps(100, 5)) << s.proc.output();
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  EXPECT_LT(waited, 3.0) << s.proc.output();
+  EXPECT_TRUE(s.proc.wait_for_output("answering hardware session", 3)) << s.proc.output();
+  // Not two simulators at once: the first never spoke again.
+  EXPECT_FALSE(has(s.proc.output(), "two hardware sessions")) << s.proc.output();
+  EXPECT_TRUE(s.proc.wait_for_output("restart from the current state", 3)) << s.proc.output();
+  EXPECT_DOUBLE_EQ(second.actuator("slide_motor").position, 0.2);
+  std::printf("the second session stepped 100 times %.2f s after it started (silence timeout 0.5 s)\n", waited);
+}
+
 // Other traffic must not hide a dead simulator: with a controller's commands arriving at 60 Hz (a turret-cmd),
 // silence is still measured from the last hardware/state (issue 18: only a bus quiet for 20 ms was checked).
 TEST(ControllerManagerE2E, SilenceIsReportedWhileOtherMessagesKeepComing) {
