@@ -121,14 +121,22 @@ void Bus::mirror_hardware(double hz) {
 }
 
 std::string Bus::hardware_skipped_note() {
-  const int64_t skipped = hardware_skipped();
-  if (skipped == skipped_noted_) return "";
-  const int64_t now = skipped - skipped_noted_;
-  skipped_noted_ = skipped;
-  return fmt::format("skipped {} message(s) in {} whose size is past its {} MiB slot ({} so far): a program other "
-                     "than sim_server and controller_manager writes that file; stop it, or give this robot another "
-                     "--hardware-url shm:NAME",
-                     now, shm_->path(), ShmLink::kSlotBytes >> 20, skipped);
+  std::string note;
+  if (const int64_t skipped = hardware_skipped(); skipped != skipped_noted_) {
+    note = fmt::format("skipped {} message(s) in {} whose size is past its {} MiB slot ({} so far): a program other "
+                       "than sim_server and controller_manager writes that file; stop it, or give this robot another "
+                       "--hardware-url shm:NAME",
+                       skipped - skipped_noted_, shm_->path(), ShmLink::kSlotBytes >> 20, skipped);
+    skipped_noted_ = skipped;
+  }
+  if (const int64_t refused = hardware_refused(); refused != refused_noted_) {
+    note += fmt::format("{}could not send {} message(s) through {}: over its {} MiB slot ({} so far); this robot's "
+                        "hardware loop is too large for shared memory, give it an LCM --hardware-url",
+                        note.empty() ? "" : "; ", refused - refused_noted_, shm_->path(), ShmLink::kSlotBytes >> 20,
+                        refused);
+    refused_noted_ = refused;
+  }
+  return note;
 }
 
 int Bus::subscribe(const std::string& pattern, ChannelHandler handler, On on, int queue) {

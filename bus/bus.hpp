@@ -113,7 +113,11 @@ class Bus {
   // Messages on the hardware loop skipped before any handler saw them: over shared memory, a slot whose size word is
   // past the slot (ShmLink::malformed()); 0 on LCM. Counted with the programs' dropped messages.
   int64_t hardware_skipped() const { return shm_ ? shm_->malformed() : 0; }
-  // One line naming the segment and what to do when hardware_skipped() grew since the last call, else "".
+  // Messages this process could not put on the hardware loop's shared memory: over its 1 MiB slot
+  // (ShmLink::too_large()); 0 on LCM.
+  int64_t hardware_refused() const { return shm_ ? shm_->too_large() : 0; }
+  // A line naming the segment and what to do for each of hardware_skipped() and hardware_refused() that grew since
+  // the last call, else "".
   std::string hardware_skipped_note();
   // The file descriptors to wait on: the shared bus's, then the hardware loop's when it has a URL of its own (on
   // shared memory, the shared bus's only: wait_us() waits on both).
@@ -162,7 +166,7 @@ class Bus {
     void on(const lcm::ReceiveBuffer* rb, const std::string& channel) { handler(*rb, channel); }
   };
   std::vector<std::unique_ptr<Subscription>> subscriptions_;
-  int64_t skipped_noted_ = 0;
+  int64_t skipped_noted_ = 0, refused_noted_ = 0;
 };
 
 namespace detail {

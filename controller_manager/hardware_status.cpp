@@ -25,11 +25,12 @@ void HardwareStatus::close_window(int64_t now) {
   in_window_ = 0;
 }
 
-std::string HardwareStatus::describe(int64_t now, int64_t silence_us, const std::string& channel) const {
+std::string HardwareStatus::describe(int64_t now, int64_t silence_us, const std::string& channel,
+                                     const std::string& transport) const {
   if (!any_)
     return fmt::format("no hardware state received on '{}': is sim_server (or the robot's driver) running with this "
-                       "namespace and LCM URL? Controllers are not updated until it publishes",
-                       channel);
+                       "namespace and {}? Controllers are not updated until it publishes",
+                       channel, transport);
   const double age_s = static_cast<double>(now - last_us_) / 1e6;
   std::string rate = period_us_ > 0 ? fmt::format("{:g} Hz", 1e6 / period_us_) : std::string("period unknown");
   if (measured_hz_ >= 0) rate += fmt::format(" ({:.1f} measured)", measured_hz_);

@@ -20,7 +20,8 @@ class HardwareStatus {
   // One line, e.g. "session 3fa9c2d1, real time, 1000 Hz (999.7 measured), step 5123, last state 0.001 s ago";
   // after silence_us without a state it says the loop is silent; states that repeat one step for longer than that
   // say the hardware is paused or waiting; with none, where it was expected.
-  std::string describe(int64_t monotonic_us, int64_t silence_us, const std::string& state_channel) const;
+  std::string describe(int64_t monotonic_us, int64_t silence_us, const std::string& state_channel,
+                       const std::string& transport = "LCM URL") const;
 
  private:
   bool any_ = false, lockstep_ = false, e_stop_ = false;

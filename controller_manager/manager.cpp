@@ -489,7 +489,8 @@ std::vector<joint_interfaces_t> ControllerManager::interfaces() const {
 }
 
 std::string ControllerManager::hardware_summary(int64_t now) const {
-  return hw_status_.describe(now, options_.silence_us, bus_.channel(channels::kHardwareState));
+  return hw_status_.describe(now, options_.silence_us, bus_.channel(channels::kHardwareState),
+                             bus_.hardware_apart() ? "--hardware-url " + bus_.hardware_url() : "LCM URL");
 }
 
 void ControllerManager::on_hardware_state(const hardware_state_t& st) {
@@ -592,7 +593,7 @@ loop_stats_t ControllerManager::statistics() {
   }
   m.dropped = std::max<int64_t>(0, dropped - reported_dropped_);
   reported_dropped_ = dropped;
-  const int64_t unpublished = outbox_.dropped();
+  const int64_t unpublished = outbox_.dropped() + bus_.hardware_refused();
   m.unpublished = unpublished - reported_unpublished_;
   reported_unpublished_ = unpublished;
   m.num_items = static_cast<int32_t>(m.item.size());

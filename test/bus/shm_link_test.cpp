@@ -336,5 +336,31 @@ TEST(ShmLink, TheBusCarriesTheHardwareLoopThereWakesForTheSharedBusAndMirrors) {
   }
 }
 
+// A state too large for the 1 MiB slot is not sent; the bus counts it and says once what to do, naming the file.
+TEST(ShmLink, AMessageTooLargeForTheSlotIsCountedAndNamedOnce) {
+  const std::string url = testing::unique_lcm_url(), hw = "shm:" + unique_name();
+  Bus sim(url, "r", hw, HardwareReader::Direct);
+  Endpoints sim_hw(sim, Endpoints::On::Hardware);
+  auto pub = sim_hw.publisher<hardware_state_t>("r/hardware/state");
+  hardware_state_t st{};
+  st.num_actuators = 50000;  // 50,000 names of 16 characters and their values: about 1.9 MB
+  st.name.assign(50000, "actuator_0000000");
+  st.mode.assign(50000, 0);
+  st.position.assign(50000, 0.0);
+  st.velocity.assign(50000, 0.0);
+  st.effort.assign(50000, 0.0);
+  EXPECT_EQ(pub.publish(st), -1);
+  EXPECT_EQ(pub.publish(st), -1);
+  EXPECT_EQ(sim.hardware_refused(), 2);
+  const std::string note = sim.hardware_skipped_note();
+  EXPECT_NE(note.find("could not send 2 message(s) through " + sim.hardware_shm()->path()), std::string::npos)
+      << note;
+  EXPECT_NE(note.find("give it an LCM --hardware-url"), std::string::npos) << note;
+  EXPECT_EQ(sim.hardware_skipped_note(), "") << "said once";
+  // On LCM nothing is refused for its size here.
+  Bus plain(url, "r", "", HardwareReader::Direct);
+  EXPECT_EQ(plain.hardware_refused(), 0);
+}
+
 }  // namespace
 }  // namespace lcm_control

@@ -23,6 +23,10 @@ TEST(HardwareStatus, NoneYetSaysWhereItWasExpected) {
   EXPECT_EQ(h.describe(5'000'000, 250'000, "r1/hardware/state"),
             "no hardware state received on 'r1/hardware/state': is sim_server (or the robot's driver) running with "
             "this namespace and LCM URL? Controllers are not updated until it publishes");
+  // A hardware loop of its own (shared memory, or another LCM URL): the flag both programs must agree on.
+  EXPECT_EQ(h.describe(5'000'000, 250'000, "hardware/state", "--hardware-url shm:r1"),
+            "no hardware state received on 'hardware/state': is sim_server (or the robot's driver) running with "
+            "this namespace and --hardware-url shm:r1? Controllers are not updated until it publishes");
 }
 
 TEST(HardwareStatus, SessionModeRatesAndAge) {
