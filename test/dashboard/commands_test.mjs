@@ -9,7 +9,8 @@ import { readFileSync } from 'node:fs';
 const moduleUrl = (text) => `data:text/javascript,${encodeURIComponent(text)}`;
 const dom = moduleUrl(readFileSync(process.argv[3], 'utf8'));
 const src = readFileSync(process.argv[2], 'utf8').replace("'./dom.js'", `"${dom}"`);
-const { commandKind, commandable, gripperGoal, commandedValues, setPointValues } = await import(moduleUrl(src));
+const { commandKind, commandable, gripperGoal, commandedValues, setPointValues, setPointShown, kHandsOffMs } =
+  await import(moduleUrl(src));
 
 const controller = (name, type, command_type, command_width, command_quantity, joints, state = 'running') =>
   ({ name, type, state, interface: '', joints, command_type, command_channel: command_type ? 'command' : '',
@@ -60,4 +61,10 @@ assert.equal(setPointValues(listed[3], 'controller_state_t', { ...state, joint: 
 assert.equal(setPointValues(listed[3], 'controller_state_t', { ...state, set_point: null }), null);
 assert.equal(setPointValues(arm, 'controller_state_t', { ...state, joint: 'a' }), null);
 assert.equal(setPointValues(listed[3], 'float64_t', { data: 0.7 }), null);
+// A set point moves the sliders before any command, and after one once the controller's state has caught up with it
+// (kHandsOffMs): a set point that changes without a command (controllers restarted after a silent hardware) shows.
+assert.equal(setPointShown(-Infinity, -Infinity, 1000), true);
+assert.equal(setPointShown(-Infinity, 1000, 1000 + kHandsOffMs - 1), false);
+assert.equal(setPointShown(-Infinity, 1000, 1000 + kHandsOffMs), true);
+assert.equal(setPointShown(2000, -Infinity, 2000 + kHandsOffMs / 2), false, 'not under the hand');
 console.log('commands.js: ok');

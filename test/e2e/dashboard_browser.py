@@ -362,6 +362,24 @@ def main():
         shutil.rmtree(work, ignore_errors=True)
 
 
+def sliders(driver):
+    """The values joint1's and joint2's position controllers' sliders show, as text."""
+    return driver.js("return ['joint1', 'joint2'].map(j => document.getElementById("
+                     "`slider-${j}_position_controller-${j}`)?.parentElement.querySelector('output').textContent)")
+
+
+def set_points(a, url, ns, work):
+    """The set points tall_arm's controllers hold, as the sliders show them: turret-cmd's 0.5 and -0.3, unless
+    controller_manager restarted its controllers from the measured state after the hardware was silent (its log says
+    so); then those they report on <name>/state."""
+    if "running controllers restart from the current state" not in open(os.path.join(work, "launch.log")).read():
+        return ["0.500", "-0.300"]
+    echo = [subprocess.run([os.path.join(a.bin_dir, "bus"), "echo", f"joint{k}_position_controller/state",
+                            "--field", "set_point", "--count", "1", "--lcm-url", url, *ns],
+                           capture_output=True, text=True, timeout=10).stdout for k in (1, 2)]
+    return [f"{float(e.split()[0]):.3f}" if e.split() else None for e in echo]
+
+
 def tall_arm(wd, a, url, ns, page, chromium, work):
     rows = wait_for("the controllers table", lambda: wd.js(
         "return [...document.querySelectorAll('#controllers tbody tr')].map(r => r.dataset.controller + ':' + "
@@ -409,22 +427,10 @@ def tall_arm(wd, a, url, ns, page, chromium, work):
         # A page opened after the commands starts its sliders at the controllers' set points (<name>/state):
         # those turret-cmd gave, unless a stall of the loaded machine made controller_manager restart the
         # controllers from the current state (its log says so); then at the set points they report now.
-        def sliders():
-            return plain.js("return ['joint1', 'joint2'].map(j => document.getElementById("
-                            "`slider-${j}_position_controller-${j}`)?.parentElement.querySelector('output').textContent)")
-
-        def set_points():
-            if "running controllers restart from the current state" not in open(os.path.join(work, "launch.log")).read():
-                return ["0.500", "-0.300"]
-            echo = [subprocess.run([os.path.join(a.bin_dir, "bus"), "echo", f"joint{k}_position_controller/state",
-                                    "--field", "set_point", "--count", "1", "--lcm-url", url, *ns],
-                                   capture_output=True, text=True, timeout=10).stdout for k in (1, 2)]
-            return [f"{float(e.split()[0]):.3f}" if e.split() else None for e in echo]
-
         seen = {}
 
         def at_set_points():
-            seen["new page"], seen["set points"] = v, expected = sliders(), set_points()
+            seen["new page"], seen["set points"] = v, expected = sliders(plain), set_points(a, url, ns, work)
             return v == expected and v
 
         try:
@@ -436,6 +442,33 @@ def tall_arm(wd, a, url, ns, page, chromium, work):
         assert plain.js("return document.getElementById('view-fit').hidden"), "a fit button without a 3D view"
     finally:
         plain.quit()
+
+    # sim_server stopped for 0.6 s while joint2 moves to a new set point: the controller manager finds the hardware
+    # silent and restarts the controllers from the measured state, so their set points move without a command (joint2's
+    # to where it was stopped on its way); the sliders follow them.
+    sim = re.search(r"started sim_server \(pid (\d+)\)", open(os.path.join(work, "launch.log")).read())
+    assert sim, "launch did not say sim_server's pid"
+    subprocess.run([os.path.join(a.bin_dir, "turret-cmd"), "joint2_position_controller", "0.3", "--lcm-url", url, *ns],
+                   capture_output=True, timeout=20, check=True)
+    time.sleep(0.05)
+    os.kill(int(sim.group(1)), signal.SIGSTOP)
+    time.sleep(0.6)
+    os.kill(int(sim.group(1)), signal.SIGCONT)
+    wait_for("the controllers' restart", lambda: "restart from the current state" in
+             open(os.path.join(work, "launch.log")).read(), 10)
+    seen = {}
+
+    def follows():
+        seen["page"], seen["set points"] = v, expected = sliders(wd), set_points(a, url, ns, work)
+        return v == expected and v
+
+    try:
+        shown = wait_for("the sliders at the set points after the restart", follows, 10)
+    except AssertionError as e:
+        raise AssertionError(f"{e}; {seen}") from None
+    print("after a 0.6 s stop of sim_server, joint2 on its way to 0.3, the sliders show the restarted set points",
+          shown)
+    assert shown[1] != "0.300", "joint2 had reached 0.3 before the stop: the test shows nothing"
 
 
 def _ready(wd):

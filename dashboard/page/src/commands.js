@@ -5,8 +5,9 @@ import { el, nameEl, shown } from './dom.js';
 // type declares (the controller manager's list): numbers, one (float64_t) or one per joint (float64_array_t), each a
 // position, velocity or effort set point; or a gripper goal (gripper_command_t, a GripperActionController): a slider
 // for its joint's position that sends one goal when released, with the goal's max_effort. The sliders follow what
-// the controller is commanded, by this page or any other tool (turret-cmd, a script), as heard on its channel; until
-// a command is heard they start at the set point a controller with a PID reports on <name>/state.
+// the controller is commanded, by this page or any other tool (turret-cmd, a script), as heard on its channel, and
+// the set point a controller with a PID reports on <name>/state: before any command, and when it changes without one
+// (the controller manager restarts its controllers from the measured state after the hardware was silent).
 
 // The set point a controller's sliders give ("position", "velocity", "effort", or "value" when its type does not
 // say; "gripper" for a gripper goal), or null when it does not take one number per joint.
@@ -48,6 +49,12 @@ export function setPointValues(c, type, msg) {
 // commands late, and an older one would pull the slider back under the user's hand.
 export const kHandsOffMs = 300;
 
+// Whether a set point heard on <name>/state moves the sliders at nowMs: not while the user moves them, nor within
+// kHandsOffMs of a command heard (the controller's state reports the set point it had before it).
+export function setPointShown(touchedMs, commandHeardMs, nowMs) {
+  return nowMs - touchedMs >= kHandsOffMs && nowMs - commandHeardMs >= kHandsOffMs;
+}
+
 function range(kind, j) {
   if (kind === 'position' || kind === 'gripper') {
     if (!j || j.type === 'continuous' || !(j.upper > j.lower)) return [-Math.PI, Math.PI];
@@ -66,8 +73,8 @@ export class Commands {
     this.values = {}; // controller -> values
     this.lastSend = {};
     this.sliders = {}; // "<controller>/<command channel>" -> {c, values, rows: [{slider, out, digits}], touched}
-    this.states = {}; // "<controller>/state" -> the same, until a command is heard
-    this.heard = new Set(); // controllers whose command channel has spoken
+    this.states = {}; // "<controller>/state" -> the same
+    this.heardAt = {}; // controller -> performance.now() of the last command heard on its channel
   }
 
   setJoints(joints) {
@@ -98,7 +105,7 @@ export class Commands {
     div.append(el('h3', { title: c.name }, c.name, ' ', el('small', {}, `${kind} → ${channel}`)));
     const values = (this.values[c.name] ||= c.joints.map(() => 0));
     const follow = (this.sliders[channel] = { c, values, rows: [], touched: -Infinity });
-    if (!this.heard.has(c.name)) this.states[`${c.name}/state`] = follow;
+    this.states[`${c.name}/state`] = follow;
     if (kind === 'gripper') return this.gripperBlock(c, div, channel, values, follow);
     c.joints.forEach((joint, k) => {
       const [lo, hi] = range(kind, this.joints[joint]);
@@ -196,23 +203,24 @@ export class Commands {
   }
 
   // A message on the bus: a command a controller with sliders takes moves them there (unless the user is moving
-  // them), as does its set point before any command. The time it did so is the slider's data-followed-at (ms since
+  // them), as does its set point (setPointShown()). The time it did so is the slider's data-followed-at (ms since
   // the epoch).
   message(channel, type, msg) {
     const command = this.sliders[channel];
     const follow = command || this.states[channel];
-    if (!follow || performance.now() - follow.touched < kHandsOffMs) return;
+    if (!follow) return;
+    const now = performance.now();
+    if (command ? now - follow.touched < kHandsOffMs
+      : !setPointShown(follow.touched, this.heardAt[follow.c.name] ?? -Infinity, now)) return;
     const values = command ? commandedValues(follow.c, type, msg) : setPointValues(follow.c, type, msg);
     if (!values) return;
-    if (command) {
-      this.heard.add(follow.c.name);
-      delete this.states[`${follow.c.name}/state`];
-    }
+    if (command) this.heardAt[follow.c.name] = now;
+    const moved = command || values.some((v, k) => v !== follow.values[k]);
     follow.rows.forEach(({ slider, out, digits }, k) => {
       follow.values[k] = values[k];
       slider.value = values[k];
       out.textContent = values[k].toFixed(digits);
-      slider.dataset.followedAt = Date.now();
+      if (moved) slider.dataset.followedAt = Date.now();
     });
   }
 
