@@ -380,6 +380,20 @@ def set_points(a, url, ns, work):
     return [f"{float(e.split()[0]):.3f}" if e.split() else None for e in echo]
 
 
+def wait_at_set_points(what, driver, a, url, ns, work, timeout_s):
+    """Waits until the page's sliders show the set points; when it times out, says what both were."""
+    seen = {}
+
+    def at():
+        seen["sliders"], seen["set points"] = v, expected = sliders(driver), set_points(a, url, ns, work)
+        return v == expected and v
+
+    try:
+        return wait_for(what, at, timeout_s)
+    except AssertionError as e:
+        raise AssertionError(f"{e}; {seen}") from None
+
+
 def tall_arm(wd, a, url, ns, page, chromium, work):
     rows = wait_for("the controllers table", lambda: wd.js(
         "return [...document.querySelectorAll('#controllers tbody tr')].map(r => r.dataset.controller + ':' + "
@@ -427,16 +441,7 @@ def tall_arm(wd, a, url, ns, page, chromium, work):
         # A page opened after the commands starts its sliders at the controllers' set points (<name>/state):
         # those turret-cmd gave, unless a stall of the loaded machine made controller_manager restart the
         # controllers from the current state (its log says so); then at the set points they report now.
-        seen = {}
-
-        def at_set_points():
-            seen["new page"], seen["set points"] = v, expected = sliders(plain), set_points(a, url, ns, work)
-            return v == expected and v
-
-        try:
-            starts = wait_for("the sliders at the controllers' set points", at_set_points, 20)
-        except AssertionError as e:
-            raise AssertionError(f"{e}; {seen}") from None
+        starts = wait_at_set_points("a new page's sliders at the controllers' set points", plain, a, url, ns, work, 20)
         print("a new page's sliders start at", starts,
               "(the controllers restarted after a stall)" if starts != ["0.500", "-0.300"] else "(turret-cmd's)")
         assert plain.js("return document.getElementById('view-fit').hidden"), "a fit button without a 3D view"
@@ -456,16 +461,7 @@ def tall_arm(wd, a, url, ns, page, chromium, work):
     os.kill(int(sim.group(1)), signal.SIGCONT)
     wait_for("the controllers' restart", lambda: "restart from the current state" in
              open(os.path.join(work, "launch.log")).read(), 10)
-    seen = {}
-
-    def follows():
-        seen["page"], seen["set points"] = v, expected = sliders(wd), set_points(a, url, ns, work)
-        return v == expected and v
-
-    try:
-        shown = wait_for("the sliders at the set points after the restart", follows, 10)
-    except AssertionError as e:
-        raise AssertionError(f"{e}; {seen}") from None
+    shown = wait_at_set_points("the sliders at the set points after the restart", wd, a, url, ns, work, 10)
     print("after a 0.6 s stop of sim_server, joint2 on its way to 0.3, the sliders show the restarted set points",
           shown)
     assert shown[1] != "0.300", "joint2 had reached 0.3 before the stop: the test shows nothing"
