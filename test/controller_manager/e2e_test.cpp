@@ -634,6 +634,11 @@ TEST(ControllerManagerE2E, BadInputExitsNonZeroWithOneClearLine) {
   EXPECT_EQ(missing.wait(10), 3);
   EXPECT_TRUE(has(missing.output(), "controller_manager: error: " + dir + "/nope.yaml: config file not found"))
       << missing.output();
+  ChildProcess empty({bin("controller_manager"), "--urdf", data("test_bot.urdf"), "--config", "", "--lcm-url",
+                      unique_lcm_url()});
+  EXPECT_EQ(empty.wait(10), 3);
+  EXPECT_TRUE(has(empty.output(), "controller_manager: error: the config file's path is empty (give one with --config)"))
+      << empty.output();
   ChildProcess broken({bin("controller_manager"), "--urdf", data("test_bot.urdf"), "--config", dir + "/broken.yaml",
                        "--lcm-url", unique_lcm_url()});
   EXPECT_EQ(broken.wait(10), 3);
