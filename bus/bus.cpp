@@ -120,7 +120,7 @@ void Bus::mirror_hardware(double hz) {
   if (shm_) shm_->mirror_to(lcm_.get(), hz);
 }
 
-std::string Bus::hardware_skipped_note() {
+std::string Bus::hardware_loss_note() {
   std::string note;
   if (const int64_t skipped = hardware_skipped(); skipped != skipped_noted_) {
     note = fmt::format("skipped {} message(s) in {} whose size is past its {} MiB slot ({} so far): a program other "

@@ -554,12 +554,11 @@ void ControllerManager::poll(int64_t now) {
     silent_ = true;
     spdlog::warn("no hardware/state for {} ms (last step {}): controllers are not updated until it resumes",
                  (now - last_state_us_) / 1000, loop_.step());
-    if (has_waiting_) {
+    if (std::exchange(has_waiting_, false)) {
       spdlog::info("answering hardware session {:x}, which began before {:x} counted as silent", waiting_.session,
                    hw_.session());
       on_hardware_state(waiting_);
     }
-    has_waiting_ = false;
   }
   if (pending_done_ && !ticking()) {
     loop_.apply_now();
@@ -583,7 +582,7 @@ loop_stats_t ControllerManager::statistics() {
   m.process = "controller_manager";
   loop_.stats().fill_and_reset(m);
   int64_t dropped = dropped_ + bus_.hardware_skipped();
-  if (const std::string note = bus_.hardware_skipped_note(); !note.empty()) hardware_log_.warn(note);
+  if (const std::string note = bus_.hardware_loss_note(); !note.empty()) hardware_log_.warn(note);
   for (const auto& s : loop_.slots()) {
     m.item.push_back(s->name);
     m.item_exec_mean_us.push_back(s->exec.mean_us());

@@ -18,9 +18,9 @@ constexpr off_t kMaxInputBytes = 256L * 1024 * 1024;
 }  // namespace
 
 std::string read_input_file(const std::string& path, const std::string& what, const std::string& flag) {
-  const std::string check = flag.empty() ? "check the path" : "check the path passed with " + flag;
   if (path.empty())
-    throw ModelError(fmt::format("the {} file's path is empty ({})", what, flag.empty() ? "give one" : "give one with " + flag));
+    throw ModelError(fmt::format("the {} file's path is empty (give one{})", what, flag.empty() ? "" : " with " + flag));
+  const std::string check = flag.empty() ? "check the path" : "check the path passed with " + flag;
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0)
     throw ModelError(errno == ENOENT ? fmt::format("{}: {} file not found ({})", path, what, check)

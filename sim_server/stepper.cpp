@@ -332,7 +332,7 @@ void Stepper::tick_statistics(int64_t now) {
   s.utime = sim_.time_us();
   s.process = "sim_server";
   const int64_t dropped = io_.dropped();
-  if (const std::string note = io_.bus().hardware_skipped_note(); !note.empty()) spdlog::warn("{}", note);
+  if (const std::string note = io_.bus().hardware_loss_note(); !note.empty()) spdlog::warn("{}", note);
   stats_.add_dropped(dropped - w_.dropped_before);
   stats_.set_real_time_factor(double(sim_.step_count() - w_.start_step) * period_us_ / double(now - w_.start_us));
   stats_.fill_and_reset(s);

@@ -352,11 +352,11 @@ TEST(ShmLink, AMessageTooLargeForTheSlotIsCountedAndNamedOnce) {
   EXPECT_EQ(pub.publish(st), -1);
   EXPECT_EQ(pub.publish(st), -1);
   EXPECT_EQ(sim.hardware_refused(), 2);
-  const std::string note = sim.hardware_skipped_note();
+  const std::string note = sim.hardware_loss_note();
   EXPECT_NE(note.find("could not send 2 message(s) through " + sim.hardware_shm()->path()), std::string::npos)
       << note;
   EXPECT_NE(note.find("give it an LCM --hardware-url"), std::string::npos) << note;
-  EXPECT_EQ(sim.hardware_skipped_note(), "") << "said once";
+  EXPECT_EQ(sim.hardware_loss_note(), "") << "said once";
   // On LCM nothing is refused for its size here.
   Bus plain(url, "r", "", HardwareReader::Direct);
   EXPECT_EQ(plain.hardware_refused(), 0);
