@@ -181,12 +181,14 @@ int main(int argc, char** argv) {
                  bus.ns().empty() ? "" : ", namespace " + bus.ns(), io.session(),
                  scheduling.empty() ? "" : ", " + scheduling);
     if (!stepper.run(stop_flag())) throw BusError("LCM stopped working (handle failed); is the multicast route still there?");
-    spdlog::info("stopped at step {} (sim time {:.3f} s); {} commands dropped{}{}", sim.step_count(), sim.time(),
-                 io.dropped(),
+    const sim::Stepper::Summary run = stepper.summary();
+    spdlog::info("stopped at step {} (sim time {:.3f} s); {} commands dropped{}{}; {:.1f}x real time, physics {:.3g} µs "
+                 "a step", sim.step_count(), sim.time(), io.dropped(),
                  io.rejected_modes() ? fmt::format("; {} actuator commands in a mode not offered", io.rejected_modes())
                                      : "",
                  io.foreign_states() ? fmt::format("; {} hardware/state from another simulator", io.foreign_states())
-                                     : "");
+                                     : "",
+                 run.real_time_factor, run.physics_us);
     return int(kExitOk);
   });
 }

@@ -44,6 +44,7 @@ int64_t Stepper::step_timed(int64_t* end_us) {
   sim_.step();
   const int64_t t1 = monotonic_us();
   step_exec_.add(double(t1 - t0));
+  run_step_exec_.add(double(t1 - t0));
   if (end_us) *end_us = t1;
   return t1 - t0;
 }

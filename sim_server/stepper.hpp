@@ -48,6 +48,14 @@ class Stepper {
   // Runs until `stop` is set or the duration is reached (true), or LCM fails (false).
   bool run(const std::atomic<bool>& stop);
 
+  // The run so far, for the line sim_server ends with: sim time over wall time since run() began, and what a
+  // physics step (Simulation::step: actuators and Bullet) took on average (us), which in lockstep tells the
+  // physics from the hand-over to the controller manager.
+  struct Summary {
+    double real_time_factor = 0, physics_us = 0;
+  };
+  Summary summary() const { return {real_time_factor(), run_step_exec_.mean_us()}; }
+
  private:
   BusLog request_log_;  // the requests served: anyone may send many, so clipped and rate-limited
   bool run_lockstep(const std::atomic<bool>& stop);
@@ -103,6 +111,7 @@ class Stepper {
   } w_;
   LoopStats stats_;
   ExecStats step_exec_, publish_exec_;
+  ExecStats run_step_exec_;  // the whole run: never reset
 };
 
 }  // namespace lcm_control::sim

@@ -2,6 +2,7 @@
 through LCM's receive thread and over shared memory, with each process's peak RSS, and the shared-memory floor
 (a bare futex ping-pong between two processes on that CPU; and the same with a bare Bullet step in one loop)."""
 import os
+import re
 
 from .figures import median
 from .processes import Proc, pin_threads
@@ -36,7 +37,7 @@ def run(b):
             b.r.setdefault(name, {})[key] = {
                 "wall": median([x["wall"] for x in rs]), "rtf": median([x["rtf"] for x in rs]),
                 "rtf_lo": min(x["rtf"] for x in rs), "rtf_hi": max(x["rtf"] for x in rs),
-                "duration": rs[0]["duration"]}
+                "duration": rs[0]["duration"], "physics_us": median([x["physics_us"] for x in rs])}
         b.r[name]["memory"] = {"sim_kb": max(x["rss"] for x in runs[(name, True)]), "cm_kb": cm.vm_hwm_kb()}
         b.r[name]["futex"] = futex_floor(b, name, cpus[-1])
         b.r[name]["futex_loop"] = futex_loop_floor(b, name, cpus[-1])
@@ -89,4 +90,9 @@ def lockstep_run(b, name, duration, cpu, lcm_reader=False, shm=False):
     if rc != 0:
         raise RuntimeError(f"sim_server[{name}] exited with {rc}:\n{sim.output()[-3000:]}")
     wall = sim.exit_time - t0
-    return {"wall": wall, "rtf": duration / wall, "rss": sim.rusage.ru_maxrss, "duration": duration}
+    # sim_server's last line: "... physics X µs a step", its mean physics step (actuators and Bullet) in this loop.
+    m = re.search(r"physics ([0-9.eE+-]+) \S+ a step", sim.output())  # µs, whatever the locale decodes
+    if not m:
+        raise RuntimeError(f"sim_server[{name}] did not say what its physics step took:\n{sim.output()[-2000:]}")
+    return {"wall": wall, "rtf": duration / wall, "rss": sim.rusage.ru_maxrss, "duration": duration,
+            "physics_us": float(m.group(1))}

@@ -160,6 +160,42 @@ def table(b):
     row("3. floor: bare futex ping-pong min / p50 / p99, µs", lambda d: "{} / {} / {}".format(
         *(fmt(d["futex"][k]) for k in ("min", "p50", "p99"))))
 
+    # Where a step over shared memory goes, and what no transport can remove: the physics as it runs in the loop
+    # (sim_server's own mean; the other process evicts its caches at every hand-over).
+    def in_loop(d):
+        return "{} / {}; **{:.2f}**".format(fmt(d["lockstep"]["physics_us"]), fmt(d["lockstep_shm"]["physics_us"]),
+                                            d["lockstep_shm"]["physics_us"] / d["physics"]["full"])
+
+    def us_per_step(x):
+        return x["wall"] / (x["duration"] * 1000) * 1e6
+
+    def least_us(d):  # a step over shared memory if our code and the controller manager cost nothing
+        return d["lockstep_shm"]["physics_us"] + d["futex"]["p50"]
+
+    def bound(d):
+        return us_per_step(d["lockstep"]) / least_us(d)
+
+    def least_floor(d):
+        return least_us(d) / (d["futex"]["p50"] + d["physics"]["bare"])
+    phys = [n for n in shm if "physics_us" in r[n]["lockstep_shm"] and "physics" in r[n] and "futex" in r[n]]
+    if phys:
+        row("3. the physics step inside the loop (sim_server's own mean: actuators and Bullet), µs: over LCM / over "
+            "shared memory; the latter ÷ the same step alone (section 1's full step)", in_loop)
+        row("3. the most the shared-memory ÷ LCM ratio could reach in this run: µs per LCM step ÷ (the physics step "
+            "inside the shared-memory loop + the bare futex round trip p50), as if our code and the controller "
+            "manager took no time (their toll on the physics's caches kept)",
+            lambda d: "{} / ({} + {}) = **{:.2f}**".format(
+                fmt(us_per_step(d["lockstep"])), fmt(d["lockstep_shm"]["physics_us"]), fmt(d["futex"]["p50"]),
+                bound(d)),
+            "≥ the ratio goal (turret 2.5, chain100 1.5)",
+            "; ".join(f"{n.replace('_bot', '')} " + ("yes" if bound(r[n]) >= g else "**no: the goal is out of reach**")
+                      for n, (_, g) in shm_goals.items() if n in phys))
+        row("3. the least the floor ratio could be in this run: (the physics step inside the shared-memory loop + "
+            "the bare futex round trip p50) ÷ (the same round trip + the bare Bullet step)",
+            lambda d: "**{:.2f}**".format(least_floor(d)), "≤ 1.3",
+            "; ".join(f"{n.replace('_bot', '')} " + ("yes" if least_floor(r[n]) <= 1.3 else "**no: out of reach**")
+                      for n in phys))
+
     def shm_loop_floor(d):
         us = d["lockstep_shm"]["wall"] / (d["lockstep_shm"]["duration"] * 1000) * 1e6
         f = d["futex_loop"]

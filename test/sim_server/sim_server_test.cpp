@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <regex>
 
 #include "bus/messages.hpp"
 #include "lcm_control/e_stop_t.hpp"
@@ -234,6 +235,27 @@ TEST(sim_e2e, ControlRateBelowThePhysicsRateSetsThePeriodAndSimTime) {
   EXPECT_EQ(cm.states.back().period_us, 2000);
   EXPECT_EQ(cm.states.back().utime, 200000);
   EXPECT_EQ(server.process->wait(5.0), 0) << server.output();  // --duration 0.2 s of sim time: done
+}
+
+// The last line says how fast the run went and what a physics step took, so that a lockstep user can tell the
+// physics from the hand-over (sim_server's own clock: neither figure is zero once steps were taken).
+TEST(sim_e2e, TheLastLineSaysTheRealTimeFactorAndWhatAPhysicsStepTook) {
+  SimServerProcess server;
+  std::string why;
+  ASSERT_TRUE(server.start({"--mode", "lockstep", "--lockstep-timeout", "0.1", "--duration", "0.3"}, kTurretUrdf,
+                           kTurretYaml, &why))
+      << why;
+  FakeController cm(server.lc);
+  ASSERT_TRUE(cm.run_until_step(300, 10.0)) << server.output();
+  ASSERT_EQ(server.process->wait(5.0), 0) << server.output();
+  const std::string out = server.output();
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"(stopped at step 300 \(sim time 0\.300 s\); 0 commands dropped; )"
+                                                   R"(([0-9.]+)x real time, physics ([0-9.e+-]+) µs a step)")))
+      << out;
+  EXPECT_GT(std::stod(m[1]), 0.0) << out;
+  EXPECT_GT(std::stod(m[2]), 0.0) << out;
+  EXPECT_LT(std::stod(m[2]), 1e5) << out;  // a turret_bot step: far below 0.1 s
 }
 
 // `clock` at --clock-rate in sim time: by default 100 Hz (every 10th step at 1 kHz), every step with 0.
