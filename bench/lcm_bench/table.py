@@ -161,7 +161,7 @@ def table(b):
         *(fmt(d["futex"][k]) for k in ("min", "p50", "p99"))))
 
     # Where a step over shared memory goes, and what no transport can remove: the physics as it runs in the loop
-    # (sim_server's own mean; the other process evicts its caches at every hand-over).
+    # (sim_server's own mean; most likely slower than alone because the other process evicts its caches).
     def in_loop(d):
         return "{} / {}; **{:.2f}**".format(fmt(d["lockstep"]["physics_us"]), fmt(d["lockstep_shm"]["physics_us"]),
                                             d["lockstep_shm"]["physics_us"] / d["physics"]["full"])
