@@ -115,8 +115,14 @@ def table(b):
         *(d["rtt2"]["clock/ours"][s] for s in ("min", "p50", "p99"))))
     row("3. lockstep: wall time, s / sim time, s", lambda d: f'{fmt(d["lockstep"]["wall"])} / {d["lockstep"]["duration"]:g}')
 
+    def us_per_step(x):  # a lockstep run's wall time per step of sim time (1 kHz)
+        return x["wall"] / (x["duration"] * 1000) * 1e6
+
+    def futex_floor(d):  # issue 34's floor: the bare futex round trip p50 + the bare Bullet step
+        return d["futex"]["p50"] + d["physics"]["bare"]
+
     def per_step(d):
-        us = d["lockstep"]["wall"] / (d["lockstep"]["duration"] * 1000) * 1e6
+        us = us_per_step(d["lockstep"])
         floor = d["rtt"]["lcm"]["p50"] + d["physics"]["full"]
         return f"{fmt(us)} / {fmt(floor)} = {us / floor:.2f}"
     row("3. µs per lockstep step / floor (one-core bare LCM p50 + full sim step) = ratio", per_step)
@@ -148,15 +154,13 @@ def table(b):
         "turret ≥ 100x and ≥ 2.5x; chain100 ≥ 1.5x", "; ".join(shm_met))
 
     def shm_floor(d):
-        us = d["lockstep_shm"]["wall"] / (d["lockstep_shm"]["duration"] * 1000) * 1e6
-        floor = d["futex"]["p50"] + d["physics"]["bare"]
+        us, floor = us_per_step(d["lockstep_shm"]), futex_floor(d)
         return f"{fmt(us)} / ({fmt(d['futex']['p50'])} + {fmt(d['physics']['bare'])}) = **{us / floor:.2f}**"
     floor_ok = [n for n in shm if "futex" in r[n]]
     row("3. over shared memory: µs per step / floor (bare futex ping-pong p50 between two processes on that CPU, "
         "the state's and command's bytes copied, + bare Bullet step) = ratio", shm_floor, "≤ 1.3",
         "; ".join(f"{n.replace('_bot', '')} " + yes(
-            r[n]["lockstep_shm"]["wall"] / (r[n]["lockstep_shm"]["duration"] * 1000) * 1e6
-            <= 1.3 * (r[n]["futex"]["p50"] + r[n]["physics"]["bare"])) for n in floor_ok))
+            us_per_step(r[n]["lockstep_shm"]) <= 1.3 * futex_floor(r[n])) for n in floor_ok))
     row("3. floor: bare futex ping-pong min / p50 / p99, µs", lambda d: "{} / {} / {}".format(
         *(fmt(d["futex"][k]) for k in ("min", "p50", "p99"))))
 
@@ -166,14 +170,11 @@ def table(b):
         return "{} / {}; **{:.2f}**".format(fmt(d["lockstep"]["physics_us"]), fmt(d["lockstep_shm"]["physics_us"]),
                                             d["lockstep_shm"]["physics_us"] / d["physics"]["full"])
 
-    def us_per_step(x):
-        return x["wall"] / (x["duration"] * 1000) * 1e6
-
     def least_us(d):  # a step over shared memory if our code and the controller manager took no time
         return d["lockstep_shm"]["physics_us"] + d["futex"]["p50"]
 
     def at_floor(d):  # a step exactly at the floor: its real-time factor, and that ÷ the LCM figure
-        floor = d["futex"]["p50"] + d["physics"]["bare"]
+        floor = futex_floor(d)
         return 1e3 / floor, us_per_step(d["lockstep"]) / floor
 
     def within_reach(n):
@@ -187,7 +188,7 @@ def table(b):
         return f"{n.replace('_bot', '')} " + (f"**no: {' and '.join(out)} out of reach**" if out else "yes")
 
     def least_floor(d):
-        return least_us(d) / (d["futex"]["p50"] + d["physics"]["bare"])
+        return least_us(d) / futex_floor(d)
     phys = [n for n in shm if "physics_us" in r[n]["lockstep_shm"] and "physics" in r[n] and "futex" in r[n]]
     if phys:
         row("3. the physics step inside the loop (sim_server's own mean: actuators and Bullet), µs: over LCM / over "
@@ -203,7 +204,7 @@ def table(b):
                       for n in phys))
 
     def shm_loop_floor(d):
-        us = d["lockstep_shm"]["wall"] / (d["lockstep_shm"]["duration"] * 1000) * 1e6
+        us = us_per_step(d["lockstep_shm"])
         f = d["futex_loop"]
         return f"{fmt(us)} / {fmt(f['loop'])} = **{us / f['loop']:.2f}** (bare step alone there {fmt(f['bare'])})"
     if any("futex_loop" in r[n] and "lockstep_shm" in r[n] for n in r):

@@ -227,9 +227,9 @@ TEST(ShmLink, AWriterKilledWhileWritingIsTakenOver) {
   // What a writer killed between its two sequence stores leaves: an odd sequence, for good.
   testing::MappedSegment seg(a.path());
   ASSERT_TRUE(seg.ok());
-  const int size_word = seg.size_word("s");
-  ASSERT_GE(size_word, 1);
-  auto* seq = reinterpret_cast<std::atomic<uint32_t>*>(&seg.words()[size_word - 1]);
+  const int sequence_word = seg.sequence_word("s");
+  ASSERT_GE(sequence_word, 0);
+  auto* seq = reinterpret_cast<std::atomic<uint32_t>*>(&seg.words()[sequence_word]);
   seq->fetch_add(1);  // odd: a write begun and never finished
   EXPECT_FALSE(b.has_new()) << "a slot being written is not read";
   const auto m2 = bytes("after the dead writer");

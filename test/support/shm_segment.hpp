@@ -42,6 +42,11 @@ class MappedSegment {
         return k + 2;
     return -1;
   }
+  // The index of that slot's sequence word (odd while a writer is in it, +2 for each whole write), or -1.
+  int sequence_word(const std::string& channel) const {
+    const int size = size_word(channel);
+    return size < 0 ? -1 : size - 1;
+  }
 
  private:
   int fd_ = -1;

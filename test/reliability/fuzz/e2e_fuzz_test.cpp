@@ -237,13 +237,13 @@ TEST(FuzzOverSharedMemory, HostileBytesInTheSlotsAreRejectedAndTheLoopRecovers) 
     ASSERT_TRUE(seg.ok());
     const std::vector<uint8_t> marker(29, 0x5a);
     hostile.publish("hardware/command", marker.data(), marker.size());
-    const int size_word = seg.size_word("hardware/command");
+    const int size_word = seg.size_word("hardware/command"), sequence_word = seg.sequence_word("hardware/command");
     ASSERT_GE(size_word, 0);
     for (int k = 0; k < 100; ++k) {
       hostile.publish("hardware/command", marker.data(), marker.size());
       sleep_ms(1);
       __atomic_store_n(&seg.words()[size_word], 0xfffffff0u, __ATOMIC_RELAXED);
-      __atomic_fetch_add(&seg.words()[size_word - 1], 2u, __ATOMIC_RELEASE);
+      __atomic_fetch_add(&seg.words()[sequence_word], 2u, __ATOMIC_RELEASE);
       sleep_ms(2);
     }
   }
