@@ -429,9 +429,28 @@ bool ShmLink::wait_us(int64_t timeout_us) {
 }
 
 bool ShmLink::wait_until_us(int64_t deadline_us) {
-  ReaderPlace& r = seg_->reader[me_];
   deadline_us = std::max<int64_t>(0, deadline_us);
   const timespec until{time_t(deadline_us / 1000000), long(deadline_us % 1000000) * 1000};  // CLOCK_MONOTONIC
+  if (yield_first_ && !(has_new() || fd_ready())) {
+    const int64_t start = monotonic_us();
+    if (peer_prompt_) {
+      const int64_t give_up = start + kYieldUs;
+      const int64_t end = std::min(deadline_us, give_up);
+      do {
+        sched_yield();
+        if (has_new() || fd_ready()) return true;
+      } while (monotonic_us() < end);
+      if (end == give_up) peer_prompt_ = false;  // not only the caller's deadline: the peer was silent for kYieldUs
+    }
+    const bool woken = sleep_until(until);
+    if (woken) peer_prompt_ = monotonic_us() - start <= kYieldUs;
+    return woken;
+  }
+  return sleep_until(until);
+}
+
+bool ShmLink::sleep_until(const timespec& until) {
+  ReaderPlace& r = seg_->reader[me_];
   for (;;) {
     const uint32_t bell = r.doorbell.load();
     if (has_new() || fd_ready()) return true;

@@ -64,6 +64,14 @@ class ShmLink {
   // The same until monotonic_us() reaches deadline_us.
   bool wait_until_us(int64_t deadline_us);
 
+  // Lockstep, where the peer answers at once (on this CPU, as launch pins them): waits first hand it the CPU with
+  // sched_yield, for up to kYieldUs, before sleeping on the futex. A hand-over then costs a yield instead of a futex
+  // wake and wait. A wait the yields did not end sleeps at once from then on, until one ends within kYieldUs: a
+  // paused or dead peer costs no CPU. Off by default (real time sleeps until its deadline).
+  static constexpr int64_t kYieldUs = 1000;
+  void yield_first(bool on) { yield_first_ = on; }
+  bool yields_next() const { return yield_first_ && peer_prompt_; }  // whether the next wait yields before sleeping
+
   // A thread of its own polls `fd` and ends wait_us() when it is readable: fd_ready() says so until fd_drained(),
   // after which it polls again. For the shared bus's socket, so that one wait covers both.
   void watch_fd(int fd);
@@ -89,6 +97,7 @@ class ShmLink {
   // its sequence in `seq`; marks this process's own messages taken.
   bool news(int s, uint32_t& seq);
   bool take(int slot, uint32_t seq);
+  bool sleep_until(const timespec& until);  // on this process's futex (CLOCK_MONOTONIC)
 
   std::string path_;
   int fd_ = -1;
@@ -115,6 +124,8 @@ class ShmLink {
   lcm::LCM* mirror_ = nullptr;
   int64_t mirror_period_us_ = 0, mirrored_us_[kSlots] = {};
 
+  bool yield_first_ = false;
+  bool peer_prompt_ = true;  // the last wait ended within kYieldUs
   std::atomic<uint32_t> fd_ready_{0};
   std::atomic<bool> stop_watch_{false};
   int watch_stop_fd_ = -1;

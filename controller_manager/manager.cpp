@@ -524,6 +524,7 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
                                    st.num_actuators, st.lockstep ? "lockstep" : "real time", st.period_us, st.step));
   }
   hw_status_.seen(st, now);
+  if (ShmLink* shm = bus_.hardware_shm()) shm->yield_first(st.lockstep);
   if (silent_) {
     silent_ = false;
     // In lockstep, time stands still while nobody answers: the next step of the

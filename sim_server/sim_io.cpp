@@ -41,6 +41,7 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
       base_pub_(endpoints_.publisher<odometry_t>(bus.channel(channels::kBasePose))),
       stats_pub_(endpoints_.publisher<loop_stats_t>(bus.channel(channels::kSimStatistics))),
       response_pub_(endpoints_.publisher<sim_response_t>(bus.channel(channels::kSimResponse))) {
+  if (ShmLink* shm = bus.hardware_shm()) shm->yield_first(lockstep);
   const PlayedHardware& act = sim.hardware();
   const int n = act.size();
   resize(state_, n);

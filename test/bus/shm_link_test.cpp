@@ -130,13 +130,71 @@ TEST(ShmLink, AWatchedDescriptorEndsTheWaitUntilDrained) {
   close(p[1]);
 }
 
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
+}
+
+// Lockstep's waits yield the CPU first; with no answer for ShmLink::kYieldUs they sleep at once from then on, so a
+// paused peer costs no CPU, until a wait ends within kYieldUs again.
+TEST(ShmLink, AYieldingWaitKeepsItsTimeoutSleepsWhileThePeerIsSilentAndYieldsAgainWhenItAnswers) {
+  const std::string name = unique_name();
+  ShmLink a(name), b(name);
+  Inbox at_b;
+  b.subscribe("s", at_b.handler());
+  b.yield_first(true);
+  EXPECT_TRUE(b.yields_next());
+  int64_t t0 = monotonic_us();
+  EXPECT_FALSE(b.wait_us(30000));
+  const int64_t waited = monotonic_us() - t0;
+  EXPECT_GE(waited, 29000);
+  EXPECT_LT(waited, 500000);
+  EXPECT_FALSE(b.yields_next()) << "silent for longer than kYieldUs";
+  const double cpu0 = thread_cpu_ms();
+  for (int k = 0; k < 50; ++k) EXPECT_FALSE(b.wait_us(2000));
+  EXPECT_LT(thread_cpu_ms() - cpu0, 20.0) << "50 waits of 2 ms on a silent peer should sleep, not yield 1 ms each";
+
+  std::thread writer([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    const auto m = bytes("late");
+    a.publish("s", m.data(), m.size());
+  });
+  t0 = monotonic_us();
+  EXPECT_TRUE(b.wait_us(5000000)) << "a sleeping wait still ends at the message";
+  EXPECT_LT(monotonic_us() - t0, 2000000);
+  writer.join();
+  EXPECT_EQ(b.handle_queued(), 1);
+  EXPECT_FALSE(b.yields_next()) << "that answer took 20 ms";
+
+  // A prompt peer: a thread answering each ping. Some wait ends within kYieldUs even on a loaded machine.
+  std::atomic<bool> stop{false};
+  std::thread echo([&] {
+    Inbox at_a;
+    a.subscribe("ping", at_a.handler());
+    while (!stop)
+      if (a.wait_us(1000) && a.handle_queued() > 0) a.publish("s", "pong", 4);
+  });
+  for (int k = 0; k < 1000 && !b.yields_next(); ++k) {
+    b.publish("ping", "ping", 4);
+    if (b.wait_us(100000)) b.handle_queued();
+  }
+  EXPECT_TRUE(b.yields_next()) << "no wait ended within kYieldUs in 1,000 round trips";
+  stop = true;
+  echo.join();
+
+  b.yield_first(false);
+  EXPECT_FALSE(b.yields_next());
+}
+
 // A lockstep exchange between two processes: every state answered once, in order, with the step it answers.
-TEST(ShmLink, TwoProcessesPingPongInOrder) {
+void ping_pong_in_order(bool yield_first) {
   const std::string name = unique_name();
   constexpr int kRounds = 2000;
   const pid_t child = fork();
   if (child == 0) {
     ShmLink cm(name);
+    cm.yield_first(yield_first);
     int64_t last = -1;
     bool ok = true;
     cm.subscribe("state", [&](const lcm::ReceiveBuffer& rb) {
@@ -152,6 +210,7 @@ TEST(ShmLink, TwoProcessesPingPongInOrder) {
     _exit(ok && last == kRounds - 1 ? 0 : 1);
   }
   ShmLink sim(name);
+  sim.yield_first(yield_first);
   int64_t answered = -1;
   sim.subscribe("command", [&](const lcm::ReceiveBuffer& rb) { std::memcpy(&answered, rb.data, sizeof(answered)); });
   int64_t step = 0;
@@ -173,9 +232,12 @@ TEST(ShmLink, TwoProcessesPingPongInOrder) {
   waitpid(child, &status, 0);
   EXPECT_EQ(step, kRounds);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-  std::printf("shm ping-pong between two processes: %.2f us a round trip (%lld republished while the peer came up)\n",
-              us, static_cast<long long>(republished));
+  std::printf("shm ping-pong between two processes%s: %.2f us a round trip (%lld republished while the peer came up)\n",
+              yield_first ? ", waits yielding first" : "", us, static_cast<long long>(republished));
 }
+
+TEST(ShmLink, TwoProcessesPingPongInOrder) { ping_pong_in_order(false); }
+TEST(ShmLink, TwoProcessesPingPongInOrderWhenTheirWaitsYieldFirst) { ping_pong_in_order(true); }
 
 TEST(ShmLink, TheFileGoesWithTheLastUserEvenAfterAKill) {
   const std::string name = unique_name();
