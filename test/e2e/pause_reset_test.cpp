@@ -30,6 +30,10 @@ class Session : public RobotSession {
   void start(const std::vector<std::string>& sim_extra, const std::vector<std::string>& cm_extra = {}) {
     start_controller_manager(cm_extra);
     ASSERT_NO_FATAL_FAILURE(start_sim(sim_extra, 30));
+    // The controllers start, and command sources begin, on the state the controller manager already follows: a
+    // switch or a source that came before its first state would start at once and run at step 0, one step earlier
+    // than after it (a loaded machine can hold the first state back past both).
+    ASSERT_TRUE(cm_->wait_for_output("hardware session", 30)) << cm_output() << sim_output();
     spawn({"joint_state_controller", "j1_controller", "j2_controller"});
   }
   int cmctl(std::vector<std::string> args, std::string* out = nullptr) {
