@@ -169,9 +169,9 @@ TEST(ShmLink, AYieldingWaitKeepsItsTimeoutSleepsWhileThePeerIsSilentAndYieldsAga
 
   // A prompt peer: a thread answering each ping. Some wait ends within kYieldUs even on a loaded machine.
   std::atomic<bool> stop{false};
+  Inbox at_a;  // outlives the thread: a's subscription keeps its handler
+  a.subscribe("ping", at_a.handler());
   std::thread echo([&] {
-    Inbox at_a;
-    a.subscribe("ping", at_a.handler());
     while (!stop)
       if (a.wait_us(1000) && a.handle_queued() > 0) a.publish("s", "pong", 4);
   });
