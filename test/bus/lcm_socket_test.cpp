@@ -110,14 +110,24 @@ TEST(LcmSocket, RecvUtimeIsWhenTheDatagramArrivedAsLcmGivesIt) {
   ASSERT_TRUE(lc.good());
   Got got;
   socket.subscribe("state", [&](const lcm::ReceiveBuffer& rb) { got.recv_utime = rb.recv_utime; });
-  const uint8_t byte = 1;
-  const int64_t before = wall_us();
-  lc.publish("state", &byte, 1);
-  usleep(200000);  // read well after it arrived (on a loaded machine the kernel may deliver it tens of ms late)
-  const int64_t read_from = wall_us();
-  ASSERT_TRUE(pump(socket, [&] { return got.recv_utime != 0; }));
-  EXPECT_GE(got.recv_utime, before);
-  EXPECT_LT(got.recv_utime, read_from - 150000) << "recv_utime is when it was read, not when it arrived";
+  // When no socket on the host asked for arrival stamps, Linux turns them on in a deferred work item, and until it
+  // has run it stamps a datagram when it is read (CI saw one stamped 27 us after the read began). So a few tries.
+  int tries = 0;
+  int64_t latest_lead_us = 0;
+  for (; tries < 10; ++tries) {
+    got.recv_utime = 0;
+    const uint8_t byte = 1;
+    const int64_t before = wall_us();
+    lc.publish("state", &byte, 1);
+    usleep(200000);  // read well after it arrived (on a loaded machine the kernel may deliver it tens of ms late)
+    const int64_t read_from = wall_us();
+    ASSERT_TRUE(pump(socket, [&] { return got.recv_utime != 0; }));
+    EXPECT_GE(got.recv_utime, before);
+    latest_lead_us = read_from - got.recv_utime;
+    if (latest_lead_us > 150000) break;
+  }
+  EXPECT_LT(tries, 10) << "recv_utime is when it was read, not when it arrived (last: " << latest_lead_us
+                       << " us before the read)";
 }
 
 TEST(LcmSocket, CountsWhatIsNotLcmAndDeliversNoneOfIt) {
