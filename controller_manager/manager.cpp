@@ -525,6 +525,7 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
   }
   hw_status_.seen(st, now);
   if (ShmLink* shm = bus_.hardware_shm()) shm->yield_first(st.lockstep);
+  outbox_.send_here(st.lockstep);
   if (silent_) {
     silent_ = false;
     // In lockstep, time stands still while nobody answers: the next step of the
@@ -546,10 +547,12 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
   loop_.cycle(st, command_);
   sources_.after_cycle();  // before the command: the echo is on the bus before the next state
   command_pub_.publish(command_);
+  if (st.lockstep) outbox_.send_queued();  // after the command: the hardware steps meanwhile when it has a CPU
   if (pending_done_ && !loop_.switch_pending()) complete_pending();
 }
 
 void ControllerManager::poll(int64_t now) {
+  if (outbox_.sends_here()) outbox_.send_queued();  // what a paused lockstep's controllers published meanwhile
   sources_.poll();
   if (loop_.has_state() && !silent_ && now - last_state_us_ > options_.silence_us) {
     silent_ = true;

@@ -55,7 +55,7 @@ void Outbox::commit() {
   if (size > largest_.load(std::memory_order_relaxed)) largest_.store(size, std::memory_order_relaxed);
   head_.store(h + 1);  // seq_cst with sleeping_ below and in run(): one of the two sees the other
   producing_.clear(std::memory_order_release);
-  if (sleeping_.load()) {
+  if (sleeping_.load() && !send_here_.load(std::memory_order_relaxed)) {
     const uint64_t one = 1;
     (void)!write(wake_fd_, &one, sizeof one);
   }
@@ -63,10 +63,32 @@ void Outbox::commit() {
 
 void Outbox::abandon() { producing_.clear(std::memory_order_release); }
 
+size_t Outbox::send_queued() {
+  if (consuming_.test_and_set(std::memory_order_acquire)) return 0;
+  const size_t n = send_from_tail();
+  consuming_.clear(std::memory_order_release);
+  return n;
+}
+
+size_t Outbox::send_from_tail() {
+  size_t n = 0;
+  for (uint64_t t = tail_.load(std::memory_order_relaxed); t < head_.load(std::memory_order_acquire); ++n) {
+    Slot& s = slots_[t % slots_.size()];
+    send_(s);
+    const size_t largest = largest_.load(std::memory_order_relaxed);
+    if (s.bytes.size() < largest) s.bytes.resize(largest);  // here, so that the producer need not
+    tail_.store(++t, std::memory_order_release);
+    sent_.fetch_add(1, std::memory_order_relaxed);
+  }
+  return n;
+}
+
 void Outbox::flush() {
   const uint64_t target = head_.load();
-  while (tail_.load(std::memory_order_acquire) < target && thread_.joinable())
-    std::this_thread::sleep_for(std::chrono::microseconds(50));
+  while (tail_.load(std::memory_order_acquire) < target && thread_.joinable()) {
+    if (send_here_.load(std::memory_order_relaxed)) send_queued();
+    if (tail_.load(std::memory_order_acquire) < target) std::this_thread::sleep_for(std::chrono::microseconds(50));
+  }
 }
 
 void Outbox::run() {
@@ -75,18 +97,17 @@ void Outbox::run() {
   pthread_setschedparam(pthread_self(), SCHED_OTHER, &p);
   pthread_setname_np(pthread_self(), "outbox");
   for (;;) {
-    uint64_t t = tail_.load(std::memory_order_relaxed);
-    while (t < head_.load(std::memory_order_acquire)) {
-      Slot& s = slots_[t % slots_.size()];
-      send_(s);
-      const size_t largest = largest_.load(std::memory_order_relaxed);
-      if (s.bytes.size() < largest) s.bytes.resize(largest);  // here, so that the producer need not
-      tail_.store(++t, std::memory_order_release);
-      sent_.fetch_add(1, std::memory_order_relaxed);
+    if (!consuming_.test_and_set(std::memory_order_acquire)) {
+      send_from_tail();
+      consuming_.clear(std::memory_order_release);
     }
-    if (stop_.load()) return;
+    if (stop_.load()) {
+      send_queued();  // what came while the caller of send_queued held the turn
+      return;
+    }
+    const uint64_t t = tail_.load(std::memory_order_acquire);
     sleeping_.store(true);
-    if (head_.load() != t || stop_.load()) {
+    if ((head_.load() != t && !send_here_.load(std::memory_order_relaxed)) || stop_.load()) {
       sleeping_.store(false);
       continue;
     }

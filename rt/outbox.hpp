@@ -4,6 +4,9 @@
 // as big), lock nor make a system call, except one eventfd write (non-blocking) when the sending thread sleeps.
 // A message is dropped, and counted, when the ring is full or another thread is handing one over at that moment.
 // Messages leave in the order they were committed.
+// In lockstep nothing waits on the loop but its peer, and on one CPU waking the thread for each message costs two
+// context switches: there the loop may send what it queued itself (send_here, send_queued), at a point where the peer
+// already has what it waits for.
 #pragma once
 
 #include <atomic>
@@ -44,6 +47,14 @@ class Outbox {
   void commit();
   void abandon();
 
+  // On: commit() no longer wakes the thread, and the caller sends with send_queued() (the thread still sends what is
+  // left each 100 ms). Off: the thread sends, woken by each commit (the default).
+  void send_here(bool on) { send_here_.store(on, std::memory_order_relaxed); }
+  bool sends_here() const { return send_here_.load(std::memory_order_relaxed); }
+  // Sends what is queued on the calling thread, unless the outbox's thread is sending at that moment (it then sends
+  // them); the number sent. Waits on the socket: not for a real-time loop.
+  size_t send_queued();
+
   // Waits until everything committed before the call has been sent (not for the loop path).
   void flush();
   int64_t dropped() const { return dropped_.load(std::memory_order_relaxed); }
@@ -51,13 +62,16 @@ class Outbox {
 
  private:
   void run();
+  size_t send_from_tail();  // holding consuming_
+
 
   std::vector<Slot> slots_;
   Send send_;
   std::atomic<uint64_t> head_{0};  // next slot to fill: written by the producer
   std::atomic<uint64_t> tail_{0};  // next slot to send: written by the sending thread
   std::atomic_flag producing_ = ATOMIC_FLAG_INIT;
-  std::atomic<bool> sleeping_{false}, stop_{false};
+  std::atomic_flag consuming_ = ATOMIC_FLAG_INIT;  // held by whichever thread sends: the outbox's or send_queued's
+  std::atomic<bool> sleeping_{false}, stop_{false}, send_here_{false};
   std::atomic<size_t> largest_{0};  // the biggest message so far: the sending thread grows the slots it frees to it
   std::atomic<int64_t> dropped_{0}, sent_{0};
   int wake_fd_ = -1;

@@ -1,10 +1,12 @@
-// The Outbox: messages leave from its own thread in the order committed; a full
-// ring drops and counts without waiting for the sending thread; slots grow off
-// the loop's thread.
+// The Outbox: messages leave from its own thread in the order committed, or from the
+// caller's when it sends them itself; a full ring drops and counts without waiting
+// for the sending thread; slots grow off the loop's thread.
 #include "rt/outbox.hpp"
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstring>
 #include <mutex>
@@ -147,4 +149,87 @@ TEST(Outbox, TheSenderGrowsEverySlotItFreesToTheLargestMessage) {
     box.commit();
   }
   box.flush();
+}
+
+TEST(Outbox, SentHereMessagesLeaveOnTheCallersThreadAndTheThreadSendsWhatIsLeft) {
+  Received r;
+  auto record = [&](const Outbox::Slot& s) {
+    std::lock_guard<std::mutex> l(r.m);
+    r.payloads.emplace_back(reinterpret_cast<const char*>(s.bytes.data()), s.size);
+    r.threads.push_back(std::this_thread::get_id());
+  };
+  Outbox box(record, 8, 16);
+  box.send_here(true);
+  // As a lockstep loop uses it: commit, then send what is queued once the peer has its answer.
+  for (int k = 0; k < 1000; ++k) {
+    put(box, "c", std::to_string(k));
+    box.send_queued();
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+  }
+  {
+    std::lock_guard<std::mutex> l(r.m);
+    ASSERT_EQ(r.payloads.size(), 1000u);
+    int here = 0;
+    for (size_t k = 0; k < 1000; ++k) {
+      EXPECT_EQ(r.payloads[k], std::to_string(k));
+      here += r.threads[k] == std::this_thread::get_id();
+    }
+    // The thread, not woken by a commit, only takes one when its 100 ms fallback falls between commit and send.
+    EXPECT_GE(here, 995);
+  }
+  // Left unsent, a message still leaves: from the thread, within its fallback period.
+  put(box, "c", "left");
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+  while (box.sent() < 1001 && std::chrono::steady_clock::now() < until)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ASSERT_EQ(box.sent(), 1001);
+  {
+    std::lock_guard<std::mutex> l(r.m);
+    EXPECT_EQ(r.payloads.back(), "left");
+    EXPECT_NE(r.threads.back(), std::this_thread::get_id());
+  }
+  // Off again: commits wake the thread, send_queued finds nothing left to send most of the time.
+  box.send_here(false);
+  for (int k = 0; k < 200; ++k) {
+    put(box, "c", "t" + std::to_string(k));
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+  box.flush();
+  std::lock_guard<std::mutex> l(r.m);
+  ASSERT_EQ(r.payloads.size(), 1201u);
+  for (size_t k = 1001; k < 1201; ++k) {
+    EXPECT_EQ(r.payloads[k], "t" + std::to_string(k - 1001));
+    EXPECT_NE(r.threads[k], std::this_thread::get_id());
+  }
+}
+
+TEST(Outbox, TheCallerAndTheThreadNeverSendTheSameMessageOrOutOfOrder) {
+  std::vector<int> got;  // only the sender holding the outbox's turn appends
+  std::atomic<int> senders{0}, overlaps{0};
+  Outbox box(
+      [&](const Outbox::Slot& s) {
+        if (senders.fetch_add(1) != 0) ++overlaps;
+        got.push_back(std::stoi(std::string(reinterpret_cast<const char*>(s.bytes.data()), s.size)));
+        senders.fetch_sub(1);
+      },
+      16, 16);
+  int committed = 0;
+  for (int k = 0; k < 20000; ++k) {
+    box.send_here(k / 500 % 2 == 0);  // switched back and forth, so both send while the other may
+    Outbox::Slot* s = box.begin();
+    if (s) {
+      const std::string p = std::to_string(committed);
+      std::memcpy(s->bytes.data(), p.data(), p.size());
+      s->channel = "c";
+      s->size = p.size();
+      box.commit();
+      ++committed;
+    }
+    if (k % 3 == 0) box.send_queued();
+  }
+  box.send_here(false);
+  box.flush();
+  EXPECT_EQ(overlaps.load(), 0);
+  ASSERT_EQ(got.size(), size_t(committed));
+  for (int k = 0; k < committed; ++k) ASSERT_EQ(got[size_t(k)], k);
 }
