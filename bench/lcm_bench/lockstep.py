@@ -28,6 +28,11 @@ def run(b):
                 pin_threads(b.cms[cm_key][0].pid, {cpu} if cpu is not None else set(cpus))
                 runs[(name, kind)].append(lockstep_run(b, name, duration, cpu, kind == "lcm", kind == "shm"))
                 pin_threads(b.cms[cm_key][0].pid, set(cpus))
+                if kind == "shm":
+                    # The floor again, seconds after the run it is compared with: this machine's speed drifts by
+                    # up to 2x over the minutes between sections 1 and 3.
+                    runs[(name, kind)][-1]["floor"] = {"futex": futex_floor(b, name, cpus[-1], quick=True)["p50"],
+                                                       "bare": futex_loop_floor(b, name, cpus[-1], quick=True)["bare"]}
         b.sample_load()
     for name in b.names:
         cm = b.cms[name][0]
@@ -38,16 +43,20 @@ def run(b):
                 "wall": median([x["wall"] for x in rs]), "rtf": median([x["rtf"] for x in rs]),
                 "rtf_lo": min(x["rtf"] for x in rs), "rtf_hi": max(x["rtf"] for x in rs),
                 "duration": rs[0]["duration"], "physics_us": median([x["physics_us"] for x in rs])}
+        # Each repetition's run over shared memory with the run over LCM (direct reader) and the floor next to it.
+        b.r[name]["lockstep_shm"]["pairs"] = [
+            {"shm_wall": s["wall"], "lcm_wall": l["wall"], "duration": s["duration"], **s["floor"]}
+            for s, l in zip(runs[(name, "shm")], runs[(name, True)])]
         b.r[name]["memory"] = {"sim_kb": max(x["rss"] for x in runs[(name, True)]), "cm_kb": cm.vm_hwm_kb()}
         b.r[name]["futex"] = futex_floor(b, name, cpus[-1])
         b.r[name]["futex_loop"] = futex_loop_floor(b, name, cpus[-1])
 
 
-def futex_floor(b, name, cpu):
+def futex_floor(b, name, cpu, quick=False):
     """The bare futex ping-pong between two processes on `cpu`, the state's and the command's bytes copied each way
-    (from section 2's sizes): the transport floor of the loop over shared memory."""
+    (from section 2's sizes): the transport floor of the loop over shared memory. quick: a fifth as many."""
     sizes = b.r.get(name, {}).get("rtt", {}).get("sizes") or (128, 64)
-    n, warmup = (200, 20) if b.smoke else (20000, 2000)
+    n, warmup = (200, 20) if b.smoke else (4000, 400) if quick else (20000, 2000)
     p = Proc([b.exe("bench_pingpong"), "futex-ping", str(n), str(warmup),
               str(sizes[0]), str(sizes[1])], f"futex-ping[{name}]", cpus={cpu})
     rc = p.wait(60)
@@ -57,15 +66,15 @@ def futex_floor(b, name, cpu):
     return {"min": float(f[0]), "p50": float(f[1]), "p99": float(f[2])}
 
 
-def futex_loop_floor(b, name, cpu):
+def futex_loop_floor(b, name, cpu, quick=False):
     """The same floor as one loop on `cpu`: a bare Bullet step of the model, then a bare futex round trip to a forked
     echo (bench_physics --futex-loop), so that what the physics loses to the other process at each switch (its caches,
-    its TLB) counts, as it does in the lockstep loop."""
+    its TLB) counts, as it does in the lockstep loop. quick: 3 rounds instead of 11."""
     sizes = b.r.get(name, {}).get("rtt", {}).get("sizes") or (128, 64)
     urdf, config, _ = b.models[name]
     argv = [b.exe("bench_physics")]
     argv += ["--rounds", "1", "--sub-blocks", "2", "--block-ms", "0.2", "--min-steps", "2"] if b.smoke else \
-        ["--rounds", "11", "--sub-blocks", "8", "--block-ms", "2"]
+        ["--rounds", "3" if quick else "11", "--sub-blocks", "8", "--block-ms", "2"]
     p = Proc(argv + ["--futex-loop", str(sizes[0]), str(sizes[1]), name, urdf, config], f"futex-loop[{name}]",
              cpus={cpu})
     rc = p.wait(60 if b.smoke else 240)
