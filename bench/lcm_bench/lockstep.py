@@ -15,18 +15,19 @@ def run(b):
     reps = 1 if b.smoke else 3
     cpus = sorted(os.sched_getaffinity(0))
     # kinds: pinned, unpinned, pinned with LCM's receive thread on both sides ("lcm"), pinned over shared memory
-    runs = {(name, kind): [] for name in b.names for kind in (True, False, "lcm", "shm")}
+    runs = {(name, kind): [] for name in b.names for kind in (True, False, "lcm", "shm", "shm_free")}
     for rep in range(reps):
         order = b.names if rep % 2 == 0 else list(reversed(b.names))
         for name in order:
             # The goals are on turret_bot and chain100 (60 s each); the middle chains only show the scaling.
             duration = 0.3 if b.smoke else 60.0 if name in ("turret_bot", "chain100") else 20.0
-            kinds = (True, "lcm", "shm", False) if rep == 0 else (True, "lcm", "shm")
+            kinds = (True, "lcm", "shm", False, "shm_free") if rep == 0 else (True, "lcm", "shm")
             for kind in (kinds if rep % 2 == 0 else tuple(reversed(kinds))):
-                cpu = None if kind is False else cpus[-1]
-                cm_key = (name, kind) if kind in ("lcm", "shm") else name
+                cpu = None if kind in (False, "shm_free") else cpus[-1]
+                cm_key = (name, "shm") if kind == "shm_free" else (name, kind) if kind in ("lcm", "shm") else name
                 pin_threads(b.cms[cm_key][0].pid, {cpu} if cpu is not None else set(cpus))
-                runs[(name, kind)].append(lockstep_run(b, name, duration, cpu, kind == "lcm", kind == "shm"))
+                runs[(name, kind)].append(lockstep_run(b, name, duration, cpu, kind == "lcm",
+                                                       kind in ("shm", "shm_free")))
                 pin_threads(b.cms[cm_key][0].pid, set(cpus))
                 if kind == "shm":
                     # The floor again, seconds after the run it is compared with: this machine's speed drifts by
@@ -37,7 +38,7 @@ def run(b):
     for name in b.names:
         cm = b.cms[name][0]
         for kind, key in ((False, "lockstep_unpinned"), (True, "lockstep"), ("lcm", "lockstep_lcm"),
-                          ("shm", "lockstep_shm")):
+                          ("shm", "lockstep_shm"), ("shm_free", "lockstep_shm_unpinned")):
             rs = runs[(name, kind)]
             b.r.setdefault(name, {})[key] = {
                 "wall": median([x["wall"] for x in rs]), "rtf": median([x["rtf"] for x in rs]),

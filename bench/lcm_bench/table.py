@@ -236,6 +236,10 @@ def table(b):
             "in caches and TLB as in the loop) = ratio", shm_loop_floor)
     row("3. lockstep real-time factor, not pinned (launch's `cpu: none`; one run)",
         lambda d: "{:.1f}x".format(d["lockstep_unpinned"]["rtf"]))
+    if any("lockstep_shm_unpinned" in r.get(n, {}) for n in names):
+        row("3. lockstep over shared memory, not pinned (launch's `cpu: none`: with two CPUs free each process has "
+            "one, and each wait spins on sched_yield for up to 1 ms; one run)",
+            lambda d: "{:.1f}x".format(d["lockstep_shm_unpinned"]["rtf"]))
     for key, label, how in (("realtime", "4.", ""),
                             ("realtime_fifo", "4c.", f" as `launch --rt-priority {b.RT_PRIORITY}` runs it (SCHED_FIFO "
                                                      f"{b.RT_PRIORITY} and `--spin-us {b.SPIN_US}` on both; the "
