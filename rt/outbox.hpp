@@ -52,7 +52,7 @@ class Outbox {
   void send_here(bool on) { send_here_.store(on, std::memory_order_relaxed); }
   bool sends_here() const { return send_here_.load(std::memory_order_relaxed); }
   // Sends what is queued on the calling thread, unless the outbox's thread is sending at that moment (it then sends
-  // them); the number sent. Waits on the socket: not for a real-time loop.
+  // them); the number sent. Waits on the socket and may grow a slot: not for a real-time loop.
   size_t send_queued();
 
   // Waits until everything committed before the call has been sent (not for the loop path).
