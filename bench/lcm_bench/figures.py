@@ -12,6 +12,11 @@ def median(xs):
     return statistics.median(xs) if xs else float("nan")
 
 
+def us_per_step(run):
+    """A lockstep run's wall time per step of sim time (1 kHz), µs."""
+    return run["wall"] / (run["duration"] * 1000) * 1e6
+
+
 def fmt(x, digits=3):
     if x is None or x != x:
         return "–"

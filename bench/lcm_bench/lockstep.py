@@ -4,7 +4,7 @@ through LCM's receive thread and over shared memory, with each process's peak RS
 import os
 import re
 
-from .figures import median
+from .figures import median, us_per_step
 from .processes import Proc, pin_threads
 
 
@@ -46,7 +46,7 @@ def run(b):
                 "duration": rs[0]["duration"], "physics_us": median([x["physics_us"] for x in rs])}
         # Each repetition's run over shared memory with the run over LCM (direct reader) and the floor next to it.
         b.r[name]["lockstep_shm"]["pairs"] = [
-            {"shm_wall": s["wall"], "lcm_wall": l["wall"], "duration": s["duration"], **s["floor"]}
+            {"shm_us": us_per_step(s), "lcm_us": us_per_step(l), **s["floor"]}
             for s, l in zip(runs[(name, "shm")], runs[(name, True)])]
         b.r[name]["memory"] = {"sim_kb": max(x["rss"] for x in runs[(name, True)]), "cm_kb": cm.vm_hwm_kb()}
         b.r[name]["futex"] = futex_floor(b, name, cpus[-1])

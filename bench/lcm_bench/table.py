@@ -1,7 +1,7 @@
 """bench/run's table: one row per figure, one column per robot, with its goal and whether it is met."""
 import statistics
 
-from .figures import fmt, median
+from .figures import fmt, median, us_per_step
 
 
 def realtime_rows(r, row, yes, key, label, how):
@@ -115,28 +115,19 @@ def table(b):
         *(d["rtt2"]["clock/ours"][s] for s in ("min", "p50", "p99"))))
     row("3. lockstep: wall time, s / sim time, s", lambda d: f'{fmt(d["lockstep"]["wall"])} / {d["lockstep"]["duration"]:g}')
 
-    def us_per_step(x):  # a lockstep run's wall time per step of sim time (1 kHz)
-        return x["wall"] / (x["duration"] * 1000) * 1e6
-
-    def pairs(d):  # each repetition's run over shared memory, the LCM run next to it and the floor measured after it
-        return d.get("lockstep_shm", {}).get("pairs") or []
-
-    def pair_floor(p):  # issue 34's floor: the bare futex round trip p50 + the bare Bullet step
+    # Each repetition's run over shared memory (shm_us a step), the LCM run next to it (lcm_us) and the floor
+    # measured seconds after it: issue 34's floor, the bare futex round trip p50 + the bare Bullet step.
+    def pair_floor(p):
         return p["futex"] + p["bare"]
 
-    def pair_step(p):
-        return p["shm_wall"] / (p["duration"] * 1000) * 1e6
+    def futex_floor(d):
+        return median([pair_floor(p) for p in d["lockstep_shm"]["pairs"]])
 
-    def futex_floor(d):  # the median of the floors measured next to each run (else section 1's step + section 3's)
-        return median([pair_floor(p) for p in pairs(d)]) if pairs(d) else d["futex"]["p50"] + d["physics"]["bare"]
-
-    def lcm_ratio(d):  # shared memory's real-time factor ÷ LCM's (direct reader): the median of each repetition's
-        return median([p["lcm_wall"] / p["shm_wall"] for p in pairs(d)]) if pairs(d) else \
-            d["lockstep_shm"]["rtf"] / d["lockstep"]["rtf"]
+    def lcm_ratio(d):  # shared memory's real-time factor ÷ LCM's (direct reader), the median of the repetitions'
+        return median([p["lcm_us"] / p["shm_us"] for p in d["lockstep_shm"]["pairs"]])
 
     def floor_ratio(d):
-        return median([pair_step(p) / pair_floor(p) for p in pairs(d)]) if pairs(d) else \
-            us_per_step(d["lockstep_shm"]) / futex_floor(d)
+        return median([p["shm_us"] / pair_floor(p) for p in d["lockstep_shm"]["pairs"]])
 
     def per_step(d):
         us = us_per_step(d["lockstep"])
@@ -170,13 +161,10 @@ def table(b):
         "turret ≥ 100x and ≥ 2.5x; chain100 ≥ 1.5x", "; ".join(shm_met))
 
     def shm_floor(d):
-        if not pairs(d):
-            us, floor = us_per_step(d["lockstep_shm"]), futex_floor(d)
-            return f"{fmt(us)} / ({fmt(d['futex']['p50'])} + {fmt(d['physics']['bare'])}) = **{us / floor:.2f}**"
-        each = "; ".join(f"{fmt(pair_step(p))} / ({fmt(p['futex'])} + {fmt(p['bare'])}) = {pair_step(p) / pair_floor(p):.2f}"
-                         for p in pairs(d))
+        each = "; ".join(f"{fmt(p['shm_us'])} / ({fmt(p['futex'])} + {fmt(p['bare'])}) = {p['shm_us'] / pair_floor(p):.2f}"
+                         for p in d["lockstep_shm"]["pairs"])
         return f"{each}; median **{floor_ratio(d):.2f}**"
-    floor_ok = [n for n in shm if pairs(r[n]) or "futex" in r[n]]
+    floor_ok = list(shm)
     row("3. over shared memory: µs per step / floor (bare futex ping-pong p50 between two processes on that CPU, "
         "the state's and command's bytes copied, + bare Bullet step; both measured seconds after each run, as the "
         "machine's speed drifts) = ratio, each repetition", shm_floor, "≤ 1.3",
@@ -191,14 +179,11 @@ def table(b):
                                             d["lockstep_shm"]["physics_us"] / d["physics"]["full"])
 
     def least_us(d):  # a step over shared memory if our code and the controller manager took no time
-        futex = median([p["futex"] for p in pairs(d)]) if pairs(d) else d["futex"]["p50"]
-        return d["lockstep_shm"]["physics_us"] + futex
+        return d["lockstep_shm"]["physics_us"] + median([p["futex"] for p in d["lockstep_shm"]["pairs"]])
 
     def at_floor(d):  # a step exactly at the floor: its real-time factor, and that ÷ the LCM figure
         floor = futex_floor(d)
-        lcm_us = median([p["lcm_wall"] / (p["duration"] * 1000) * 1e6 for p in pairs(d)]) if pairs(d) else \
-            us_per_step(d["lockstep"])
-        return 1e3 / floor, lcm_us / floor
+        return 1e3 / floor, median([p["lcm_us"] for p in d["lockstep_shm"]["pairs"]]) / floor
 
     def within_reach(n):
         rtf, ratio = at_floor(r[n])
