@@ -144,7 +144,16 @@ void check_model(RobotModel& model, std::vector<std::string>& problems) {
                                           "<joint type=\"continuous\">",
                                           u, j.name, j.lower, j.upper));
     }
-    if (j.effort_limit == 0 && sets_position_directly(model, j.name))
+    // No actuator (no transmission, no <ros2_control> command interface): the joint is passive, free or sprung as in
+    // Gazebo, and its <limit effort velocity> (often both 0) describe an actuator it does not have.
+    if (!model.transmission_for_joint(j.name)) {
+      if (!j.mimic && (j.effort_limit == 0 || j.velocity_limit == 0))
+        model.notes.push_back(fmt::format("{}: joint '{}' is passive (nothing drives it): it moves freely{}, and its "
+                                          "<limit{}{}> applies to no actuator",
+                                          u, j.name, j.spring ? " on its spring" : "",
+                                          j.effort_limit == 0 ? " effort=\"0\"" : "",
+                                          j.velocity_limit == 0 ? " velocity=\"0\"" : ""));
+    } else if (j.effort_limit == 0 && sets_position_directly(model, j.name))
       model.warnings.push_back(fmt::format("{}: joint '{}': <limit effort=\"0\"> ignored: the joint takes position "
                                            "commands without pid_gains, so it is moved directly and no effort limit "
                                            "applies (as in Gazebo)",
@@ -156,7 +165,7 @@ void check_model(RobotModel& model, std::vector<std::string>& problems) {
                                      model.pid_gains.count(j.name) ? fmt::format(": its pid_gains in {} drive it by effort",
                                                                                  model.config_file_of(gains_key(model, j.name)))
                                                                    : ""));
-    if (j.velocity_limit == 0)
+    if (j.velocity_limit == 0 && model.transmission_for_joint(j.name))
       problems.push_back(fmt::format("{}: joint '{}': <limit velocity=\"0\"> would freeze the joint; set the real "
                                      "velocity limit",
                                      u, j.name));

@@ -68,6 +68,14 @@ struct Link {
   std::vector<Geometry> visuals;
   std::string parent_joint;  // "" for the root
   std::optional<double> friction;  // <gazebo reference="LINK"><mu1>: contact friction coefficient (default 1)
+  // <gazebo reference="LINK"><fdir1> with <mu2>: friction mu1 along fdir1 and mu2 across it (a mecanum or omni
+  // wheel's rollers, as Gazebo's ODE models them); without it the contact's friction is mu1 every way.
+  struct FrictionDirection {
+    Eigen::Vector3d fdir1 = Eigen::Vector3d::UnitX();  // unit, in `frame`
+    std::string frame;                                  // the link it is expressed in (gz:expressed_in); "" this one
+    double mu2 = 1;
+  };
+  std::optional<FrictionDirection> friction_direction;
   bool gravity_off = false;        // <gazebo reference="LINK"><turnGravityOff>true: the link feels no gravity
 };
 
@@ -89,6 +97,12 @@ struct Joint {
   double damping = 0, friction = 0;
   std::optional<SoftLimits> soft;  // <safety_controller>
   std::optional<Mimic> mimic;      // driven by another joint through a gear in the simulation; takes no transmission
+  // <gazebo reference="JOINT"><springStiffness> (N*m/rad or N/m) and <springReference> (rad or m): a spring pulling
+  // the joint towards the reference, -stiffness * (q - reference), as Gazebo simulates it.
+  struct Spring {
+    double stiffness = 0, reference = 0;
+  };
+  std::optional<Spring> spring;
   JointLimits limits() const {     // as joint_limits_interface reads them from the URDF
     JointLimits l;
     l.has_position = has_position_limits;

@@ -12,6 +12,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <set>
 #include <sstream>
 
 #include "description/robot_file.hpp"
@@ -319,29 +321,93 @@ bool read_elsewhere(const std::string& filename) {
   return false;
 }
 
-// The <gazebo> extensions read here: self_collide (robot), mu1 and turnGravityOff (per link), and the
-// gazebo_ros_control plugin (a ros2_control plugin is read by ros2_control.cpp). Every other tag is named in one
-// warning: Gazebo would read it, we do not.
-void parse_gazebo_plugin(RobotModel& model, const tinyxml2::XMLElement* robot, const std::string& file) {
+// A <gazebo reference> number tag: its value, or a problem naming the file, line and tag.
+std::optional<double> gazebo_number(const tinyxml2::XMLElement* g, const char* tag, const std::string& file,
+                                    const std::string& ref, bool non_negative, std::vector<std::string>& problems) {
+  const tinyxml2::XMLElement* e = g->FirstChildElement(tag);
+  if (!e) return std::nullopt;
+  double v = 0;
+  if (e->GetText() && parse_double(trim(e->GetText()), v) && std::isfinite(v) && (!non_negative || v >= 0)) return v;
+  problems.push_back(fmt::format("{}:{}: <gazebo reference=\"{}\"><{}>{}</{}> is not {}; write a number such as 0.5",
+                                 file, e->GetLineNum(), ref, tag, e->GetText() ? e->GetText() : "", tag,
+                                 non_negative ? "a number >= 0" : "a finite number"));
+  return std::nullopt;
+}
+
+// A link's <gazebo reference>: mu1, mu2 and fdir1 (friction), turnGravityOff.
+void read_gazebo_link(RobotModel& model, Link& l, const tinyxml2::XMLElement* g, const std::string& file,
+                      std::vector<std::string>& problems) {
+  if (const auto mu = gazebo_number(g, "mu1", file, l.name, true, problems)) l.friction = *mu;
+  if (const char* off = child_text(g, "turnGravityOff")) l.gravity_off = trim(off) == "true" || trim(off) == "1";
+  const auto mu2 = gazebo_number(g, "mu2", file, l.name, true, problems);
+  const tinyxml2::XMLElement* fdir = g->FirstChildElement("fdir1");
+  if (!fdir) {
+    if (mu2 && *mu2 != l.friction.value_or(1.0))
+      model.warnings.push_back(fmt::format("{}: link '{}': <mu2>{:g}</mu2> differs from <mu1> but no <fdir1> says "
+                                           "which way it acts; the contact's friction is mu1 ({:g}) every way",
+                                           file, l.name, *mu2, l.friction.value_or(1.0)));
+    return;
+  }
+  Link::FrictionDirection d;
+  std::istringstream in(fdir->GetText() ? fdir->GetText() : "");
+  double x = 0, y = 0, z = 0;
+  std::string rest;
+  if (!(in >> x >> y >> z) || (in >> rest) || !std::isfinite(x + y + z) || Eigen::Vector3d(x, y, z).norm() < 1e-9) {
+    problems.push_back(fmt::format("{}:{}: link '{}': <fdir1>{}</fdir1> is not a direction; write three numbers, not "
+                                   "all zero, such as 1 0 0",
+                                   file, fdir->GetLineNum(), l.name, fdir->GetText() ? fdir->GetText() : ""));
+    return;
+  }
+  d.fdir1 = Eigen::Vector3d(x, y, z).normalized();
+  for (const char* attr : {"gz:expressed_in", "ignition:expressed_in", "expressed_in"})
+    if (const char* frame = fdir->Attribute(attr)) d.frame = trim(frame);
+  if (!d.frame.empty() && !model.link(d.frame))
+    problems.push_back(fmt::format("{}:{}: link '{}': <fdir1 expressed_in=\"{}\">: there is no link '{}' to express "
+                                   "it in; name a link of the robot (usually the base) or leave the attribute out",
+                                   file, fdir->GetLineNum(), l.name, d.frame, d.frame));
+  d.mu2 = mu2.value_or(l.friction.value_or(1.0));
+  l.friction_direction = d;
+}
+
+// A joint's <gazebo reference>: springStiffness, springReference (implicitSpringDamper is how we simulate any spring).
+void read_gazebo_joint(Joint& j, const tinyxml2::XMLElement* g, const std::string& file,
+                       std::vector<std::string>& problems) {
+  const auto k = gazebo_number(g, "springStiffness", file, j.name, true, problems);
+  const auto ref = gazebo_number(g, "springReference", file, j.name, false, problems);
+  if (k && *k > 0) j.spring = Joint::Spring{*k, ref.value_or(0.0)};
+}
+
+// The <gazebo> extensions read here: self_collide (robot); mu1, mu2, fdir1 and turnGravityOff (per link);
+// springStiffness, springReference and implicitSpringDamper (per joint); and the gazebo_ros_control plugin (a
+// ros2_control plugin is read by ros2_control.cpp). Every other tag is named in one warning: Gazebo would read it, we
+// do not.
+void parse_gazebo_plugin(RobotModel& model, const tinyxml2::XMLElement* robot, const std::string& file,
+                         std::vector<std::string>& problems) {
+  static const std::set<std::string> kLinkTags = {"mu1", "mu2", "fdir1", "turnGravityOff"};
+  static const std::set<std::string> kJointTags = {"springStiffness", "springReference", "implicitSpringDamper",
+                                                   "provideFeedback"};
   std::map<std::string, int> unread;  // "tag" or "plugin FILENAME" -> count
   for (auto* g = robot->FirstChildElement("gazebo"); g; g = g->NextSiblingElement("gazebo")) {
-    const bool per_link = g->Attribute("reference") != nullptr;
+    const char* ref = g->Attribute("reference");
+    Link* link = nullptr;
+    Joint* joint = nullptr;
+    if (ref) {
+      for (Link& l : model.links)
+        if (l.name == ref) link = &l;
+      for (Joint& j : model.joints)
+        if (j.name == ref) joint = &j;
+    }
     for (auto* c = g->FirstChildElement(); c; c = c->NextSiblingElement()) {
       const std::string tag = c->Name();
-      const bool read = tag == "plugin" || tag == "sensor" || (!per_link && tag == "self_collide") ||
-                        (per_link && (tag == "mu1" || tag == "turnGravityOff" || tag == "provideFeedback"));
-      if (!read) ++unread[(per_link ? "<gazebo reference> " : "<gazebo> ") + tag];
+      const bool read = tag == "plugin" || tag == "sensor" || (!ref && tag == "self_collide") ||
+                        (ref && tag == "provideFeedback") || (link && kLinkTags.count(tag)) ||
+                        (joint && kJointTags.count(tag));
+      if (!read) ++unread[(ref ? "<gazebo reference> " : "<gazebo> ") + tag];
     }
-    if (const char* sc = child_text(g, "self_collide"); sc && !g->Attribute("reference"))
+    if (const char* sc = child_text(g, "self_collide"); sc && !ref)
       model.self_collide = trim(sc) == "true" || trim(sc) == "1";
-    if (const char* ref = g->Attribute("reference"))
-      for (Link& l : model.links) {
-        if (l.name != ref) continue;
-        double v = 0;
-        if (const char* mu = child_text(g, "mu1"); mu && parse_double(trim(mu), v) && v >= 0) l.friction = v;
-        if (const char* off = child_text(g, "turnGravityOff"))
-          l.gravity_off = trim(off) == "true" || trim(off) == "1";
-      }
+    if (link) read_gazebo_link(model, *link, g, file, problems);
+    if (joint) read_gazebo_joint(*joint, g, file, problems);
     for (auto* p = g->FirstChildElement("plugin"); p; p = p->NextSiblingElement("plugin")) {
       const char* fn = p->Attribute("filename");
       if (fn && std::string(fn).find("gazebo_ros_control") != std::string::npos) {
@@ -356,7 +422,9 @@ void parse_gazebo_plugin(RobotModel& model, const tinyxml2::XMLElement* robot, c
   std::vector<std::string> names;
   for (const auto& [tag, n] : unread) names.push_back(n == 1 ? tag : fmt::format("{} (x{})", tag, n));
   model.warnings.push_back(fmt::format("{}: Gazebo tags not simulated here, ignored: {} (read are <self_collide>, "
-                                       "per link <mu1> and <turnGravityOff>, the ros_control plugins and the sensors)",
+                                       "per link <mu1>, <mu2>, <fdir1> and <turnGravityOff>, per joint "
+                                       "<springStiffness> and <springReference>, the ros_control plugins and the "
+                                       "sensors)",
                                        file, fmt::join(names, ", ")));
 }
 
@@ -515,7 +583,7 @@ void read_urdf(RobotModel& model, const std::string& urdf_path, const LoadOption
     read_ros2_control(model, robot, urdf_path, problems);  // ROS 2: the blocks, not <transmission> tags
   else
     parse_transmissions(model, robot, urdf_path, problems);
-  parse_gazebo_plugin(model, robot, urdf_path);
+  parse_gazebo_plugin(model, robot, urdf_path, problems);
   read_ros2_control_plugin(model, robot, urdf_path, problems);
   read_sensors(model, robot, urdf_path);
 }

@@ -56,7 +56,7 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
     a.continuous = j.type == JointType::Continuous;
     a.effort_limit = j.effort_limit;
     a.velocity_limit = j.velocity_limit;
-    a.passive = passive_for(mj, model.urdf_path);
+    a.passive = passive_for(mj, model.urdf_path, true);
     a.saturation = PositionSaturation(j.limits());
     const auto gains = model.pid_gains.find(t.joint);
     const bool with_gains = gains != model.pid_gains.end();
@@ -100,18 +100,29 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
     actuators_.push_back(std::move(a));
   }
   for (const MultibodyJoint& mj : mb.joints())
-    if (!model.transmission_for_joint(mj.urdf->name) && (mj.urdf->damping > 0 || mj.urdf->friction > 0))
-      passive_.push_back(passive_for(mj, model.urdf_path));
+    if (!model.transmission_for_joint(mj.urdf->name) &&
+        (mj.urdf->damping > 0 || mj.urdf->friction > 0 || mj.urdf->spring))
+      passive_.push_back(passive_for(mj, model.urdf_path, false));
 }
 
-Actuators::Passive Actuators::passive_for(const MultibodyJoint& mj, const std::string& urdf) {
+Actuators::Passive Actuators::passive_for(const MultibodyJoint& mj, const std::string& urdf, bool actuated) {
   const double dt = mb_.dt();
   const Joint& j = *mj.urdf;
   Passive p;
   p.link = mj.link;
   p.friction = j.friction;
   p.damping = j.damping;
-  if (mj.effective_inertia > 0 && p.damping * dt > mj.effective_inertia) {
+  if (j.spring) {
+    p.stiffness = j.spring->stiffness;
+    p.reference = j.spring->reference;
+    if (!actuated) p.implicit = mb_.add_damper(mj.link);
+    else if (mj.effective_inertia > 0 && p.stiffness * dt * dt > mj.effective_inertia)
+      warnings_.push_back(fmt::format("{}: joint '{}': springStiffness {:g} with an actuator is applied explicitly and "
+                                      "is too stiff for a {:g} s step with inertia {:g} (it may oscillate); a spring "
+                                      "on a joint nothing drives has no such limit",
+                                      urdf, j.name, p.stiffness, dt, mj.effective_inertia));
+  }
+  if (!p.implicit && mj.effective_inertia > 0 && p.damping * dt > mj.effective_inertia) {
     p.damping = mj.effective_inertia / dt;
     warnings_.push_back(fmt::format("{}: joint '{}': damping {:g} is too stiff for a {:g} s step with inertia {:g}; "
                                     "simulated with {:g}",
@@ -302,13 +313,20 @@ void Actuators::apply(double dt) {
         break;
     }
     if (!std::isfinite(a.effort)) a.effort = 0;  // Bullet turns one Inf or NaN into NaN everywhere
-    mb_.add_torque(a.link, a.effort + passive_torque(a.passive, qd));
+    mb_.add_torque(a.link, a.effort + passive_torque(a.passive, q, qd));
   }
-  for (const Passive& p : passive_) mb_.add_torque(p.link, passive_torque(p, mb_.velocity(p.link)));
+  for (const Passive& p : passive_) mb_.add_torque(p.link, passive_torque(p, mb_.position(p.link), mb_.velocity(p.link)));
 }
 
-double Actuators::passive_torque(const Passive& p, double qd) {
-  return -p.damping * qd - p.friction * std::tanh(qd / p.friction_speed);
+double Actuators::passive_torque(const Passive& p, double q, double qd) {
+  const double friction = -p.friction * std::tanh(qd / p.friction_speed);
+  if (p.implicit) {
+    // -k*(q_next - ref) - d*v_next with q_next = q + dt*v_next: a damper of d + k*dt towards -k*(q - ref)/(d + k*dt).
+    const double c = p.damping + p.stiffness * mb_.dt();
+    p.implicit->set(c, c > 0 ? -p.stiffness * (q - p.reference) / c : 0.0, -kUnlimitedEffort, kUnlimitedEffort);
+    return friction;
+  }
+  return friction - p.damping * qd - p.stiffness * (q - p.reference);
 }
 
 void Actuators::read(double dt) {

@@ -87,10 +87,14 @@ class Actuators final : public PlayedHardware {
   double joint_effort(int i) const { return actuators_[i].applied; }
 
  private:
-  // URDF damping and friction of a moving joint (torques -d*v and -f*tanh(v/friction_speed)).
+  // URDF damping and friction of a moving joint (torques -d*v and -f*tanh(v/friction_speed)) and its Gazebo spring
+  // (-stiffness*(q - reference)). A joint nothing drives takes its spring and damping through `implicit`, solved at
+  // the end of the step (stable for any stiffness, as Gazebo's implicitSpringDamper); an actuated one explicitly.
   struct Passive {
     int link = -1;
     double damping = 0, friction = 0, friction_speed = 1;
+    double stiffness = 0, reference = 0;
+    ImplicitJointDamper* implicit = nullptr;
   };
 
   static constexpr int kWireModes = 4;  // MODE_NONE .. MODE_EFFORT
@@ -137,8 +141,9 @@ class Actuators final : public PlayedHardware {
   void switch_mode(Actuator& a, int8_t wire_mode);
   void set_in_world(btMultiBodyJointMotor* motor, bool& in_world, bool on);
   btMultiBodyJointMotor* active_motor(const Actuator& a) const;
-  Passive passive_for(const MultibodyJoint& j, const std::string& urdf);
-  static double passive_torque(const Passive& p, double qd);
+  Passive passive_for(const MultibodyJoint& j, const std::string& urdf, bool actuated);
+  // The explicit part: friction, and damping and spring unless `implicit` takes them (then sets it for the step).
+  double passive_torque(const Passive& p, double q, double qd);
 
   Multibody& mb_;
   std::vector<Actuator> actuators_;

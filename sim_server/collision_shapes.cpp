@@ -1,6 +1,7 @@
 #include "sim_server/collision_shapes.hpp"
 
 #include <assimp/Importer.hpp>
+#include <assimp/config.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
@@ -40,6 +41,10 @@ void collect_vertices(const aiScene* scene, const aiNode* node, const aiMatrix4x
 
 std::unique_ptr<btCollisionShape> make_mesh(const Geometry& g, const std::string& where) {
   Assimp::Importer importer;
+  // A Collada file's <up_axis> would become a rotation of the root node (Z_UP to Assimp's Y_UP); rviz, Gazebo and
+  // geometric_shapes take the vertices in the URDF's frame as exported, so it is left out. The root node keeps the
+  // file's <unit meter> scale.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_COLLADA_IGNORE_UP_DIRECTION, true);
   const aiScene* scene = importer.ReadFile(g.mesh_path, aiProcess_JoinIdenticalVertices);
   if (!scene || !scene->mRootNode)
     throw ModelError(fmt::format("{}: cannot read collision mesh '{}' ({}): {}", where, g.mesh_uri, g.mesh_path,

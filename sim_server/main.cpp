@@ -2,6 +2,7 @@
 // controller_manager (docs/hardware-protocol.md). Flags and wiring only.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "cli/cli.hpp"
 #include "rt/log.hpp"
@@ -81,23 +82,42 @@ int main(int argc, char** argv) {
                "start paused, as Gazebo's paused:=true: the state is published and controllers can be spawned, but "
                "nothing steps until `cmctl resume` (or `cmctl step N`)");
   sim::WorldOptions world;
-  app.add_flag("--floating-base", world.floating_base,
-               "the root link is free (a mobile robot), as Gazebo leaves a model without a joint to `world`; its "
-               "ground truth goes on sim_server/base_pose. Default: welded where it is (an arm)");
+  bool floating = false, fixed = false;
+  auto* floating_flag = app.add_flag(
+      "--floating-base", floating,
+      "the root link is free, even if the URDF names it `world`; its ground truth goes on sim_server/base_pose "
+      "(default: free when the URDF has no joint to `world`, as Gazebo spawns it, welded when it has)");
+  app.add_flag("--fixed-base", fixed,
+               "weld the root link to the world where it starts, even when the URDF has no joint to `world` (an arm "
+               "bolted to a table)")
+      ->excludes(floating_flag);
   bool ground = false, no_ground = false;
-  app.add_flag("--ground", ground, "a ground plane at z = 0 (default with --floating-base)");
-  app.add_flag("--no-ground", no_ground, "no ground plane, even with --floating-base")->excludes("--ground");
+  app.add_flag("--ground", ground, "a ground plane at z = 0 (default with a free base)");
+  app.add_flag("--no-ground", no_ground, "no ground plane, even with a free base")->excludes("--ground");
   std::vector<double> base_pose;
-  app.add_option("--base-pose", base_pose, "X Y Z YAW: where the root link starts (m, rad; default 0 0 0 0)")
+  app.add_option("--base-pose", base_pose,
+                 "X Y Z YAW: where the root link starts (m, rad; default 0 0 0 0); a free base below the ground is "
+                 "lifted onto it")
       ->expected(4);
+  std::optional<double> spawn_x, spawn_y, spawn_z, spawn_yaw;
+  app.add_option("-x", spawn_x, "the root link's start x (m), as ros_gz_sim create and spawn_model take it")
+      ->excludes("--base-pose");
+  app.add_option("-y", spawn_y, "its start y (m)")->excludes("--base-pose");
+  app.add_option("-z", spawn_z, "its start z (m)")->excludes("--base-pose");
+  app.add_option("-Y", spawn_yaw, "its start yaw (rad)")->excludes("--base-pose");
   bool no_brakes = false;
   app.add_flag("--no-brakes", no_brakes,
                "joints nobody commands, or held by the watchdog, are left to their PID (position) or limp (effort, "
                "velocity), as in Gazebo (default: braked where they are)");
-  bool mock_hardware = false;
-  app.add_flag("--mock-hardware", mock_hardware,
-               "play the robot without physics, as ros2_control's mock_components/GenericSystem: the state follows "
-               "the command (the default when every <ros2_control> block names mock_components/GenericSystem)");
+  bool mock_hardware = false, physics = false;
+  auto* mock_flag = app.add_flag(
+      "--mock-hardware", mock_hardware,
+      "play the robot without physics, as ros2_control's mock_components/GenericSystem: the state follows "
+      "the command (the default when every <ros2_control> block names mock_components/GenericSystem)");
+  app.add_flag("--physics", physics,
+               "simulate the robot in Bullet even when its <ros2_control> blocks name mock hardware (a description "
+               "written for mock_components or a demo's mock-like plugin, run as gz_ros2_control would run it)")
+      ->excludes(mock_flag);
   app.add_option("--log-level", log_level, "debug, info, warn or error");
   add_bus_flags(app, bus_flags);
   add_hardware_url_flag(app, bus_flags);
@@ -140,16 +160,25 @@ int main(int argc, char** argv) {
       const auto [joint, q] = parse_initial_position(a);
       start[joint] = q;
     }
-    world.ground = !no_ground && (ground || world.floating_base);
     if (base_pose.size() == 4) {
       world.base_position = {base_pose[0], base_pose[1], base_pose[2]};
       world.base_yaw = base_pose[3];
     }
-    const bool mock = mock_hardware || sim::all_mock_hardware(model);
-    if (mock && world.floating_base)
+    world.base_position = {spawn_x.value_or(world.base_position.x()), spawn_y.value_or(world.base_position.y()),
+                           spawn_z.value_or(world.base_position.z())};
+    world.base_yaw = spawn_yaw.value_or(world.base_yaw);
+    const bool mock = mock_hardware || (!physics && sim::all_mock_hardware(model));
+    if (mock && floating)
       throw CLI::ValidationError("--floating-base", "needs physics, and mock hardware has none: drop --floating-base, or "
                        "--mock-hardware (a description whose <ros2_control> blocks all name mock hardware runs mock "
                        "hardware; name gz_ros2_control/GazeboSimSystem there to simulate it)");
+    const sim::BaseMount mount = floating ? sim::BaseMount::Floating : fixed ? sim::BaseMount::Fixed : sim::BaseMount::Auto;
+    world.floating_base = !mock && sim::floating_base_for(model, mount);
+    world.ground = !no_ground && (ground || world.floating_base);
+    if (world.floating_base && mount == sim::BaseMount::Auto)
+      spdlog::info("{}: the root link '{}' has no joint to `world`: a free base{}, as Gazebo spawns it (--fixed-base "
+                   "welds it where it starts)",
+                   model.urdf_path, model.root_link, world.ground ? " on the ground plane" : "");
     sim::Simulation sim(model, rates, start, world, mock ? sim::Backend::Mock : sim::Backend::Bullet);
     const bool brakes = !no_brakes && model.ros2_control_plugin.hold_joints;
     if (mock)

@@ -33,16 +33,22 @@ struct LinkInertia {
 };
 
 // The URDF inertial as Bullet needs it: a diagonal tensor in a COM frame rotated onto the principal axes.
+// followers_inertia: for a massless link whose joint other joints mimic (a car-like robot's virtual wheel), the
+// moments those joints' links put on it through their gears (kg m^2; 0 for none).
 LinkInertia principal_inertia(const Link& link, bool moving, const std::string& urdf,
-                              std::vector<std::string>& warnings) {
+                              std::vector<std::string>& warnings, double followers_inertia = 0) {
   LinkInertia out;
   if (link.inertial) out.link_from_com = link.inertial->origin;
   if (!link.inertial || link.inertial->mass <= 0) {
     if (moving) {
+      // A 1 g link held to heavy followers by gears is a stiff, ill-conditioned solve (its actuator's speed came out
+      // twice the command): it gets their moment of inertia, its mass staying negligible.
+      const double inertia = std::max(kMasslessLinkInertia, followers_inertia);
       out.mass = kMasslessLinkMass;
-      out.principal.setConstant(kMasslessLinkInertia);
-      warnings.push_back(fmt::format("{}: link '{}' moves but has no mass; simulated with {} kg, inertia {} kg m^2",
-                                     urdf, link.name, kMasslessLinkMass, kMasslessLinkInertia));
+      out.principal.setConstant(inertia);
+      warnings.push_back(fmt::format("{}: link '{}' moves but has no mass; simulated with {} kg, inertia {:g} kg m^2{}",
+                                     urdf, link.name, kMasslessLinkMass, inertia,
+                                     followers_inertia > kMasslessLinkInertia ? " (its mimic joints' links')" : ""));
     }
     return out;
   }
@@ -79,42 +85,19 @@ btQuaternion bt_rotation(const Eigen::Matrix3d& r) {
   return q;
 }
 
-// Bullet's multibody solver, with room made for a step's Jacobian rows before they are filled: Bullet grows those
-// buffers to the exact size one row at a time (a copy of every row before for each new one), which took a 500-link
-// chain 27 s to size and made a step with more active rows than ever before cost the square of their number. Here
-// they grow once, to an upper bound of the step's rows (and only when that is more than ever before).
-class RoomySolver final : public btMultiBodyConstraintSolver {
- protected:
-  btScalar solveGroupCacheFriendlySetup(btCollisionObject** bodies, int num_bodies, btPersistentManifold** manifolds,
-                                        int num_manifolds, btTypedConstraint** constraints, int num_constraints,
-                                        const btContactSolverInfo& info, btIDebugDraw* draw) override {
-    int64_t values = 0, dofs = 6;
-    for (int i = 0; i < m_tmpNumMultiBodyConstraints; ++i) {
-      btMultiBodyConstraint* c = m_tmpMultiBodyConstraints[i];
-      const int64_t n = (c->getMultiBodyA() ? c->getMultiBodyA()->getNumDofs() + 6 : 0) +
-                        (c->getMultiBodyB() ? c->getMultiBodyB()->getNumDofs() + 6 : 0);
-      values += int64_t(c->getNumRows()) * n;
-      dofs = std::max(dofs, n);
-    }
-    for (int m = 0; m < num_manifolds; ++m)  // a contact point: its normal, two friction and two torsional rows
-      values += int64_t(manifolds[m]->getNumContacts()) * 5 * 2 * dofs;
-    if (values > m_data.m_jacobians.capacity() && values < INT32_MAX) {
-      m_data.m_jacobians.reserve(int(values));
-      m_data.m_deltaVelocitiesUnitImpulse.reserve(int(values));
-    }
-    return btMultiBodyConstraintSolver::solveGroupCacheFriendlySetup(bodies, num_bodies, manifolds, num_manifolds,
-                                                                     constraints, num_constraints, info, draw);
-  }
-};
-
 }  // namespace
+
+bool floating_base_for(const RobotModel& model, BaseMount mount) {
+  if (mount != BaseMount::Auto) return mount == BaseMount::Floating;
+  return model.root_link != "world";
+}
 
 Multibody::Multibody(const RobotModel& model, double dt, const InitialPositions& initial, const WorldOptions& world)
     : dt_(dt) {
   collision_config_ = std::make_unique<btDefaultCollisionConfiguration>();
   dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_config_.get());
   broadphase_ = std::make_unique<btDbvtBroadphase>();
-  solver_ = std::make_unique<RoomySolver>();
+  solver_ = std::make_unique<ContactSolver>();
   world_ = std::make_unique<btMultiBodyDynamicsWorld>(dispatcher_.get(), broadphase_.get(), solver_.get(),
                                                       collision_config_.get());
   world_->setGravity(btVector3(0, 0, -kGravity));
@@ -235,10 +218,29 @@ void Multibody::build(const RobotModel& model, const WorldOptions& world) {
   std::map<std::string, bool> welded_to_base{{model.root_link, !world.floating_base}};  // welded to the world
   const Link* root = model.link(model.root_link);
   if (!root) throw ModelError(fmt::format("{}: root link '{}' not found", urdf, model.root_link));
-  inertia[root->name] = principal_inertia(*root, false, urdf, warnings_);
+  // A free base moves with the links welded to it; if none of them has mass, its root gets the massless moving
+  // link's (a joint between it and the next link would otherwise move nothing and make Bullet's solve singular).
+  double welded_mass = 0;
+  std::function<void(const std::string&)> weigh = [&](const std::string& link) {
+    const Link* l = model.link(link);
+    if (l && l->inertial && l->inertial->mass > 0) welded_mass += l->inertial->mass;
+    for (const Joint& j : model.joints)
+      if (j.parent_link == link && j.type == JointType::Fixed) weigh(j.child_link);
+  };
+  if (world.floating_base) weigh(model.root_link);
+  inertia[root->name] = principal_inertia(*root, world.floating_base && !(welded_mass > 0), urdf, warnings_);
+  std::map<std::string, double> followers_inertia;  // a mimicked joint -> the moments its mimic joints' links add
+  for (const Joint& j : model.joints) {
+    const Link* l = model.link(j.child_link);
+    if (!j.mimic || !l || !l->inertial) continue;
+    const double m = j.mimic->multiplier;
+    followers_inertia[j.mimic->joint] += l->inertial->inertia.diagonal().maxCoeff() * m * m;
+  }
   for (const Joint* j : order) {
     const bool moving = j->type != JointType::Fixed;
-    inertia[j->child_link] = principal_inertia(*model.link(j->child_link), moving, urdf, warnings_);
+    const auto f = followers_inertia.find(j->name);
+    inertia[j->child_link] = principal_inertia(*model.link(j->child_link), moving, urdf, warnings_,
+                                               f == followers_inertia.end() ? 0.0 : f->second);
     welded_to_base[j->child_link] = !moving && welded_to_base[j->parent_link];
   }
 
@@ -336,6 +338,19 @@ void Multibody::build(const RobotModel& model, const WorldOptions& world) {
   }
   add_collider(*root, -1);
   for (int i = 0; i < int(order.size()); ++i) add_collider(*model.link(order[i]->child_link), i);
+  for (const auto& [name, index] : link_index_) {  // every link has a collider now: the frames fdir1 is given in
+    const Link* l = model.link(name);
+    if (!l || !l->friction_direction) continue;
+    const Link::FrictionDirection& d = *l->friction_direction;
+    const std::string& frame = d.frame.empty() ? name : d.frame;
+    const int frame_index = link_index_.at(frame);
+    const btCollisionObject* frame_collider =
+        frame_index < 0 ? body_->getBaseCollider() : body_->getLink(frame_index).m_collider;
+    const Eigen::Vector3d in_frame_com = link_from_com_.at(frame).linear().transpose() * d.fdir1;
+    btCollisionObject* collider = index < 0 ? body_->getBaseCollider() : body_->getLink(index).m_collider;
+    solver_->add_directional_friction(collider, frame_collider, bt(in_frame_com), l->friction.value_or(kDefaultFriction),
+                                      d.mu2);
+  }
   if (world.ground) {
     shapes_.push_back(std::make_unique<btStaticPlaneShape>(btVector3(0, 0, 1), 0));
     ground_ = std::make_unique<btCollisionObject>();

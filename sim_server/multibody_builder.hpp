@@ -29,6 +29,7 @@
 #include "description/initial_positions.hpp"
 #include "description/robot_model.hpp"
 #include "sim_server/collision_shapes.hpp"
+#include "sim_server/contact_solver.hpp"
 #include "sim_server/implicit_damper.hpp"
 #include "sim_server/limit_constraint.hpp"
 
@@ -54,6 +55,11 @@ struct WorldOptions {
   double base_yaw = 0;                                        // rad about z
   uint64_t noise_seed = 0;            // seeds the sensors' Gaussian noise (sim_server/sensors.hpp)
 };
+
+// How the root link is mounted. Auto is Gazebo's rule (ros_gz_sim create, spawn_model): welded when the URDF's root
+// link is `world` (an arm's <link name="world"/> and fixed joint), free on the ground otherwise (a mobile base).
+enum class BaseMount { Auto, Fixed, Floating };
+bool floating_base_for(const RobotModel& model, BaseMount mount);
 
 class Multibody {
  public:
@@ -126,7 +132,7 @@ class Multibody {
   std::unique_ptr<btDefaultCollisionConfiguration> collision_config_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
   std::unique_ptr<btBroadphaseInterface> broadphase_;
-  std::unique_ptr<btMultiBodyConstraintSolver> solver_;
+  std::unique_ptr<ContactSolver> solver_;
   std::unique_ptr<btMultiBodyDynamicsWorld> world_;
   std::unique_ptr<btMultiBody> body_;
   ShapeStore shapes_;

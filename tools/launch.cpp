@@ -41,6 +41,15 @@ int main(int argc, char** argv) {
   app.add_flag("--paused", o.paused,
                "start sim_server paused (Gazebo's paused:=true): controllers are spawned, nothing moves until "
                "`cmctl resume`");
+  bool fixed_base = false, floating_base = false;
+  auto* fixed_flag = app.add_flag("--fixed-base", fixed_base,
+                                  "weld the robot's root link to the world where it starts, even when the URDF has no "
+                                  "joint to `world` (default: free on the ground, as Gazebo spawns it)");
+  app.add_flag("--floating-base", floating_base, "the root link is free even if the file says base: fixed")
+      ->excludes(fixed_flag);
+  app.add_flag("--physics", o.physics,
+               "sim_server simulates the robot in Bullet even when its <ros2_control> blocks name mock hardware (a "
+               "demo's mock-like plugin, mock_components)");
   app.add_option("--cpu", o.cpu,
                  "override the file's cpu: auto (lockstep: sim_server and controller_manager share the least busy "
                  "CPU), none, or a CPU number")
@@ -83,5 +92,8 @@ int main(int argc, char** argv) {
                "servers are up, and print its URL");
   app.add_option("--dashboard-port", o.dashboard_port, "the dashboard's port (default 8080; 0: one the system picks)")
       ->check(CLI::Range(0, 65535));
-  return run_program(app, argc, argv, [&] { return run_launch(o); });
+  return run_program(app, argc, argv, [&] {
+    o.base = fixed_base ? "fixed" : floating_base ? "floating" : "";
+    return run_launch(o);
+  });
 }

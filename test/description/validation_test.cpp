@@ -282,3 +282,55 @@ TEST(Validation, AMimicJointWithATransmissionIsDrivenByItAsInGazebo) {
             std::string::npos)
       << w;
 }
+
+// A joint nothing drives (no transmission) with ROS packages' <limit effort="0" velocity="0">: a passive joint
+// (a wheel drop, a caster), accepted with one note; the same limits on an actuated joint are still refused.
+TEST(Validation, ZeroLimitsOnAJointNothingDrivesMakeItPassive) {
+  const std::string passive = R"(  <link name="caster"><inertial><mass value="0.1"/><inertia ixx="1e-4" ixy="0" ixz="0" iyy="1e-4" iyz="0" izz="1e-4"/></inertial></link>
+  <joint name="caster_joint" type="continuous">
+    <parent link="rotor"/><child link="caster"/><axis xyz="0 1 0"/>
+    <limit effort="0" velocity="0"/>
+  </joint>
+</robot>)";
+  const std::string text = turret_urdf_with("</robot>", passive);
+  std::string path;
+  EXPECT_EQ(load_error(text, kYaml, &path), "");
+  const RobotModel m = load_robot_model(path, "");
+  bool noted = false;
+  for (const auto& n : m.notes)
+    noted = noted || n.find("joint 'caster_joint' is passive (nothing drives it): it moves freely, and its <limit "
+                            "effort=\"0\" velocity=\"0\"> applies to no actuator") != std::string::npos;
+  EXPECT_TRUE(noted);
+}
+
+// The Gazebo tags a mobile base's files use: per link <mu1>, <mu2>, <fdir1> (with gz:expressed_in), per joint
+// <springStiffness>, <springReference>, <implicitSpringDamper>; what they get wrong is named with the file and line.
+TEST(Validation, GazeboFrictionDirectionsAndSpringsAreReadAndBadOnesNamed) {
+  const std::string tags = R"(  <gazebo reference="rotor"><mu1>0.8</mu1><mu2>0</mu2><fdir1 gz:expressed_in="base">0 2 0</fdir1></gazebo>
+  <gazebo reference="j2"><springStiffness>30</springStiffness><springReference>0.5</springReference><implicitSpringDamper>true</implicitSpringDamper></gazebo>
+</robot>)";
+  std::string path;
+  ASSERT_EQ(load_error(turret_urdf_with("</robot>", tags), kYaml, &path), "");
+  const RobotModel m = load_robot_model(path, "");
+  const Link* rotor = m.link("rotor");
+  ASSERT_TRUE(rotor->friction_direction);
+  EXPECT_EQ(*rotor->friction, 0.8);
+  EXPECT_EQ(rotor->friction_direction->mu2, 0.0);
+  EXPECT_EQ(rotor->friction_direction->frame, "base");
+  EXPECT_TRUE(rotor->friction_direction->fdir1.isApprox(Eigen::Vector3d::UnitY()));
+  ASSERT_TRUE(m.joint("j2")->spring);
+  EXPECT_EQ(m.joint("j2")->spring->stiffness, 30);
+  EXPECT_EQ(m.joint("j2")->spring->reference, 0.5);
+  for (const auto& w : m.warnings) EXPECT_EQ(w.find("springStiffness"), std::string::npos) << "read, not warned: " << w;
+
+  std::string e = load_error(turret_urdf_with("</robot>", R"(<gazebo reference="rotor"><fdir1>0 0</fdir1></gazebo></robot>)"),
+                             kYaml, &path);
+  EXPECT_NE(e.find(path + ":"), std::string::npos) << e;
+  EXPECT_NE(e.find("link 'rotor': <fdir1>0 0</fdir1> is not a direction; write three numbers"), std::string::npos) << e;
+  e = load_error(turret_urdf_with("</robot>", R"(<gazebo reference="rotor"><fdir1 gz:expressed_in="chassis">1 0 0</fdir1></gazebo></robot>)"), kYaml);
+  EXPECT_NE(e.find("link 'rotor': <fdir1 expressed_in=\"chassis\">: there is no link 'chassis'"), std::string::npos) << e;
+  e = load_error(turret_urdf_with("</robot>", R"(<gazebo reference="j2"><springStiffness>stiff</springStiffness></gazebo></robot>)"), kYaml);
+  EXPECT_NE(e.find("<gazebo reference=\"j2\"><springStiffness>stiff</springStiffness> is not a number >= 0"),
+            std::string::npos)
+      << e;
+}

@@ -7,6 +7,8 @@ moving j1's slider to 0.5 brings j1 there on joint_states (read back with `bus e
 the slider follows a command turret-cmd sends within 1 s, that a clicked field's plot grows, that a bad
 expression is refused with the reason, that the banner says the bus is silent once the robot stops, and saves a
 screenshot.
+--robot bumper_bot (test/robots/mobile: a round base with a Z_UP Collada bumper) checks that the mesh is shown in the
+URDF's frame, flat, as rviz shows it.
 --robot tall_arm (test/e2e/data: a 2.1 m arm like rrbot, effort controllers with PIDs, namespace tall_arm) checks that
 the whole arm is in view and the fit button brings it back, that the gains panel opens on a joint with gains (a
 controller's, not sim_server's) listing p, i, d before the clamps, that a slider follows turret-cmd within 1 s,
@@ -153,7 +155,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bin-dir", required=True)
     ap.add_argument("--source-dir", required=True)
-    ap.add_argument("--robot", choices=["turret_bot", "tall_arm"], default="turret_bot")
+    ap.add_argument("--robot", choices=["turret_bot", "tall_arm", "bumper_bot"], default="turret_bot")
     ap.add_argument("--screenshot", help="where to save the page (default: the test's temporary folder)")
     a = ap.parse_args()
 
@@ -181,14 +183,20 @@ def main():
 
     wd = None
     try:
-        files = os.path.join(a.source_dir, "config" if a.robot == "turret_bot" else "test/e2e/data")
-        ns = [] if a.robot == "turret_bot" else ["--namespace", a.robot]
-        launch = start([os.path.join(a.bin_dir, "launch"), os.path.join(files, f"{a.robot}.launch.yaml"),
-                        "--lcm-url", url], "launch.log")
+        files = os.path.join(a.source_dir, {"turret_bot": "config", "tall_arm": "test/e2e/data",
+                                             "bumper_bot": "test/robots/mobile"}[a.robot])
+        ns = ["--namespace", a.robot] if a.robot == "tall_arm" else []
+        if a.robot == "bumper_bot":
+            urdf = os.path.join(files, "bumper_bot.urdf.xacro")
+            robot = ["--urdf", urdf, "--config", os.path.join(files, "bumper_bot_controllers.yaml")]
+        else:
+            urdf = os.path.join(files, f"{a.robot}.urdf")
+            robot = [os.path.join(files, f"{a.robot}.launch.yaml")]
+        launch = start([os.path.join(a.bin_dir, "launch"), *robot, "--lcm-url", url], "launch.log")
         wait_for("launch up", lambda: "[launch] up:" in log("launch.log") or launch.poll() is not None, 60)
         assert launch.poll() is None, "launch ended:\n" + log("launch.log")
         dash = start([os.path.join(a.bin_dir, "dashboard"), "--lcm-url", url, "--port", "0", *ns,
-                      "--urdf", os.path.join(files, f"{a.robot}.urdf")], "dashboard.log")
+                      "--urdf", urdf], "dashboard.log")
         page = wait_for("the dashboard's URL", lambda: re.search(r"http://127\.0\.0\.1:\d+/", log("dashboard.log"))
                         or dash.poll() is not None, 20)
         assert dash.poll() is None, "dashboard ended:\n" + log("dashboard.log")
@@ -201,6 +209,11 @@ def main():
         wait_for("chromedriver", lambda: _ready(wd), 20)
         wd.start(chromium, os.path.join(work, "profile"))
         wd.go(page)
+        if a.robot == "bumper_bot":
+            bumper_bot(wd)
+            wd.screenshot(a.screenshot or os.path.join(work, "dashboard.png"))
+            print("dashboard_browser bumper_bot: ok")
+            return 0
         if a.robot == "tall_arm":
             tall_arm(wd, a, url, ns, page, chromium, work)
             wd.screenshot(a.screenshot or os.path.join(work, "dashboard.png"))
@@ -393,6 +406,22 @@ def wait_at_set_points(what, driver, a, url, ns, work, timeout_s):
         return wait_for(what, at, timeout_s)
     except AssertionError as e:
         raise AssertionError(f"{e}; {seen}") from None
+
+
+def bumper_bot(wd):
+    """A Collada mesh exported Z_UP (its bumper ring, 34 cm across and 6 cm tall) is shown in the URDF's frame, as
+    rviz shows it: flat. three.js's ColladaLoader alone would stand it on its edge (a box 34 cm tall); urdf-loader
+    resets that rotation."""
+    wait_for("the bumper mesh", lambda: wd.js(
+        "const v = window.dashboard && window.dashboard.view; if (!v || !v.robot) return false;"
+        "let meshes = 0; v.robot.traverse(o => { if (o.isMesh) meshes++; }); return meshes > 0;"), 20)
+    time.sleep(0.5)  # the loading manager frames the robot once every mesh is in
+    size = wd.js("const b = window.dashboard.view.box(); return [b.max.x - b.min.x, b.max.y - b.min.y, "
+                 "b.max.z - b.min.z];")
+    print("bumper_bot's box in the view (three.js x, y up, z): %.3f %.3f %.3f m" % tuple(size))
+    assert size[1] < 0.1, f"the ring stands on its edge: {size[1]:.3f} m tall (a Z_UP file turned to Y_UP)"
+    assert abs(size[0] - 0.34) < 0.02 and abs(size[2] - 0.34) < 0.02, f"not a 34 cm ring seen flat: {size}"
+    whole_robot_in_view(wd, "bumper_bot")
 
 
 def tall_arm(wd, a, url, ns, page, chromium, work):

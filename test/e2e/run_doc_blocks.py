@@ -89,7 +89,8 @@ def without_numbers(text):
 
 
 def wait_controllers_running(root, env, timeout_s=40, namespaces=("",)):
-    """True once `cmctl list` on env's bus shows controllers, all running, in each namespace."""
+    """True once `cmctl list` on env's bus shows controllers, all running ("active" as ROS 2 says it for a robot
+    from ROS 2's files), in each namespace."""
     deadline = time.time() + timeout_s
     left = list(namespaces)
     while left and time.time() < deadline:
@@ -97,7 +98,7 @@ def wait_controllers_running(root, env, timeout_s=40, namespaces=("",)):
         r = subprocess.run(["build/bin/cmctl", "list"] + (["--namespace", ns] if ns else []), cwd=root, env=env,
                            capture_output=True, text=True)
         states = [l.split()[2] for l in r.stdout.splitlines()[1:] if len(l.split()) >= 3 and not l.startswith("hardware:")]
-        if r.returncode == 0 and states and all(st == "running" for st in states):
+        if r.returncode == 0 and states and all(st in ("running", "active") for st in states):
             left.pop(0)
         else:
             time.sleep(0.5)

@@ -284,7 +284,6 @@ TEST(LaunchFile, RosSpawnerNamespaceArgsAndSpawnModelJ) {
   EXPECT_EQ(plan.initial_positions, (std::vector<std::pair<std::string, double>>{{"j1", 0.5}, {"j2", -0.25}}));
   EXPECT_EQ(plan.args, (std::vector<std::pair<std::string, std::string>>{{"arm_id", "panda"}}));
   // spawn_model's pose (-x -y -z -Y; -y defaults to 0) for sim_server --base-pose; roll and pitch are named.
-  EXPECT_TRUE(plan.gazebo_spawned);
   ASSERT_TRUE(plan.base_pose.has_value());
   EXPECT_EQ(*plan.base_pose, (std::array<double, 4>{1.5, 0, 0.1, -0.3}));
   bool roll_named = false;

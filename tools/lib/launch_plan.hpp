@@ -65,9 +65,10 @@ struct LaunchPlan {
   std::vector<std::pair<std::string, std::string>> args;         // $(arg) values for the YAML (`args:`, <arg>)
   std::vector<std::pair<std::string, std::string>> xacro_args;   // a .xacro urdf's arguments (`xacro_args:`, xacro command=)
   std::vector<std::pair<std::string, double>> initial_positions;  // `initial_positions:`, spawn_model's -J
-  // gazebo_ros spawn_model put the robot in: Gazebo leaves a model free unless it is welded to `world`, so sim_server
-  // gets --floating-base when the URDF's root link is not `world`; and where (-x -y -z -Y: m, rad) as --base-pose.
-  bool gazebo_spawned = false;
+  // How the root link is mounted (`base:`, launch --fixed-base / --floating-base): "fixed", "floating", or "" for
+  // sim_server's default, Gazebo's rule (free unless the URDF welds it to `world`); and where it starts (`base_pose:`,
+  // spawn_model's -x -y -z -Y: m, rad) as sim_server's --base-pose.
+  std::string base;
   std::optional<std::array<double, 4>> base_pose;
 };
 

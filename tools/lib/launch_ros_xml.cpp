@@ -82,7 +82,6 @@ struct RosReader {
       plan.notes.push_back(where(e) + ": robot_state_publisher -> state-publisher (link_poses)");
     } else if (pkg == "gazebo_ros" && type == "spawn_model") {
       spawn_model = true;
-      plan.gazebo_spawned = true;
       for (size_t k = 0; k < words.size(); ++k) {
         if (words[k] == "-unpause") unpause = true;
         static const std::map<std::string, int> kPose{{"-x", 0}, {"-y", 1}, {"-z", 2}, {"-Y", 3}};

@@ -83,7 +83,7 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
                                        "controller_manager_args", "controllers", "spawn", "inactive", "spawner_args",
                                        "state_publisher", "processes",  "commands", "namespace", "args",
                                        "initial_positions", "paused", "robots", "hardware_lcm_url", "hardware_url", "hardware_mirror",
-                                       "rt_priority", "spin_us", "xacro_args"};
+                                       "rt_priority", "spin_us", "xacro_args", "base", "base_pose"};
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
     const YAML::Node& v = kv.second;
@@ -134,6 +134,21 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
         plan.state_publisher = boolean(v, key);
       } else if (key == "paused") {
         plan.paused = boolean(v, key);
+      } else if (key == "base") {
+        plan.base = str(v, key);
+        if (plan.base == "auto") plan.base.clear();
+        if (!plan.base.empty() && plan.base != "fixed" && plan.base != "floating")
+          problems.push_back(where(v, key) + ": '" + plan.base + "': give fixed (welded where it starts), floating "
+                             "(free) or auto (free unless the URDF welds it to `world`, as Gazebo)");
+      } else if (key == "base_pose") {
+        const std::vector<std::string> xyzyaw = list(v, key);
+        std::array<double, 4> pose{};
+        bool ok = xyzyaw.size() == 4;
+        for (size_t k = 0; ok && k < 4; ++k) ok = parse_double(xyzyaw[k], pose[k]) && std::isfinite(pose[k]);
+        if (!ok)
+          problems.push_back(where(v, key) + ": give four numbers, [x, y, z, yaw] in m and rad");
+        else
+          plan.base_pose = pose;
       } else if (key == "namespace") {
         plan.ns = normalize_namespace(str(v, key));
       } else if (key == "hardware_lcm_url" || key == "hardware_url") {

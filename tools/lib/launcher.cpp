@@ -97,20 +97,6 @@ std::string robot_namespace_of(const LaunchPlan& plan, const std::string& flag, 
   return urdf ? robot_namespace("", urdf->gazebo_plugin_namespace) : "";
 }
 
-// gazebo_ros spawn_model leaves a robot free unless the URDF welds it to `world`: so does launch, with
-// sim_server --floating-base (which rests it on the ground however low its origin is).
-void gazebo_spawn_defaults(LaunchPlan& plan, const std::vector<std::string>& path) {
-  if (!plan.gazebo_spawned) return;
-  for (const auto& a : plan.sim_args)
-    if (a == "--floating-base") return;
-  const std::optional<RobotModel> urdf = urdf_of(plan, path);
-  if (!urdf || urdf->root_link == "world") return;
-  plan.sim_args.push_back("--floating-base");
-  launch_say(fmt::format("note: {}: the root link '{}' is not welded to 'world': a free base, as Gazebo spawns it "
-                         "(sim_server --floating-base, on a ground plane)",
-                         std::filesystem::path(plan.urdf).filename().string(), urdf->root_link));
-}
-
 bool spawns(const LaunchPlan& plan) { return !plan.controllers.empty() || !plan.inactive.empty(); }
 
 // What launch takes from the robot's files: for a robot from --urdf/--config (`every_controller`), every controller
@@ -183,6 +169,8 @@ CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const
     sim.insert(sim.end(), {"--initial-position", fmt::format("{}={}", joint, q)});
   if (plan.mode == "lockstep") sim.insert(sim.end(), {"--mode", "lockstep"});
   if (plan.paused) sim.push_back("--paused");
+  if (plan.base == "fixed") sim.push_back("--fixed-base");
+  if (plan.base == "floating") sim.push_back("--floating-base");
   if (plan.base_pose) {
     sim.push_back("--base-pose");
     for (double v : *plan.base_pose) sim.push_back(fmt::format("{:g}", v));
@@ -451,6 +439,8 @@ int run_launch(const LaunchOptions& o) {
     plan.args.push_back(given);
   }
   if (o.paused) plan.paused = true;
+  if (!o.base.empty()) plan.base = o.base;
+  if (o.physics) plan.sim_args.push_back("--physics");
   if (o.bus.hardware_mirror_hz > 0) plan.hardware_mirror_hz = o.bus.hardware_mirror_hz;
   if (!o.cpu.empty()) plan.cpu = o.cpu;
   if (o.rt_priority >= 0) plan.rt_priority = o.rt_priority;
@@ -459,7 +449,6 @@ int run_launch(const LaunchOptions& o) {
   if (!o.inactive.empty()) plan.inactive = o.inactive;
   for (const auto& n : plan.notes) launch_say("note: " + n);
   model_defaults(plan, o.package_path, o.bus.ns.empty() ? plan.ns : o.bus.ns, from_flags);
-  gazebo_spawn_defaults(plan, o.package_path);
   if (o.robots > 0) plan.robots = robot_names(o.robots);
   if (!plan.robots.empty()) return run_robots(o, plan);
   const std::string ns = robot_namespace_of(plan, o.bus.ns, o.package_path);

@@ -22,6 +22,8 @@ struct LaunchOptions {
   std::vector<std::string> xacro_args;  // NAME:=VALUE, after the file's
   double ready_timeout = 20, stop_timeout = 5, duration = 0;
   bool dry_run = false, paused = false;
+  std::string base;  // --fixed-base: "fixed", --floating-base: "floating"; "": the file's, else sim_server's rule
+  bool physics = false;  // --physics: sim_server simulates in Bullet a description that names mock hardware
   int rt_priority = -1, spin_us = -1;
   int robots = 0;  // --robots N; 0: the file's `robots:`
   // --controllers, --inactive: which controllers start and which are only loaded (ROS 2 decides it in the launch

@@ -5,6 +5,7 @@ import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import URDFLoader from 'urdf-loader';
 import { el } from './dom.js';
 import { fitDistance, screenRect } from './fit.js';
+import { loadMesh } from './meshes.js';
 
 export class RobotView {
   constructor(container, note, fitButton) {
@@ -116,6 +117,7 @@ export class RobotView {
     manager.onLoad = () => (this.moved || !this.world ? this.invalidate() : this.fit()); // meshes change the box
     const loader = new URDFLoader(manager);
     loader.packages = (pkg) => `/package/${pkg}`;
+    loader.loadMeshCb = loadMesh;
     loader.load(
       url,
       (robot) => {
