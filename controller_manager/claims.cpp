@@ -60,9 +60,23 @@ std::optional<Conflict> find_conflict(const std::vector<std::pair<std::string, c
   return std::nullopt;
 }
 
+bool Claim::mixed() const {
+  for (const Interface i : interfaces)
+    if (i != interfaces.front()) return true;
+  return false;
+}
+
 std::string describe(const Claim& claim) {
   if (!claim.interface) return "nothing (reads state only)";
-  return fmt::format("{} on {}", to_string(*claim.interface), fmt::join(claim.joints, ", "));
+  if (!claim.mixed()) return fmt::format("{} on {}", to_string(*claim.interface), fmt::join(claim.joints, ", "));
+  std::vector<std::string> parts;
+  for (const Interface i : {Interface::Position, Interface::Velocity, Interface::Effort}) {
+    std::vector<std::string> on;
+    for (size_t k = 0; k < claim.joints.size(); ++k)
+      if (claim.interface_of(k) == i) on.push_back(claim.joints[k]);
+    if (!on.empty()) parts.push_back(fmt::format("{} on {}", to_string(i), fmt::join(on, ", ")));
+  }
+  return fmt::format("{}", fmt::join(parts, "; "));
 }
 
 }  // namespace lcm_control::cm

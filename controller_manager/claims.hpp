@@ -12,11 +12,14 @@
 
 namespace lcm_control::cm {
 
-// The joints a controller commands and the interface it needs; no interface
-// for state readers (joint_state_controller), which claim nothing.
+// The joints a controller commands and the interface it needs on each; no interface for state readers
+// (joint_state_controller), which claim nothing and list the joints they read.
 struct Claim {
-  std::optional<Interface> interface;
+  std::optional<Interface> interface;  // the first joint's: what the controller's command numbers set
   std::vector<std::string> joints;
+  std::vector<Interface> interfaces;   // per claimed joint (a car's wheels on velocity, its steering on position)
+  Interface interface_of(size_t k) const { return k < interfaces.size() ? interfaces[k] : interface.value(); }
+  bool mixed() const;                  // not every joint on the same interface
 };
 
 // "" when `joint` can be commanded on `needed` (a URDF <transmission>: its first

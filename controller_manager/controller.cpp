@@ -22,11 +22,11 @@ JointData* ControllerContext::claim(const std::string& joint, Interface iface) {
   JointData* j = hw_.find(joint);
   if (!j) throw ControllerError(fmt::format("controller '{}': joint '{}' has no hardware handle", name_, joint));
   if (self_) {
-    if (self_->claim_.interface && *self_->claim_.interface != iface)
-      throw ControllerError(fmt::format("controller '{}' claims both {} and {}", name_,
-                                        to_string(*self_->claim_.interface), to_string(iface)));
-    self_->claim_.interface = iface;
-    self_->claim_.joints.push_back(joint);
+    Claim& c = self_->claim_;
+    if (!c.interface) c.joints.clear();  // joints it only read were listed while it claimed nothing
+    if (!c.interface) c.interface = iface;
+    c.joints.push_back(joint);
+    c.interfaces.push_back(iface);
   }
   return j;
 }

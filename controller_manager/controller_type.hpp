@@ -22,6 +22,12 @@ struct ClaimInfo {
   std::optional<Interface> interface;
   std::vector<std::string> joint_params;
   std::string interface_param;
+  // Joints other parameters name, claimed on another interface (a steering drive's steering joints on position).
+  struct Also {
+    Interface interface;
+    std::vector<std::string> joint_params;
+  };
+  std::vector<Also> also;
 };
 
 // What it takes on `<name>/<channel>`: a message type of lcmtypes/ ("float64_t", "float64_array_t",

@@ -127,10 +127,10 @@ void Hardware::read(const hardware_state_t& s) {
 
 void Hardware::enforce_soft_limits(double dt) {
   for (JointData& j : joints_) {
-    if (!j.owner || !j.urdf || !j.urdf->soft || !j.owner->claim().interface) continue;
+    if (!j.owner || !j.urdf || !j.urdf->soft) continue;
     const JointLimits l = j.urdf->limits();
     const SoftLimits& s = *j.urdf->soft;
-    switch (*j.owner->claim().interface) {
+    switch (j.owned_as) {
       case Interface::Position:
         j.command = j.soft_position.enforce(l, s, j.command, j.position, dt);
         break;
@@ -161,7 +161,7 @@ void Hardware::write(const hardware_state_t& s, hardware_command_t& c) const {
     const JointData& j = joints_[k];
     if (!j.owner) continue;
     const int a = actuator_of_joint_[k];
-    const Interface i = j.owner->claim().interface.value_or(j.offered.front());
+    const Interface i = j.owned_as;
     double v = 0;
     switch (i) {
       case Interface::Position:

@@ -32,6 +32,7 @@ struct JointData {
   // hardware may apply that part implicitly (hardware_command_t::damping).
   double damping = 0;
   const Controller* owner = nullptr;              // the running controller that claims it
+  Interface owned_as = Interface::Position;       // on this interface (while owner is set)
   PositionSoftLimits soft_position;               // the previous position command, under soft limits
 };
 

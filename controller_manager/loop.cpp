@@ -9,21 +9,23 @@ namespace lcm_control::cm {
 // last command (bumpless); any other joint (a <ros2_control> joint whose interface changes too: a velocity is no
 // position) is first commanded to hold where it is, so that the command written in this cycle, before the new
 // controller's first update, is never a stale or zero value.
-bool Loop::handed_over(const JointData* j, std::optional<Interface> interface) const {
+bool Loop::handed_over(const JointData* j, Interface interface) const {
   for (const ControllerSlot* s : pending_stop_)
-    for (const JointData* k : s->claimed)
-      if (k == j) return s->controller->claim().interface == interface;
+    for (size_t k = 0; k < s->claimed.size(); ++k)
+      if (s->claimed[k] == j) return s->controller->claim().interface_of(k) == interface;
   return false;
 }
 
 void Loop::start(ControllerSlot& s) {
-  for (JointData* j : s.claimed) {
-    const std::optional<Interface> interface = s.controller->claim().interface;
+  for (size_t k = 0; k < s.claimed.size(); ++k) {
+    JointData* j = s.claimed[k];
+    const Interface interface = s.controller->claim().interface_of(k);
     if (!handed_over(j, interface)) {
-      j->command = interface.value_or(j->offered.front()) == Interface::Position ? j->position : 0.0;
+      j->command = interface == Interface::Position ? j->position : 0.0;
       j->damping = 0;
     }
     j->owner = s.controller.get();
+    j->owned_as = interface;
     j->soft_position.reset();
   }
   s.controller->running_ = true;

@@ -73,7 +73,7 @@ class Loop {
 
  private:
   void apply_switch();
-  bool handed_over(const JointData* j, std::optional<Interface> interface) const;
+  bool handed_over(const JointData* j, Interface interface) const;
   void start(ControllerSlot& s);
   void stop(ControllerSlot& s);
 

@@ -451,6 +451,9 @@ std::vector<controller_info_t> ControllerManager::list(size_t max_bytes) const {
     i.state = s.state();
     const Claim& c = s.controller->claim();
     i.hardware_interface = c.interface ? to_string(*c.interface) : "";
+    for (size_t j = 0; c.interface && j < c.joints.size(); ++j)  // a drive's wheels and steering: each interface
+      if (i.hardware_interface.find(to_string(c.interface_of(j))) == std::string::npos)
+        i.hardware_interface += std::string(", ") + to_string(c.interface_of(j));
     i.joints = c.joints;
     i.num_joints = static_cast<int32_t>(i.joints.size());
     describe_command(registry_.info(s.type), *s.controller, i);
@@ -476,9 +479,9 @@ std::vector<joint_interfaces_t> ControllerManager::interfaces() const {
       i.state = {"position", "velocity", "effort"};
     for (const auto& s : loop_.slots())
       if (s->running && s->controller->claim().interface)
-        for (const auto& n : s->controller->claim().joints)
-          if (n == j.name) {
-            i.claimed = quantity_of(*s->controller->claim().interface);
+        for (size_t k = 0; k < s->controller->claim().joints.size(); ++k)
+          if (s->controller->claim().joints[k] == j.name) {
+            i.claimed = quantity_of(s->controller->claim().interface_of(k));
             i.claimed_by = s->name;
           }
     i.num_command = static_cast<int32_t>(i.command.size());
