@@ -34,6 +34,12 @@ void register_builtin(Registry& r) {
   r.add(joint_trajectory_controller(I::Velocity));
   r.add(ros2_joint_trajectory_controller());
   r.add(diff_drive_controller());
+  r.add(steering_controller(SteeringKind::Bicycle));
+  r.add(steering_controller(SteeringKind::Tricycle));
+  r.add(steering_controller(SteeringKind::Ackermann));
+  r.add(tricycle_controller());
+  r.add(mecanum_drive_controller());
+  r.add(omni_wheel_drive_controller());
   r.add(gripper_action_controller(I::Position, false));
   r.add(gripper_action_controller(I::Effort, false));
   r.add(gripper_action_controller(I::Position, true));  // parallel_gripper_action_controller/GripperActionController

@@ -37,12 +37,19 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   app.add_option("--duration", duration, "stop after S seconds (default: until Ctrl-C)")->check(CLI::PositiveNumber);
+  std::string lateral = "0";
+  app.add_option("--lateral", lateral,
+                 "sideways speed, m/s (linear.y, positive: left), an expression in i and t: for a holonomic base "
+                 "(mecanum_drive_controller, omni_wheel_drive_controller)");
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
-    Expressions exprs({linear, angular});
+    Expressions exprs({linear, angular, lateral});
     install_stop_signals();
     Bus bus(bus_flags.lcm_url, bus_flags.ns, "", HardwareReader::Direct);
-    const std::string channel = without_leading_slashes(controller) + "/cmd_vel";
+    // The channel the controller takes its twist on (cmd_vel; ROS 2's steering and mecanum drives: reference), when
+    // the controller manager answers.
+    const std::string channel =
+        without_leading_slashes(controller) + "/" + twist_channel(bus, without_leading_slashes(controller), 0.5);
     check_command_channel(bus, channel, {twist_t::getTypeName(), 0}, 0.5);
     const CommandClock clock(bus, 0.3);
     fmt::print(stderr, "drive: twist_t on '{}' at {:g} Hz{} (Ctrl-C to stop)\n", bus.channel(channel), rate,
@@ -51,7 +58,7 @@ int main(int argc, char** argv) {
     const int64_t start = monotonic_us();
     const double period_us = 1e6 / rate;
     int64_t sent = 0;
-    double values[2] = {0, 0};
+    double values[3] = {0, 0, 0};
     for (int64_t i = 0; !stop_requested(); ++i) {
       const int64_t due = start + std::llround(double(i) * period_us);
       const double t = double(due - start) / 1e6;
@@ -63,6 +70,7 @@ int main(int argc, char** argv) {
       msg.utime = clock.now_us();
       msg.linear.x = values[0];
       msg.angular.z = values[1];
+      msg.linear.y = values[2];
       bus.publish(channel, msg);
       ++sent;
     }

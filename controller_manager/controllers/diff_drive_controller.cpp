@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "controller_manager/controllers/factories.hpp"
+#include "controller_manager/controllers/mobile_base.hpp"
 #include "lcm_control/odometry_t.hpp"
 #include "lcm_control/twist_t.hpp"
 
@@ -88,7 +89,7 @@ double wheel_radius_of(const RobotModel& model, const std::string& joint) {
   return 0;
 }
 
-class DiffDriveController : public Controller {
+class DiffDriveController : public DriveController {
  public:
   void init(ControllerContext& ctx) override {
     Params& p = ctx.params();
@@ -126,11 +127,12 @@ class DiffDriveController : public Controller {
     if (!(rate_ > 0)) throw p.error("publish_rate", fmt::format("{} Hz: must be > 0", rate_));
     timeout_ = p.number("cmd_vel_timeout", 0.5);
     open_loop_ = p.boolean("open_loop", false);
-    speeds_.assign(static_cast<size_t>(std::max(1.0, p.number("velocity_rolling_window_size", 10))), {0.0, 0.0});
+    const size_t window = static_cast<size_t>(std::max(1.0, p.number("velocity_rolling_window_size", 10)));
+    linear_mean_ = angular_mean_ = RollingMean(window);
     linear_ = read_limits(p, "linear", "x", ros2);
     angular_ = read_limits(p, "angular", "z", ros2);
-    odom_.frame_id = p.has("odom_frame_id") ? p.string("odom_frame_id") : "odom";
-    odom_.child_frame_id = p.has("base_frame_id") ? p.string("base_frame_id") : "base_link";
+    const std::string odom_frame = p.has("odom_frame_id") ? p.string("odom_frame_id") : "odom";
+    const std::string base_frame = p.has("base_frame_id") ? p.string("base_frame_id") : "base_link";
     // ROS 1's publish_cmd, ROS 2's publish_limited_velocity: the twist after the limits, on <name>/cmd_vel_out.
     // The parameters ROS has and this controller does not read are named by the manager when given.
     const char* publish_key = p.has("publish_limited_velocity") ? "publish_limited_velocity" : "publish_cmd";
@@ -149,7 +151,7 @@ class DiffDriveController : public Controller {
           cmd_new_ = true;
         },
         bad);
-    odom_pub_ = ctx.endpoints().publisher<odometry_t>(ctx.channel("odom"));
+    odom_out_.init(ctx, "odom", odom_frame, base_frame);
   }
 
   void starting(const Time& now) override {
@@ -160,11 +162,6 @@ class DiffDriveController : public Controller {
     seed_wheels();
     last_publish_ = now.seconds() - 1.001 / rate_;
     last_update_ = now.seconds();
-  }
-
-  void restart(const Time& now) override {
-    if (now.seconds() < last_update_) x_ = y_ = heading_ = 0;  // time went back: a reset; the odometry starts again
-    starting(now);
   }
 
   void update(const Time& now, double period) override {
@@ -208,8 +205,8 @@ class DiffDriveController : public Controller {
   void seed_wheels() {
     left_prev_ = mean_position(left_);
     right_prev_ = mean_position(right_);
-    std::fill(speeds_.begin(), speeds_.end(), std::pair{0.0, 0.0});
-    filled_ = next_ = 0;
+    linear_mean_.clear();
+    angular_mean_.clear();
   }
 
   // Dead reckoning over one period: from the wheels (or, open_loop, from the command).
@@ -223,19 +220,10 @@ class DiffDriveController : public Controller {
       ds = (dl + dr) / 2;
       dth = (dr - dl) / separation_;
     }
-    if (std::abs(dth) < 1e-6) {  // second-order Runge-Kutta
-      x_ += ds * std::cos(heading_ + dth / 2);
-      y_ += ds * std::sin(heading_ + dth / 2);
-    } else {  // the exact arc
-      const double radius = ds / dth, h = heading_ + dth;
-      x_ += radius * (std::sin(h) - std::sin(heading_));
-      y_ -= radius * (std::cos(h) - std::cos(heading_));
-    }
-    heading_ = std::remainder(heading_ + dth, 2 * M_PI);
+    odometry_.move(ds, 0, dth);
     if (period > 0) {
-      speeds_[next_] = {ds / period, dth / period};
-      next_ = (next_ + 1) % speeds_.size();
-      filled_ = std::min(filled_ + 1, speeds_.size());
+      linear_mean_.add(ds / period);
+      angular_mean_.add(dth / period);
     }
   }
 
@@ -245,16 +233,7 @@ class DiffDriveController : public Controller {
     if (!(last_publish_ + dt < t)) return;
     last_publish_ += dt;
     if (t - last_publish_ > dt) last_publish_ = t;
-    double v = 0, w = 0;
-    for (size_t k = 0; k < filled_; ++k) v += speeds_[k].first, w += speeds_[k].second;
-    const double n = filled_ == 0 ? 1.0 : static_cast<double>(filled_);
-    odom_.utime = now.utime;
-    odom_.position = {x_, y_, 0};
-    odom_.orientation = {std::cos(heading_ / 2), 0, 0, std::sin(heading_ / 2)};
-    odom_.yaw = heading_;
-    odom_.linear = {v / n, 0, 0};
-    odom_.angular = {0, 0, w / n};
-    odom_pub_.publish(odom_);
+    odom_out_.publish(now.utime, odometry_, linear_mean_.mean(), 0, angular_mean_.mean());
   }
 
   std::vector<JointData*> left_, right_;
@@ -263,12 +242,10 @@ class DiffDriveController : public Controller {
   SpeedLimits linear_, angular_;
   double cmd_v_ = 0, cmd_w_ = 0, cmd_time_ = 0, last_v_ = 0, last_w_ = 0;
   bool cmd_new_ = false;
-  double left_prev_ = 0, right_prev_ = 0, x_ = 0, y_ = 0, heading_ = 0;
-  double last_publish_ = 0, last_update_ = 0;
-  std::vector<std::pair<double, double>> speeds_;  // (v, w) of the last velocity_rolling_window_size periods, a ring
-  size_t filled_ = 0, next_ = 0;
-  odometry_t odom_{};
-  Publisher<odometry_t> odom_pub_;
+  double left_prev_ = 0, right_prev_ = 0;
+  double last_publish_ = 0;
+  RollingMean linear_mean_, angular_mean_;  // (v, w) of the last velocity_rolling_window_size periods
+  OdometryOut odom_out_;
   twist_t cmd_out_{};
   Publisher<twist_t> cmd_out_pub_;  // publish_cmd: the limited twist on <name>/cmd_vel_out
 };
@@ -281,7 +258,7 @@ ControllerType diff_drive_controller() {
   t.ros = RosVersion::Both;
   t.doc = "a twist_t on <name>/cmd_vel to wheel velocities; odometry_t on <name>/odom (and, publish_cmd, the limited "
           "twist_t on <name>/cmd_vel_out)";
-  t.claims = {Interface::Velocity, {"left_wheel", "right_wheel"}, ""};
+  t.claims = {Interface::Velocity, {"left_wheel", "right_wheel"}, "", {}};
   t.command = {"twist_t", "cmd_vel", 0, ""};
   auto ignored = [](const char* name, const char* type, bool ros1 = true, bool ros2 = false) {
     return ParameterInfo{name, type, "", ros1 ? name : "", ros2 ? name : "", "not implemented (named when given)",

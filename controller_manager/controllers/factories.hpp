@@ -24,6 +24,12 @@ ControllerType ros2_pid_controller();
 ControllerType joint_trajectory_controller(Interface command);
 ControllerType ros2_joint_trajectory_controller();  // the interface from command_interfaces
 ControllerType diff_drive_controller();
+// ros2_controllers' steering drives (steering_controllers_library), tricycle_controller, and the holonomic bases.
+enum class SteeringKind { Bicycle, Tricycle, Ackermann };
+ControllerType steering_controller(SteeringKind kind);
+ControllerType tricycle_controller();
+ControllerType mecanum_drive_controller();
+ControllerType omni_wheel_drive_controller();
 // gripper_command_t goals on `joint`: position or effort (ROS 1 / gripper_controllers), or ROS 2's parallel gripper.
 ControllerType gripper_action_controller(Interface command, bool parallel);
 // The sensors' readings (controllers/sensor_broadcasters.cpp): ROS 2's broadcasters and ROS 1's controllers.

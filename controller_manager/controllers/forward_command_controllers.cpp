@@ -95,7 +95,7 @@ ControllerType forward_command_controller(Interface command, bool group) {
   }
   if (group) t.ros = RosVersion::Both;
   t.doc = fmt::format("the {} command of {} as it comes", quantity, group ? "each joint of `joints`" : "`joint`");
-  t.claims = {command, {group ? "joints" : "joint"}, ""};
+  t.claims = {command, {group ? "joints" : "joint"}, "", {}};
   t.command = {group ? "float64_array_t" : "float64_t", "command", group ? CommandInfo::kOnePerJoint : 1, quantity};
   if (group)
     t.parameters = {{"joints", "strings", "", "joints", "joints", "the joints, in the order of the command's values"},

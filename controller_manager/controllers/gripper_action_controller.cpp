@@ -292,7 +292,7 @@ ControllerType gripper_action_controller(Interface command, bool parallel) {
   t.doc = effort ? "a gripper_command_t goal on `joint` through a PID to an effort clamped to its max_effort; "
                    "results on <name>/result"
                  : "a gripper_command_t goal on `joint` as its position command; results on <name>/result";
-  t.claims = {command, {"joint"}, ""};
+  t.claims = {command, {"joint"}, "", {}};
   t.command = {"gripper_command_t", "command", 0, ""};
   const char* d_effort = parallel ? "10" : "0";
   t.parameters = {

@@ -584,7 +584,7 @@ ControllerType joint_trajectory_controller(Interface command) {
     case Interface::Effort: t.name = "effort_controllers/JointTrajectoryController"; break;
   }
   t.doc = fmt::format("follows joint_trajectory_t goals through splines on {}", to_string(command));
-  t.claims = {command, {"joints"}, ""};
+  t.claims = {command, {"joints"}, "", {}};
   t.command = {"joint_trajectory_t", "command", 0, ""};
   const bool pid = command != Interface::Position;
   const char* with_pid = pid ? "" : "; not used with PositionJointInterface";

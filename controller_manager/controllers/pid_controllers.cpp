@@ -185,7 +185,7 @@ ControllerType pid_controller(Interface out, PidTarget target) {
   const char* quantity = position ? "position" : "velocity";
   t.doc = fmt::format("a PID from a {} set point to the {} command of `joint`", quantity,
                       out == Interface::Effort ? "effort" : "velocity");
-  t.claims = {out, {"joint"}, ""};
+  t.claims = {out, {"joint"}, "", {}};
   t.command = {"float64_t", "command", 1, quantity};
   t.parameters = {
       {"joint", "string", "", "joint", "", "the joint"},
@@ -198,7 +198,7 @@ ControllerType group_position_pid_controller() {
   ControllerTypeInfo t;
   t.name = "effort_controllers/JointGroupPositionController";
   t.doc = "a PID per joint from position set points to efforts";
-  t.claims = {Interface::Effort, {"joints"}, ""};
+  t.claims = {Interface::Effort, {"joints"}, "", {}};
   t.command = {"float64_array_t", "command", CommandInfo::kOnePerJoint, "position"};
   t.parameters = {{"joints", "strings", "", "joints", "", "the joints, each with `<joint>: {pid: {p, i, d}}`"}};
   return {t, [](const std::string&) { return std::make_unique<GroupPositionPid>(); }};

@@ -51,7 +51,7 @@ ControllerType tiny_effort_controller() {
   t.name = "test_controllers/TinyEffortController";
   t.ros = RosVersion::Both;
   t.doc = "scale times the effort of each joint";
-  t.claims = {Interface::Effort, {"joints"}, ""};
+  t.claims = {Interface::Effort, {"joints"}, "", {}};
   t.command = {"float64_array_t", "command", CommandInfo::kOnePerJoint, "effort"};
   t.parameters = {
       {"joints", "strings", "", "joints", "joints", "the joints"},

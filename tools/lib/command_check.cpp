@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "description/text.hpp"
+#include "lcm_control/twist_t.hpp"
 #include "tools/lib/cm_client.hpp"
 
 namespace lcm_control::tools {
@@ -89,7 +90,7 @@ void check_command_channel(Bus& bus, const std::string& channel, const Sent& sen
   const auto slash = channel.rfind('/');
   if (slash == std::string::npos) return;
   const std::string last = channel.substr(slash + 1);
-  if ((last != "command" && last != "cmd_vel") || channel == "hardware/command") return;
+  if ((last != "command" && last != "cmd_vel" && last != "reference") || channel == "hardware/command") return;
   cm_response_t r;
   try {
     r = CmClient(bus, "bus").list(timeout_s);
@@ -100,6 +101,19 @@ void check_command_channel(Bus& bus, const std::string& channel, const Sent& sen
   if (const controller_info_t* c = controller_on(r.controllers, channel, &relative))
     if (const std::string bad = type_mismatch(*c, sent, relative, bus.channel("")); !bad.empty())
       throw std::runtime_error(bad);
+}
+
+std::string twist_channel(Bus& bus, const std::string& controller, double timeout_s) {
+  cm_response_t r;
+  try {
+    r = CmClient(bus, "drive").list(timeout_s);
+  } catch (const CmTimeout&) {
+    return "cmd_vel";
+  }
+  for (const controller_info_t& c : r.controllers)
+    if (c.name == controller && c.command_type == twist_t::getTypeName() && !c.command_channel.empty())
+      return c.command_channel;
+  return "cmd_vel";
 }
 
 std::optional<std::string> hardware_cause(const cm_response_t& list) {

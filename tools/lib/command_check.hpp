@@ -50,6 +50,11 @@ const controller_info_t* controller_on(const std::vector<controller_info_t>& lis
 // channel ending in /command or /cmd_vel is asked about.
 void check_command_channel(Bus& bus, const std::string& channel, const Sent& sent, double timeout_s);
 
+// The channel (relative to the controller) `controller` takes its twist_t on, as the controller manager lists it
+// within timeout_s: cmd_vel (diff drive, tricycle, omni) or reference (ROS 2's steering and mecanum drives);
+// cmd_vel when no manager answers or it lists no such controller.
+std::string twist_channel(Bus& bus, const std::string& controller, double timeout_s);
+
 // Why the hardware may have made a goal fail, from a LIST answer's hardware line: "the e-stop is engaged (...)",
 // "the simulator is paused (...)", "the hardware is silent (...)"; nullopt when it says none of these.
 std::optional<std::string> hardware_cause(const cm_response_t& list);
