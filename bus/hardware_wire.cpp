@@ -61,8 +61,10 @@ std::string check_hardware_state_bytes(const void* data, size_t size, int max_ac
   return wire_problem<hardware_state_t>(data, size, max_sensor_values, "the robot's actuators and sensor values");
 }
 
-std::string check_hardware_command_bytes(const void* data, size_t size, int max_actuators) {
-  return wire_problem<hardware_command_t>(data, size, max_actuators, "the robot's actuators");
+std::string check_hardware_command_bytes(const void* data, size_t size, int max_actuators, int max_gpio_commands) {
+  if (max_gpio_commands <= max_actuators)
+    return wire_problem<hardware_command_t>(data, size, max_actuators, "the robot's actuators");
+  return wire_problem<hardware_command_t>(data, size, max_gpio_commands, "the robot's actuators and GPIO commands");
 }
 
 }  // namespace lcm_control

@@ -34,6 +34,6 @@ ActuatorBinding bind_actuators(const std::vector<std::string>& ours, const std::
 // "" when the bytes can be the message with num_actuators between 0 and max_actuators (a state's sensor values
 // between 0 and max_sensor_values too); else why not.
 std::string check_hardware_state_bytes(const void* data, size_t size, int max_actuators, int max_sensor_values = 0);
-std::string check_hardware_command_bytes(const void* data, size_t size, int max_actuators);
+std::string check_hardware_command_bytes(const void* data, size_t size, int max_actuators, int max_gpio_commands = 0);
 
 }  // namespace lcm_control

@@ -42,6 +42,11 @@ std::string check(const hardware_command_t& m) {
     if (m.mode[k] == hardware_command_t::MODE_EFFORT && !(m.damping[k] >= 0 && std::isfinite(m.damping[k])))
       return fmt::format("actuator '{}' damping {} is not a finite value >= 0", m.name[k], m.damping[k]);
   }
+  if (!sized(m.gpio_interface, m.num_gpio_commands) || !sized(m.gpio_command, m.num_gpio_commands))
+    return fmt::format("num_gpio_commands {} does not match the arrays", m.num_gpio_commands);
+  for (int k = 0; k < m.num_gpio_commands; ++k)
+    if (!std::isfinite(m.gpio_command[k]))
+      return fmt::format("gpio command '{}' is NaN or Inf", m.gpio_interface[size_t(k)]);
   return "";
 }
 
@@ -71,6 +76,8 @@ void resize(hardware_state_t& m, int n) {
 }
 
 void resize(hardware_command_t& m, int n) {
+  m.num_gpio_commands = int32_t(m.gpio_command.size());  // the GPIO commands stay as they are
+  m.gpio_interface.resize(m.gpio_command.size());
   m.num_actuators = n;
   m.name.resize(n);
   m.mode.resize(n);

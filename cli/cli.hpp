@@ -115,15 +115,24 @@ inline void add_xacro_arg_flag(CLI::App& app, std::vector<std::string>& assignme
       ->check(check_assignment);
 }
 
+// --simulate-hardware NAME (repeatable): a <ros2_control> block simulated whatever hardware its plugin names.
+inline void add_simulate_hardware_flag(CLI::App& app, std::vector<std::string>& names) {
+  app.add_option("--simulate-hardware", names,
+                 "NAME: simulate the <ros2_control name=\"NAME\"> block in Bullet whatever its plugin (a robot's "
+                 "driver, a vendor's hardware; repeatable)");
+}
+
 // How the robot's files are read, from the flags every program that loads them shares.
 inline LoadOptions load_options(const std::vector<std::string>& package_path, const BusFlags& bus,
                                 const std::vector<std::string>& arg_assignments,
-                                const std::vector<std::string>& xacro_arg_assignments = {}) {
+                                const std::vector<std::string>& xacro_arg_assignments = {},
+                                const std::vector<std::string>& simulate_hardware = {}) {
   LoadOptions o;
   o.package_path = package_path;
   o.ns = bus.ns;
   for (const auto& a : arg_assignments) o.args.push_back(parse_arg(a));
   for (const auto& a : xacro_arg_assignments) o.xacro_args.push_back(parse_arg(a));
+  o.simulate_hardware = simulate_hardware;
   return o;
 }
 

@@ -45,12 +45,17 @@ std::string check_interface(const RobotModel& model, const std::string& controll
 }
 
 std::string Conflict::message() const {
-  return fmt::format("controllers '{}' and '{}' would both claim joint '{}'", first, second, joint);
+  return fmt::format("controllers '{}' and '{}' would both claim {} '{}'", first, second,
+                     gpio ? "GPIO interface" : "joint", joint);
 }
 
 std::optional<Conflict> find_conflict(const std::vector<std::pair<std::string, const Claim*>>& controllers) {
-  std::map<std::string, std::string> owner;
+  std::map<std::string, std::string> owner, gpio_owner;
   for (const auto& [name, claim] : controllers) {
+    for (const auto& g : claim->gpios) {
+      auto [it, fresh] = gpio_owner.emplace(g, name);
+      if (!fresh) return Conflict{it->second, name, g, true};
+    }
     if (!claim->interface) continue;
     for (const auto& j : claim->joints) {
       auto [it, fresh] = owner.emplace(j, name);
@@ -67,6 +72,10 @@ bool Claim::mixed() const {
 }
 
 std::string describe(const Claim& claim) {
+  if (!claim.gpios.empty())
+    return fmt::format("GPIO {}{}", fmt::join(claim.gpios, ", "),
+                       claim.interface ? "; " + describe(Claim{claim.interface, claim.joints, claim.interfaces, {}})
+                                       : std::string());
   if (!claim.interface) return "nothing (reads state only)";
   if (!claim.mixed()) return fmt::format("{} on {}", to_string(*claim.interface), fmt::join(claim.joints, ", "));
   std::vector<std::string> parts;

@@ -18,6 +18,7 @@ struct Claim {
   std::optional<Interface> interface;  // the first joint's: what the controller's command numbers set
   std::vector<std::string> joints;
   std::vector<Interface> interfaces;   // per claimed joint (a car's wheels on velocity, its steering on position)
+  std::vector<std::string> gpios;      // <gpio> command interfaces it commands, "<gpio>/<interface>"
   Interface interface_of(size_t k) const { return k < interfaces.size() ? interfaces[k] : interface.value(); }
   bool mixed() const;                  // not every joint on the same interface
 };
@@ -31,6 +32,7 @@ std::string check_interface(const RobotModel& model, const std::string& controll
 
 struct Conflict {
   std::string first, second, joint;
+  bool gpio = false;             // `joint` is a GPIO command interface
   std::string message() const;  // "controllers 'a' and 'b' would both claim joint 'j'"
 };
 

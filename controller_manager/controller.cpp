@@ -44,6 +44,29 @@ const JointData* ControllerContext::read(const std::string& joint, const std::st
   return j;
 }
 
+ControllerError ControllerContext::not_a_gpio(const std::string& name, const std::string& key, const char* kind,
+                                              bool GpioData::*has) const {
+  std::vector<std::string> names;
+  for (const GpioData& d : hw_.gpios())
+    if (d.*has) names.push_back(d.name);
+  return params_.error(key, fmt::format("'{}' is not a <gpio> {} interface of {} (its {} interfaces: {})", name, kind,
+                                        model_.urdf_path, kind,
+                                        names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "))));
+}
+
+GpioData* ControllerContext::claim_gpio(const std::string& name, const std::string& key) {
+  GpioData* g = hw_.gpio(name);
+  if (!g || !g->has_command) throw not_a_gpio(name, key, "command", &GpioData::has_command);
+  if (self_) self_->claim_.gpios.push_back(name);
+  return g;
+}
+
+const GpioData* ControllerContext::read_gpio(const std::string& name, const std::string& key) {
+  const GpioData* g = hw_.gpio(name);
+  if (!g || !g->has_state) throw not_a_gpio(name, key, "state", &GpioData::has_state);
+  return g;
+}
+
 const SensorData* ControllerContext::sensor(const std::string& name, const std::string& key, SensorKind kind) {
   const SensorData* s = hw_.sensor(name);
   if (s && s->kind == kind) return s;

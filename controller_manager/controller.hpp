@@ -95,6 +95,11 @@ class ControllerContext {
   // Claims `joint` on `iface`; throws ControllerError naming controller, joint,
   // interface needed and interfaces offered.
   JointData* claim(const std::string& joint, Interface iface);
+  // Claims a <gpio> command interface ("<gpio>/<interface>") / reads a <gpio> state interface; throws ControllerError
+  // naming the parameter `key`, the interface and those the URDF's <gpio> blocks have.
+  GpioData* claim_gpio(const std::string& name, const std::string& key);
+  const std::vector<GpioData>& hardware_gpios() const { return hw_.gpios(); }
+  const GpioData* read_gpio(const std::string& name, const std::string& key);
   // Reads a joint without claiming it; the controller's joint list (cmctl list) shows it as `listed_as` when given
   // (a mimic joint computed from `joint`).
   const JointData* read(const std::string& joint, const std::string& key, const std::string& listed_as = "");
@@ -116,6 +121,9 @@ class ControllerContext {
   std::vector<std::string> notes;
 
  private:
+  ControllerError not_a_gpio(const std::string& name, const std::string& key, const char* kind,
+                             bool GpioData::*has) const;
+
   std::string name_, type_;
   Params& params_;
   const RobotModel& model_;

@@ -32,6 +32,21 @@ Hardware::Hardware(const RobotModel& model) {
     d.values.assign(sensor_interfaces(spec.kind).size(), NAN);
     sensors_.push_back(std::move(d));
   }
+  const GpioInterfaces g = gpio_interfaces(model.ros2_control);
+  for (const auto& name : g.states) gpios_.push_back(GpioData{name, true, false, NAN, NAN, nullptr});
+  for (const auto& name : g.commands) {
+    if (GpioData* d = gpio(name))
+      d->has_command = true;
+    else
+      gpios_.push_back(GpioData{name, false, true, NAN, NAN, nullptr});
+  }
+  gpio_slot_.assign(gpios_.size(), -1);
+}
+
+GpioData* Hardware::gpio(const std::string& name) {
+  for (GpioData& d : gpios_)
+    if (d.name == name) return &d;
+  return nullptr;
 }
 
 const SensorData* Hardware::sensor(const std::string& name) const {
@@ -104,6 +119,16 @@ std::string Hardware::bind(const hardware_state_t& state, hardware_command_t& co
     }
     std::fill(d.values.begin(), d.values.end(), NAN);
   }
+  size_t n_commands = 0;
+  for (size_t k = 0; k < gpios_.size(); ++k) {
+    gpio_slot_[k] = -1;
+    for (int v = 0; v < state.num_sensor_values && gpios_[k].has_state && gpio_slot_[k] < 0; ++v)
+      if (state.sensor_interface[size_t(v)] == gpios_[k].name) gpio_slot_[k] = v;
+    gpios_[k].state = NAN;
+    if (gpios_[k].has_command) ++n_commands;
+  }
+  command.gpio_interface.reserve(n_commands);  // write() lists the commanded ones; it does not allocate
+  command.gpio_command.reserve(n_commands);
   session_ = state.session;
   bound_ = true;
   return "";
@@ -123,6 +148,8 @@ void Hardware::read(const hardware_state_t& s) {
       const int slot = sensor_slot_[v++];
       if (slot >= 0 && slot < s.num_sensor_values) x = s.sensor_value[size_t(slot)];
     }
+  for (size_t k = 0; k < gpios_.size(); ++k)
+    if (gpio_slot_[k] >= 0 && gpio_slot_[k] < s.num_sensor_values) gpios_[k].state = s.sensor_value[size_t(gpio_slot_[k])];
 }
 
 void Hardware::enforce_soft_limits(double dt) {
@@ -180,6 +207,21 @@ void Hardware::write(const hardware_state_t& s, hardware_command_t& c) const {
     if (i == Interface::Effort && j.damping > 0 && std::isfinite(j.damping))
       c.damping[a] = j.map.joint_to_actuator_damping(j.damping);
   }
+  // The GPIO commands of running controllers, finite ones only; a name is written again only when the list changes.
+  size_t m = 0;
+  for (const GpioData& g : gpios_) {
+    if (!g.owner || !std::isfinite(g.command)) continue;
+    if (m == c.gpio_interface.size()) {
+      c.gpio_interface.push_back(g.name);
+      c.gpio_command.push_back(0.0);
+    } else if (c.gpio_interface[m] != g.name) {
+      c.gpio_interface[m] = g.name;
+    }
+    c.gpio_command[m++] = g.command;
+  }
+  c.gpio_interface.resize(m);
+  c.gpio_command.resize(m);
+  c.num_gpio_commands = int32_t(m);
 }
 
 }  // namespace lcm_control::cm

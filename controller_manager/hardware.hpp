@@ -5,6 +5,7 @@
 // allocates; read(), enforce_soft_limits() and write() do not.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -36,6 +37,17 @@ struct JointData {
   PositionSoftLimits soft_position;               // the previous position command, under soft limits
 };
 
+// One <gpio> interface of the model, "<gpio>/<interface>": its state from the last hardware/state (NaN while the
+// hardware sends none), and, for a command interface, the command its owning controller writes (NaN: none yet; only
+// a finite command is sent).
+struct GpioData {
+  std::string name;
+  bool has_state = false, has_command = false;  // a state / command interface of the <gpio>
+  double state = NAN;
+  double command = NAN;
+  const Controller* owner = nullptr;  // the running controller that claims the command interface
+};
+
 // One simulated sensor of the model as controllers read it: its values in sensor_interfaces(kind) order from the
 // last hardware/state, NaN while the hardware sends none of it.
 struct SensorData {
@@ -55,6 +67,9 @@ class Hardware {
   JointData* find(const std::string& joint);
   const std::vector<SensorData>& sensors() const { return sensors_; }
   const SensorData* sensor(const std::string& name) const;
+  std::vector<GpioData>& gpios() { return gpios_; }
+  const std::vector<GpioData>& gpios() const { return gpios_; }
+  GpioData* gpio(const std::string& name);  // "<gpio>/<interface>"; nullptr for none
 
   // Matches the message's actuators to the transmissions by name; returns "" or
   // why this hardware does not fit the URDF. Sizes `command` for this session. Sensors match by
@@ -77,6 +92,8 @@ class Hardware {
   std::vector<int> actuator_of_joint_;  // index in the hardware message (bind_actuators)
   std::vector<SensorData> sensors_;
   std::vector<int> sensor_slot_;        // per sensor value, in sensors_ order: its index in the message, -1 none
+  std::vector<GpioData> gpios_;
+  std::vector<int> gpio_slot_;          // per gpio, in gpios_ order: its state's index in the message's sensor values
   bool bound_ = false;
   int64_t session_ = 0;
 };

@@ -1,5 +1,7 @@
 #include "controller_manager/loop.hpp"
 
+#include <algorithm>
+
 #include "bus/bus.hpp"
 #include "controller_manager/command_sources.hpp"
 
@@ -28,6 +30,8 @@ void Loop::start(ControllerSlot& s) {
     j->owned_as = interface;
     j->soft_position.reset();
   }
+  for (GpioData* g : s.claimed_gpios) g->owner = s.controller.get();
+  s.first_step = s.last_update_utime = -1;
   s.controller->running_ = true;
   s.controller->starting(now_);
   s.running = true;
@@ -40,6 +44,8 @@ void Loop::stop(ControllerSlot& s) {
   s.running = false;
   for (JointData* j : s.claimed)
     if (j->owner == s.controller.get()) j->owner = nullptr;
+  for (GpioData* g : s.claimed_gpios)
+    if (g->owner == s.controller.get()) g->owner = nullptr;
 }
 
 Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
@@ -72,15 +78,26 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
   if (restart) {
     ++restarts_;
     hw_.reset_soft_limits();
-    for (auto& s : slots_)
+    for (auto& s : slots_) {
+      s->first_step = s->last_update_utime = -1;
       if (s->running) s->controller->restart(now_);
+    }
   }
   if (sources_) sources_->before_update(now_);
   int64_t mark = -1;  // one clock read between two updates times both
   for (auto& s : slots_) {
     if (!s->running) continue;
+    double own_period = period;
+    if (s->update_rate_hz > 0 && st.period_us > 0) {
+      const int64_t every = std::max<int64_t>(1, std::llround(1e6 / (s->update_rate_hz * double(st.period_us))));
+      if (s->first_step < 0) s->first_step = step_;
+      if ((step_ - s->first_step) % every != 0) continue;
+      own_period = s->last_update_utime < 0 ? double(every) * period
+                                            : static_cast<double>(now_.utime - s->last_update_utime) * 1e-6;
+    }
+    s->last_update_utime = now_.utime;
     if (mark < 0) mark = monotonic_us();
-    s->controller->update(now_, period);
+    s->controller->update(now_, own_period);
     const int64_t done = monotonic_us();
     s->exec.add(static_cast<double>(done - mark));
     mark = done;

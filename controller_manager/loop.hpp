@@ -32,8 +32,14 @@ struct ControllerSlot {
   std::unique_ptr<Controller> controller;
   std::unique_ptr<Endpoints> endpoints;  // declared after the controller: unsubscribes first
   std::vector<JointData*> claimed;  // joints it commands
+  std::vector<GpioData*> claimed_gpios;  // <gpio> command interfaces it commands
   bool running = false;
   bool ever_started = false;
+  // Its own update_rate (ROS 2): updated on one cycle in round(the hardware's rate / update_rate), counted from its
+  // first cycle; 0: every cycle.
+  double update_rate_hz = 0;
+  int64_t first_step = -1;         // the step of its first update since it started (-1: none yet)
+  int64_t last_update_utime = -1;  // hardware time of its last update (-1: none since it started)
   ExecStats exec;
   const char* state() const { return running ? "running" : ever_started ? "stopped" : "initialized"; }
 };

@@ -45,6 +45,8 @@ int main(int argc, char** argv) {
   add_arg_flag(app, args);
   std::vector<std::string> xacro_args;
   add_xacro_arg_flag(app, xacro_args);
+  std::vector<std::string> simulate_hardware;
+  add_simulate_hardware_flag(app, simulate_hardware);
   add_scheduling_flags(app, sched);
   app.add_option("--silence-timeout", silence_s,
                  "seconds without hardware/state after which controllers are not updated and switches apply at once")
@@ -69,7 +71,7 @@ int main(int argc, char** argv) {
       scheduling += fmt::format("{}spinning {} us around each real-time state", scheduling.empty() ? "" : ", ", spin_us);
     }
     setup_logging("controller_manager", log_level);
-    LoadOptions load = load_options(package_path, bus_flags, args, xacro_args);
+    LoadOptions load = load_options(package_path, bus_flags, args, xacro_args, simulate_hardware);
     load.config_from_plugin = true;
     // Read on a thread of its own, so that the configuration lives in another allocator arena than the loop's: a
     // reload frees it on a worker thread, which takes that arena's lock for milliseconds at a time; on the main

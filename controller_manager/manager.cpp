@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <utility>
 
@@ -88,7 +89,9 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
         if (bad_state_logged_++ % 1000 == 0) spdlog::warn("dropped hardware/state: {}", why);
         ++dropped_;
       },
-      [n = int(model_.transmissions.size()), m = sensor_value_count(model_.sensors)](const void* data, size_t size) {
+      [n = int(model_.transmissions.size()),
+       m = sensor_value_count(model_.sensors) + int(gpio_interfaces(model_.ros2_control).states.size())](
+          const void* data, size_t size) {
         return check_hardware_state_bytes(data, size, n, m);
       });
 }
@@ -197,12 +200,26 @@ std::string ControllerManager::yaml_key(const std::string& controller) const {
   return model_.config_section.empty() ? controller : model_.config_section + "/" + controller;
 }
 
+double ControllerManager::own_update_rate(const Params& params) const {
+  const double hz = params.number("update_rate");
+  if (!(hz > 0) || !std::isfinite(hz))
+    throw params.error("update_rate", fmt::format("{} Hz: must be > 0 (leave it out to update on every cycle of the "
+                                                  "controller manager)",
+                                                  hz));
+  if (model_.update_rate_hz && hz > *model_.update_rate_hz + 1e-9)
+    throw params.error("update_rate", fmt::format("{:g} Hz is above the controller manager's update_rate {:g} Hz ({}); "
+                                                  "a controller updates at most once a cycle: give it {:g} or less",
+                                                  hz, *model_.update_rate_hz, model_.config_path,
+                                                  *model_.update_rate_hz));
+  return hz;
+}
+
 ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpoints& endpoints,
                                                std::unique_ptr<Controller>* out) {
   ControllerCheck c{spec.name, spec.type, ControllerCheck::Loads, "", {}};
   auto controller = registry_.create(spec.type);
   if (!controller) {
-    c.outcome = ros_origin_of_type(spec.type).empty() ? ControllerCheck::Refused : ControllerCheck::NotImplemented;
+    c.outcome = registry_.misspelling(spec.type) ? ControllerCheck::Refused : ControllerCheck::NotImplemented;
     c.message = fmt::format("{}: {}/type: {}", model_.config_file_of(yaml_key(spec.name) + "/type"), yaml_key(spec.name),
                             registry_.unknown_type_message(spec.type));
     return c;
@@ -223,6 +240,21 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
   }
   c.notes = std::move(ctx.notes);
   if (params.has("plugin")) params.node("plugin");  // the controller library, loaded before (plugins.hpp)
+  if (model_.ros2_parameter_file && params.has("update_rate")) {  // every ROS 2 controller's own rate
+    try {
+      c.update_rate_hz = own_update_rate(params);
+    } catch (const std::exception& e) {
+      c.outcome = ControllerCheck::Refused;
+      c.message = e.what();
+      return c;
+    }
+    if (model_.update_rate_hz && std::abs(std::remainder(*model_.update_rate_hz, c.update_rate_hz)) > 1e-9)
+      c.notes.push_back(fmt::format("{}/update_rate: {:g} Hz does not divide the controller manager's {:g} Hz; it "
+                                    "updates every {} cycles ({:g} Hz)",
+                                    params.where(), c.update_rate_hz, *model_.update_rate_hz,
+                                    std::lround(*model_.update_rate_hz / c.update_rate_hz),
+                                    *model_.update_rate_hz / double(std::lround(*model_.update_rate_hz / c.update_rate_hz))));
+  }
   const ControllerTypeInfo* info = registry_.info(spec.type);
   const std::vector<std::string> known = info ? parameter_names(*info) : std::vector<std::string>{};
   for (const auto& k : params.unused()) {
@@ -261,8 +293,10 @@ Reply ControllerManager::load(const std::string& name) {
     return {false, c.outcome == ControllerCheck::NotImplemented || c.message.rfind(spec->file, 0) == 0
                        ? fmt::format("cannot load '{}': {}", name, c.message)
                        : fmt::format("cannot load '{}' ({}): {}", name, spec->type, c.message)};
+  slot->update_rate_hz = c.update_rate_hz;
   if (slot->controller->claim().interface)
     for (const auto& j : slot->controller->claim().joints) slot->claimed.push_back(hw_.find(j));
+  for (const auto& g : slot->controller->claim().gpios) slot->claimed_gpios.push_back(hw_.gpio(g));
   if (!slot->controller->pid_joints().empty()) serve_gains(*slot, bus_);
   const std::string claims = describe(slot->controller->claim());
   loop_.slots().push_back(std::move(slot));

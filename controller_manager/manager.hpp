@@ -42,6 +42,7 @@ struct ControllerCheck {
   Outcome outcome = Loads;
   std::string message;             // why it does not load
   std::vector<std::string> notes;  // parameters ignored and other findings, one line each
+  double update_rate_hz = 0;       // its own update_rate (ROS 2), 0: every cycle of the manager
 };
 
 struct ManagerOptions {
@@ -132,6 +133,8 @@ class ControllerManager {
   ControllerSlot* find(const std::string& name) const;
   // Creates and initialises a controller of `spec` on `port`; on success moves it to *out (if given).
   ControllerCheck instantiate(const ControllerSpec& spec, Endpoints& endpoints, std::unique_ptr<Controller>* out);
+  // A ROS 2 controller's own `update_rate` (Hz), checked against the manager's; throws ControllerError.
+  double own_update_rate(const Params& params) const;
   std::string yaml_key(const std::string& controller) const;  // its key path in the YAML
   void complete_pending();
   std::string names_loaded() const;

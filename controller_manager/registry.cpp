@@ -40,6 +40,7 @@ void register_builtin(Registry& r) {
   r.add(tricycle_controller());
   r.add(mecanum_drive_controller());
   r.add(omni_wheel_drive_controller());
+  r.add(gpio_command_controller());
   r.add(gripper_action_controller(I::Position, false));
   r.add(gripper_action_controller(I::Effort, false));
   r.add(gripper_action_controller(I::Position, true));  // parallel_gripper_action_controller/GripperActionController
@@ -102,8 +103,20 @@ std::string Registry::closest(const std::string& type) const {
   return best;
 }
 
+bool Registry::misspelling(const std::string& type) const {
+  if (types_.empty() || has(type)) return false;
+  const std::string near = closest(type);
+  const bool bare = type.find('/') == std::string::npos;
+  const size_t d = std::min(edit_distance(type, near), bare ? edit_distance(type, near.substr(near.find('/') + 1))
+                                                             : edit_distance(type, near));
+  return d <= 3 && d * 8 <= type.size();
+}
+
 std::string Registry::unknown_type_message(const std::string& type) const {
   const std::string origin = ros_origin_of_type(type);
+  if (misspelling(type))
+    return fmt::format("controller type '{}' does not exist; did you mean '{}'? Valid types: {}", type, closest(type),
+                       join(types()));
   if (!origin.empty()) {
     const std::string instead = ros_alternative_to(type);
     const bool vendor = origin != "ros_controllers" && origin != "ros2_controllers";
@@ -112,8 +125,13 @@ std::string Registry::unknown_type_message(const std::string& type) const {
                        type, vendor ? "a vendor's controller, " : "", origin, vendor ? "available" : "implemented",
                        instead.empty() ? "" : "; use " + instead, types().size());
   }
-  return fmt::format("controller type '{}' does not exist; did you mean '{}'? Valid types: {}", type, closest(type),
-                     join(types()));
+  const std::string why = type.find('/') == std::string::npos
+                              ? "no controller of this project is named so"
+                              : fmt::format("package '{}' is not one whose controllers this project implements",
+                                            type.substr(0, type.find('/')));
+  return fmt::format("controller type '{}' is not available here: {} (`cmctl list-types` lists the {} implemented "
+                     "types; a controller of your own is a plugin: user guide section 15)",
+                     type, why, types().size());
 }
 
 }  // namespace lcm_control::cm

@@ -27,8 +27,12 @@ class Registry {
   // The registered type nearest to `type` (edit distance; a bare class name
   // such as "JointPositionControler" is compared with the class part too).
   std::string closest(const std::string& type) const;
-  // "controller type 'x' does not exist; did you mean 'y'? Valid types: ...", or for a known ROS
-  // type: "controller type 'x' (ros_controllers) is not implemented here; implemented types: ..."
+  // Whether `type`, not registered, is a misspelling of a registered one (the nearest is at most 3 edits away and
+  // under an eighth of the name): then it is an error. Any other unknown type is another package's, not available
+  // here: its controller is skipped, the rest run.
+  bool misspelling(const std::string& type) const;
+  // A misspelling: "controller type 'x' does not exist; did you mean 'y'? Valid types: ..."; another package's
+  // type: "controller type 'x' (ros_controllers) is not implemented here ..." or "... is not available here ...".
   std::string unknown_type_message(const std::string& type) const;
 
  private:

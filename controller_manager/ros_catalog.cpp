@@ -33,16 +33,17 @@ const std::map<std::string, std::string>& known_types() {
              "joint_state_broadcaster/JointStateBroadcaster", "joint_trajectory_controller/JointTrajectoryController",
              "forward_command_controller/ForwardCommandController",
              "forward_command_controller/MultiInterfaceForwardCommandController",
-             "diff_drive_controller/DiffDriveController", "tricycle_controller/TricycleController",
+             "diff_drive_controller/DiffDriveController",
              "gripper_controllers/GripperActionController",
              "parallel_gripper_action_controller/GripperActionController",
              "imu_sensor_broadcaster/IMUSensorBroadcaster",
              "force_torque_sensor_broadcaster/ForceTorqueSensorBroadcaster",
              "range_sensor_broadcaster/RangeSensorBroadcaster", "admittance_controller/AdmittanceController",
-             "pid_controller/PidController", "ackermann_steering_controller/AckermannSteeringController",
-             "bicycle_steering_controller/BicycleSteeringController",
-             "tricycle_steering_controller/TricycleSteeringController",
-             "mecanum_drive_controller/MecanumDriveController"})
+             "pid_controller/PidController",
+             "pose_broadcaster/PoseBroadcaster", "gps_sensor_broadcaster/GPSSensorBroadcaster",
+             "magnetometer_broadcaster/MagnetometerBroadcaster", "battery_state_broadcaster/BatteryStateBroadcaster",
+             "state_interfaces_broadcaster/StateInterfacesBroadcaster",
+             "chained_filter_controller/ChainedFilterController"})
       t.emplace(name, kRos2Controllers);
     return t;
   }();

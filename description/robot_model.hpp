@@ -148,6 +148,9 @@ struct LoadOptions {
   // No config given: read the controllers from the gz_ros2_control plugin's <parameters>, as gz_ros2_control does
   // (the servers, doctor and launch; a program that needs only the URDF leaves it off).
   bool config_from_plugin = false;
+  // <ros2_control> blocks (by name) to simulate whatever their plugin, from --simulate-hardware NAME (a launch file's
+  // simulate_hardware:): a real robot's driver run in Bullet.
+  std::vector<std::string> simulate_hardware;
 };
 
 struct RobotModel {

@@ -204,16 +204,41 @@ const Ros2Component* HardwareBlock::joint(const std::string& n) const {
   return nullptr;
 }
 
-std::optional<HardwareKind> hardware_kind(const std::string& plugin) {
-  static const std::set<std::string> simulators = {"gz_ros2_control/GazeboSimSystem", "ign_ros2_control/IgnitionSystem",
-                                                   "gazebo_ros2_control/GazeboSystem"};
-  static const std::set<std::string> mocks = {"mock_components/GenericSystem", "fake_components/GenericSystem"};
-  if (simulators.count(plugin)) return HardwareKind::Simulator;
-  if (mocks.count(plugin)) return HardwareKind::Mock;
+std::optional<HardwareKind> hardware_kind(const std::string& plugin, std::string* rule) {
+  const size_t slash = plugin.rfind("::") != std::string::npos ? plugin.rfind("::") + 1 : plugin.rfind('/');
+  const std::string cls = slash == std::string::npos ? plugin : plugin.substr(slash + 1);
+  const std::string pkg = slash == std::string::npos ? "" : plugin.substr(0, plugin.find_first_of("/:"));
+  auto said = [&](HardwareKind k, std::string why) {
+    if (rule) *rule = std::move(why);
+    return std::optional<HardwareKind>(k);
+  };
+  for (const char* sim : {"GazeboSimSystem", "IgnitionSystem", "GazeboSystem"})
+    if (cls == sim)
+      return said(HardwareKind::Simulator, fmt::format("a Gazebo/gz simulator system (class {})", cls));
+  if (cls.find("GzSystem") != std::string::npos || cls.find("GzSim") != std::string::npos)
+    return said(HardwareKind::Simulator, fmt::format("a gz simulator system (class {})", cls));
+  if (cls == "GenericSystem") return said(HardwareKind::Mock, "mock hardware (class GenericSystem)");
   // ros2_control_demos' example hardware (ros2_control_demo_example_N/RRBotSystem...): stand-ins whose state follows
   // the command, played as mock hardware.
-  if (plugin.rfind("ros2_control_demo_", 0) == 0) return HardwareKind::Mock;
+  if (pkg.rfind("ros2_control_demo_", 0) == 0)
+    return said(HardwareKind::Mock, fmt::format("ros2_control_demos' example hardware ({}), mock-like", pkg));
   return std::nullopt;
+}
+
+GpioInterfaces gpio_interfaces(const std::vector<HardwareBlock>& blocks) {
+  GpioInterfaces out;
+  for (const HardwareBlock& b : blocks)
+    for (const Ros2Component& g : b.gpios) {
+      for (const Ros2Interface& s : g.state_interfaces) {
+        out.states.push_back(g.name + "/" + s.name);
+        double v = s.initial_value.value_or(0.0);
+        for (const auto& [k, text] : s.params)
+          if (k == "initial_value" && (text == "true" || text == "True")) v = 1.0;
+        out.initial.push_back(v);
+      }
+      for (const Ros2Interface& c : g.command_interfaces) out.commands.push_back(g.name + "/" + c.name);
+    }
+  return out;
 }
 
 bool has_ros2_control(const tinyxml2::XMLElement* robot) {
@@ -249,15 +274,27 @@ void read_ros2_control(RobotModel& model, const tinyxml2::XMLElement* robot, con
                                      "<plugin>gz_ros2_control/GazeboSimSystem</plugin> or "
                                      "<plugin>mock_components/GenericSystem</plugin>",
                                      where));
-    } else if (const auto kind = hardware_kind(block.plugin)) {
+    } else if (std::find(model.options.simulate_hardware.begin(), model.options.simulate_hardware.end(),
+                         block.name) != model.options.simulate_hardware.end()) {
+      block.kind = HardwareKind::Simulator;
+      model.notes.push_back(fmt::format("{}: hardware plugin '{}' simulated in Bullet, as --simulate-hardware {} asks",
+                                        where, block.plugin, block.name));
+    } else if (std::string rule; const auto kind = hardware_kind(block.plugin, &rule)) {
       block.kind = *kind;
+      static const std::set<std::string> standard = {"gz_ros2_control/GazeboSimSystem", "ign_ros2_control/IgnitionSystem",
+                                                     "gazebo_ros2_control/GazeboSystem",
+                                                     "mock_components/GenericSystem"};
+      if (!standard.count(block.plugin))
+        model.notes.push_back(fmt::format("{}: hardware plugin '{}' is {}: played as {} here", where, block.plugin,
+                                          rule, *kind == HardwareKind::Mock ? "mock hardware" : "a simulator"));
     } else {
       problems.push_back(fmt::format(
           "{}: hardware plugin '{}' is neither a simulator nor mock hardware (a robot's driver or a package's own "
           "hardware) and cannot be simulated; expand the xacro with the argument that selects simulated or mock "
           "hardware (usually use_fake_hardware:=true, sim_gazebo:=true, use_gazebo:=true or sim_ignition:=true) so "
-          "that the block names gz_ros2_control/GazeboSimSystem or mock_components/GenericSystem",
-          where, block.plugin));
+          "that the block names gz_ros2_control/GazeboSimSystem or mock_components/GenericSystem, or simulate it as it is "
+          "with --simulate-hardware {} (a launch file's simulate_hardware: [{}])",
+          where, block.plugin, block.name, block.name));
     }
 
     for (auto* je = b->FirstChildElement("joint"); je; je = je->NextSiblingElement("joint")) {
@@ -377,11 +414,20 @@ void read_ros2_control(RobotModel& model, const tinyxml2::XMLElement* robot, con
       model.transmissions.push_back(std::move(t));
     }
     for (const auto& g : block.gpios)
-      model.notes.push_back(fmt::format("{}:{}: ros2_control '{}': gpio '{}' ({} command and {} state interfaces) is "
-                                        "read but not yet simulated",
+      model.notes.push_back(fmt::format("{}:{}: ros2_control '{}': gpio '{}' ({} command and {} state interfaces): a "
+                                        "command interface echoes to the state interface of its name, as "
+                                        "gz_ros2_control and mock hardware do",
                                         file, g.line, block.name, g.name, g.command_interfaces.size(),
                                         g.state_interfaces.size()));
     model.ros2_control.push_back(std::move(block));
+  }
+  for (const std::string& name : model.options.simulate_hardware) {
+    std::vector<std::string> blocks;
+    for (const HardwareBlock& b : model.ros2_control) blocks.push_back(b.name);
+    if (std::find(blocks.begin(), blocks.end(), name) == blocks.end())
+      problems.push_back(fmt::format("{}: --simulate-hardware {}: there is no <ros2_control name=\"{}\"> (the blocks: "
+                                     "{}); name one of them",
+                                     file, name, name, blocks.empty() ? "none" : join(blocks)));
   }
 }
 

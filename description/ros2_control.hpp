@@ -83,8 +83,21 @@ struct Ros2ControlPlugin {
   std::optional<double> position_proportional_gain;
 };
 
-// The kind of hardware a <plugin> names, or nullopt for one that drives real hardware.
-std::optional<HardwareKind> hardware_kind(const std::string& plugin);
+// The kind of hardware a <plugin> names, by what it is rather than a list of names: a Gazebo/Ignition/gz simulator
+// system (gz_ros2_control's GazeboSimSystem and its aliases and vendors' forks: a class named GazeboSimSystem,
+// IgnitionSystem or GazeboSystem, or with GzSystem in its name), mock hardware (a class named GenericSystem:
+// mock_components', fake_components'), or ros2_control_demos' mock-like example hardware; nullopt for one that drives
+// real hardware. `rule`, when given, receives which of these matched, for the note that says so.
+std::optional<HardwareKind> hardware_kind(const std::string& plugin, std::string* rule = nullptr);
+
+// The <gpio> interfaces of every block, named "<gpio>/<interface>" as the hardware loop carries them: the state
+// interfaces with their initial_value (0 when none; a bool's "true" 1), and the command interfaces.
+struct GpioInterfaces {
+  std::vector<std::string> states;
+  std::vector<double> initial;
+  std::vector<std::string> commands;
+};
+GpioInterfaces gpio_interfaces(const std::vector<HardwareBlock>& blocks);
 
 // True when `robot` holds a <ros2_control> block.
 bool has_ros2_control(const tinyxml2::XMLElement* robot);

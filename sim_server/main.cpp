@@ -128,6 +128,8 @@ int main(int argc, char** argv) {
   add_arg_flag(app, args);
   std::vector<std::string> xacro_args;
   add_xacro_arg_flag(app, xacro_args);
+  std::vector<std::string> simulate_hardware;
+  add_simulate_hardware_flag(app, simulate_hardware);
   add_scheduling_flags(app, sched);
 
   return run_program(app, argc, argv, [&] {
@@ -139,7 +141,7 @@ int main(int argc, char** argv) {
     if (!opt.lockstep && opt.spin_us > 0)
       scheduling += fmt::format("{}spinning {} us before each deadline", scheduling.empty() ? "" : ", ", opt.spin_us);
     setup_logging("sim_server", log_level);
-    LoadOptions options = load_options(package_path, bus_flags, args, xacro_args);
+    LoadOptions options = load_options(package_path, bus_flags, args, xacro_args, simulate_hardware);
     options.config_from_plugin = true;
     const RobotModel model = load_robot_model(urdf, config, options);
     for (const auto& n : model.notes) spdlog::info("{}", n);

@@ -52,8 +52,11 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
   if (const SensorBank* sensors = sim.sensors()) {
     state_.sensor_interface = sensors->names();
     state_.sensor_value = sensors->values();
-    state_.num_sensor_values = int32_t(sensors->names().size());
   }
+  // Then the <gpio> state interfaces, under their "<gpio>/<interface>" names.
+  state_.sensor_interface.insert(state_.sensor_interface.end(), sim.gpio().names().begin(), sim.gpio().names().end());
+  state_.sensor_value.insert(state_.sensor_value.end(), sim.gpio().values().begin(), sim.gpio().values().end());
+  state_.num_sensor_values = int32_t(state_.sensor_value.size());
   state_.session = session_;
   state_.lockstep = lockstep;
   state_.period_us = int32_t(std::llround(sim.control_period() * 1e6));
@@ -93,8 +96,12 @@ void SimIo::publish_state(double real_time_factor, bool clock_again) {
     state_.velocity[i] = act.velocity(i);
     state_.effort[i] = act.effort(i);
   }
-  if (const SensorBank* sensors = sim_.sensors())  // the same sensors after a reset
+  size_t v = 0;
+  if (const SensorBank* sensors = sim_.sensors()) {  // the same sensors after a reset
     std::copy(sensors->values().begin(), sensors->values().end(), state_.sensor_value.begin());
+    v = sensors->values().size();
+  }
+  std::copy(sim_.gpio().values().begin(), sim_.gpio().values().end(), state_.sensor_value.begin() + long(v));
   state_pub_.publish(state_);
   const bool due = clock_step_ < 0 || (state_.step != clock_step_ && state_.step % clock_every_ == 0);
   if (!due && !clock_again) return;
@@ -152,6 +159,7 @@ bool SimIo::take_command() {
   PlayedHardware& act = sim_.hardware();
   for (int i = 0; i < act.size(); ++i)
     if (!act.set_command(i, pending_mode_[i], pending_value_[i], pending_damping_[i])) reject_mode(i, pending_mode_[i]);
+  sim_.gpio().commit();
   has_pending_ = false;
   return true;
 }
@@ -202,7 +210,8 @@ void SimIo::drop(const std::string& why) {
 }
 
 void SimIo::on_command(const lcm::ReceiveBuffer& rb) {
-  if (const std::string why = check_hardware_command_bytes(rb.data, rb.data_size, sim_.hardware().size());
+  if (const std::string why =
+          check_hardware_command_bytes(rb.data, rb.data_size, sim_.hardware().size(), sim_.gpio().commands());
       !why.empty())
     return drop(why);
   if (!decode_walked(cmd_, rb.data, rb.data_size))
@@ -228,6 +237,7 @@ void SimIo::on_command(const lcm::ReceiveBuffer& rb) {
     pending_value_[i] = cmd_.command[slot_[i]];
     pending_damping_[i] = cmd_.damping[slot_[i]];
   }
+  sim_.gpio().stage(cmd_);
   has_pending_ = true;
   last_step_ = cmd_.step;
   pre_reset_step_ = -1;

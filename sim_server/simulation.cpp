@@ -35,6 +35,7 @@ Simulation::Simulation(const RobotModel& model, const SimulationRates& rates, co
     : model_(model),
       initial_(initial),
       world_(world),
+      gpio_(model_),
       control_period_(1.0 / rates.control_hz),
       control_hz_(rates.control_hz),
       substeps_(substeps_for(rates)) {
@@ -53,6 +54,7 @@ Simulation::Simulation(const RobotModel& model, const SimulationRates& rates, co
 std::vector<std::string> Simulation::reset(const InitialPositions& changes) {
   InitialPositions initial = initial_;
   for (const auto& [joint, q] : changes) initial[joint] = q;
+  gpio_.reset();
   if (mock_) {
     auto mock = std::make_unique<MockHardware>(model_, initial);
     mock->set_hold_all(mock_->hold_all());

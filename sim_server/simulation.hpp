@@ -13,6 +13,7 @@
 
 #include "description/robot_model.hpp"
 #include "sim_server/actuators.hpp"
+#include "sim_server/gpio.hpp"
 #include "sim_server/mock_hardware.hpp"
 #include "sim_server/multibody_builder.hpp"
 #include "sim_server/sensors.hpp"
@@ -75,6 +76,9 @@ class Simulation {
   const SensorBank* sensors() const { return sensors_.get(); }
   // Backend::Mock only.
   MockHardware& mock() { return *mock_; }
+  // The <gpio> interfaces, either backend (a reset puts them back at their initial values).
+  GpioBank& gpio() { return gpio_; }
+  const GpioBank& gpio() const { return gpio_; }
   // Start positions clamped into the limits, one line each.
   const std::vector<std::string>& start_warnings() const;
   // One INFO line per actuator: how it plays its modes.
@@ -92,6 +96,7 @@ class Simulation {
   std::unique_ptr<Actuators> actuators_;
   std::unique_ptr<SensorBank> sensors_;
   std::unique_ptr<MockHardware> mock_;
+  GpioBank gpio_;
   double control_period_;
   double control_hz_;
   int substeps_;

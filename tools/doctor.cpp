@@ -5,6 +5,7 @@
 // a controller would be refused, or no controller is configured.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "cli/cli.hpp"
@@ -53,8 +54,15 @@ int main(int argc, char** argv) {
   add_arg_flag(app, args);
   std::vector<std::string> xacro_args;
   add_xacro_arg_flag(app, xacro_args);
+  std::vector<std::string> simulate_hardware;
+  add_simulate_hardware_flag(app, simulate_hardware);
+  std::vector<std::string> to_start;
+  app.add_option("--controllers", to_start,
+                 "the controllers that will be started (a,b; the spawner's list): one of them that cannot load is an "
+                 "error; any other that cannot (another package's type, another variant of the robot) a warning")
+      ->delimiter(',');
   return run_program(app, argc, argv, [&] {
-    LoadOptions options = load_options(package_path, bus_flags, args, xacro_args);
+    LoadOptions options = load_options(package_path, bus_flags, args, xacro_args, simulate_hardware);
     options.config_from_plugin = true;
     const RobotModel model = load_robot_model(urdf, config, options);
     std::fputs(describe(model).c_str(), stdout);
@@ -77,12 +85,22 @@ int main(int argc, char** argv) {
       if (!checks.empty()) std::printf("\ncontroller check (as controller_manager would load them):\n");
       for (const auto& c : checks) {
         std::printf("  %-32s %s\n", c.name.c_str(), verdict(c.outcome));
+        const bool started = std::find(to_start.begin(), to_start.end(), c.name) != to_start.end();
         if (c.outcome == ControllerCheck::Loads) ++loadable;
         if (c.outcome == ControllerCheck::Refused) errors.push_back(c.message);
         if (c.outcome == ControllerCheck::NotImplemented || c.outcome == ControllerCheck::InterfaceMismatch)
-          warnings.push_back(c.message);
+          (started ? errors : warnings).push_back(started ? c.message + " (and --controllers starts it)" : c.message);
         warnings.insert(warnings.end(), c.notes.begin(), c.notes.end());
       }
+      for (const auto& name : to_start)
+        if (!model.controller(name))
+          errors.push_back(fmt::format("--controllers {}: {} configures no controller '{}' (configured: {})", name,
+                                       model.config_path, name, [&] {
+                                         std::string all;
+                                         for (const auto& c : model.controllers)
+                                           all += (all.empty() ? "" : ", ") + c.name;
+                                         return all.empty() ? std::string("none") : all;
+                                       }()));
     }
     if (warnings.size() > model.warnings.size()) {
       std::printf("\ncontroller warnings (%zu):\n", warnings.size() - model.warnings.size());

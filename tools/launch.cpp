@@ -79,6 +79,7 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   add_package_path_flag(app, o.package_path);
   add_xacro_arg_flag(app, o.xacro_args);
+  add_simulate_hardware_flag(app, o.simulate_hardware);
   add_bus_flags(app, o.bus);
   add_hardware_url_flag(app, o.bus);
   add_hardware_mirror_flag(app, o.bus);

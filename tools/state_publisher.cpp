@@ -81,9 +81,11 @@ int main(int argc, char** argv) {
   add_arg_flag(app, args);
   std::vector<std::string> xacro_args;
   add_xacro_arg_flag(app, xacro_args);
+  std::vector<std::string> simulate_hardware;
+  add_simulate_hardware_flag(app, simulate_hardware);
   add_bus_flags(app, bus_flags);
   return run_program(app, argc, argv, [&] {
-    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args));
+    const RobotModel model = load_robot_model(urdf, config, load_options(package_path, bus_flags, args, xacro_args, simulate_hardware));
     install_stop_signals();
     Bus bus(bus_flags.lcm_url, model.ns, "", HardwareReader::Direct);
     StatePublisher pub(bus, model, max_rate);

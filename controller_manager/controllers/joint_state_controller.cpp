@@ -37,10 +37,9 @@ class JointStateController : public Controller {
   void init(ControllerContext& ctx) override {
     Params& p = ctx.params();
     const bool franka = flavour_ == Flavour::Franka, ros2 = flavour_ == Flavour::Ros2;
-    const char* rate_key = ros2 ? "update_rate" : "publish_rate";
-    if (!ros2 || p.has(rate_key)) {
-      rate_.hz = p.number(rate_key);
-      if (rate_.hz <= 0) throw p.error(rate_key, fmt::format("{} Hz: must be > 0", rate_.hz));
+    if (!ros2) {  // ROS 2's update_rate is every controller's: the manager updates it that often
+      rate_.hz = p.number("publish_rate");
+      if (rate_.hz <= 0) throw p.error("publish_rate", fmt::format("{} Hz: must be > 0", rate_.hz));
     }
     const char* joints_key = franka ? "joint_names" : "joints";
     if (franka) {

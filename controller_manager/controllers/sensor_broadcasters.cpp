@@ -60,10 +60,6 @@ class SensorBroadcaster : public Controller {
                                         ctx.model().urdf_path, to_string(kind_)));
       return;
     }
-    if (p.has("update_rate")) {
-      rate_.hz = p.number("update_rate");
-      if (rate_.hz <= 0) throw p.error("update_rate", fmt::format("{} Hz: must be > 0", rate_.hz));
-    }
     const std::string name = sensor_name(ctx);
     const SensorData* s = ctx.sensor(name, p.has("sensor_name") ? "sensor_name" : "interface_names", kind_);
     std::string frame = p.has("frame_id") ? p.string("frame_id") : "";

@@ -35,14 +35,14 @@ TEST(ControllerManagerClaims, UnknownJointListsTheMovingJoints) {
 }
 
 TEST(ControllerManagerClaims, TwoControllersOnOneJointConflictWhateverTheInterface) {
-  Claim a{Interface::Position, {"slide", "tilt"}, {}}, b{Interface::Velocity, {"wheel", "tilt"}, {}};
+  Claim a{Interface::Position, {"slide", "tilt"}, {}, {}}, b{Interface::Velocity, {"wheel", "tilt"}, {}, {}};
   const auto c = find_conflict({{"a", &a}, {"b", &b}});
   ASSERT_TRUE(c);
   EXPECT_EQ(c->message(), "controllers 'a' and 'b' would both claim joint 'tilt'");
 }
 
 TEST(ControllerManagerClaims, StateReadersNeverConflict) {
-  Claim reader{std::nullopt, {"slide", "tilt"}, {}}, reader2{std::nullopt, {"slide"}, {}}, cmd{Interface::Position, {"slide"}, {}};
+  Claim reader{std::nullopt, {"slide", "tilt"}, {}, {}}, reader2{std::nullopt, {"slide"}, {}, {}}, cmd{Interface::Position, {"slide"}, {}, {}};
   EXPECT_FALSE(find_conflict({{"jsc", &reader}, {"jsc2", &reader2}, {"c", &cmd}}));
 }
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <map>
 #include <optional>
 
@@ -346,4 +347,33 @@ TEST(ControllerManagerLoop, AHandOverThatChangesTheInterfaceHoldsTheMeasuredPosi
   const hardware_command_t& first = rig.commands[before];  // the switching cycle
   EXPECT_EQ(first.mode[0], hardware_command_t::MODE_POSITION);
   EXPECT_EQ(first.command[0], 0.7) << "step " << first.step;
+}
+
+// ROS 2's per-controller update_rate: a 100 Hz controller in a 1 kHz manager updates on exactly one cycle in ten,
+// its period the ten cycles' time; one above the manager's rate is refused naming both rates.
+TEST(ControllerManagerLoop, AControllersOwnUpdateRateUpdatesItOnEveryNthCycle) {
+  const std::string dir = lcm_control::testing::temp_dir("own_rate");
+  const std::string yaml = dir + "/rates.yaml";
+  std::ofstream(yaml) << "controller_manager:\n  ros__parameters:\n    update_rate: 1000\n"
+                         "    slow: {type: test/Recorder}\n    fast: {type: test/Recorder}\n"
+                         "    too_fast: {type: test/Recorder}\n"
+                         "slow:\n  ros__parameters: {joint: tilt, value: 0.1, update_rate: 100}\n"
+                         "fast:\n  ros__parameters: {joint: slide, value: 0.2}\n"
+                         "too_fast:\n  ros__parameters: {joint: slide, value: 0.2, update_rate: 2000}\n";
+  Registry registry;
+  registry.add("test/Recorder", [](const std::string&) { return std::make_unique<RecorderController>(); });
+  Rig rig(registry, data("test_bot.urdf"), yaml);
+  g_updates.clear();
+  rig.start("slow");
+  rig.start("fast");
+  const size_t fast0 = g_updates["fast"].size(), slow0 = g_updates["slow"].size();
+  rig.cycle(10000);
+  EXPECT_EQ(g_updates["fast"].size() - fast0, 10000u);
+  EXPECT_EQ(g_updates["slow"].size() - slow0, 1000u) << "one cycle in ten over 10,000 cycles";
+  const auto& slow = g_updates["slow"];
+  for (size_t k = slow0 + 1; k < slow.size(); ++k) ASSERT_EQ(slow[k] - slow[k - 1], 10000) << "every 10 ms";
+  const cm::Reply r = rig.load("too_fast");
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "too_fast/update_rate: 2000 Hz is above the controller manager's update_rate 1000 Hz"))
+      << r.message;
 }

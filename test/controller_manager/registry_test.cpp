@@ -6,7 +6,7 @@ using namespace lcm_control::cm;
 
 TEST(ControllerManagerRegistry, EveryBuiltinTypeCanBeCreated) {
   const auto& r = builtin_registry();
-  EXPECT_EQ(r.types().size(), 34u);
+  EXPECT_EQ(r.types().size(), 35u);
   for (const auto& t : r.types()) EXPECT_NE(r.create(t), nullptr) << t;
   EXPECT_EQ(r.create("nope/Nope"), nullptr);
 }
@@ -61,4 +61,27 @@ TEST(ControllerManagerRegistry, TheTypesIiwaStackAndUrShipAreBuiltIn) {
                         "position_controllers/JointTrajectoryController", "effort_controllers/JointGroupPositionController",
                         "effort_controllers/JointGroupEffortController", "velocity_controllers/JointGroupVelocityController"})
     EXPECT_TRUE(r.has(t)) << t;
+}
+
+// One rule for types we do not implement: a misspelling of one we do (a few edits away) is an error with "did you
+// mean"; any other package's type is not available here, never matched across packages.
+TEST(ControllerManagerRegistry, AnotherPackagesTypeIsNotAvailableAndOnlyAMisspellingGetsDidYouMean) {
+  const auto& r = builtin_registry();
+  for (const char* t : {"picknik_twist_controller/PicknikTwistController",
+                        "picknik_reset_fault_controller/PicknikResetFaultController",
+                        "franka_robot_state_broadcaster/FrankaRobotStateBroadcaster", "acme_controllers/Welder"}) {
+    EXPECT_FALSE(r.misspelling(t)) << t;
+    const std::string m = r.unknown_type_message(t);
+    EXPECT_NE(m.find("is not available here"), std::string::npos) << m;
+    EXPECT_EQ(m.find("did you mean"), std::string::npos) << m;
+  }
+  const std::string m = r.unknown_type_message("picknik_twist_controller/PicknikTwistController");
+  EXPECT_NE(m.find("package 'picknik_twist_controller' is not one whose controllers this project implements"),
+            std::string::npos)
+      << m;
+  for (const char* t : {"position_controllers/JointPositonController", "diff_drive_controller/DiffDriveControler",
+                        "JointTrajectoryControler"}) {
+    EXPECT_TRUE(r.misspelling(t)) << t;
+    EXPECT_NE(r.unknown_type_message(t).find("does not exist; did you mean"), std::string::npos) << t;
+  }
 }

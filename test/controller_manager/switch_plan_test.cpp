@@ -7,7 +7,7 @@ using lcm_control::Interface;
 
 namespace {
 struct Fixture {
-  Claim j1{Interface::Position, {"j1"}, {}}, j2{Interface::Position, {"j2"}, {}}, none{std::nullopt, {"j1", "j2"}, {}};
+  Claim j1{Interface::Position, {"j1"}, {}, {}}, j2{Interface::Position, {"j2"}, {}, {}}, none{std::nullopt, {"j1", "j2"}, {}, {}};
   std::vector<LoadedController> loaded{{"a", "running", &j1},
                                        {"b", "initialized", &j1},
                                        {"c", "initialized", &j2},

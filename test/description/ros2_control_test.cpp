@@ -55,12 +55,12 @@ struct Loaded {
   std::string error;  // ModelError's text, "" if it loaded
 };
 
-Loaded load(const std::string& ros2) {
+Loaded load(const std::string& ros2, const LoadOptions& options = {}) {
   Loaded l;
   l.text = robot_with(ros2);
   l.path = write(lt::temp_dir("ros2_control"), "r2bot.urdf", l.text);
   try {
-    l.model = load_robot_model(l.path, "");
+    l.model = load_robot_model(l.path, "", options);
   } catch (const ModelError& e) {
     l.error = e.what();
   }
@@ -320,7 +320,7 @@ TEST(Ros2Control, ImuSensorIsReadAndPlacedOnItsFrameIdLink) {
   EXPECT_TRUE(s.simulated()) << s.not_simulated;
 }
 
-TEST(Ros2Control, GpioIsReadKeptAndNotedAsNotYetSimulated) {
+TEST(Ros2Control, GpioIsReadKeptAndNotedAsEchoingItsCommands) {
   const Loaded l = load(R"(
   <ros2_control name="hand" type="system">
     <hardware><plugin>mock_components/GenericSystem</plugin></hardware>
@@ -339,9 +339,14 @@ TEST(Ros2Control, GpioIsReadKeptAndNotedAsNotYetSimulated) {
   EXPECT_EQ(b.gpios[0].state_interfaces[0].params, (Ros2Params{{"initial_value", "false"}}));
   EXPECT_FALSE(b.gpios[0].state_interfaces[0].initial_value);  // a bool, not a number: kept as written
   EXPECT_EQ(l.model->notes, std::vector<std::string>{fmt::format(
-                                "{}:{}: ros2_control 'hand': gpio 'reactivate' (2 command and 1 state interfaces) is "
-                                "read but not yet simulated",
+                                "{}:{}: ros2_control 'hand': gpio 'reactivate' (2 command and 1 state interfaces): a "
+                                "command interface echoes to the state interface of its name, as gz_ros2_control and "
+                                "mock hardware do",
                                 l.path, line_of(l.text, "<gpio name=\"reactivate\">"))});
+  const GpioInterfaces g = gpio_interfaces(l.model->ros2_control);
+  EXPECT_EQ(g.states, std::vector<std::string>{"reactivate/vacuum"});
+  EXPECT_EQ(g.initial, std::vector<double>{0.0});  // "false"
+  EXPECT_EQ(g.commands, (std::vector<std::string>{"reactivate/reactivate_cmd", "reactivate/reactivate_response"}));
 }
 
 TEST(Ros2Control, VendorDriverPluginIsRefusedNamingTheSimulationArguments) {
@@ -356,8 +361,50 @@ TEST(Ros2Control, VendorDriverPluginIsRefusedNamingTheSimulationArguments) {
                         "neither a simulator nor mock hardware (a robot's driver or a package's own hardware) and cannot "
                         "be simulated; expand the xacro with the argument that selects simulated or mock hardware "
                         "(usually use_fake_hardware:=true, sim_gazebo:=true, use_gazebo:=true or sim_ignition:=true) so "
-                        "that the block names gz_ros2_control/GazeboSimSystem or mock_components/GenericSystem",
+                        "that the block names gz_ros2_control/GazeboSimSystem or mock_components/GenericSystem, or "
+                        "simulate it as it is with --simulate-hardware ur (a launch file's simulate_hardware: [ur])",
                         l.path, line_of(l.text, "<ros2_control name=\"ur\"")));
+  // --simulate-hardware ur: the driver's block simulated, a note says so; a name that is no block is refused.
+  LoadOptions o;
+  o.simulate_hardware = {"ur"};
+  const Loaded sim = load(R"(
+  <ros2_control name="ur" type="system">
+    <hardware><plugin>ur_robot_driver/URPositionHardwareInterface</plugin></hardware>
+    <joint name="joint1"><command_interface name="position"/><state_interface name="position"/></joint>
+  </ros2_control>)", o);
+  ASSERT_TRUE(sim.model) << sim.error;
+  EXPECT_EQ(sim.model->ros2_control[0].kind, HardwareKind::Simulator);
+  EXPECT_NE(lines(sim.model->notes).find("hardware plugin 'ur_robot_driver/URPositionHardwareInterface' simulated in "
+                                        "Bullet, as --simulate-hardware ur asks"),
+            std::string::npos)
+      << lines(sim.model->notes);
+  o.simulate_hardware = {"arm"};
+  const Loaded wrong = load(R"(
+  <ros2_control name="ur" type="system">
+    <hardware><plugin>gz_ros2_control/GazeboSimSystem</plugin></hardware>
+    <joint name="joint1"><command_interface name="position"/><state_interface name="position"/></joint>
+  </ros2_control>)", o);
+  EXPECT_NE(wrong.error.find("--simulate-hardware arm: there is no <ros2_control name=\"arm\"> (the blocks: ur)"),
+            std::string::npos)
+      << wrong.error;
+}
+
+// Simulators are recognised by what their plugin is, vendors' forks too, and the note names the rule.
+TEST(Ros2Control, AVendorsForkOfTheGzPluginIsASimulatorAndTheNoteSaysWhy) {
+  for (const char* plugin : {"franka_ign_ros2_control/IgnitionSystem", "acme_gz_ros2_control/GazeboSimSystem",
+                             "acme_robots/AcmeGzSystem", "gz_ros2_control::GazeboSimSystem"})
+    EXPECT_EQ(hardware_kind(plugin), HardwareKind::Simulator) << plugin;
+  EXPECT_EQ(hardware_kind("acme_mock/GenericSystem"), HardwareKind::Mock);
+  const Loaded l = load(R"(
+  <ros2_control name="fr3" type="system">
+    <hardware><plugin>franka_ign_ros2_control/IgnitionSystem</plugin></hardware>
+    <joint name="joint1"><command_interface name="effort"/><state_interface name="position"/></joint>
+  </ros2_control>)");
+  ASSERT_TRUE(l.model) << l.error;
+  EXPECT_NE(lines(l.model->notes).find("hardware plugin 'franka_ign_ros2_control/IgnitionSystem' is a Gazebo/gz "
+                                      "simulator system (class IgnitionSystem): played as a simulator here"),
+            std::string::npos)
+      << lines(l.model->notes);
 }
 
 TEST(Ros2Control, EveryKnownSimulatorAndMockPluginIsAccepted) {

@@ -385,3 +385,36 @@ TEST(RealRobots, IndustrialArmWithZeroEffortLimitsRunsFromItsLaunchFileAndTwoYam
   EXPECT_NEAR(position_of(states.messages.back(), "joint_2"), -0.4, 0.01);
   EXPECT_EQ(launch.stop(30), 0) << launch.output();
 }
+
+// A vendor's gz fork and vendors' controller types (test/robots/vendor_arm.*): the plugin is a simulator (a note
+// names the rule), each vendor type one warning in doctor (exit 0) unless --controllers starts it (exit 3), and
+// launch starts the rest.
+TEST(RealRobots, AVendorsGzForkAndVendorControllerTypesRunTheRest) {
+  const std::string urdf = robot("vendor_arm.urdf"), yaml = robot("vendor_arm.yaml");
+  lt::ChildProcess doctor({lt::bin("doctor"), "--urdf", urdf, "--config", yaml});
+  EXPECT_EQ(doctor.wait(30), 0) << doctor.output();
+  const std::string out = doctor.output();
+  EXPECT_NE(out.find("hardware plugin 'franka_ign_ros2_control/IgnitionSystem' is a Gazebo/gz simulator system (class "
+                     "IgnitionSystem): played as a simulator here"),
+            std::string::npos)
+      << out;
+  for (const char* vendor : {"'picknik_twist_controller/PicknikTwistController' is not available here",
+                             "'franka_robot_state_broadcaster/FrankaRobotStateBroadcaster' is not available here"}) {
+    const size_t at = out.find(vendor);
+    EXPECT_NE(at, std::string::npos) << out;
+    EXPECT_EQ(out.find(vendor, at + 1), std::string::npos) << "one warning per type:\n" << out;
+  }
+  EXPECT_EQ(out.find("did you mean"), std::string::npos) << out;
+  lt::ChildProcess asked({lt::bin("doctor"), "--urdf", urdf, "--config", yaml, "--controllers",
+                          "joint_state_broadcaster,twist_controller"});
+  EXPECT_EQ(asked.wait(30), 3) << asked.output();
+  EXPECT_NE(asked.output().find("(and --controllers starts it)"), std::string::npos) << asked.output();
+
+  const std::string url = lt::unique_lcm_url();
+  lt::ChildProcess launch({lt::bin("launch"), "--urdf", urdf, "--config", yaml, "--lcm-url", url, "--mode",
+                           "lockstep", "--duration", "1"});
+  EXPECT_EQ(launch.wait(60), 0) << launch.output();
+  EXPECT_NE(launch.output().find("started joint_state_broadcaster, arm_controller"), std::string::npos)
+      << launch.output();
+  EXPECT_NE(launch.output().find("note: not starting 'twist_controller'"), std::string::npos) << launch.output();
+}

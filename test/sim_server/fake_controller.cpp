@@ -22,7 +22,7 @@ void FakeController::on_state(const lcm::ReceiveBuffer* rb, const std::string&, 
     states.push_back(*s);
   if (!answering) return;
   if (repeat && have_last_ && last_.step == s->step) return publish_command(last_);
-  hardware_command_t cmd;
+  hardware_command_t cmd{};
   resize(cmd, s->num_actuators);
   cmd.utime = s->utime;
   cmd.step = s->step;

@@ -70,6 +70,8 @@ struct LaunchPlan {
   // spawn_model's -x -y -z -Y: m, rad) as sim_server's --base-pose.
   std::string base;
   std::optional<std::array<double, 4>> base_pose;
+  // <ros2_control> blocks simulated whatever their plugin (`simulate_hardware:`, launch --simulate-hardware).
+  std::vector<std::string> simulate_hardware;
 };
 
 inline constexpr int kRealTimeSpinUs = 150;

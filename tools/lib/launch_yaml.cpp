@@ -83,7 +83,7 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
                                        "controller_manager_args", "controllers", "spawn", "inactive", "spawner_args",
                                        "state_publisher", "processes",  "commands", "namespace", "args",
                                        "initial_positions", "paused", "robots", "hardware_lcm_url", "hardware_url", "hardware_mirror",
-                                       "rt_priority", "spin_us", "xacro_args", "base", "base_pose"};
+                                       "rt_priority", "spin_us", "xacro_args", "base", "base_pose", "simulate_hardware"};
   for (const auto& kv : root) {
     const std::string key = kv.first.as<std::string>();
     const YAML::Node& v = kv.second;
@@ -134,6 +134,8 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
         plan.state_publisher = boolean(v, key);
       } else if (key == "paused") {
         plan.paused = boolean(v, key);
+      } else if (key == "simulate_hardware") {
+        plan.simulate_hardware = list(v, key);
       } else if (key == "base") {
         plan.base = str(v, key);
         if (plan.base == "auto") plan.base.clear();

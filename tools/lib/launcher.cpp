@@ -9,6 +9,8 @@
 #include <optional>
 
 #include "bus/messages.hpp"
+#include "controller_manager/plugins.hpp"
+#include "controller_manager/registry.hpp"
 #include "description/urdf_reader.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
@@ -79,6 +81,7 @@ std::optional<RobotModel> urdf_of(const LaunchPlan& plan, const std::vector<std:
   LoadOptions o;
   o.package_path = path;
   o.xacro_args = plan.xacro_args;
+  o.simulate_hardware = plan.simulate_hardware;
   RobotModel urdf;
   try {
     load_urdf_into(urdf, plan.urdf, o);
@@ -110,6 +113,7 @@ void model_defaults(LaunchPlan& plan, const std::vector<std::string>& path, cons
   o.ns = ns;
   o.xacro_args = plan.xacro_args;
   o.args = plan.args;
+  o.simulate_hardware = plan.simulate_hardware;
   o.config_from_plugin = true;
   RobotModel model;
   try {
@@ -130,7 +134,20 @@ void model_defaults(LaunchPlan& plan, const std::vector<std::string>& path, cons
                                  plan.file, plan.urdf));
   std::vector<std::string> names;
   for (const auto& c : model.controllers) names.push_back(c.name);
-  if (every_controller && !spawns(plan)) plan.controllers = names;
+  if (every_controller && !spawns(plan)) {
+    // Every controller the YAML configures but those of types not available here (another package's, as a ROS 2
+    // YAML declares its vendor's controllers for launch files that never spawn them): one note each.
+    cm::Registry registry = cm::builtin_registry();
+    for (const auto& line : cm::load_plugins(registry, cm::plugin_libraries(model))) launch_say("note: " + line);
+    for (const auto& c : model.controllers) {
+      if (registry.has(c.type) || registry.misspelling(c.type)) {
+        plan.controllers.push_back(c.name);
+        continue;
+      }
+      launch_say(fmt::format("note: not starting '{}': {}", c.name, registry.unknown_type_message(c.type)));
+    }
+    return;
+  }
   if (!model.ros2_parameter_file || spawns(plan)) return;
   launch_say(fmt::format("note: {} configures {}; a ROS 2 launch starts controllers in its spawner calls: name them "
                          "with --controllers a,b (and --inactive c), or `controllers:` / `inactive:` in a launch "
@@ -160,6 +177,7 @@ CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const
   for (const auto& [name, value] : plan.xacro_args)
     urdf_args.insert(urdf_args.end(), {"--xacro-arg", name + ":=" + value});
   file_args.insert(file_args.end(), urdf_args.begin(), urdf_args.end());
+  for (const auto& name : plan.simulate_hardware) file_args.insert(file_args.end(), {"--simulate-hardware", name});
   std::vector<std::string> robot_files{"--urdf", plan.urdf};
   for (const auto& c : plan.configs) robot_files.insert(robot_files.end(), {"--config", c});
   file_args.insert(file_args.begin(), robot_files.begin(), robot_files.end());
@@ -441,6 +459,9 @@ int run_launch(const LaunchOptions& o) {
   if (o.paused) plan.paused = true;
   if (!o.base.empty()) plan.base = o.base;
   if (o.physics) plan.sim_args.push_back("--physics");
+  for (const auto& name : o.simulate_hardware)
+    if (std::find(plan.simulate_hardware.begin(), plan.simulate_hardware.end(), name) == plan.simulate_hardware.end())
+      plan.simulate_hardware.push_back(name);
   if (o.bus.hardware_mirror_hz > 0) plan.hardware_mirror_hz = o.bus.hardware_mirror_hz;
   if (!o.cpu.empty()) plan.cpu = o.cpu;
   if (o.rt_priority >= 0) plan.rt_priority = o.rt_priority;

@@ -24,6 +24,7 @@ struct LaunchOptions {
   bool dry_run = false, paused = false;
   std::string base;  // --fixed-base: "fixed", --floating-base: "floating"; "": the file's, else sim_server's rule
   bool physics = false;  // --physics: sim_server simulates in Bullet a description that names mock hardware
+  std::vector<std::string> simulate_hardware;  // --simulate-hardware NAME, after the file's simulate_hardware:
   int rt_priority = -1, spin_us = -1;
   int robots = 0;  // --robots N; 0: the file's `robots:`
   // --controllers, --inactive: which controllers start and which are only loaded (ROS 2 decides it in the launch
