@@ -20,7 +20,7 @@ class CmTools : public ::testing::Test {
   void start_manager(const std::string& config) {
     cm_ = std::make_unique<ChildProcess>(std::vector<std::string>{
         bin("controller_manager"), "--urdf", source("config/turret_bot.urdf"), "--config", config, "--lcm-url", url_});
-    ASSERT_TRUE(cm_->wait_for_output("ready", 10.0)) << cm_->output();
+    ASSERT_TRUE(cm_->wait_for_output("ready (", 10.0)) << cm_->output();
   }
   // Runs a tool to completion; returns (exit code, output).
   std::pair<int, std::string> run(std::vector<std::string> argv, double timeout_s = 10.0) {
@@ -234,7 +234,7 @@ TEST(Namespaces, TheEnvironmentGivesTheDefaultAndAnotherNamespaceIsNamedAtOnce) 
   const std::string url = unique_lcm_url();
   ChildProcess cm({bin("controller_manager"), "--urdf", source("config/turret_bot.urdf"), "--config",
                    source("config/turret_bot.yaml"), "--lcm-url", url, "--namespace", "rrbot"});
-  ASSERT_TRUE(cm.wait_for_output("ready", 10.0)) << cm.output();
+  ASSERT_TRUE(cm.wait_for_output("ready (", 10.0)) << cm.output();
   auto run_with = [&](std::vector<std::string> argv, std::map<std::string, std::string> env) {
     argv.insert(argv.end(), {"--lcm-url", url});
     ChildProcess p(argv, env);
@@ -279,7 +279,7 @@ TEST(DoctorAndManager, RefuseTheSameControllersWithTheSameReason) {
   EXPECT_EQ(doctor.wait(10.0), 3) << doctor.output();
   const std::string url = unique_lcm_url();
   ChildProcess cm({bin("controller_manager"), "--urdf", urdf, "--config", dir + "/typo.yaml", "--lcm-url", url});
-  ASSERT_TRUE(cm.wait_for_output("ready", 10.0)) << cm.output();
+  ASSERT_TRUE(cm.wait_for_output("ready (", 10.0)) << cm.output();
   for (const std::string controller : {"j2_controller", "joint_state_controller"}) {
     const std::string why = dir + "/typo.yaml: " + controller +
                             (controller == "j2_controller" ? "/joint: missing (required)" : "/publish_rate: missing (required)");
@@ -313,7 +313,7 @@ TEST(Tune, AControllersOwnPid) {
                                          "  joint: j2\n  pid: {p: 10.0, i: 0.5, d: 1.0, i_clamp: 2.0}\n";
   ChildProcess cm({bin("controller_manager"), "--urdf", dir + "/effort.urdf", "--config", dir + "/effort.yaml",
                    "--lcm-url", url});
-  ASSERT_TRUE(cm.wait_for_output("ready", 10.0)) << cm.output();
+  ASSERT_TRUE(cm.wait_for_output("ready (", 10.0)) << cm.output();
   auto run = [&](std::vector<std::string> argv) {
     argv.insert(argv.end(), {"--lcm-url", url});
     ChildProcess p(argv);
@@ -341,7 +341,7 @@ TEST_F(CmTools, Ros2VerbsNameStatesAsRos2AndListTheHardwareInterfaces) {
   cm_ = std::make_unique<ChildProcess>(std::vector<std::string>{
       bin("controller_manager"), "--urdf", source("test/controller_manager/data/ros2_bot.urdf"), "--config",
       source("test/controller_manager/data/ros2_bot.yaml"), "--lcm-url", url_});
-  ASSERT_TRUE(cm_->wait_for_output("ready", 10.0)) << cm_->output();
+  ASSERT_TRUE(cm_->wait_for_output("ready (", 10.0)) << cm_->output();
   auto [rc, out] = run({bin("cmctl"), "load-controller", "elbow_forward", "--set-state", "active"});
   ASSERT_EQ(rc, 0) << out;
   EXPECT_NE(out.find("elbow_forward is active"), std::string::npos) << out;

@@ -274,7 +274,7 @@ TEST(SendTrajectoryNoSim, TimeoutsSayWhatIsMissing) {
 
   ChildProcess cm({bin("controller_manager"), "--urdf", source("config/turret_bot.urdf"), "--config",
                    source("config/turret_bot_trajectory.yaml"), "--lcm-url", url});
-  ASSERT_TRUE(cm.wait_for_output("ready", 10.0)) << cm.output();
+  ASSERT_TRUE(cm.wait_for_output("ready (", 10.0)) << cm.output();
   ChildProcess spawner({bin("spawner"), "joint_state_controller", "trajectory_controller", "--lcm-url", url});
   ASSERT_TRUE(spawner.wait_for_output("spawner: ready", 10.0)) << spawner.output();
 

@@ -16,7 +16,7 @@ TEST(StatePublisher, TurretBotLinkPoses) {
   const std::string url = unique_lcm_url();
   ChildProcess p({bin("state-publisher"), "--urdf", source("config/turret_bot.urdf"), "--config",
                   source("config/turret_bot.yaml"), "--lcm-url", url});
-  ASSERT_TRUE(p.wait_for_output("ready", 5.0)) << p.output();
+  ASSERT_TRUE(p.wait_for_output("ready: ", 5.0)) << p.output();
   lcm::LCM lc(url);
   Recorder<link_poses_t> rec(lc, "link_poses");
   const double configs[3][2] = {{0.0, 0.0}, {0.25, 1.5}, {0.9, -3.0}};

@@ -145,7 +145,7 @@ TEST(Launch, RefusesANamespaceWhereAControllerManagerOrSimulatorRuns) {
   const std::string urdf = source("config/turret_bot.urdf"), yaml = source("config/turret_bot.yaml");
   {
     ChildProcess cm({bin("controller_manager"), "--urdf", urdf, "--config", yaml, "--lcm-url", url});
-    ASSERT_TRUE(cm.wait_for_output("ready", 10.0)) << cm.output();
+    ASSERT_TRUE(cm.wait_for_output("ready (", 10.0)) << cm.output();
     auto [rc, out] = run({bin("launch"), source("config/turret_bot.launch.yaml")}, url);
     EXPECT_EQ(rc, 1) << out;
     EXPECT_NE(out.find("launch: error: a controller manager already answers on 'controller_manager/response' in the "
@@ -159,7 +159,7 @@ TEST(Launch, RefusesANamespaceWhereAControllerManagerOrSimulatorRuns) {
     EXPECT_EQ(other.stop(15.0), 0) << other.output();
   }
   ChildProcess sim({bin("sim_server"), "--urdf", urdf, "--config", yaml, "--lcm-url", url});
-  ASSERT_TRUE(sim.wait_for_output("ready", 10.0)) << sim.output();
+  ASSERT_TRUE(sim.wait_for_output("ready (", 10.0)) << sim.output();
   auto [rc, out] = run({bin("launch"), source("config/turret_bot.launch.yaml")}, url);
   EXPECT_EQ(rc, 1) << out;
   EXPECT_NE(out.find("launch: error: hardware already publishes 'hardware/state' in the default namespace"),

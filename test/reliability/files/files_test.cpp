@@ -322,7 +322,7 @@ TEST(MutatedFiles, ASampleThroughDoctorSimServerAndControllerManager) {
     {
       lt::ChildProcess cm({lt::bin("controller_manager"), "--urdf", u, "--config", y, "--lcm-url", url});
       int rc = -1;
-      if (cm.wait_for_output("ready", 10))
+      if (cm.wait_for_output("ready (", 10))
         rc = cm.stop(5);
       else
         rc = cm.wait(1);
