@@ -27,6 +27,7 @@ inline constexpr const char* kCmRequest = "controller_manager/request";
 inline constexpr const char* kCmResponse = "controller_manager/response";
 inline constexpr const char* kCmStatistics = "controller_manager/statistics";
 inline constexpr const char* kCmCommandSource = "controller_manager/command_source";
+inline constexpr const char* kCmActivity = "controller_manager/activity";
 inline constexpr const char* kSimStatistics = "sim_server/statistics";
 inline constexpr const char* kSimGainsOwner = "sim_server";
 inline constexpr const char* kSimRequest = "sim_server/request";

@@ -27,6 +27,8 @@ std::string check(const hardware_state_t& m) {
   if (!sized(m.sensor_interface, m.num_sensor_values) || !sized(m.sensor_value, m.num_sensor_values))
     return fmt::format("num_sensor_values {} does not match the arrays", m.num_sensor_values);
   if (!all_finite(m.sensor_value)) return "a sensor value is NaN or Inf";
+  if (!sized(m.error_component, m.num_component_errors) || !sized(m.error_reason, m.num_component_errors))
+    return fmt::format("num_component_errors {} does not match the arrays", m.num_component_errors);
   return "";
 }
 
@@ -47,6 +49,12 @@ std::string check(const hardware_command_t& m) {
   for (int k = 0; k < m.num_gpio_commands; ++k)
     if (!std::isfinite(m.gpio_command[k]))
       return fmt::format("gpio command '{}' is NaN or Inf", m.gpio_interface[size_t(k)]);
+  if (!sized(m.component, m.num_components) || !sized(m.component_state, m.num_components))
+    return fmt::format("num_components {} does not match the arrays", m.num_components);
+  for (int k = 0; k < m.num_components; ++k)
+    if (m.component_state[size_t(k)] < hardware_command_t::COMPONENT_UNCONFIGURED ||
+        m.component_state[size_t(k)] > hardware_command_t::COMPONENT_FINALIZED)
+      return fmt::format("component '{}' has unknown state {}", m.component[size_t(k)], int(m.component_state[size_t(k)]));
   return "";
 }
 
@@ -67,6 +75,8 @@ void resize(joint_state_t& m, int n) {
 void resize(hardware_state_t& m, int n) {
   m.num_sensor_values = int32_t(m.sensor_value.size());  // the sensors stay as they are
   m.sensor_interface.resize(m.sensor_value.size());
+  m.num_component_errors = int32_t(m.error_reason.size());  // so do the errors
+  m.error_component.resize(m.error_reason.size());
   m.num_actuators = n;
   m.name.resize(n);
   m.mode.resize(n);
@@ -78,6 +88,8 @@ void resize(hardware_state_t& m, int n) {
 void resize(hardware_command_t& m, int n) {
   m.num_gpio_commands = int32_t(m.gpio_command.size());  // the GPIO commands stay as they are
   m.gpio_interface.resize(m.gpio_command.size());
+  m.num_components = int32_t(m.component_state.size());
+  m.component.resize(m.component_state.size());
   m.num_actuators = n;
   m.name.resize(n);
   m.mode.resize(n);

@@ -29,8 +29,8 @@ std::string check(const hardware_state_t& m);
 std::string check(const hardware_command_t& m);
 std::string check(const float64_array_t& m);
 
-// Sizes every array to n and sets the count field (a hardware state's sensor values and a command's GPIO commands
-// keep theirs, counted).
+// Sizes every array to n and sets the count field (a hardware state's sensor values and errors and a command's GPIO
+// commands and components keep theirs, counted).
 void resize(joint_state_t& m, int n);
 void resize(hardware_state_t& m, int n);
 void resize(hardware_command_t& m, int n);

@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "bus/messages.hpp"
@@ -28,6 +29,7 @@ JointData* ControllerContext::claim(const std::string& joint, Interface iface) {
     c.joints.push_back(joint);
     c.interfaces.push_back(iface);
   }
+  uses(j->component, true);
   return j;
 }
 
@@ -41,7 +43,14 @@ const JointData* ControllerContext::read(const std::string& joint, const std::st
                                          joint, model_.urdf_path, all));
   }
   if (self_ && !self_->claim_.interface) self_->claim_.joints.push_back(listed_as.empty() ? joint : listed_as);
+  uses(j->component, false);
   return j;
+}
+
+void ControllerContext::uses(int component, bool commands) {
+  if (!self_ || component < 0) return;
+  std::vector<int>& list = commands ? self_->uses_.commands : self_->uses_.reads;
+  if (std::find(list.begin(), list.end(), component) == list.end()) list.push_back(component);
 }
 
 ControllerError ControllerContext::not_a_gpio(const std::string& name, const std::string& key, const char* kind,
@@ -58,18 +67,23 @@ GpioData* ControllerContext::claim_gpio(const std::string& name, const std::stri
   GpioData* g = hw_.gpio(name);
   if (!g || !g->has_command) throw not_a_gpio(name, key, "command", &GpioData::has_command);
   if (self_) self_->claim_.gpios.push_back(name);
+  uses(g->component, true);
   return g;
 }
 
 const GpioData* ControllerContext::read_gpio(const std::string& name, const std::string& key) {
   const GpioData* g = hw_.gpio(name);
   if (!g || !g->has_state) throw not_a_gpio(name, key, "state", &GpioData::has_state);
+  uses(g->component, false);
   return g;
 }
 
 const SensorData* ControllerContext::sensor(const std::string& name, const std::string& key, SensorKind kind) {
   const SensorData* s = hw_.sensor(name);
-  if (s && s->kind == kind) return s;
+  if (s && s->kind == kind) {
+    uses(s->component, false);
+    return s;
+  }
   std::vector<std::string> same_kind, all;
   for (const SensorSpec& x : model_.sensors) {
     all.push_back(fmt::format("{} ({}{})", x.name, to_string(x.kind), x.simulated() ? "" : ", not simulated"));

@@ -59,16 +59,28 @@ class Controller {
   }
 
   const Claim& claim() const { return claim_; }
+  // The hardware components (indices in Hardware::components()) whose interfaces it commands, and those whose state
+  // interfaces it only reads: leaving active stops the first, leaving inactive the second (ros2_control).
+  struct ComponentUse {
+    std::vector<int> commands, reads;
+  };
+  const ComponentUse& uses() const { return uses_; }
   int64_t dropped() const { return dropped_; }  // malformed or wrong-size commands
   // What it takes on `<name>/command` as numbers (ControllerContext::take_commands), or nullptr.
   const CommandInput* command_input() const { return input_.set ? &input_ : nullptr; }
 
  protected:
+  // From update(): it cannot go on (ros2_control's return_type::ERROR). The loop stops it in this cycle and starts
+  // its fallback_controllers; `reason` must outlive the controller (a string literal), and is logged once.
+  void fail(const char* reason) { failure_ = reason ? reason : "failed"; }
+
   friend class ControllerContext;
   Claim claim_;
+  ComponentUse uses_;
   CommandInput input_;
   int64_t dropped_ = 0;
   bool running_ = false;  // set by the loop around starting()/stopping()
+  const char* failure_ = nullptr;  // set by fail(), taken by the loop
   friend class Loop;
 };
 
@@ -121,6 +133,7 @@ class ControllerContext {
   std::vector<std::string> notes;
 
  private:
+  void uses(int component, bool commands);
   ControllerError not_a_gpio(const std::string& name, const std::string& key, const char* kind,
                              bool GpioData::*has) const;
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "bus/hardware_wire.hpp"
@@ -41,6 +42,29 @@ Hardware::Hardware(const RobotModel& model) {
       gpios_.push_back(GpioData{name, false, true, NAN, NAN, nullptr});
   }
   gpio_slot_.assign(gpios_.size(), -1);
+  std::vector<HardwareComponent> components = hardware_components(model);
+  const std::vector<Lifecycle> states = initial_component_states(model, components);
+  for (size_t k = 0; k < components.size(); ++k) {
+    const int index = int(k);
+    const HardwareComponent& c = components[k];
+    for (const std::string& joint : c.joints)
+      if (JointData* j = find(joint)) j->component = index;
+    for (SensorData& s : sensors_)
+      if (std::find(c.sensors.begin(), c.sensors.end(), s.name) != c.sensors.end()) s.component = index;
+    for (GpioData& g : gpios_)
+      if (std::find(c.gpios.begin(), c.gpios.end(), g.name.substr(0, g.name.find('/'))) != c.gpios.end())
+        g.component = index;
+    ComponentData d;
+    d.info = std::move(components[k]);
+    d.state = states[k];
+    components_.push_back(std::move(d));
+  }
+}
+
+int Hardware::component_index(const std::string& name) const {
+  for (size_t k = 0; k < components_.size(); ++k)
+    if (components_[k].info.name == name) return int(k);
+  return -1;
 }
 
 GpioData* Hardware::gpio(const std::string& name) {
@@ -129,6 +153,10 @@ std::string Hardware::bind(const hardware_state_t& state, hardware_command_t& co
   }
   command.gpio_interface.reserve(n_commands);  // write() lists the commanded ones; it does not allocate
   command.gpio_command.reserve(n_commands);
+  command.component.clear();  // every name now, so that write() only sets the states and the count
+  for (const ComponentData& c : components_) command.component.push_back(c.info.name);
+  command.component_state.assign(components_.size(), hardware_command_t::COMPONENT_ACTIVE);
+  command.num_components = 0;
   session_ = state.session;
   bound_ = true;
   return "";
@@ -184,6 +212,12 @@ void Hardware::write(const hardware_state_t& s, hardware_command_t& c) const {
     c.command[a] = 0.0;
     c.damping[a] = 0.0;
   }
+  bool all_active = true;
+  for (size_t k = 0; k < components_.size(); ++k) {
+    c.component_state[k] = static_cast<int8_t>(components_[k].state);
+    all_active = all_active && components_[k].state == Lifecycle::Active;
+  }
+  c.num_components = all_active ? 0 : int32_t(components_.size());
   for (size_t k = 0; k < joints_.size(); ++k) {
     const JointData& j = joints_[k];
     if (!j.owner) continue;

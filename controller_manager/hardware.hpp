@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "description/hardware_components.hpp"
 #include "description/robot_model.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
@@ -35,6 +36,7 @@ struct JointData {
   const Controller* owner = nullptr;              // the running controller that claims it
   Interface owned_as = Interface::Position;       // on this interface (while owner is set)
   PositionSoftLimits soft_position;               // the previous position command, under soft limits
+  int component = -1;                             // index in Hardware::components()
 };
 
 // One <gpio> interface of the model, "<gpio>/<interface>": its state from the last hardware/state (NaN while the
@@ -46,6 +48,7 @@ struct GpioData {
   double state = NAN;
   double command = NAN;
   const Controller* owner = nullptr;  // the running controller that claims the command interface
+  int component = -1;                 // index in Hardware::components()
 };
 
 // One simulated sensor of the model as controllers read it: its values in sensor_interfaces(kind) order from the
@@ -56,6 +59,19 @@ struct SensorData {
   std::string frame_id;  // the sensor's frame_id, else its link
   std::vector<double> values;
   bool present = false;  // the bound hardware sends every value of it
+  int component = -1;    // index in Hardware::components(); -1: a sensor outside every <ros2_control> block
+};
+
+// A hardware component and its lifecycle state as the controller manager keeps it (ros2_control's resource manager).
+struct ComponentData {
+  HardwareComponent info;
+  Lifecycle state = Lifecycle::Active;
+  std::string error;        // why it last left active on an error ("" none)
+  bool error_fresh = false;  // set by the loop when the error came; the manager logs it and clears this
+  int64_t error_step = -1;
+  // Its state interfaces can be read (inactive or active) / its commands act (active).
+  bool readable() const { return state == Lifecycle::Inactive || state == Lifecycle::Active; }
+  bool commandable() const { return state == Lifecycle::Active; }
 };
 
 class Hardware {
@@ -70,6 +86,10 @@ class Hardware {
   std::vector<GpioData>& gpios() { return gpios_; }
   const std::vector<GpioData>& gpios() const { return gpios_; }
   GpioData* gpio(const std::string& name);  // "<gpio>/<interface>"; nullptr for none
+  // In description order (hardware_components()), with the states the config starts them in.
+  std::vector<ComponentData>& components() { return components_; }
+  const std::vector<ComponentData>& components() const { return components_; }
+  int component_index(const std::string& name) const;  // -1 for none; does not allocate
 
   // Matches the message's actuators to the transmissions by name; returns "" or
   // why this hardware does not fit the URDF. Sizes `command` for this session. Sensors match by
@@ -85,6 +105,7 @@ class Hardware {
   // claimed, as joint_limits_interface's *SoftLimitsHandle (control/joint_limits.hpp). dt: this cycle's period (s).
   void enforce_soft_limits(double dt);
   void reset_soft_limits();  // after a (re)start: position commands restart from the measured position
+  // Also lists every component with its state when any is not active (hardware_command_t::component).
   void write(const hardware_state_t& state, hardware_command_t& command) const;
 
  private:
@@ -93,6 +114,7 @@ class Hardware {
   std::vector<SensorData> sensors_;
   std::vector<int> sensor_slot_;        // per sensor value, in sensors_ order: its index in the message, -1 none
   std::vector<GpioData> gpios_;
+  std::vector<ComponentData> components_;
   std::vector<int> gpio_slot_;          // per gpio, in gpios_ order: its state's index in the message's sensor values
   bool bound_ = false;
   int64_t session_ = 0;

@@ -1,6 +1,7 @@
 #include "controller_manager/loop.hpp"
 
 #include <algorithm>
+#include <utility>
 
 #include "bus/bus.hpp"
 #include "controller_manager/command_sources.hpp"
@@ -18,6 +19,64 @@ bool Loop::handed_over(const JointData* j, Interface interface) const {
   return false;
 }
 
+namespace {
+bool has(const std::vector<int>& v, int k) { return std::find(v.begin(), v.end(), k) != v.end(); }
+}  // namespace
+
+bool may_run(const Controller& c, const std::vector<ComponentData>& components) {
+  for (int k : c.uses().commands)
+    if (!components[size_t(k)].commandable()) return false;
+  for (int k : c.uses().reads)
+    if (!components[size_t(k)].readable()) return false;
+  return true;
+}
+
+bool affected_by(const Controller& c, int component, Lifecycle state) {
+  const ComponentData probe{{}, state, {}, false, -1};
+  return (has(c.uses().commands, component) && !probe.commandable()) ||
+         (has(c.uses().reads, component) && !probe.readable());
+}
+
+void Loop::fail_components(const hardware_state_t& st) {
+  for (int e = 0; e < st.num_component_errors; ++e) {
+    const int k = hw_.component_index(st.error_component[size_t(e)]);
+    if (k < 0) continue;
+    ComponentData& c = hw_.components()[size_t(k)];
+    if (!c.readable()) continue;  // unconfigured or finalized already: the error is acknowledged
+    c.state = Lifecycle::Unconfigured;
+    c.error_fresh = true;
+    c.error_step = st.step;
+    for (auto& s : slots_)
+      if (s->running && affected_by(*s->controller, k, Lifecycle::Unconfigured)) {
+        stop(*s);
+        s->stopped_by_error = true;
+      }
+  }
+}
+
+bool Loop::claims_free(const ControllerSlot& s) const {
+  for (const JointData* j : s.claimed)
+    if (j->owner) return false;
+  for (const GpioData* g : s.claimed_gpios)
+    if (g->owner) return false;
+  return true;
+}
+
+void Loop::fail_controller(ControllerSlot& s) {
+  s.failure = std::exchange(s.controller->failure_, nullptr);
+  s.failure_step = step_;
+  stop(s);
+  for (size_t f = 0; f < s.fallbacks.size(); ++f) {
+    s.fallback_started[f] = 0;
+    for (auto& other : slots_)
+      if (other->name == s.fallbacks[f] && !other->running && may_run(*other->controller, hw_.components()) &&
+          claims_free(*other)) {
+        start(*other);
+        s.fallback_started[f] = 1;
+      }
+  }
+}
+
 void Loop::start(ControllerSlot& s) {
   for (size_t k = 0; k < s.claimed.size(); ++k) {
     JointData* j = s.claimed[k];
@@ -31,7 +90,7 @@ void Loop::start(ControllerSlot& s) {
     j->soft_position.reset();
   }
   for (GpioData* g : s.claimed_gpios) g->owner = s.controller.get();
-  s.first_step = s.last_update_utime = -1;
+  s.first_step = s.last_update_utime = s.last_update_mono = -1;
   s.controller->running_ = true;
   s.controller->starting(now_);
   s.running = true;
@@ -75,11 +134,12 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
   now_.utime = st.utime;
 
   hw_.read(st);
+  if (st.num_component_errors > 0) fail_components(st);
   if (restart) {
     ++restarts_;
     hw_.reset_soft_limits();
     for (auto& s : slots_) {
-      s->first_step = s->last_update_utime = -1;
+      s->first_step = s->last_update_utime = s->last_update_mono = -1;
       if (s->running) s->controller->restart(now_);
     }
   }
@@ -97,7 +157,10 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
     }
     s->last_update_utime = now_.utime;
     if (mark < 0) mark = monotonic_us();
+    if (s->last_update_mono >= 0) s->period.add(static_cast<double>(mark - s->last_update_mono));
+    s->last_update_mono = mark;
     s->controller->update(now_, own_period);
+    if (s->controller->failure_) fail_controller(*s);
     const int64_t done = monotonic_us();
     s->exec.add(static_cast<double>(done - mark));
     mark = done;
@@ -121,9 +184,20 @@ void Loop::set_pending_switch(const std::vector<ControllerSlot*>& stop, const st
   pending_ = true;
 }
 
+void Loop::set_pending_component(int index, Lifecycle state) {
+  pending_component_ = index;
+  pending_component_state_ = state;
+}
+
 void Loop::apply_switch() {
-  for (ControllerSlot* s : pending_stop_) stop(*s);
-  for (ControllerSlot* s : pending_start_) start(*s);
+  for (ControllerSlot* s : pending_stop_)
+    if (s->running) stop(*s);
+  if (pending_component_ >= 0) hw_.components()[size_t(pending_component_)].state = pending_component_state_;
+  pending_component_ = -1;
+  for (ControllerSlot* s : pending_start_) {
+    s->start_refused = !may_run(*s->controller, hw_.components());
+    if (!s->start_refused) start(*s);
+  }
   pending_stop_.clear();  // keeps the capacity
   pending_start_.clear();
   pending_ = false;
@@ -136,6 +210,7 @@ void Loop::apply_now() {
 }
 
 void Loop::cancel_pending() {
+  pending_component_ = -1;
   pending_stop_.clear();
   pending_start_.clear();
   pending_ = false;

@@ -8,6 +8,11 @@
 // state. The same step again (a lockstep republish, a paused hardware) updates
 // nothing, but a pending switch is applied on it and the command rewritten.
 // Command sources deliver their due ticks after restarts, before the updates.
+// A hardware component the state reports in error (hardware_state_t::error_component) that is inactive or active is
+// set unconfigured before the updates, and every running controller using it is stopped (stopped_by_error) in that
+// cycle; a pending component state change (set_pending_component) applies with the pending switch, after its stops.
+// A pending start of a controller whose components no longer allow it is not made (start_refused).
+// A controller that fails in its update (Controller::fail) is stopped there, and its fallback controllers started.
 // A started controller's joints hold their measured position (velocity and
 // effort 0) until its first update, unless taken over from a controller
 // stopped in the same switch, whose last command they keep.
@@ -40,9 +45,24 @@ struct ControllerSlot {
   double update_rate_hz = 0;
   int64_t first_step = -1;         // the step of its first update since it started (-1: none yet)
   int64_t last_update_utime = -1;  // hardware time of its last update (-1: none since it started)
-  ExecStats exec;
+  bool stopped_by_error = false;  // stopped by the loop because a component it uses failed (the manager clears it)
+  bool start_refused = false;     // a pending start not made: a component it uses left the state it needs
+  // ROS 2's fallback_controllers: started in the cycle it fails (Controller::fail), those loaded, stopped, allowed by
+  // their components and whose claims are free then; fallback_started says which (for the manager's report).
+  std::vector<std::string> fallbacks;
+  std::vector<char> fallback_started;
+  const char* failure = nullptr;   // why it failed in the last cycle; the manager reports it and clears this
+  int64_t failure_step = -1;
+  ExecStats exec;                  // its updates' execution times
+  ExecStats period;                // the wall-clock time between its updates
+  int64_t last_update_mono = -1;   // monotonic µs of its last update (-1: none since it started)
   const char* state() const { return running ? "running" : ever_started ? "stopped" : "initialized"; }
 };
+
+// Whether the components `c` uses let it run (those it commands active, those it reads inactive or active), and
+// whether `component` going to `state` stops it.
+bool may_run(const Controller& c, const std::vector<ComponentData>& components);
+bool affected_by(const Controller& c, int component, Lifecycle state);
 
 class Loop {
  public:
@@ -60,6 +80,8 @@ class Loop {
 
   // A switch to apply right after the next update (or now with apply_now()).
   void set_pending_switch(const std::vector<ControllerSlot*>& stop, const std::vector<ControllerSlot*>& start);
+  // With the pending switch: component `index` (Hardware::components()) goes to `state` after the stops.
+  void set_pending_component(int index, Lifecycle state);
   bool switch_pending() const { return pending_; }
   void apply_now();
   void cancel_pending();
@@ -82,12 +104,17 @@ class Loop {
   bool handed_over(const JointData* j, Interface interface) const;
   void start(ControllerSlot& s);
   void stop(ControllerSlot& s);
+  void fail_components(const hardware_state_t& st);
+  void fail_controller(ControllerSlot& s);
+  bool claims_free(const ControllerSlot& s) const;
 
   Hardware& hw_;
   CommandSources* sources_ = nullptr;
   std::vector<std::unique_ptr<ControllerSlot>> slots_;
   std::vector<ControllerSlot*> pending_stop_, pending_start_;
   bool pending_ = false;
+  int pending_component_ = -1;
+  Lifecycle pending_component_state_ = Lifecycle::Active;
   bool have_state_ = false, restart_ = false, e_stop_ = false;
   int64_t session_ = 0, step_ = -1, last_switch_step_ = -1, restarts_ = 0;
   Time now_;

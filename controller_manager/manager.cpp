@@ -70,7 +70,8 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       hw_endpoints_(bus, Endpoints::On::Hardware),
       sources_(loop_, bus),
       command_pub_(hw_endpoints_.publisher<hardware_command_t>(bus.channel(channels::kHardwareCommand))),
-      stats_pub_(endpoints_.publisher<loop_stats_t>(bus.channel(channels::kCmStatistics))) {
+      stats_pub_(endpoints_.publisher<loop_stats_t>(bus.channel(channels::kCmStatistics))),
+      activity_pub_(endpoints_.publisher<activity_t>(bus.channel(channels::kCmActivity))) {
   loop_.set_command_sources(&sources_);
   configured_ = index_of(model_.controllers);
   hw_endpoints_.subscribe<hardware_state_t>(
@@ -90,8 +91,8 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
         ++dropped_;
       },
       [n = int(model_.transmissions.size()),
-       m = sensor_value_count(model_.sensors) + int(gpio_interfaces(model_.ros2_control).states.size())](
-          const void* data, size_t size) {
+       m = std::max(sensor_value_count(model_.sensors) + int(gpio_interfaces(model_.ros2_control).states.size()),
+                    int(hw_.components().size()))](const void* data, size_t size) {
         return check_hardware_state_bytes(data, size, n, m);
       });
 }
@@ -214,9 +215,26 @@ double ControllerManager::own_update_rate(const Params& params) const {
   return hz;
 }
 
+std::vector<std::string> ControllerManager::fallback_controllers(const std::string& name, const Params& params) const {
+  const YAML::Node n = params.node("fallback_controllers");
+  if (n.IsSequence() && n.size() == 0) return {};
+  const std::vector<std::string> names = params.strings("fallback_controllers");
+  for (const std::string& f : names) {
+    if (f == name)
+      throw params.error("fallback_controllers", fmt::format("'{}' is the controller itself; name the controllers to "
+                                                             "start when it fails",
+                                                             f));
+    if (!configured_.count(f))
+      throw params.error("fallback_controllers",
+                         fmt::format("'{}' is not a controller of {} (configured controllers: {})", clip(f),
+                                     model_.config_path, names_configured()));
+  }
+  return names;
+}
+
 ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpoints& endpoints,
                                                std::unique_ptr<Controller>* out) {
-  ControllerCheck c{spec.name, spec.type, ControllerCheck::Loads, "", {}};
+  ControllerCheck c{spec.name, spec.type, ControllerCheck::Loads, "", {}, 0, {}};
   auto controller = registry_.create(spec.type);
   if (!controller) {
     c.outcome = registry_.misspelling(spec.type) ? ControllerCheck::Refused : ControllerCheck::NotImplemented;
@@ -254,6 +272,15 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
                                     params.where(), c.update_rate_hz, *model_.update_rate_hz,
                                     std::lround(*model_.update_rate_hz / c.update_rate_hz),
                                     *model_.update_rate_hz / double(std::lround(*model_.update_rate_hz / c.update_rate_hz))));
+  }
+  if (model_.ros2_parameter_file && params.has("fallback_controllers")) {  // ROS 2: started when it fails
+    try {
+      c.fallbacks = fallback_controllers(spec.name, params);
+    } catch (const std::exception& e) {
+      c.outcome = ControllerCheck::Refused;
+      c.message = e.what();
+      return c;
+    }
   }
   const ControllerTypeInfo* info = registry_.info(spec.type);
   const std::vector<std::string> known = info ? parameter_names(*info) : std::vector<std::string>{};
@@ -294,6 +321,8 @@ Reply ControllerManager::load(const std::string& name) {
                        ? fmt::format("cannot load '{}': {}", name, c.message)
                        : fmt::format("cannot load '{}' ({}): {}", name, spec->type, c.message)};
   slot->update_rate_hz = c.update_rate_hz;
+  slot->fallbacks = c.fallbacks;
+  slot->fallback_started.assign(c.fallbacks.size(), 0);
   if (slot->controller->claim().interface)
     for (const auto& j : slot->controller->claim().joints) slot->claimed.push_back(hw_.find(j));
   for (const auto& g : slot->controller->claim().gpios) slot->claimed_gpios.push_back(hw_.gpio(g));
@@ -301,6 +330,7 @@ Reply ControllerManager::load(const std::string& name) {
   const std::string claims = describe(slot->controller->claim());
   loop_.slots().push_back(std::move(slot));
   for (const auto& n : c.notes) spdlog::warn("{}", n);
+  changed();
   std::string msg = fmt::format("loaded '{}' ({}), claims {}; state initialized", name, spec->type, claims);
   if (!c.notes.empty()) msg += "; note: " + join(c.notes, "; ");
   return {true, msg};
@@ -330,6 +360,7 @@ Reply ControllerManager::unload(const std::string& name) {
       retire(std::move(gone));
       break;
     }
+  changed();
   return {true, fmt::format("unloaded '{}'", name)};
 }
 
@@ -344,9 +375,23 @@ void ControllerManager::switch_controllers(const std::vector<std::string>& start
     done({false, "another switch is being applied; retry"});
     return;
   }
+  std::vector<std::string> startable, unfit;
+  for (const std::string& name : start) {
+    const ControllerSlot* s = find(name);
+    const std::string why = s && !s->running ? unfit_to_start(*s) : "";
+    if (why.empty())
+      startable.push_back(name);
+    else
+      unfit.push_back(why);
+  }
+  if (!unfit.empty() && strictness == cm_request_t::STRICT) {
+    done({false, join(unfit, "; ") + "; nothing was switched"});
+    return;
+  }
   std::vector<LoadedController> loaded;
   for (const auto& s : loop_.slots()) loaded.push_back({s->name, s->state(), &s->controller->claim()});
-  SwitchPlan plan = plan_switch(loaded, start, stop, strictness);
+  SwitchPlan plan = plan_switch(loaded, startable, stop, strictness);
+  plan.notes.insert(plan.notes.begin(), unfit.begin(), unfit.end());
   const std::string notes = plan.notes.empty() ? "" : " (" + join(plan.notes, "; ") + ")";
   if (!plan.ok) {
     done({false, plan.message + notes});
@@ -363,6 +408,7 @@ void ControllerManager::switch_controllers(const std::vector<std::string>& start
   pending_summary_ =
       fmt::format("stopped [{}], started [{}]{}", join_some(stop_names, 20), join_some(start_names, 20), notes);
   loop_.set_pending_switch(stop_slots, start_slots);
+  pending_component_ = false;
   pending_done_ = std::move(done);
   if (!ticking()) {
     loop_.apply_now();
@@ -377,9 +423,19 @@ void ControllerManager::complete_pending() {
   Done done = std::move(pending_done_);
   pending_done_ = nullptr;
   std::string msg = pending_summary_;
-  if (loop_.last_switch_step() >= 0 && msg.rfind("switched at once", 0) != 0)
+  const bool in_cycle = loop_.last_switch_step() >= 0 && msg.rfind("switched at once", 0) != 0;
+  if (in_cycle && pending_component_)
+    msg = fmt::format("{} at step {} (t={:.6f} s)", msg, loop_.last_switch_step(), loop_.now().seconds());
+  else if (in_cycle)
     msg = fmt::format("switched in one cycle at step {} (t={:.6f} s): {}", loop_.last_switch_step(),
                       loop_.now().seconds(), msg);
+  std::vector<std::string> refused;
+  for (const auto& s : loop_.slots())
+    if (std::exchange(s->start_refused, false)) refused.push_back(s->name);
+  if (!refused.empty())
+    msg += fmt::format("; but not started [{}]: a hardware component they use left the state they need meanwhile",
+                       join(refused));
+  changed();
   if (done) done({true, msg});
 }
 
@@ -466,6 +522,7 @@ void ControllerManager::finish_reload(ReadConfig read) {
       old = {};
     });
   configured_ = std::move(read.index);
+  changed();
   done({true, fmt::format("reloaded {}: {} controller(s) configured ({}); unloaded [{}]", model_.config_path,
                           model_.controllers.size(), names_configured(), join_some(reload_unloaded_, 20))});
 }
@@ -518,6 +575,9 @@ std::vector<joint_interfaces_t> ControllerManager::interfaces() const {
             i.claimed = quantity_of(s->controller->claim().interface_of(k));
             i.claimed_by = s->name;
           }
+    for (const std::string& s : i.state)
+      i.state_value.push_back(s == "position" ? j.position : s == "velocity" ? j.velocity : s == "effort" ? j.effort : NAN);
+    i.command_value = j.owner ? j.command : NAN;
     i.num_command = static_cast<int32_t>(i.command.size());
     i.num_state = static_cast<int32_t>(i.state.size());
     out.push_back(std::move(i));
@@ -582,6 +642,8 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
                                    loop_.step(), st.step));
   arrivals_.arrived(now, st.lockstep ? 0 : st.period_us);
   loop_.cycle(st, command_);
+  if (st.num_component_errors > 0) report_component_errors(st);
+  report_failed_controllers();
   sources_.after_cycle();  // before the command: the echo is on the bus before the next state
   command_pub_.publish(command_);
   if (st.lockstep) outbox_.send_queued();  // after the command: the hardware steps meanwhile when it has a CPU
@@ -610,6 +672,11 @@ void ControllerManager::poll(int64_t now) {
     finish_reload(reload_read_.get());
   }
   for (const int64_t end = now + options_.slice_us; !retired_.empty() && monotonic_us() < end;) retired_.pop_back();
+  if (activity_due_ || now - last_activity_us_ >= 1000000) {
+    activity_due_ = false;
+    last_activity_us_ = now;
+    activity_pub_.publish(activity());
+  }
   if (now - last_stats_us_ >= 1000000) {
     last_stats_us_ = now;
     hw_status_.close_window(now);
@@ -625,10 +692,7 @@ loop_stats_t ControllerManager::statistics() {
   int64_t dropped = dropped_ + bus_.hardware_skipped();
   if (const std::string note = bus_.hardware_loss_note(); !note.empty()) hardware_log_.warn(note);
   for (const auto& s : loop_.slots()) {
-    m.item.push_back(s->name);
-    m.item_exec_mean_us.push_back(s->exec.mean_us());
-    m.item_exec_max_us.push_back(s->exec.max_us);
-    s->exec.reset();
+    add_item(m, s->name, "controller", s->exec, &s->period);
     dropped += s->controller->dropped();
   }
   m.dropped = std::max<int64_t>(0, dropped - reported_dropped_);
@@ -636,7 +700,6 @@ loop_stats_t ControllerManager::statistics() {
   const int64_t unpublished = outbox_.dropped() + bus_.hardware_refused();
   m.unpublished = unpublished - reported_unpublished_;
   reported_unpublished_ = unpublished;
-  m.num_items = static_cast<int32_t>(m.item.size());
   return m;
 }
 

@@ -23,7 +23,9 @@
 #include "controller_manager/loop.hpp"
 #include "controller_manager/registry.hpp"
 #include "controller_manager/reply.hpp"
+#include "lcm_control/activity_t.hpp"
 #include "lcm_control/controller_info_t.hpp"
+#include "lcm_control/hardware_component_t.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/joint_interfaces_t.hpp"
 #include "lcm_control/loop_stats_t.hpp"
@@ -43,6 +45,7 @@ struct ControllerCheck {
   std::string message;             // why it does not load
   std::vector<std::string> notes;  // parameters ignored and other findings, one line each
   double update_rate_hz = 0;       // its own update_rate (ROS 2), 0: every cycle of the manager
+  std::vector<std::string> fallbacks;  // its fallback_controllers (ROS 2), started when it fails
 };
 
 struct ManagerOptions {
@@ -123,6 +126,13 @@ class ControllerManager {
   const ArrivalClock& state_arrivals() const { return arrivals_; }
   const hardware_command_t& last_command() const { return command_; }
 
+  // Hardware components (ros2_control's lifecycle; hardware_lifecycle.cpp). A component leaving active stops the
+  // running controllers that command it, leaving inactive those that read it too, in the cycle it changes (at once
+  // when the hardware is silent); `done` gets the reply then.
+  void set_component_state(const std::string& name, Lifecycle target, Done done);
+  std::vector<hardware_component_t> components() const;
+  activity_t activity() const;
+
   loop_stats_t statistics();  // the current window, then a new one
   // Waits until the controllers' messages handed over so far have left (tests; not for the loop path).
   void flush_published() { outbox_.flush(); }
@@ -137,6 +147,19 @@ class ControllerManager {
   double own_update_rate(const Params& params) const;
   std::string yaml_key(const std::string& controller) const;  // its key path in the YAML
   void complete_pending();
+  // "" when the components `s` uses let it start; else why not and what to do.
+  std::string unfit_to_start(const ControllerSlot& s) const;
+  // ROS 2's fallback_controllers of `name`: configured controllers other than itself; throws ControllerError.
+  std::vector<std::string> fallback_controllers(const std::string& name, const Params& params) const;
+  // Logs each controller that failed in this cycle, once, with the fallbacks started (hardware_lifecycle.cpp).
+  void report_failed_controllers();
+  // Logs each component error the loop took in this cycle, once, with the hardware's reason and what stopped.
+  void report_component_errors(const hardware_state_t& st);
+  void changed() {  // a controller or component changed state: activity is published at the next poll()
+    ++activity_seq_;
+    activity_step_ = loop_.has_state() ? loop_.step() : -1;
+    activity_due_ = true;
+  }
   std::string names_loaded() const;
   std::string names_configured() const;  // the first 20, then "(and N more)"
   Reply each(const std::vector<std::string>& names, bool load);
@@ -168,6 +191,10 @@ class ControllerManager {
   hardware_command_t command_{};
   Publisher<hardware_command_t> command_pub_;
   Publisher<loop_stats_t> stats_pub_;
+  Publisher<activity_t> activity_pub_;
+  int64_t activity_seq_ = 0, activity_step_ = -1, last_activity_us_ = 0;
+  bool activity_due_ = true;
+  bool pending_component_ = false;  // the pending switch is a component's state change
   Done pending_done_;
   std::unordered_map<std::string, size_t> configured_;  // name -> model_.controllers index
   // A reload whose YAML a worker thread reads: its answer, what it unloads, and the result (an error or the model).

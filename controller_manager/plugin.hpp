@@ -16,10 +16,12 @@
 namespace lcm_control::cm {
 
 // Raise when Controller, ControllerContext, Registry or what they hand out (JointData, Params, Endpoints) changes.
-inline constexpr int kControllerAbi = 6;  // 2: Port became lcm_control::Endpoints (bus/endpoints.hpp); 3: publishers
+inline constexpr int kControllerAbi = 7;  // 2: Port became lcm_control::Endpoints (bus/endpoints.hpp); 3: publishers
                                           // hand messages to an Outbox; 4: CommandInput (take_commands); 5: the
                                           // Registry keeps ControllerTypeInfo (controller_type.hpp); 6: a Claim's
-                                          // interface per joint, JointData::owned_as, ClaimInfo::also
+                                          // interface per joint, JointData::owned_as, ClaimInfo::also; 7:
+                                          // hardware components (JointData::component, Controller::uses()),
+                                          // Controller::fail()
 
 // What must match between the controller manager and a library: the interface version, the C++ library's string
 // ABI, and the layout of the classes the two share.

@@ -23,6 +23,8 @@ const char* op_name(int op) {
       return "switch";
     case cm_request_t::RELOAD:
       return "reload";
+    case cm_request_t::SET_COMPONENT_STATE:
+      return "set-hardware-component-state";
     default:
       return "unknown";
   }
@@ -39,6 +41,11 @@ std::string describe(const cm_request_t& r) {
                          r.strictness == cm_request_t::STRICT ? "STRICT" : "BEST_EFFORT");
     case cm_request_t::RELOAD:
       return r.force ? "reload (force)" : "reload";
+    case cm_request_t::SET_COMPONENT_STATE:
+      return fmt::format("set-hardware-component-state {} {}", r.names.empty() ? "" : r.names.front(),
+                         r.component_state >= 1 && r.component_state <= 4
+                             ? to_string(static_cast<Lifecycle>(r.component_state))
+                             : fmt::format("{} (no such state)", int(r.component_state)));
     default:
       return op_name(r.op);
   }
@@ -78,6 +85,8 @@ void Services::answer(const cm_request_t& req, const Reply& reply, bool with_typ
   m.hardware_age_us = with_hardware ? cm_.hardware_age_us(now) : -1;
   m.ros2 = cm_.from_ros2();
   if (with_hardware) m.joints = cm_.interfaces();
+  if (with_hardware || req.op == cm_request_t::SET_COMPONENT_STATE) m.components = cm_.components();
+  m.num_components = static_cast<int32_t>(m.components.size());
   const size_t room = kMaxAnswerBytes - 256;  // 256: the note below
   size_t bytes = static_cast<size_t>(m.getEncodedSize());
   size_t joints = 0;
@@ -187,10 +196,27 @@ void Services::start(const cm_request_t& r) {
       });
       return;
     }
+    case cm_request_t::SET_COMPONENT_STATE: {
+      if (r.names.size() != 1 || r.names.front().empty())
+        return answer(r, {false, "malformed request: set-hardware-component-state needs one component name in "
+                                 "names[]"});
+      if (r.component_state < hardware_command_t::COMPONENT_UNCONFIGURED ||
+          r.component_state > hardware_command_t::COMPONENT_FINALIZED)
+        return answer(r, {false, fmt::format("malformed request: component_state {} is none of 1 unconfigured, 2 "
+                                             "inactive, 3 active, 4 finalized",
+                                             int(r.component_state))});
+      cm_request_t copy = r;
+      cm_.set_component_state(r.names.front(), static_cast<Lifecycle>(r.component_state),
+                              [this, copy](const Reply& reply) {
+                                answer(copy, reply);
+                                answered_later();
+                              });
+      return;
+    }
     default:
       ++malformed_;
       answer(r, {false, fmt::format("malformed request: unknown op {}; valid ops are 1 LIST, 2 LIST_TYPES, 3 LOAD, "
-                                    "4 UNLOAD, 5 SWITCH, 6 RELOAD",
+                                    "4 UNLOAD, 5 SWITCH, 6 RELOAD, 8 SET_COMPONENT_STATE",
                                     static_cast<int>(r.op))});
   }
 }

@@ -133,6 +133,8 @@ void parse_control_config(RobotModel& model, const YAML::Node& doc, const std::s
     throw ModelError(fmt::format("{}: expected a map of controllers at the top level (like `j1_controller: {{type: ...}}`)",
                                  file));
   model.update_rate_hz.reset();  // the file's own (a reload reads it again)
+  model.components_start_unconfigured.clear();
+  model.components_start_inactive.clear();
   model.ros2_parameter_file = is_ros2_parameter_file(doc);
   if (model.ros2_parameter_file) {  // controller_manager: ros__parameters:
     parse_ros2_params(model, doc, file);

@@ -123,6 +123,7 @@ struct TransmissionSpec {
   // running controller claims. False (a URDF <transmission>, ROS 1): only the first.
   bool any_interface = false;
   std::string actuator;
+  std::string hardware_block;  // the <ros2_control> block declaring the joint, "" for a URDF <transmission>
   SimpleTransmission map;
   std::vector<Interface> skipped_interfaces;  // of the joint's other transmissions, skipped (the first drives it)
 };
@@ -183,6 +184,8 @@ struct RobotModel {
   InitialPositions initial_positions;               // joint -> initial_value of its position interface
   std::map<std::string, double> initial_velocities;  // joint -> initial_value of its velocity interface
   std::optional<double> update_rate_hz;             // controller_manager: ros__parameters: update_rate
+  // controller_manager: hardware_components_initial_state: unconfigured / inactive: components not started active.
+  std::vector<std::string> components_start_unconfigured, components_start_inactive;
   bool ros2_parameter_file = false;                 // the config is a ROS 2 parameter file
   bool from_ros2() const { return !ros2_control.empty() || ros2_parameter_file; }  // ROS 2 users' files
   std::vector<SensorSpec> sensors;             // declared sensors, simulated or not (description/sensors.hpp)

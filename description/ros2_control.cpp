@@ -404,6 +404,7 @@ void read_ros2_control(RobotModel& model, const tinyxml2::XMLElement* robot, con
                                                                        : "state interfaces only"));
         continue;
       }
+      t.hardware_block = block.name;
       for (const Ros2Transmission& tr : block.transmissions)
         if (tr.joint == c.name) {
           t.name = tr.name.empty() ? t.name : tr.name;

@@ -87,6 +87,37 @@ YAML::Node merged(const std::vector<Section>& sections, const std::vector<std::s
 
 std::string scalar_or_empty(const YAML::Node& n) { return n && n.IsScalar() ? trim(n.Scalar()) : ""; }
 
+// controller_manager's hardware_components_initial_state (a map of unconfigured / inactive lists, or the dotted
+// keys "hardware_components_initial_state.unconfigured"): the components that do not start active.
+void read_initial_states(const std::string& file, const std::string& key, const YAML::Node& value, RobotModel& model,
+                         std::vector<std::string>& problems) {
+  auto read_list = [&](const std::string& state, const YAML::Node& list) {
+    const std::string where =
+        fmt::format("{}: controller_manager/ros__parameters/hardware_components_initial_state/{}", file, state);
+    std::vector<std::string>* into = state == "unconfigured" ? &model.components_start_unconfigured
+                                     : state == "inactive"   ? &model.components_start_inactive
+                                                             : nullptr;
+    if (!into)
+      return problems.push_back(fmt::format("{}: '{}' is not a state a component can start in (unconfigured or "
+                                            "inactive; the others start active)",
+                                            where, state));
+    if (list.IsScalar() && !trim(list.Scalar()).empty()) return into->push_back(trim(list.Scalar()));
+    if (!list.IsSequence())
+      return problems.push_back(fmt::format("{}: expected a list of <ros2_control> names", where));
+    for (const auto& n : list) {
+      if (!n.IsScalar() || trim(n.Scalar()).empty())
+        return problems.push_back(fmt::format("{}: expected a list of <ros2_control> names", where));
+      into->push_back(trim(n.Scalar()));
+    }
+  };
+  if (key != "hardware_components_initial_state") return read_list(key.substr(key.find('.') + 1), value);
+  if (!value.IsMap())
+    return problems.push_back(fmt::format("{}: controller_manager/ros__parameters/hardware_components_initial_state: "
+                                          "expected a map with unconfigured: [...] and inactive: [...]",
+                                          file));
+  for (const auto& kv : value) read_list(kv.first.Scalar(), kv.second);
+}
+
 }  // namespace
 
 bool node_path_matches(const std::string& pattern, const std::string& fqn) {
@@ -207,6 +238,9 @@ void parse_ros2_params(RobotModel& model, const YAML::Node& doc, const std::stri
                                        file, kv.second.IsScalar() ? kv.second.Scalar() : "a map or list"));
       else
         model.update_rate_hz = hz;
+    } else if (key == "hardware_components_initial_state" ||
+               key.rfind("hardware_components_initial_state.", 0) == 0) {
+      read_initial_states(file, key, kv.second, model, problems);
     } else if (kv.second.IsMap() && kv.second["type"]) {
       const std::string type = scalar_or_empty(kv.second["type"]);
       if (type.empty())

@@ -16,6 +16,43 @@ double quantile_in_place(std::vector<double>& v, double q) {
 }
 }  // namespace
 
+void ExecStats::add(double us) {
+  sum_us += us;
+  if (us > max_us) max_us = us;
+  if (n == 0 || us < min_us) min_us = us;
+  ++n;
+  static const double inv_log_ratio = 1.0 / std::log(kBinRatio);
+  const double b = us > kLowestUs ? std::log(us / kLowestUs) * inv_log_ratio : 0.0;
+  ++bins[size_t(std::clamp(b, 0.0, double(kBins - 1)))];
+}
+
+double ExecStats::percentile_us(double q) const {
+  if (n == 0) return 0.0;
+  const auto rank = std::max<int64_t>(1, static_cast<int64_t>(std::ceil(q * static_cast<double>(n))));
+  int64_t seen = 0;
+  for (int b = 0; b < kBins; ++b) {
+    seen += bins[size_t(b)];
+    if (seen < rank) continue;
+    return b == kBins - 1 ? max_us : std::clamp(kLowestUs * std::pow(kBinRatio, b + 0.5), min_us, max_us);
+  }
+  return max_us;
+}
+
+void add_item(loop_stats_t& m, const std::string& name, const char* kind, ExecStats& exec, ExecStats* period) {
+  m.item.push_back(name);
+  m.item_kind.push_back(kind);
+  m.item_count.push_back(exec.n);
+  m.item_exec_mean_us.push_back(exec.mean_us());
+  m.item_exec_max_us.push_back(exec.max_us);
+  m.item_exec_p99_us.push_back(exec.percentile_us(0.99));
+  m.item_period_mean_us.push_back(period ? period->mean_us() : 0.0);
+  m.item_period_max_us.push_back(period ? period->max_us : 0.0);
+  m.item_period_p99_us.push_back(period ? period->percentile_us(0.99) : 0.0);
+  m.num_items = static_cast<int32_t>(m.item.size());
+  exec.reset();
+  if (period) period->reset();
+}
+
 LoopStats::LoopStats() { errors_.reserve(kErrorCapacity); }
 
 void LoopStats::add_cycle(int64_t start_us, int64_t work_us, bool overrun) {

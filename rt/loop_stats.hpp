@@ -6,7 +6,9 @@
 // allocation.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <string>
 #include <limits>
 #include <vector>
 
@@ -14,17 +16,24 @@
 
 namespace lcm_control {
 
+// Durations (an execution time, a period) over one window: count, mean, max, and percentiles read from a histogram
+// of log-spaced bins (2 % wide, 0.1 µs to 100 s; a percentile is its bin's middle, within [min, max]; past the last
+// bin, the max), so add() neither allocates nor sorts.
 struct ExecStats {
-  double sum_us = 0, max_us = 0;
+  static constexpr double kLowestUs = 0.1, kBinRatio = 1.02;
+  static constexpr int kBins = 1050;
+  double sum_us = 0, max_us = 0, min_us = 0;
   int64_t n = 0;
-  void add(double us) {
-    sum_us += us;
-    if (us > max_us) max_us = us;
-    ++n;
-  }
+  std::array<uint32_t, kBins> bins{};
+  void add(double us);
   double mean_us() const { return n ? sum_us / static_cast<double>(n) : 0.0; }
+  double percentile_us(double q) const;  // q in (0, 1]; 0 when empty
   void reset() { *this = ExecStats{}; }
 };
+
+// Appends one item to `m` (loop_stats_t's per-item arrays): its execution times and, when given, its periods, then
+// starts their new windows. `kind`: "controller", "stage", ...
+void add_item(loop_stats_t& m, const std::string& name, const char* kind, ExecStats& exec, ExecStats* period);
 
 class LoopStats {
  public:

@@ -16,6 +16,14 @@ GpioBank::GpioBank(const RobotModel& model) {
     echo_.push_back(it == names_.end() ? -1 : int(it - names_.begin()));
   }
   staged_.assign(commands_.size(), std::numeric_limits<double>::quiet_NaN());
+  held_.assign(commands_.size(), 0);
+}
+
+void GpioBank::hold(const std::string& gpio, bool held) {
+  for (size_t c = 0; c < commands_.size(); ++c)
+    if (commands_[c].size() > gpio.size() && commands_[c].compare(0, gpio.size(), gpio) == 0 &&
+        commands_[c][gpio.size()] == '/')
+      held_[c] = held;
 }
 
 void GpioBank::stage(const hardware_command_t& command) {
@@ -31,7 +39,7 @@ void GpioBank::stage(const hardware_command_t& command) {
   for (size_t k = 0; k < n; ++k) {
     if (slot_[k] < 0)
       ++unknown_;
-    else
+    else if (!held_[size_t(slot_[k])])
       staged_[size_t(slot_[k])] = command.gpio_command[k];
   }
 }

@@ -25,6 +25,8 @@ class GpioBank {
   // list is bound.
   void stage(const hardware_command_t& command);
   void commit();
+  // The command interfaces of <gpio> `gpio` ignore commands while held (their component is not active).
+  void hold(const std::string& gpio, bool held);
   void reset();  // back to the initial values
   int64_t unknown() const { return unknown_; }
 
@@ -36,6 +38,7 @@ class GpioBank {
   std::vector<std::string> bound_;     // the command message's list as last bound
   std::vector<int> slot_;              // per entry of bound_: our command interface, -1 none
   std::vector<double> staged_;         // per command interface: the value to apply, NaN none
+  std::vector<char> held_;             // per command interface
   int64_t unknown_ = 0;
 };
 

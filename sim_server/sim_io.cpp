@@ -67,6 +67,7 @@ SimIo::SimIo(Bus& bus, Simulation& sim, bool lockstep, int clock_every)
     base_.child_frame_id = sim.multibody().root_link();
   }
   resize(cmd_, n);
+  sim.components().bind(state_.name);
   rejected_warned_.assign(n, hardware_command_t::MODE_NONE);
   pending_mode_.assign(n, hardware_command_t::MODE_NONE);
   pending_value_.assign(n, 0.0);
@@ -102,6 +103,7 @@ void SimIo::publish_state(double real_time_factor, bool clock_again) {
     v = sensors->values().size();
   }
   std::copy(sim_.gpio().values().begin(), sim_.gpio().values().end(), state_.sensor_value.begin() + long(v));
+  sim_.components().report(state_);
   state_pub_.publish(state_);
   const bool due = clock_step_ < 0 || (state_.step != clock_step_ && state_.step % clock_every_ == 0);
   if (!due && !clock_again) return;
@@ -157,8 +159,11 @@ bool SimIo::poll_until(int64_t deadline_us, bool until_command, bool until_reque
 bool SimIo::take_command() {
   if (!has_pending_) return false;
   PlayedHardware& act = sim_.hardware();
-  for (int i = 0; i < act.size(); ++i)
-    if (!act.set_command(i, pending_mode_[i], pending_value_[i], pending_damping_[i])) reject_mode(i, pending_mode_[i]);
+  const ComponentStates& components = sim_.components();
+  for (int i = 0; i < act.size(); ++i) {
+    const int8_t mode = components.holds(i) ? hardware_command_t::MODE_NONE : pending_mode_[i];
+    if (!act.set_command(i, mode, pending_value_[i], pending_damping_[i])) reject_mode(i, mode);
+  }
   sim_.gpio().commit();
   has_pending_ = false;
   return true;
@@ -211,7 +216,8 @@ void SimIo::drop(const std::string& why) {
 
 void SimIo::on_command(const lcm::ReceiveBuffer& rb) {
   if (const std::string why =
-          check_hardware_command_bytes(rb.data, rb.data_size, sim_.hardware().size(), sim_.gpio().commands());
+          check_hardware_command_bytes(rb.data, rb.data_size, sim_.hardware().size(),
+                                       std::max(sim_.gpio().commands(), int(sim_.components().components().size())));
       !why.empty())
     return drop(why);
   if (!decode_walked(cmd_, rb.data, rb.data_size))
@@ -236,6 +242,10 @@ void SimIo::on_command(const lcm::ReceiveBuffer& rb) {
     pending_mode_[i] = cmd_.mode[slot_[i]];
     pending_value_[i] = cmd_.command[slot_[i]];
     pending_damping_[i] = cmd_.damping[slot_[i]];
+  }
+  if (cmd_.num_components > 0 || components_listed_) {  // the lifecycle changes between steps, said when it does
+    for (const std::string& line : sim_.components().take(cmd_, sim_.gpio())) spdlog::info("{}", line);
+    components_listed_ = cmd_.num_components > 0;
   }
   sim_.gpio().stage(cmd_);
   has_pending_ = true;

@@ -115,6 +115,7 @@ class SimIo {
   bool floating_base_ = false;
 
   hardware_command_t cmd_;  // decoded in place: its arrays keep their capacity
+  bool components_listed_ = false;  // the last command listed the components (one was not active)
   std::vector<std::string> bound_names_;  // the actuator list of the commands being taken, as matched
   std::vector<int> slot_;                 // our actuator i is the command's slot_[i]
   std::vector<int8_t> pending_mode_;

@@ -36,6 +36,7 @@ Simulation::Simulation(const RobotModel& model, const SimulationRates& rates, co
       initial_(initial),
       world_(world),
       gpio_(model_),
+      components_(model_),
       control_period_(1.0 / rates.control_hz),
       control_hz_(rates.control_hz),
       substeps_(substeps_for(rates)) {

@@ -13,6 +13,7 @@
 
 #include "description/robot_model.hpp"
 #include "sim_server/actuators.hpp"
+#include "sim_server/components.hpp"
 #include "sim_server/gpio.hpp"
 #include "sim_server/mock_hardware.hpp"
 #include "sim_server/multibody_builder.hpp"
@@ -79,6 +80,8 @@ class Simulation {
   // The <gpio> interfaces, either backend (a reset puts them back at their initial values).
   GpioBank& gpio() { return gpio_; }
   const GpioBank& gpio() const { return gpio_; }
+  // The hardware components' lifecycle as the controller manager sets it (kept across resets).
+  ComponentStates& components() { return components_; }
   // Start positions clamped into the limits, one line each.
   const std::vector<std::string>& start_warnings() const;
   // One INFO line per actuator: how it plays its modes.
@@ -97,6 +100,7 @@ class Simulation {
   std::unique_ptr<SensorBank> sensors_;
   std::unique_ptr<MockHardware> mock_;
   GpioBank gpio_;
+  ComponentStates components_;
   double control_period_;
   double control_hz_;
   int substeps_;

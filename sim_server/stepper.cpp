@@ -321,8 +321,16 @@ void Stepper::serve(const sim_request_t& req) {
       for (const std::string& c : clamped) msg += "; " + c;
       return reply(true, msg);
     }
+    case sim_request_t::FAIL_COMPONENT: {
+      if (const std::string why = sim_.components().fail(req.component, req.reason, sim_.gpio()); !why.empty())
+        return reply(false, "cannot fail a hardware component: " + why);
+      return reply(true, fmt::format("hardware component '{}' fails at {} (test hook){}; hardware/state reports it "
+                                     "and its joints hold until the controller manager sets it not active",
+                                     req.component, where(), req.reason.empty() ? "" : ": " + clip(req.reason)));
+    }
     default:
-      return reply(false, fmt::format("unknown op {} (sim_request_t: STATUS 0, PAUSE 1, RESUME 2, STEP 3, RESET 4)",
+      return reply(false, fmt::format("unknown op {} (sim_request_t: STATUS 0, PAUSE 1, RESUME 2, STEP 3, RESET 4, "
+                                      "FAIL_COMPONENT 5)",
                                       int(req.op)));
   }
 }
@@ -337,12 +345,8 @@ void Stepper::tick_statistics(int64_t now) {
   stats_.add_dropped(dropped - w_.dropped_before);
   stats_.set_real_time_factor(double(sim_.step_count() - w_.start_step) * period_us_ / double(now - w_.start_us));
   stats_.fill_and_reset(s);
-  s.num_items = 2;
-  s.item = {"step", "publish"};
-  s.item_exec_mean_us = {step_exec_.mean_us(), publish_exec_.mean_us()};
-  s.item_exec_max_us = {step_exec_.max_us, publish_exec_.max_us};
-  step_exec_.reset();
-  publish_exec_.reset();
+  add_item(s, "step", "stage", step_exec_, nullptr);
+  add_item(s, "publish", "stage", publish_exec_, nullptr);
   io_.publish_statistics(s);
   w_ = Window{now, sim_.step_count(), dropped};
 }

@@ -7,7 +7,9 @@
 #include <optional>
 
 #include "cli/cli.hpp"
+#include "description/hardware_components.hpp"
 #include "tools/lib/cm_client.hpp"
+#include "tools/lib/cm_views.hpp"
 #include "tools/lib/sim_client.hpp"
 #include "tools/lib/support.hpp"
 
@@ -25,6 +27,8 @@ int main(int argc, char** argv) {
       "  cmctl set-controller-state arm_controller active      (ROS 2's words: ros2 control ...)\n"
       "  cmctl switch-controllers --activate vel --deactivate pos\n"
       "  cmctl list-hardware-interfaces\n"
+      "  cmctl set-hardware-component-state Arm inactive\n"
+      "  cmctl statistics\n"
       "  cmctl pause && cmctl step 100 && cmctl resume\n"
       "  cmctl reset -J j1=0.5",
       "cmctl"};
@@ -40,6 +44,33 @@ int main(int argc, char** argv) {
   auto* types = app.add_subcommand("list-types", "controller types this manager can load")->alias("list-controller-types");
   auto* interfaces = app.add_subcommand("list-hardware-interfaces",
                                         "each joint's command interfaces (available, claimed by whom) and state ones");
+  auto* components = app.add_subcommand("list-hardware-components",
+                                        "each hardware component (<ros2_control> block): lifecycle state, type, "
+                                        "plugin, joints, the controllers using it");
+  auto* set_component = app.add_subcommand(
+      "set-hardware-component-state",
+      "ROS 2: NAME unconfigured, inactive, active or finalized; leaving active stops the controllers commanding it, "
+      "leaving inactive those reading it too");
+  auto* fail_component = app.add_subcommand(
+      "fail-hardware-component",
+      "sim_server's test hook: NAME fails as a lost device would; the controller manager deactivates its controllers");
+  std::string component_name, component_state, fail_reason;
+  set_component->add_option("NAME", component_name, "hardware component (<ros2_control name=...>)")->required();
+  set_component->add_option("STATE", component_state, "unconfigured, inactive, active or finalized")
+      ->required()
+      ->check(CLI::IsMember({"unconfigured", "inactive", "active", "finalized"}));
+  fail_component->add_option("NAME", component_name, "hardware component (<ros2_control name=...>)")->required();
+  fail_component->add_option("--reason", fail_reason, "why, as the controller manager will log it");
+  auto* stats = app.add_subcommand("statistics", "the controller manager's last statistics window: per controller its "
+                                                 "updates' execution time and period (mean, p99, max), and sim_server's");
+  auto* hw_status = app.add_subcommand("view-hardware-status",
+                                       "ROS 2: each hardware component, its state and its interfaces' current values "
+                                       "and claimants");
+  auto* chains = app.add_subcommand("view-controller-chains",
+                                    "ROS 2: controllers, what they command or read, and the hardware components; "
+                                    "--dot for Graphviz");
+  bool dot = false;
+  chains->add_flag("--dot", dot, "print a Graphviz graph (cmctl view-controller-chains --dot | dot -Tpdf -o chains.pdf)");
   auto* load = app.add_subcommand("load", "load (configure) controllers from the YAML")->alias("load-controller");
   auto* unload = app.add_subcommand("unload", "unload stopped controllers")->alias("unload-controller");
   auto* set_state = app.add_subcommand("set-controller-state", "ROS 2: NAME inactive (stop; loads it if needed) or "
@@ -84,10 +115,11 @@ int main(int argc, char** argv) {
   return run_program(app, argc, argv, [&] {
     install_stop_signals();
     Bus bus(bus_flags.lcm_url, bus_flags.ns);  // LCM's receive thread: a short-lived tool waiting for answers
-    for (auto* sc : {pause, resume, step_cmd, reset, sim_status}) {
+    for (auto* sc : {pause, resume, step_cmd, reset, sim_status, fail_component}) {
       if (!sc->parsed()) continue;
       SimClient sim(bus, "cmctl");
       sim_response_t a;
+      if (fail_component->parsed()) a = sim.fail_component(component_name, fail_reason, timeout);
       if (pause->parsed()) a = sim.pause(timeout);
       if (resume->parsed()) a = sim.resume(timeout);
       if (step_cmd->parsed()) a = sim.step(steps, timeout);
@@ -102,6 +134,10 @@ int main(int argc, char** argv) {
       }
       if (!a.ok) throw std::runtime_error(a.message.empty() ? "refused (no reason given)" : a.message);
       fmt::print("{}\n", a.message);
+      return int(kExitOk);
+    }
+    if (stats->parsed()) {
+      fmt::print("{}", wait_statistics(bus, std::max(timeout, 2.5)));
       return int(kExitOk);
     }
     CmClient cm(bus, "cmctl");
@@ -119,10 +155,27 @@ int main(int argc, char** argv) {
         fmt::print("{}", r.controllers.empty() ? "no controllers loaded\n" : controller_table(r.controllers, r.ros2));
         if (r.message.find(" listed, in load order: ") != std::string::npos) fmt::print("{}\n", r.message);
         if (!r.hardware.empty()) fmt::print("hardware: {}\n", r.hardware);
+        std::vector<std::string> down;  // said only when one is not active
+        for (const auto& c : r.components)
+          if (c.state != hardware_command_t::COMPONENT_ACTIVE)
+            down.push_back(fmt::format("{} ({}{})", c.name, c.state_label,
+                                       c.error.empty() ? "" : " after an error: " + c.error));
+        if (!down.empty()) fmt::print("hardware components not active: {}\n", fmt::join(down, ", "));
       }
     } else if (interfaces->parsed()) {
       r = cm.list(timeout);
       if (r.ok) fmt::print("{}", hardware_interfaces_text(r.joints));
+    } else if (components->parsed()) {
+      r = cm.list(timeout);
+      if (r.ok) fmt::print("{}", hardware_components_text(r.components));
+    } else if (hw_status->parsed() || chains->parsed()) {
+      r = cm.list(timeout);
+      if (r.ok)
+        fmt::print("{}", hw_status->parsed() ? hardware_status_text(r)
+                         : dot               ? controller_chains_dot(r)
+                                             : controller_chains_text(r));
+    } else if (set_component->parsed()) {
+      r = cm.set_component_state(component_name, static_cast<int8_t>(*lifecycle_from(component_state)), timeout);
     } else if (set_state->parsed() || (load->parsed() && !load_state.empty())) {
       const std::string state = set_state->parsed() ? wanted_state : load_state;
       if (set_state->parsed()) names = {state_name};
@@ -160,7 +213,9 @@ int main(int argc, char** argv) {
       r = cm.reload(force, timeout);
     }
     if (!r.ok) throw std::runtime_error(r.message.empty() ? "refused (no reason given)" : r.message);
-    if (!list->parsed() && !types->parsed() && !interfaces->parsed()) fmt::print("{}\n", r.message.empty() ? "ok" : r.message);
+    const bool printed = list->parsed() || types->parsed() || interfaces->parsed() || components->parsed() ||
+                         hw_status->parsed() || chains->parsed();
+    if (!printed) fmt::print("{}\n", r.message.empty() ? "ok" : r.message);
     return int(kExitOk);
   });
 }

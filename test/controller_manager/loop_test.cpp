@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -44,11 +46,56 @@ class RecorderController : public Controller {
   double value_ = 0;
 };
 
+// Busy-waits 200 µs per update, timing itself with its own clock: the independent measure of its execution time and
+// period that the controller manager's statistics must agree with.
+struct BusyTimes {
+  std::vector<double> exec_us, start_us;
+};
+BusyTimes g_busy;
+class BusyController : public Controller {
+ public:
+  void init(ControllerContext& ctx) override { joint_ = ctx.claim(ctx.params().string("joint"), Interface::Position); }
+  void starting(const Time&) override {}
+  void update(const Time&, double) override {
+    using C = std::chrono::steady_clock;
+    const auto t0 = C::now();
+    while (C::now() - t0 < std::chrono::microseconds(200)) {
+    }
+    const auto t1 = C::now();
+    g_busy.exec_us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+    g_busy.start_us.push_back(std::chrono::duration<double, std::micro>(t0.time_since_epoch()).count());
+    joint_->command = 0;
+  }
+
+ private:
+  JointData* joint_ = nullptr;
+};
+
+// Writes `value` to its joint and fails on its `fail_after`th update (ros2_control's return_type::ERROR).
+class FailingController : public Controller {
+ public:
+  void init(ControllerContext& ctx) override {
+    joint_ = ctx.claim(ctx.params().string("joint"), Interface::Position);
+    fail_after_ = int(ctx.params().number("fail_after"));
+  }
+  void starting(const Time&) override { updates_ = 0; }
+  void update(const Time&, double) override {
+    joint_->command = 1.0;
+    if (++updates_ == fail_after_) fail("lost track of the target");
+  }
+
+ private:
+  JointData* joint_ = nullptr;
+  int fail_after_ = 0, updates_ = 0;
+};
+
 const Registry& test_registry() {
   static const Registry r = [] {
     Registry x;
     register_builtin(x);
     x.add("test/Recorder", [](const std::string&) { return std::make_unique<RecorderController>(); });
+    x.add("test/Busy", [](const std::string&) { return std::make_unique<BusyController>(); });
+    x.add("test/Failing", [](const std::string&) { return std::make_unique<FailingController>(); });
     return x;
   }();
   return r;
@@ -207,6 +254,96 @@ TEST(ControllerManagerLoop, StatisticsCoverCyclesAndControllers) {
   EXPECT_GT(s.item_exec_mean_us[1], 0);
   EXPECT_EQ(s.unpublished, 0);  // joint_states went through the outbox, none dropped
   EXPECT_EQ(rig.cm->statistics().cycles, 0);
+}
+
+// ROS 2's controller statistics: a controller that busy-waits 200 µs per update is reported at what its own clock
+// measured (execution time and period, mean within 10 %, p99 between mean and max), over one statistics window.
+TEST(ControllerManagerLoop, StatisticsReportAControllersExecutionTimeAndPeriodAsItsOwnClockMeasuresThem) {
+  const std::string dir = lcm_control::testing::temp_dir("busy_stats");
+  const std::string yaml = dir + "/busy.yaml";
+  std::ofstream(yaml) << "controller_manager:\n  ros__parameters:\n    update_rate: 1000\n"
+                         "    busy: {type: test/Busy}\n    slow_busy: {type: test/Busy}\n"
+                         "busy:\n  ros__parameters: {joint: tilt}\n"
+                         "slow_busy:\n  ros__parameters: {joint: slide, update_rate: 250}\n";
+  Rig rig(test_registry(), data("test_bot.urdf"), yaml);
+  rig.start("busy");
+  ASSERT_TRUE(rig.load("slow_busy").ok);
+  rig.cm->statistics();  // a new window from here
+  g_busy = {};
+  rig.cycle(500);
+  const size_t own_n = g_busy.exec_us.size();
+  double own_exec = 0;
+  for (double e : g_busy.exec_us) own_exec += e;
+  own_exec /= double(own_n);
+  const double own_period = (g_busy.start_us.back() - g_busy.start_us.front()) / double(own_n - 1);
+  const auto s = rig.cm->statistics();
+  ASSERT_EQ(s.item, (std::vector<std::string>{"busy", "slow_busy"}));
+  EXPECT_EQ(s.item_kind[0], "controller");
+  EXPECT_EQ(s.item_count[0], 500);
+  EXPECT_NEAR(own_exec, 200.0, 20.0) << "the busy-wait itself";
+  EXPECT_NEAR(s.item_exec_mean_us[0], own_exec, 0.1 * own_exec);
+  EXPECT_GE(s.item_exec_p99_us[0], 0.98 * s.item_exec_mean_us[0]);
+  EXPECT_LE(s.item_exec_p99_us[0], s.item_exec_max_us[0]);
+  EXPECT_NEAR(s.item_period_mean_us[0], own_period, 0.1 * own_period);
+  EXPECT_LE(s.item_period_p99_us[0], s.item_period_max_us[0]);
+  EXPECT_EQ(s.item_count[1], 0) << "not running";
+  std::printf("busy-wait 200 us: own clock exec %.1f us, period %.1f us; statistics exec mean %.1f p99 %.1f max %.1f, "
+              "period mean %.1f p99 %.1f\n",
+              own_exec, own_period, s.item_exec_mean_us[0], s.item_exec_p99_us[0], s.item_exec_max_us[0],
+              s.item_period_mean_us[0], s.item_period_p99_us[0]);
+
+  // At its own update_rate (every 4th cycle of 1 ms), its period is four cycles' time.
+  ASSERT_TRUE(rig.switch_({"slow_busy"}, {}).ok);
+  rig.cm->statistics();
+  g_busy = {};
+  rig.cycle(400);
+  const auto t = rig.cm->statistics();
+  EXPECT_EQ(t.item_count[1], 100);
+  EXPECT_EQ(t.item_count[0], 400);
+  EXPECT_NEAR(t.item_period_mean_us[1], 4 * t.item_period_mean_us[0], 0.1 * 4 * t.item_period_mean_us[0]);
+}
+
+// ROS 2's fallback_controllers: a controller that fails in its update is stopped in that cycle and its fallbacks
+// start in the same cycle, holding the joint and then commanding it; it cannot start while a fallback is not loaded;
+// a fallback that is no controller of the file is refused at load, naming the key.
+TEST(ControllerManagerLoop, AFailingControllerIsStoppedAndItsFallbacksStartInThatCycle) {
+  const std::string dir = lcm_control::testing::temp_dir("fallbacks");
+  const std::string yaml = dir + "/fallbacks.yaml";
+  std::ofstream(yaml) << "controller_manager:\n  ros__parameters:\n    update_rate: 1000\n"
+                         "    tracker: {type: test/Failing}\n    safe: {type: test/Recorder}\n"
+                         "    wrong: {type: test/Failing}\n"
+                         "tracker:\n  ros__parameters: {joint: tilt, fail_after: 5, fallback_controllers: [safe]}\n"
+                         "safe:\n  ros__parameters: {joint: tilt, value: 0.5}\n"
+                         "wrong:\n  ros__parameters: {joint: tilt, fail_after: 5, fallback_controllers: [sfae]}\n";
+  Rig rig(test_registry(), data("test_bot.urdf"), yaml);
+  g_updates.clear();
+  rig.cycle();
+  ASSERT_TRUE(rig.load("tracker").ok);
+  cm::Reply r = rig.switch_({"tracker"}, {});
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "cannot start 'tracker': its fallback controller 'safe' is not loaded")) << r.message;
+  ASSERT_TRUE(rig.load("safe").ok);
+  ASSERT_TRUE(rig.switch_({"tracker"}, {}).ok);
+  const int64_t started = rig.commands.back().step;
+  rig.cycle(10);
+  const cm::ControllerSlot* tracker = rig.cm->loop().slots()[0].get();
+  const cm::ControllerSlot* safe = rig.cm->loop().slots()[1].get();
+  EXPECT_FALSE(tracker->running);
+  EXPECT_TRUE(safe->running);
+  EXPECT_EQ(tracker->failure, nullptr) << "reported and cleared by the manager";
+  ASSERT_FALSE(g_updates["safe"].empty());
+  // tracker's 5th update is at started + 5; safe (loaded after it) updates in that same cycle.
+  EXPECT_EQ(g_updates["safe"].front(), (started + 5) * 1000);
+  for (const auto& c : rig.commands) {
+    if (c.step <= started || c.step > started + 5) continue;
+    EXPECT_EQ(c.command[0], c.step < started + 5 ? 1.0 : 0.5) << "step " << c.step;
+  }
+  EXPECT_EQ(rig.commands.back().command[0], 0.5);
+
+  r = rig.load("wrong");
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "wrong/fallback_controllers")) << r.message;
+  EXPECT_TRUE(has(r.message, "'sfae' is not a controller of " + yaml)) << r.message;
 }
 
 TEST(ControllerManagerLoop, ReloadRefusesWhileLoadedUnlessForced) {

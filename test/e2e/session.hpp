@@ -46,7 +46,7 @@ class RobotSession {
     sim_ = std::make_unique<ChildProcess>(with({bin("sim_server"), "--urdf", urdf_, "--config", config_}, extra),
                                           env());
     if (ready_s > 0) {
-      ASSERT_TRUE(sim_->wait_for_output("ready", ready_s)) << sim_->output();
+      ASSERT_TRUE(sim_->wait_for_output("ready (", ready_s)) << sim_->output();
     }
   }
   // The spawner with these controllers, until it reports them running.

@@ -69,3 +69,40 @@ TEST(LoopStats, AWindowLongerThanTheBufferKeepsItsFirstErrors) {
   EXPECT_DOUBLE_EQ(m.period_error_p99_us, 1);
   EXPECT_EQ(m.cycles, int64_t(LoopStats::kErrorCapacity) + 1001);
 }
+
+TEST(ExecStats, PercentilesComeWithinTheHistogramsTwoPercent) {
+  ExecStats e;
+  EXPECT_EQ(e.percentile_us(0.99), 0.0) << "empty";
+  for (int k = 1; k <= 1000; ++k) e.add(double(k));
+  EXPECT_NEAR(e.percentile_us(0.99), 990.0, 0.02 * 990.0);
+  EXPECT_NEAR(e.percentile_us(0.5), 500.0, 0.02 * 500.0);
+  EXPECT_DOUBLE_EQ(e.percentile_us(1.0), 1000.0) << "never above the max";
+  EXPECT_DOUBLE_EQ(e.mean_us(), 500.5);
+  e.reset();
+  e.add(200.0);
+  EXPECT_DOUBLE_EQ(e.percentile_us(0.99), 200.0);
+  e.add(0.0);    // below the lowest bin
+  e.add(1e12);   // above the highest
+  EXPECT_EQ(e.n, 3);
+  EXPECT_DOUBLE_EQ(e.percentile_us(1.0), 1e12);
+}
+
+TEST(ExecStats, AddItemFillsEveryPerItemArrayAndStartsANewWindow) {
+  ExecStats exec, period;
+  for (int k = 0; k < 10; ++k) {
+    exec.add(100);
+    period.add(1000);
+  }
+  loop_stats_t m{};
+  add_item(m, "arm_controller", "controller", exec, &period);
+  add_item(m, "step", "stage", exec, nullptr);
+  ASSERT_EQ(m.num_items, 2);
+  EXPECT_EQ(m.item_kind, (std::vector<std::string>{"controller", "stage"}));
+  EXPECT_EQ(m.item_count, (std::vector<int64_t>{10, 0}));
+  EXPECT_DOUBLE_EQ(m.item_exec_mean_us[0], 100);
+  EXPECT_DOUBLE_EQ(m.item_exec_p99_us[0], 100);
+  EXPECT_DOUBLE_EQ(m.item_period_mean_us[0], 1000);
+  EXPECT_DOUBLE_EQ(m.item_period_max_us[0], 1000);
+  EXPECT_DOUBLE_EQ(m.item_period_p99_us[1], 0);
+  EXPECT_EQ(period.n, 0);
+}

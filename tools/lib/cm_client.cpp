@@ -47,6 +47,9 @@ std::string what_of(const cm_request_t& r) {
     case cm_request_t::SWITCH:
       return fmt::format("switch (start [{}], stop [{}])", fmt::join(r.start, " "), fmt::join(r.stop, " "));
     case cm_request_t::RELOAD: return "reload";
+    case cm_request_t::SET_COMPONENT_STATE:
+      return fmt::format("set-hardware-component-state {} {}", fmt::join(r.names, " "),
+                         component_state_label(r.component_state));
     default: return "a request";
   }
 }
@@ -195,6 +198,11 @@ cm_response_t CmClient::switch_controllers(const std::vector<std::string>& start
   return call(cm_request(cm_request_t::SWITCH, {}, start, stop, strict ? cm_request_t::STRICT : cm_request_t::BEST_EFFORT),
               t);
 }
+cm_response_t CmClient::set_component_state(const std::string& component, int8_t state, double t) {
+  cm_request_t r = cm_request(cm_request_t::SET_COMPONENT_STATE, {component});
+  r.component_state = state;
+  return call(r, t);
+}
 cm_response_t CmClient::reload(bool force, double t) {
   cm_request_t r = cm_request(cm_request_t::RELOAD);
   r.force = force;
@@ -261,6 +269,33 @@ std::string hardware_interfaces_text(const std::vector<joint_interfaces_t>& join
   out += "state interfaces\n";
   for (const auto& j : joints)
     for (const auto& s : j.state) out += fmt::format("\t{}/{}\n", j.joint, s);
+  return out;
+}
+
+std::string component_state_label(int8_t state) {
+  switch (state) {
+    case hardware_command_t::COMPONENT_UNCONFIGURED: return "unconfigured";
+    case hardware_command_t::COMPONENT_INACTIVE: return "inactive";
+    case hardware_command_t::COMPONENT_ACTIVE: return "active";
+    case hardware_command_t::COMPONENT_FINALIZED: return "finalized";
+  }
+  return fmt::format("state {}", int(state));
+}
+
+std::string hardware_components_text(const std::vector<hardware_component_t>& components, bool verbose) {
+  if (components.empty()) return "no hardware components (the robot has no transmissions and no <ros2_control>)\n";
+  std::string out;
+  for (const auto& c : components) {
+    out += fmt::format("{}: {}\n", c.name, c.state_label);
+    out += fmt::format("\ttype: {}  plugin: {}  runs as: {}\n", c.type, c.plugin.empty() ? "-" : c.plugin, c.kind);
+    if (!c.error.empty()) out += fmt::format("\tlast error: {}\n", c.error);
+    out += fmt::format("\tjoints: {}\n", c.joints.empty() ? "-" : fmt::format("{}", fmt::join(c.joints, ", ")));
+    if (verbose || !c.interfaces.empty())
+      out += fmt::format("\tother state interfaces: {}\n",
+                         c.interfaces.empty() ? "-" : fmt::format("{}", fmt::join(c.interfaces, ", ")));
+    out += fmt::format("\tused by: {}\n",
+                       c.controllers.empty() ? "-" : fmt::format("{}", fmt::join(c.controllers, ", ")));
+  }
   return out;
 }
 

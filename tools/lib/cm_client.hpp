@@ -14,6 +14,7 @@
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
 #include "lcm_control/command_source_t.hpp"
+#include "lcm_control/hardware_command_t.hpp"
 
 namespace lcm_control::tools {
 
@@ -48,6 +49,8 @@ class CmClient {
   cm_response_t switch_controllers(const std::vector<std::string>& start, const std::vector<std::string>& stop,
                                    bool strict, double timeout_s);
   cm_response_t reload(bool force, double timeout_s);
+  // state: hardware_command_t::COMPONENT_*.
+  cm_response_t set_component_state(const std::string& component, int8_t state, double timeout_s);
 
   // Registers (or with remove ends) a controller's command source on
   // `controller_manager/command_source`; returns the manager's answer. Sent
@@ -98,5 +101,10 @@ std::string ros2_state(const std::string& state);
 // ROS 2's `list_hardware_interfaces`: "command interfaces" then "state interfaces", one JOINT/INTERFACE a line,
 // command ones marked [available] and [claimed].
 std::string hardware_interfaces_text(const std::vector<joint_interfaces_t>& joints);
+// ROS 2's `list_hardware_components`: each component's state, type, plugin, joints, other state interfaces and the
+// controllers using it.
+std::string hardware_components_text(const std::vector<hardware_component_t>& components, bool verbose = false);
+// "unconfigured", "inactive", "active", "finalized" for hardware_command_t::COMPONENT_*.
+std::string component_state_label(int8_t state);
 
 }  // namespace lcm_control::tools

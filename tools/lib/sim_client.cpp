@@ -27,6 +27,7 @@ std::string sim_request_name(const sim_request_t& req) {
     case sim_request_t::RESUME: return "resume";
     case sim_request_t::STEP: return fmt::format("step {}", req.steps);
     case sim_request_t::RESET: return "reset";
+    case sim_request_t::FAIL_COMPONENT: return fmt::format("fail-hardware-component {}", req.component);
   }
   return fmt::format("op {}", int(req.op));
 }
@@ -75,6 +76,13 @@ sim_response_t SimClient::step(int64_t steps, double t) {
   r.steps = steps;
   // Real time takes the steps' sim time; lockstep usually less. Twice that, on top of the usual wait.
   return call(r, t + 2.0 * double(steps) * double(std::max(0, s.period_us)) * 1e-6);
+}
+
+sim_response_t SimClient::fail_component(const std::string& component, const std::string& reason, double t) {
+  sim_request_t r = request(sim_request_t::FAIL_COMPONENT);
+  r.component = component;
+  r.reason = reason;
+  return call(r, t);
 }
 
 sim_response_t SimClient::reset(const InitialPositions& start, double t) {

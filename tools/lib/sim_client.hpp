@@ -31,6 +31,8 @@ class SimClient {
   sim_response_t resume(double timeout_s);
   sim_response_t step(int64_t steps, double timeout_s);
   sim_response_t reset(const InitialPositions& start, double timeout_s);
+  // The FAIL_COMPONENT test hook: `component` fails as a lost device would, with `reason`.
+  sim_response_t fail_component(const std::string& component, const std::string& reason, double timeout_s);
 
  private:
   void on_response(const lcm::ReceiveBuffer*, const std::string&, const sim_response_t* m);

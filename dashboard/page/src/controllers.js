@@ -60,7 +60,9 @@ export class Controllers {
       }
       const type = document.createElement('span');
       type.textContent = shown(c.type.split('/').pop());
-      const cells = [box, c.name, type, c.state, c.joints.join(' '), actions];
+      const timing = document.createElement('span');
+      timing.className = 'timing';
+      const cells = [box, c.name, type, c.state, c.joints.join(' '), timing, actions];
       for (const cell of cells) {
         const td = document.createElement('td');
         if (typeof cell === 'string') td.textContent = shown(cell);
@@ -71,5 +73,22 @@ export class Controllers {
       this.body.appendChild(tr);
     }
     for (const fn of this.onChange) fn(this.list);
+    if (this.stats) this.timing(this.stats);
+  }
+
+  // controller_manager/statistics: each running controller's execution time (p99) and period (mean), in µs.
+  timing(stats) {
+    this.stats = stats;
+    const f = (x) => (Number.isFinite(x) && x > 0 ? x.toFixed(x < 10 ? 1 : 0) : '–');
+    for (let k = 0; k < (stats.item || []).length; ++k) {
+      const row = [...this.body.children].find((tr) => tr.dataset.controller === stats.item[k]);
+      const cell = row?.querySelector('.timing');
+      if (!cell) continue;
+      const updates = stats.item_count ? stats.item_count[k] : 0;
+      cell.textContent = updates ? `${f(stats.item_exec_p99_us[k])} / ${f(stats.item_period_mean_us[k])}` : '';
+      cell.title = updates
+        ? `${updates} updates: execution ${f(stats.item_exec_mean_us[k])} mean, ${f(stats.item_exec_p99_us[k])} p99, ${f(stats.item_exec_max_us[k])} max; period ${f(stats.item_period_mean_us[k])} mean, ${f(stats.item_period_p99_us[k])} p99, ${f(stats.item_period_max_us[k])} max (µs)`
+        : '';
+    }
   }
 }

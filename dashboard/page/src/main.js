@@ -49,6 +49,7 @@ conn.on('msg', (f) => {
   if (f.type === 'odometry_t' && f.channel.endsWith('sim_server/base_pose')) view.setBase(f.msg.position, f.msg.orientation);
   if (f.type === 'loop_stats_t') {
     state.stats[f.msg.process || f.channel] = f.msg;
+    if (f.msg.process === 'controller_manager') controllers.timing(f.msg);
     stats();
   }
   if (f.type === 'e_stop_t') {
