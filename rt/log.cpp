@@ -93,6 +93,12 @@ void setup_logging(const std::string& program, const std::string& level) {
 void BusLog::write(spdlog::level::level_enum level, const std::string& line) {
   if (!spdlog::should_log(level)) return;  // a line not shown does not use up the second's budget
   const int64_t now = monotonic_us();
+  std::string text = clip(line, max_chars_);
+  if (text == last_ && now - last_us_ < repeat_us_) {
+    ++repeats_;
+    ++suppressed_total_;
+    return;
+  }
   if (window_us_ < 0 || now - window_us_ >= 1000000) {
     window_us_ = now;
     in_window_ = 0;
@@ -103,12 +109,15 @@ void BusLog::write(spdlog::level::level_enum level, const std::string& line) {
     return;
   }
   ++in_window_;
-  if (suppressed_ > 0) {
-    spdlog::log(level, "{} ({} similar lines not logged)", clip(line, max_chars_), suppressed_);
-    suppressed_ = 0;
-  } else {
-    spdlog::log(level, "{}", clip(line, max_chars_));
-  }
+  std::string counts;
+  if (repeats_ > 0)
+    counts = text == last_ ? fmt::format(" (came {} more times in the last {:.1f} s)", repeats_, (now - last_us_) * 1e-6)
+                           : fmt::format(" (the line before came {} more times)", repeats_);
+  if (suppressed_ > 0) counts += fmt::format(" ({} similar lines not logged)", suppressed_);
+  spdlog::log(level, "{}{}", text, counts);
+  suppressed_ = repeats_ = 0;
+  last_ = std::move(text);
+  last_us_ = now;
 }
 
 }  // namespace lcm_control

@@ -262,8 +262,17 @@ int cmd_echo(Bus& bus, const std::string& name, const std::string& field, bool c
   return kExitOk;
 }
 
-int cmd_pub(Bus& bus, const std::string& name, const std::string& type, const std::vector<std::string>& fields,
+int cmd_pub(Bus& bus, const std::string& ros_name, const std::string& type, const std::vector<std::string>& fields,
             double rate, int64_t count) {
+  std::optional<cm_response_t> listed;  // the controllers, when the name may be a controller's command channel
+  const std::string last = ros_name.substr(ros_name.rfind('/') + 1);
+  if (ros_name.find('/') != std::string::npos && ros_name.rfind("hardware/", 0) != 0 &&
+      (last == "command" || last == "commands" || last == "joint_trajectory" || last == "cmd_vel" ||
+       last == "reference"))
+    listed = try_list(bus, "bus", 0.5);
+  std::string note;
+  const std::string name = channel_from_ros(ros_name, listed ? &listed->controllers : nullptr, &note);
+  if (!note.empty()) fmt::print(stderr, "bus: {}\n", note);
   const std::string channel = bus.channel(name);
   const CommandClock clock(bus, 0.3);
   auto make = [&] {
@@ -279,7 +288,7 @@ int cmd_pub(Bus& bus, const std::string& name, const std::string& type, const st
   };
   std::vector<uint8_t> bytes = make();
   const std::string full_type = type_of_payload(bytes.data(), bytes.size());
-  check_command_channel(bus, name, {full_type.substr(full_type.rfind('.') + 1), 0}, 0.5);
+  check_command_channel(bus, name, {full_type.substr(full_type.rfind('.') + 1), 0}, listed ? &*listed : nullptr);
   const char* stamp = clock.on_sim() ? "sim time" : "wall-clock time";
   if (rate <= 0) {
     send(bytes);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -58,11 +59,36 @@ TEST_F(Logging, BusLogClipsAndLimitsAFlood) {
   const std::string out = stderr_of([&] {
     // 1,000 lines: their 60 MB are built well within the one-second window even on a loaded machine (10,000 took
     // over a second there, and a second window let 20 more through).
-    for (int k = 0; k < 1000; ++k) log.warn("goal from the bus: " + std::string(60000, 'x') + "\x1b[2J");
+    for (int k = 0; k < 1000; ++k)
+      log.warn("goal " + std::to_string(k) + " from the bus: " + std::string(60000, 'x') + "\x1b[2J");
   });
   EXPECT_LT(out.size(), 20u * 200u) << "1,000 lines of 60 kB";
   EXPECT_EQ(log.suppressed(), 1000 - 20);
   EXPECT_EQ(out.find('\x1b'), std::string::npos);
+}
+
+// A client sending the same wrong message 200 times gets one line, then one with the count once the repeat interval
+// has passed; a different line in between says how often the one before came.
+TEST_F(Logging, BusLogWritesARepeatedLineOnceAndThenItsCount) {
+  BusLog log(20, 400, 1000000);
+  const std::string bad = "arm_controller: could not decode 24 bytes on 'arm_controller/command' as joint_trajectory_t";
+  std::string out = stderr_of([&] {
+    for (int k = 0; k < 196; ++k) log.warn(bad);
+  });
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+  EXPECT_EQ(log.suppressed(), 195);
+  out = stderr_of([&] {
+    log.warn("arm_controller: another problem");
+    log.warn(bad);
+  });
+  EXPECT_NE(out.find("another problem (the line before came 195 more times)"), std::string::npos) << out;
+  out = stderr_of([&] {
+    for (int k = 0; k < 50; ++k) log.warn(bad);
+    usleep(1100000);
+    log.warn(bad);
+  });
+  EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+  EXPECT_NE(out.find("as joint_trajectory_t (came 50 more times in the last "), std::string::npos) << out;
 }
 
 }  // namespace

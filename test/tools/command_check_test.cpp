@@ -102,3 +102,32 @@ TEST(CommandCheck, TheHardwareLineNamesTheEStopAPauseOrSilence) {
   r.hardware = "session 3f, real time, step 12, last state 3.0 s ago; SILENT for 3.0 s: controllers are not updated";
   EXPECT_EQ(hardware_cause(r)->rfind("the hardware is silent", 0), 0u);
 }
+
+// ROS 2 users write topics as ROS 2 names them: a leading '/', `<c>/commands` (forward command controllers),
+// `<c>/joint_trajectory` (the JTC's topic); each is the controller's own command channel here, said in a note.
+// Actions and private names are refused with the tool to use.
+TEST(CommandCheck, Ros2TopicNamesAreTheControllersCommandChannels) {
+  const std::vector<controller_info_t> listed = {
+      kListed[0], kListed[1], kListed[3],
+      info("gpio", "gpio_controllers/GpioCommandController", "interface_group_values_t", "commands", 0)};
+  std::string note;
+  EXPECT_EQ(channel_from_ros("/group/commands", &listed, &note), "group/command");
+  EXPECT_EQ(note, "'/group/commands' is ROS 2's name; here the channel is 'group/command' (relative to --namespace)");
+  EXPECT_EQ(channel_from_ros("/arm/joint_trajectory", &listed, &note), "arm/command");
+  EXPECT_EQ(channel_from_ros("gpio/commands", &listed, &note), "gpio/commands") << "its channel is ROS 2's";
+  EXPECT_EQ(note, "");
+  EXPECT_EQ(channel_from_ros("/cmd_vel", &listed, &note), "cmd_vel");
+  EXPECT_EQ(channel_from_ros("base/cmd_vel", &listed, &note), "base/cmd_vel");
+  EXPECT_EQ(note, "");
+  EXPECT_EQ(channel_from_ros("/other/commands", nullptr, &note), "other/command") << "no list: the usual channel";
+  for (const auto& [name, tool] : {std::pair{"/arm/follow_joint_trajectory", "send-trajectory arm --point"},
+                                   std::pair{"/hand/gripper_cmd", "gripper hand --position"},
+                                   std::pair{"~/commands", "CONTROLLER/command"}}) {
+    try {
+      channel_from_ros(name, &listed, &note);
+      ADD_FAILURE() << name << " accepted";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(tool), std::string::npos) << e.what();
+    }
+  }
+}

@@ -211,9 +211,19 @@ TEST_F(SendTrajectory, PublishingToolsRefuseTheWrongTypeAndAFailureUnderTheEStop
   EXPECT_EQ(rc, 1) << out;
   EXPECT_EQ(out, "gripper: error: " + takes +
                      "gripper_command_t was given: use send-trajectory trajectory_controller ...\n");
-  // A channel no controller commands is published as before.
+  // A channel no controller commands is published as before, with a warning that nothing listens there.
   std::tie(rc, out) = run_tool({bin("bus"), "pub", "other/command", "float64_t", "data=0.5"});
   EXPECT_EQ(rc, 0) << out;
+  EXPECT_TRUE(has(out, "bus: warning: no loaded controller takes commands on 'other/command': nothing listens there "
+                       "(the controllers' command channels: "))
+      << out;
+  EXPECT_TRUE(has(out, "trajectory_controller/command")) << out;
+  // ROS 2's name of the JTC's topic is its command channel here: said, then checked as that channel.
+  std::tie(rc, out) = run_tool({bin("bus"), "pub", "/trajectory_controller/joint_trajectory", "float64_t", "data=0.5"});
+  EXPECT_EQ(rc, 1) << out;
+  EXPECT_EQ(out, "bus: 'trajectory_controller/joint_trajectory' is ROS 2's name; here the channel is "
+                 "'trajectory_controller/command'\nbus: error: " +
+                     takes + "float64_t was given: use send-trajectory trajectory_controller ...\n");
 
   std::tie(rc, out) = run_tool({bin("bus"), "pub", "e_stop", "e_stop_t", "engaged=true", "source=test"});
   ASSERT_EQ(rc, 0) << out;

@@ -86,21 +86,77 @@ const controller_info_t* controller_on(const std::vector<controller_info_t>& lis
   return nullptr;
 }
 
-void check_command_channel(Bus& bus, const std::string& channel, const Sent& sent, double timeout_s) {
-  const auto slash = channel.rfind('/');
-  if (slash == std::string::npos) return;
-  const std::string last = channel.substr(slash + 1);
-  if ((last != "command" && last != "cmd_vel" && last != "reference") || channel == "hardware/command") return;
-  cm_response_t r;
+std::optional<cm_response_t> try_list(Bus& bus, const char* client, double timeout_s) {
   try {
-    r = CmClient(bus, "bus").list(timeout_s);
+    return CmClient(bus, client).list(timeout_s);
   } catch (const CmTimeout&) {
-    return;
+    return std::nullopt;
   }
+}
+
+namespace {
+bool asked_about(const std::string& channel) {
+  const auto slash = channel.rfind('/');
+  if (slash == std::string::npos || channel == "hardware/command") return false;
+  const std::string last = channel.substr(slash + 1);
+  return last == "command" || last == "cmd_vel" || last == "reference" || last == "commands";
+}
+}  // namespace
+
+void check_command_channel(Bus& bus, const std::string& channel, const Sent& sent, double timeout_s) {
+  if (!asked_about(channel)) return;
+  const std::optional<cm_response_t> r = try_list(bus, "bus", timeout_s);
+  check_command_channel(bus, channel, sent, r ? &*r : nullptr);
+}
+
+void check_command_channel(Bus& bus, const std::string& channel, const Sent& sent, const cm_response_t* listed) {
+  if (!listed || !asked_about(channel)) return;
+  const cm_response_t& r = *listed;
   std::string relative;
-  if (const controller_info_t* c = controller_on(r.controllers, channel, &relative))
+  if (const controller_info_t* c = controller_on(r.controllers, channel, &relative)) {
     if (const std::string bad = type_mismatch(*c, sent, relative, bus.channel("")); !bad.empty())
       throw std::runtime_error(bad);
+    return;
+  }
+  std::vector<std::string> channels;
+  for (const controller_info_t& c : r.controllers)
+    if (!c.command_channel.empty()) channels.push_back(bus.channel(c.name + "/" + c.command_channel));
+  fmt::print(stderr, "bus: warning: no loaded controller takes commands on '{}': nothing listens there ({})\n",
+             bus.channel(channel),
+             channels.empty() ? std::string("no controller loaded takes commands")
+                              : fmt::format("the controllers' command channels: {}", fmt::join(channels, ", ")));
+}
+
+std::string channel_from_ros(const std::string& name, const std::vector<controller_info_t>* listed, std::string* note) {
+  if (note) note->clear();
+  if (name.rfind("~/", 0) == 0 || name == "~")
+    throw std::runtime_error(fmt::format("'{}' is a ROS private name (a node's own topic); write the controller's "
+                                         "name instead: CONTROLLER/command (cmctl list shows them)",
+                                         name));
+  std::string out = name;
+  while (!out.empty() && out.front() == '/') out.erase(0, 1);
+  const auto slash = out.rfind('/');
+  const std::string head = slash == std::string::npos ? "" : out.substr(0, slash);
+  const std::string last = slash == std::string::npos ? out : out.substr(slash + 1);
+  if (!head.empty() && (last == "follow_joint_trajectory" || last == "gripper_cmd"))
+    throw std::runtime_error(fmt::format(
+        "'{}' is a ROS action; send its goals with {} (it waits for the result as the action client does)", name,
+        last == "gripper_cmd" ? fmt::format("gripper {} --position POSITION", head)
+                              : fmt::format("send-trajectory {} --point TIME:POSITIONS", head)));
+  if (!head.empty() && (last == "commands" || last == "joint_trajectory")) {
+    const controller_info_t* c = nullptr;
+    if (listed)
+      for (const controller_info_t& x : *listed)
+        if (x.name == head) c = &x;
+    if (!c || c->command_channel.empty())
+      out = head + "/command";
+    else if (c->command_channel != last)
+      out = head + "/" + c->command_channel;
+  }
+  if (note && out != name)
+    *note = fmt::format("'{}' is ROS 2's name; here the channel is '{}'{}", name, out,
+                        name.front() == '/' ? " (relative to --namespace)" : "");
+  return out;
 }
 
 std::string twist_channel(Bus& bus, const std::string& controller, double timeout_s) {

@@ -44,11 +44,22 @@ const controller_info_t& commandable(const std::vector<controller_info_t>& liste
 const controller_info_t* controller_on(const std::vector<controller_info_t>& listed, const std::string& channel,
                                        std::string* relative = nullptr);
 
+// A channel as a ROS 2 user writes it, as ours: a leading '/' dropped (channels are relative to --namespace), and a
+// ROS 2 controller topic (`<c>/commands`, `<c>/joint_trajectory`) is the command channel of controller <c> as
+// `listed` shows it (without a list: `<c>/command`); `note` gets a line saying so ("" when `name` is ours already).
+// Throws std::runtime_error (exit 1) with the tool to use for a private name (`~/...`) and for an action
+// (`<c>/follow_joint_trajectory`, `<c>/gripper_cmd`).
+std::string channel_from_ros(const std::string& name, const std::vector<controller_info_t>* listed, std::string* note);
+
 // For `bus pub` and drive on CHANNEL (without the namespace): when the controller manager answers within timeout_s
 // and lists a controller whose command channel CHANNEL is, throws std::runtime_error (exit 1) if it takes another
-// type than `sent`. Silent (nothing is known) when no manager answers or the channel is no controller's; only a
-// channel ending in /command or /cmd_vel is asked about.
+// type than `sent`; when it lists none, warns on stderr naming the command channels there are (nothing listens).
+// Silent when no manager answers; only a channel ending in /command, /cmd_vel or /reference is asked about.
 void check_command_channel(Bus& bus, const std::string& channel, const Sent& sent, double timeout_s);
+// The same with the manager's LIST answer already at hand (nullptr: none came).
+void check_command_channel(Bus& bus, const std::string& channel, const Sent& sent, const cm_response_t* listed);
+// The manager's LIST answer within timeout_s, or nullopt.
+std::optional<cm_response_t> try_list(Bus& bus, const char* client, double timeout_s);
 
 // The channel (relative to the controller) `controller` takes its twist_t on, as the controller manager lists it
 // within timeout_s: cmd_vel (diff drive, tricycle, omni) or reference (ROS 2's steering and mecanum drives);
