@@ -70,8 +70,10 @@ struct ComponentData {
   bool error_fresh = false;  // set by the loop when the error came; the manager logs it and clears this
   int64_t error_step = -1;
   // Its state interfaces can be read (inactive or active) / its commands act (active).
-  bool readable() const { return state == Lifecycle::Inactive || state == Lifecycle::Active; }
-  bool commandable() const { return state == Lifecycle::Active; }
+  static bool readable(Lifecycle s) { return s == Lifecycle::Inactive || s == Lifecycle::Active; }
+  static bool commandable(Lifecycle s) { return s == Lifecycle::Active; }
+  bool readable() const { return readable(state); }
+  bool commandable() const { return commandable(state); }
 };
 
 class Hardware {

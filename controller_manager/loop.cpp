@@ -32,9 +32,8 @@ bool may_run(const Controller& c, const std::vector<ComponentData>& components) 
 }
 
 bool affected_by(const Controller& c, int component, Lifecycle state) {
-  const ComponentData probe{{}, state, {}, false, -1};
-  return (has(c.uses().commands, component) && !probe.commandable()) ||
-         (has(c.uses().reads, component) && !probe.readable());
+  return (has(c.uses().commands, component) && !ComponentData::commandable(state)) ||
+         (has(c.uses().reads, component) && !ComponentData::readable(state));
 }
 
 void Loop::fail_components(const hardware_state_t& st) {

@@ -43,9 +43,7 @@ std::string describe(const cm_request_t& r) {
       return r.force ? "reload (force)" : "reload";
     case cm_request_t::SET_COMPONENT_STATE:
       return fmt::format("set-hardware-component-state {} {}", r.names.empty() ? "" : r.names.front(),
-                         r.component_state >= 1 && r.component_state <= 4
-                             ? to_string(static_cast<Lifecycle>(r.component_state))
-                             : fmt::format("{} (no such state)", int(r.component_state)));
+                         lifecycle_label(r.component_state));
     default:
       return op_name(r.op);
   }

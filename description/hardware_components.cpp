@@ -24,6 +24,12 @@ std::optional<Lifecycle> lifecycle_from(const std::string& label) {
   return std::nullopt;
 }
 
+std::string lifecycle_label(int8_t wire) {
+  if (wire >= int8_t(Lifecycle::Unconfigured) && wire <= int8_t(Lifecycle::Finalized))
+    return to_string(static_cast<Lifecycle>(wire));
+  return fmt::format("state {} (no such state)", int(wire));
+}
+
 std::vector<HardwareComponent> hardware_components(const RobotModel& model) {
   std::vector<HardwareComponent> out;
   for (const HardwareBlock& b : model.ros2_control) {

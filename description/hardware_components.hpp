@@ -17,6 +17,8 @@ namespace lcm_control {
 enum class Lifecycle : int8_t { Unconfigured = 1, Inactive = 2, Active = 3, Finalized = 4 };
 const char* to_string(Lifecycle s);                       // "unconfigured", ...
 std::optional<Lifecycle> lifecycle_from(const std::string& label);  // the four labels; nullopt for anything else
+// A state as hardware_command_t / cm_request_t carry it: "inactive", ... or "state N (no such state)".
+std::string lifecycle_label(int8_t wire);
 
 struct HardwareComponent {
   std::string name;

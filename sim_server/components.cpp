@@ -68,6 +68,7 @@ std::string ComponentStates::fail(const std::string& component, const std::strin
 }
 
 void ComponentStates::update_holds(GpioBank& gpio) {
+  errors_changed_ = true;
   any_error_ = false;
   for (size_t c = 0; c < components_.size(); ++c) {
     any_error_ = any_error_ || !errors_[c].empty();
@@ -80,7 +81,9 @@ void ComponentStates::update_holds(GpioBank& gpio) {
   }
 }
 
-void ComponentStates::report(hardware_state_t& state) const {
+void ComponentStates::report(hardware_state_t& state) {
+  if (!errors_changed_) return;
+  errors_changed_ = false;
   state.error_component.clear();
   state.error_reason.clear();
   if (any_error_)

@@ -32,8 +32,9 @@ class ComponentStates {
 
   // The FAIL_COMPONENT test hook; "" or why not (no such component).
   std::string fail(const std::string& component, const std::string& reason, GpioBank& gpio);
-  // Writes the errors not yet acknowledged into `state` (its error arrays; none: empty).
-  void report(hardware_state_t& state) const;
+  // Writes the errors not yet acknowledged into `state` (its error arrays; none: empty) when they changed since the
+  // last call: `state` is the one message the simulator publishes every step, so it keeps them meanwhile.
+  void report(hardware_state_t& state);
 
  private:
   void update_holds(GpioBank& gpio);
@@ -44,6 +45,7 @@ class ComponentStates {
   std::vector<std::string> errors_;  // per component: the error not yet acknowledged, "" none
   std::vector<char> held_;          // per actuator
   bool any_error_ = false;
+  bool errors_changed_ = true;  // since the last report()
 };
 
 }  // namespace lcm_control::sim

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "bus/messages.hpp"
+#include "description/hardware_components.hpp"
 #include "tools/lib/census.hpp"
 #include "tools/lib/command_check.hpp"
 #include "tools/lib/support.hpp"
@@ -49,7 +50,7 @@ std::string what_of(const cm_request_t& r) {
     case cm_request_t::RELOAD: return "reload";
     case cm_request_t::SET_COMPONENT_STATE:
       return fmt::format("set-hardware-component-state {} {}", fmt::join(r.names, " "),
-                         component_state_label(r.component_state));
+                         lifecycle_label(r.component_state));
     default: return "a request";
   }
 }
@@ -272,16 +273,6 @@ std::string hardware_interfaces_text(const std::vector<joint_interfaces_t>& join
   return out;
 }
 
-std::string component_state_label(int8_t state) {
-  switch (state) {
-    case hardware_command_t::COMPONENT_UNCONFIGURED: return "unconfigured";
-    case hardware_command_t::COMPONENT_INACTIVE: return "inactive";
-    case hardware_command_t::COMPONENT_ACTIVE: return "active";
-    case hardware_command_t::COMPONENT_FINALIZED: return "finalized";
-  }
-  return fmt::format("state {}", int(state));
-}
-
 std::string hardware_components_text(const std::vector<hardware_component_t>& components, bool verbose) {
   if (components.empty()) return "no hardware components (the robot has no transmissions and no <ros2_control>)\n";
   std::string out;
@@ -304,15 +295,25 @@ std::string controller_table(const std::vector<controller_info_t>& controllers, 
   for (const auto& c : controllers)
     rows.push_back({c.name, c.type, ros2 ? ros2_state(c.state) : c.state, c.joints.empty() ? "-" : fmt::format("{}", fmt::join(c.joints, ",")),
                     c.hardware_interface.empty() ? "-" : c.hardware_interface});
-  std::vector<size_t> width(5, 0);
+  return table_text(rows);
+}
+
+std::string table_text(const std::vector<std::vector<std::string>>& rows, size_t right_from) {
+  std::vector<size_t> width;
   for (const auto& r : rows)
-    for (size_t k = 0; k < r.size(); ++k) width[k] = std::max(width[k], r[k].size());
+    for (size_t k = 0; k < r.size(); ++k) {
+      if (width.size() <= k) width.push_back(0);
+      width[k] = std::max(width[k], r[k].size());
+    }
   std::string out;
   for (const auto& r : rows) {
-    std::string line;
-    for (size_t k = 0; k < r.size(); ++k)
-      line += k + 1 < r.size() ? fmt::format("{:<{}}  ", r[k], width[k]) : r[k];
-    out += line + "\n";
+    for (size_t k = 0; k < r.size(); ++k) {
+      if (k > 0) out += "  ";
+      out += k >= right_from ? fmt::format("{:>{}}", r[k], width[k])
+             : k + 1 < r.size() ? fmt::format("{:<{}}", r[k], width[k])
+                                : r[k];
+    }
+    out += "\n";
   }
   return out;
 }

@@ -3,6 +3,7 @@
 // same request_id back on `controller_manager/response`, within a timeout.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <optional>
@@ -96,6 +97,9 @@ std::string no_goal_result(CmClient& cm, const Bus& bus, const std::string& cont
 // "name  type  state  joints  interface" as an aligned table, one controller a line; with ros2, states as ROS 2
 // names them (ros2_state).
 std::string controller_table(const std::vector<controller_info_t>& controllers, bool ros2 = false);
+// Rows as columns two spaces apart, each as wide as its widest cell: left-aligned, from column `right_from` on
+// right-aligned (numbers).
+std::string table_text(const std::vector<std::vector<std::string>>& rows, size_t right_from = SIZE_MAX);
 // ROS 2's name of a controller state: running -> active, initialized and stopped -> inactive.
 std::string ros2_state(const std::string& state);
 // ROS 2's `list_hardware_interfaces`: "command interfaces" then "state interfaces", one JOINT/INTERFACE a line,
@@ -104,7 +108,5 @@ std::string hardware_interfaces_text(const std::vector<joint_interfaces_t>& join
 // ROS 2's `list_hardware_components`: each component's state, type, plugin, joints, other state interfaces and the
 // controllers using it.
 std::string hardware_components_text(const std::vector<hardware_component_t>& components, bool verbose = false);
-// "unconfigured", "inactive", "active", "finalized" for hardware_command_t::COMPONENT_*.
-std::string component_state_label(int8_t state);
 
 }  // namespace lcm_control::tools

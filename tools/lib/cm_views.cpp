@@ -17,23 +17,6 @@ namespace {
 
 std::string us(double v) { return v > 0 ? fmt::format("{:.1f}", v) : "-"; }
 
-std::string table(const std::vector<std::vector<std::string>>& rows) {
-  std::vector<size_t> width;
-  for (const auto& r : rows)
-    for (size_t k = 0; k < r.size(); ++k) {
-      if (width.size() <= k) width.push_back(0);
-      width[k] = std::max(width[k], r[k].size());
-    }
-  std::string out;
-  for (const auto& r : rows) {
-    std::string line;
-    for (size_t k = 0; k < r.size(); ++k)
-      line += k == 0 ? fmt::format("{:<{}}", r[k], width[k]) : fmt::format("  {:>{}}", r[k], width[k]);
-    out += line + "\n";
-  }
-  return out;
-}
-
 struct StatisticsWatch {
   loop_stats_t cm{}, sim{};
   bool have_cm = false, have_sim = false;
@@ -76,7 +59,7 @@ std::string statistics_text(const loop_stats_t& m) {
                     at(m.item_exec_p99_us), at(m.item_exec_max_us), at(m.item_period_mean_us),
                     at(m.item_period_p99_us), at(m.item_period_max_us)});
   }
-  return out + table(rows) + "  (µs; over the last window of about 1 s)\n";
+  return out + table_text(rows, 1) + "  (µs; over the last window of about 1 s)\n";
 }
 
 std::string wait_statistics(Bus& bus, double timeout_s) {
@@ -113,7 +96,7 @@ std::string hardware_status_text(const cm_response_t& list) {
     for (size_t i = 0; i < c.interfaces.size(); ++i)
       rows.push_back({"    " + c.interfaces[i], "state",
                       i < c.interface_values.size() ? value_text(c.interface_values[i]) : "-", ""});
-    if (rows.size() > 1) out += table(rows);
+    if (rows.size() > 1) out += table_text(rows, 1);
   }
   return out;
 }
