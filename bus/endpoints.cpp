@@ -9,7 +9,7 @@ Endpoints::~Endpoints() {
 }
 
 void Endpoints::subscribe_raw(const std::string& channel, std::function<void(const lcm::ReceiveBuffer&)> handler) {
-  handlers_.push_back(std::make_unique<Handler>(Handler{std::move(handler), channel, {}, false}));
+  handlers_.push_back(std::make_unique<Handler>(Handler{std::move(handler), channel, {}, false, this}));
   if (shm_) {
     Handler* h = handlers_.back().get();
     shm_subs_.push_back(shm_->subscribe(channel, [h](const lcm::ReceiveBuffer& rb) { h->deliver(rb); }));
@@ -37,6 +37,27 @@ void Endpoints::divert(const std::string& channel, RawHandler to) {
     h->diverted = first ? to : RawHandler{};
     first = false;
   }
+}
+
+void Endpoints::hold(Handler& h, const lcm::ReceiveBuffer& rb) {
+  if (held_.size() >= kHeldMax) {
+    held_.pop_front();
+    ++held_dropped_;
+  }
+  const auto* data = static_cast<const uint8_t*>(rb.data);
+  held_.push_back({&h, std::vector<uint8_t>(data, data + rb.data_size), rb.recv_utime});
+}
+
+size_t Endpoints::deliver_held() {
+  size_t n = 0;
+  while (!held_.empty() && !(busy_ && busy_())) {
+    Held m = std::move(held_.front());
+    held_.pop_front();
+    lcm::ReceiveBuffer rb{m.bytes.data(), static_cast<uint32_t>(m.bytes.size()), m.recv_utime};
+    m.handler->deliver(rb);
+    ++n;
+  }
+  return n;
 }
 
 std::vector<std::string> Endpoints::channels() const {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <lcm/lcm-cpp.hpp>
 #include <memory>
@@ -121,6 +122,14 @@ class Endpoints {
   // While diverted, what arrives from the bus on `channel` goes to `to` (once) instead of its handlers: a command
   // source owns the channel. An empty `to` gives the channel back.
   void divert(const std::string& channel, RawHandler to);
+  // While `busy()` says so, what arrives for these handlers (but a diverted channel) is kept, copied, instead of
+  // delivered: an is_async controller's handlers must not run while its update does. deliver_held() delivers it, in
+  // the order it came, when not busy; beyond kHeldMax messages the oldest are dropped (held_dropped()).
+  static constexpr size_t kHeldMax = 1000;
+  void hold_while(std::function<bool()> busy) { busy_ = std::move(busy); }
+  size_t deliver_held();
+  size_t held() const { return held_.size(); }
+  int64_t held_dropped() const { return held_dropped_; }
   // Every channel subscribed, in subscription order (tests send to each).
   std::vector<std::string> channels() const;
 
@@ -160,14 +169,28 @@ class Endpoints {
     std::string channel;
     RawHandler diverted;
     bool muted = false;  // diverted through another handler of the same channel
+    Endpoints* ends = nullptr;
     void deliver(const lcm::ReceiveBuffer& rb) {
       if (diverted)
         diverted(rb);
-      else if (!muted)
+      else if (muted)
+        return;
+      else if (ends->busy_ && ends->busy_())
+        ends->hold(*this, rb);
+      else
         fn(rb);
     }
     void on(const lcm::ReceiveBuffer* rb, const std::string&) { deliver(*rb); }
   };
+  struct Held {
+    Handler* handler;
+    std::vector<uint8_t> bytes;
+    int64_t recv_utime;
+  };
+  void hold(Handler& h, const lcm::ReceiveBuffer& rb);
+  std::function<bool()> busy_;
+  std::deque<Held> held_;
+  int64_t held_dropped_ = 0;
   lcm::LCM& lc_;
   LcmSocket* socket_ = nullptr;
   ShmLink* shm_ = nullptr;

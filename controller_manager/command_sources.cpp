@@ -204,6 +204,7 @@ void CommandSources::before_update(const Time& now) {
   for (auto& sp : sources_) {
     Source& s = *sp;
     if (s.end || !s.slot || !s.slot->running) continue;
+    if (s.slot->async && s.slot->async->busy()) continue;  // its update is running: the tick waits for a cycle after
     if (!s.started || now.utime < s.last_us) {
       if (s.started) ++s.restarts;
       s.started = true;

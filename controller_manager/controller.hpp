@@ -82,6 +82,7 @@ class Controller {
   bool running_ = false;  // set by the loop around starting()/stopping()
   const char* failure_ = nullptr;  // set by fail(), taken by the loop
   friend class Loop;
+  friend class AsyncUpdate;
 };
 
 // What init() may use: its parameters, the robot, joint handles (claiming

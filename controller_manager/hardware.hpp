@@ -83,6 +83,7 @@ class Hardware {
   std::vector<JointData>& joints() { return joints_; }
   const std::vector<JointData>& joints() const { return joints_; }
   JointData* find(const std::string& joint);
+  std::vector<SensorData>& sensors() { return sensors_; }
   const std::vector<SensorData>& sensors() const { return sensors_; }
   const SensorData* sensor(const std::string& name) const;
   std::vector<GpioData>& gpios() { return gpios_; }

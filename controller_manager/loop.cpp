@@ -90,15 +90,23 @@ void Loop::start(ControllerSlot& s) {
   }
   for (GpioData* g : s.claimed_gpios) g->owner = s.controller.get();
   s.first_step = s.last_update_utime = s.last_update_mono = -1;
-  s.controller->running_ = true;
-  s.controller->starting(now_);
+  if (s.async) {
+    call_async(s, AsyncUpdate::Call::Start);
+  } else {
+    s.controller->running_ = true;
+    s.controller->starting(now_);
+  }
   s.running = true;
   s.ever_started = true;
 }
 
 void Loop::stop(ControllerSlot& s) {
-  s.controller->stopping(now_);
-  s.controller->running_ = false;
+  if (s.async) {
+    call_async(s, AsyncUpdate::Call::Stop);
+  } else {
+    s.controller->stopping(now_);
+    s.controller->running_ = false;
+  }
   s.running = false;
   for (JointData* j : s.claimed)
     if (j->owner == s.controller.get()) j->owner = nullptr;
@@ -139,21 +147,20 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
     hw_.reset_soft_limits();
     for (auto& s : slots_) {
       s->first_step = s->last_update_utime = s->last_update_mono = -1;
-      if (s->running) s->controller->restart(now_);
+      if (s->running && s->async) call_async(*s, AsyncUpdate::Call::Restart);
+      else if (s->running) s->controller->restart(now_);
     }
   }
   if (sources_) sources_->before_update(now_);
   int64_t mark = -1;  // one clock read between two updates times both
   for (auto& s : slots_) {
-    if (!s->running) continue;
     double own_period = period;
-    if (s->update_rate_hz > 0 && st.period_us > 0) {
-      const int64_t every = std::max<int64_t>(1, std::llround(1e6 / (s->update_rate_hz * double(st.period_us))));
-      if (s->first_step < 0) s->first_step = step_;
-      if ((step_ - s->first_step) % every != 0) continue;
-      own_period = s->last_update_utime < 0 ? double(every) * period
-                                            : static_cast<double>(now_.utime - s->last_update_utime) * 1e-6;
+    if (s->async) {
+      const bool is_due = s->running && due(*s, st, period, &own_period);
+      update_async(*s, is_due, own_period, st.lockstep);
+      continue;
     }
+    if (!s->running || !due(*s, st, period, &own_period)) continue;
     s->last_update_utime = now_.utime;
     if (mark < 0) mark = monotonic_us();
     if (s->last_update_mono >= 0) s->period.add(static_cast<double>(mark - s->last_update_mono));
@@ -175,6 +182,58 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
   const int64_t t1 = monotonic_us();
   stats_.add_cycle(t0, t1 - t0, st.period_us > 0 && t1 - t0 > st.period_us);
   return Outcome::Answered;
+}
+
+bool Loop::due(ControllerSlot& s, const hardware_state_t& st, double period, double* own_period) {
+  if (s.update_rate_hz <= 0 || st.period_us <= 0) return true;
+  const int64_t every = std::max<int64_t>(1, std::llround(1e6 / (s.update_rate_hz * double(st.period_us))));
+  if (s.first_step < 0) s.first_step = step_;
+  if ((step_ - s.first_step) % every != 0) return false;
+  *own_period = s.last_update_utime < 0 ? double(every) * period
+                                        : static_cast<double>(now_.utime - s.last_update_utime) * 1e-6;
+  return true;
+}
+
+void Loop::take_async(ControllerSlot& s) {
+  bool updated = false;
+  double exec_us = 0;
+  if (!s.async->take(hw_, s.claimed, s.claimed_gpios, &updated, &exec_us)) return;
+  if (updated) s.exec.add(exec_us);
+  if (s.controller->failure_) {
+    if (s.running)
+      fail_controller(s);
+    else
+      s.controller->failure_ = nullptr;
+  }
+}
+
+void Loop::call_async(ControllerSlot& s, AsyncUpdate::Call call) {
+  s.async->owe(call);
+  if (!s.async->busy()) s.async->run(hw_, s.claimed, s.claimed_gpios, now_, 0, false, true);
+}
+
+void Loop::update_async(ControllerSlot& s, bool due, double own_period, bool here) {
+  AsyncUpdate& a = *s.async;
+  if (a.busy()) {
+    if (due) a.count_skipped();
+    return;
+  }
+  take_async(s);
+  due = due && s.running;  // not if it failed just now
+  if (!due && !a.owes()) return;
+  if (!here && s.endpoints && s.endpoints->held() > 0) {  // its commands first (between cycles), then its update
+    if (due) a.count_skipped();
+    return;
+  }
+  if (due) {
+    s.last_update_utime = now_.utime;
+    const int64_t mark = monotonic_us();
+    if (s.last_update_mono >= 0) s.period.add(static_cast<double>(mark - s.last_update_mono));
+    s.last_update_mono = mark;
+  }
+  here = here || !due;  // only calls owed: made here, as call_async() does
+  a.run(hw_, s.claimed, s.claimed_gpios, now_, own_period, due, here);
+  if (here) take_async(s);
 }
 
 void Loop::set_pending_switch(const std::vector<ControllerSlot*>& stop, const std::vector<ControllerSlot*>& start) {

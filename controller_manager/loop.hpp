@@ -13,6 +13,10 @@
 // cycle; a pending component state change (set_pending_component) applies with the pending switch, after its stops.
 // A pending start of a controller whose components no longer allow it is not made (start_refused).
 // A controller that fails in its update (Controller::fail) is stopped there, and its fallback controllers started.
+// An is_async controller (ControllerSlot::async) is handed its due update when its thread is idle, and its commands
+// are taken back in the first cycle after (not while messages for it are held: those are delivered between cycles
+// first); in lockstep it runs in the cycle, as the others do. Its starting(),
+// stopping() and restart() run in the loop when its thread is idle, else before its next update.
 // A started controller's joints hold their measured position (velocity and
 // effort 0) until its first update, unless taken over from a controller
 // stopped in the same switch, whose last command they keep.
@@ -24,9 +28,11 @@
 #include <string>
 #include <vector>
 
+#include "controller_manager/async_update.hpp"
 #include "controller_manager/controller.hpp"
 #include "controller_manager/hardware.hpp"
 #include "rt/loop_stats.hpp"
+#include "rt/outbox.hpp"
 
 namespace lcm_control::cm {
 
@@ -34,6 +40,10 @@ class CommandSources;
 
 struct ControllerSlot {
   std::string name, type;
+  // An is_async controller's (ROS 2): the hardware copy it was initialised on and the outbox its thread publishes
+  // through; declared before the controller, which refers to them.
+  std::unique_ptr<Hardware> shadow;
+  std::unique_ptr<Outbox> outbox;
   std::unique_ptr<Controller> controller;
   std::unique_ptr<Endpoints> endpoints;  // declared after the controller: unsubscribes first
   std::vector<JointData*> claimed;  // joints it commands
@@ -56,6 +66,8 @@ struct ControllerSlot {
   ExecStats exec;                  // its updates' execution times
   ExecStats period;                // the wall-clock time between its updates
   int64_t last_update_mono = -1;   // monotonic µs of its last update (-1: none since it started)
+  // An is_async controller's thread; declared last, so stopped first.
+  std::unique_ptr<AsyncUpdate> async;
   const char* state() const { return running ? "running" : ever_started ? "stopped" : "initialized"; }
 };
 
@@ -106,6 +118,13 @@ class Loop {
   void stop(ControllerSlot& s);
   void fail_components(const hardware_state_t& st);
   void fail_controller(ControllerSlot& s);
+  // Its update_rate: whether it is due in this cycle, and then the period since its last update.
+  bool due(ControllerSlot& s, const hardware_state_t& st, double period, double* own_period);
+  void update_async(ControllerSlot& s, bool due, double own_period, bool here);
+  void take_async(ControllerSlot& s);
+  // starting(), stopping() or restart() of an async controller: here when its thread is idle, else before its next
+  // update.
+  void call_async(ControllerSlot& s, AsyncUpdate::Call call);
   bool claims_free(const ControllerSlot& s) const;
 
   Hardware& hw_;

@@ -232,8 +232,20 @@ std::vector<std::string> ControllerManager::fallback_controllers(const std::stri
   return names;
 }
 
+namespace {
+// Whether a ROS 2 controller asks for its own thread (instantiate() reads and checks the parameter).
+bool wants_async(const ControllerSpec& spec) {
+  const YAML::Node& params = spec.params;
+  try {
+    return params.IsMap() && params["is_async"] && params["is_async"].as<bool>();
+  } catch (const YAML::Exception&) {
+    return false;
+  }
+}
+}  // namespace
+
 ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpoints& endpoints,
-                                               std::unique_ptr<Controller>* out) {
+                                               std::unique_ptr<Controller>* out, std::unique_ptr<Hardware>* shadow) {
   ControllerCheck c{spec.name, spec.type, ControllerCheck::Loads, "", {}, 0, {}};
   auto controller = registry_.create(spec.type);
   if (!controller) {
@@ -243,7 +255,18 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
     return c;
   }
   Params params(spec.params, fmt::format("{}: {}", spec.file, yaml_key(spec.name)));
-  ControllerContext ctx(spec.name, spec.type, params, model_, hw_, bus_, endpoints);
+  std::unique_ptr<Hardware> own;
+  if (model_.ros2_parameter_file && params.has("is_async")) {  // ROS 2: its updates run on a thread of its own
+    try {
+      c.is_async = params.boolean("is_async", false);
+    } catch (const std::exception& e) {
+      c.outcome = ControllerCheck::Refused;
+      c.message = e.what();
+      return c;
+    }
+    if (c.is_async) own = std::make_unique<Hardware>(model_);
+  }
+  ControllerContext ctx(spec.name, spec.type, params, model_, own ? *own : hw_, bus_, endpoints);
   ctx.self() = controller.get();
   try {
     controller->init(ctx);
@@ -296,6 +319,7 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
                                   near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near)));
   }
   if (out) *out = std::move(controller);
+  if (shadow) *shadow = std::move(own);
   return c;
 }
 
@@ -314,8 +338,9 @@ Reply ControllerManager::load(const std::string& name) {
   slot->name = name;
   slot->type = spec->type;
   slot->endpoints = std::make_unique<Endpoints>(bus_, Endpoints::On::Shared);
-  slot->endpoints->set_outbox(&outbox_);
-  const ControllerCheck c = instantiate(*spec, *slot->endpoints, &slot->controller);
+  if (model_.ros2_parameter_file && wants_async(*spec)) slot->outbox = std::make_unique<Outbox>(outbox_lcm_ ? *outbox_lcm_ : bus_.lcm());
+  slot->endpoints->set_outbox(slot->outbox ? slot->outbox.get() : &outbox_);
+  const ControllerCheck c = instantiate(*spec, *slot->endpoints, &slot->controller, &slot->shadow);
   if (c.outcome != ControllerCheck::Loads)
     return {false, c.outcome == ControllerCheck::NotImplemented || c.message.rfind(spec->file, 0) == 0
                        ? fmt::format("cannot load '{}': {}", name, c.message)
@@ -327,6 +352,10 @@ Reply ControllerManager::load(const std::string& name) {
     for (const auto& j : slot->controller->claim().joints) slot->claimed.push_back(hw_.find(j));
   for (const auto& g : slot->controller->claim().gpios) slot->claimed_gpios.push_back(hw_.gpio(g));
   if (!slot->controller->pid_joints().empty()) serve_gains(*slot, bus_);
+  if (slot->shadow) {  // its handlers wait while its update runs; its thread publishes through an outbox of its own
+    slot->async = std::make_unique<AsyncUpdate>(*slot->controller, *slot->shadow);
+    slot->endpoints->hold_while([a = slot->async.get()] { return a->busy(); });
+  }
   const std::string claims = describe(slot->controller->claim());
   loop_.slots().push_back(std::move(slot));
   for (const auto& n : c.notes) spdlog::warn("{}", n);
@@ -650,8 +679,25 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
   if (pending_done_ && !loop_.switch_pending()) complete_pending();
 }
 
+void ControllerManager::flush_published() {
+  outbox_.flush();
+  for (const auto& slot : loop_.slots())
+    if (slot->outbox) slot->outbox->flush();
+}
+
+bool ControllerManager::deliver_held() {
+  bool left = false;
+  for (const auto& slot : loop_.slots())
+    if (slot->async) {
+      slot->endpoints->deliver_held();
+      left = left || slot->endpoints->held() > 0;
+    }
+  return left;
+}
+
 void ControllerManager::poll(int64_t now) {
   if (outbox_.sends_here()) outbox_.send_queued();  // what a paused lockstep's controllers published meanwhile
+  deliver_held();
   sources_.poll();
   if (loop_.has_state() && !silent_ && now - last_state_us_ > options_.silence_us) {
     silent_ = true;
@@ -697,7 +743,9 @@ loop_stats_t ControllerManager::statistics() {
   }
   m.dropped = std::max<int64_t>(0, dropped - reported_dropped_);
   reported_dropped_ = dropped;
-  const int64_t unpublished = outbox_.dropped() + bus_.hardware_refused();
+  int64_t unpublished = outbox_.dropped() + bus_.hardware_refused();
+  for (const auto& slot : loop_.slots())
+    if (slot->outbox) unpublished += slot->outbox->dropped();
   m.unpublished = unpublished - reported_unpublished_;
   reported_unpublished_ = unpublished;
   return m;

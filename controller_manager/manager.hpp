@@ -46,6 +46,7 @@ struct ControllerCheck {
   std::vector<std::string> notes;  // parameters ignored and other findings, one line each
   double update_rate_hz = 0;       // its own update_rate (ROS 2), 0: every cycle of the manager
   std::vector<std::string> fallbacks;  // its fallback_controllers (ROS 2), started when it fails
+  bool is_async = false;               // ROS 2's is_async: it updates on a thread of its own
 };
 
 struct ManagerOptions {
@@ -135,14 +136,19 @@ class ControllerManager {
 
   loop_stats_t statistics();  // the current window, then a new one
   // Waits until the controllers' messages handed over so far have left (tests; not for the loop path).
-  void flush_published() { outbox_.flush(); }
+  void flush_published();
+  // Between cycles: what arrived for is_async controllers while their update ran (Endpoints::hold_while) is delivered
+  // to those whose thread is idle; whether any is still held.
+  bool deliver_held();
   // Stops and unloads every controller; returns what was done.
   std::string shutdown();
 
  private:
   ControllerSlot* find(const std::string& name) const;
   // Creates and initialises a controller of `spec` on `port`; on success moves it to *out (if given).
-  ControllerCheck instantiate(const ControllerSpec& spec, Endpoints& endpoints, std::unique_ptr<Controller>* out);
+  // With `out`, the controller made; an is_async one is initialised on a Hardware of its own, given in `shadow`.
+  ControllerCheck instantiate(const ControllerSpec& spec, Endpoints& endpoints, std::unique_ptr<Controller>* out,
+                              std::unique_ptr<Hardware>* shadow = nullptr);
   // A ROS 2 controller's own `update_rate` (Hz), checked against the manager's; throws ControllerError.
   double own_update_rate(const Params& params) const;
   std::string yaml_key(const std::string& controller) const;  // its key path in the YAML

@@ -6,7 +6,7 @@ import tempfile
 import threading
 import time
 
-from . import lockstep, physics, realtime, round_trip, stiff
+from . import async_update, lockstep, physics, realtime, round_trip, stiff
 from .ports import lcm_url
 from .processes import Proc, load_and_start
 from .robots import MODELS, models
@@ -81,6 +81,7 @@ class Bench:
         self.say("1/4 physics overhead (in-process)")
         physics.run(self)
         stiff.run(self)
+        async_update.run(self)
         self.say("starting one controller_manager per model")
         self.start_managers()
         self.say("2/4 loop round trip vs bare LCM and raw UDP")

@@ -91,6 +91,13 @@ def table(b):
             if d is r[names[0]] else "–",
             "explicit ≤ 1.0x the bound; both implicit stable",
             yes(all(x["implicit_stable"] and x["damped_effort_stable"] for x in st)))
+    a = r.get("async")
+    if a:
+        row("1c. a 20 ms update at 1 kHz (`bench_async`): cycle p50 / p99 / max µs, without it; is_async; in the loop",
+            lambda d: "; ".join("{} / **{}** / {}".format(fmt(a[k]["p50"]), fmt(a[k]["p99"]), fmt(a[k]["max"]))
+                                for k in ("none", "async", "sync")) if d is r[names[0]] else "–",
+            "is_async p99 ≤ 1.5x without it",
+            yes(a["async"]["p99"] <= 1.5 * a["none"]["p99"]))
     row("2. payload state / command, bytes", lambda d: "{} / {}".format(*d["rtt"]["sizes"]))
 
     def mpp(k):

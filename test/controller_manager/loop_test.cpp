@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
+#include <thread>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -89,6 +91,57 @@ class FailingController : public Controller {
   int fail_after_ = 0, updates_ = 0;
 };
 
+// Writes a command from its joint's state and its update count (what the loop's copy of the state and its own
+// history give); with sleep_ms, sleeps that long per update. It counts its calls, the thread its updates ran on,
+// and any call or command that came while an update ran (an is_async controller must never see one).
+struct SleeperLog {
+  std::atomic<int> updates{0}, starts{0}, stops{0}, overlaps{0};
+  std::atomic<bool> in_update{false};
+  std::atomic<double> got{0};
+  std::thread::id thread;
+  void reset() {
+    updates = starts = stops = overlaps = 0;
+    in_update = false;
+    got = 0;
+    thread = {};
+  }
+};
+SleeperLog g_sleeper;
+class SleeperController : public Controller {
+ public:
+  void init(ControllerContext& ctx) override {
+    joint_ = ctx.claim(ctx.params().string("joint"), Interface::Position);
+    sleep_ms_ = ctx.params().number("sleep_ms", 0);
+    ctx.take_commands(false, 1, [](const double* v) {
+      if (g_sleeper.in_update) ++g_sleeper.overlaps;
+      g_sleeper.got = v[0];
+    });
+  }
+  void starting(const Time&) override {
+    if (g_sleeper.in_update) ++g_sleeper.overlaps;
+    ++g_sleeper.starts;
+    n_ = 0;
+  }
+  void update(const Time&, double period) override {
+    g_sleeper.in_update = true;
+    g_sleeper.thread = std::this_thread::get_id();
+    if (sleep_ms_ > 0) std::this_thread::sleep_for(std::chrono::microseconds(int64_t(sleep_ms_ * 1000)));
+    ++n_;
+    joint_->command = 0.5 * joint_->position + 1e-3 * n_ + period;
+    ++g_sleeper.updates;
+    g_sleeper.in_update = false;
+  }
+  void stopping(const Time&) override {
+    if (g_sleeper.in_update) ++g_sleeper.overlaps;
+    ++g_sleeper.stops;
+  }
+
+ private:
+  JointData* joint_ = nullptr;
+  double sleep_ms_ = 0;
+  int n_ = 0;
+};
+
 const Registry& test_registry() {
   static const Registry r = [] {
     Registry x;
@@ -96,6 +149,7 @@ const Registry& test_registry() {
     x.add("test/Recorder", [](const std::string&) { return std::make_unique<RecorderController>(); });
     x.add("test/Busy", [](const std::string&) { return std::make_unique<BusyController>(); });
     x.add("test/Failing", [](const std::string&) { return std::make_unique<FailingController>(); });
+    x.add("test/Sleeper", [](const std::string&) { return std::make_unique<SleeperController>(); });
     return x;
   }();
   return r;
@@ -301,6 +355,102 @@ TEST(ControllerManagerLoop, StatisticsReportAControllersExecutionTimeAndPeriodAs
   EXPECT_EQ(t.item_count[1], 100);
   EXPECT_EQ(t.item_count[0], 400);
   EXPECT_NEAR(t.item_period_mean_us[1], 4 * t.item_period_mean_us[0], 0.1 * 4 * t.item_period_mean_us[0]);
+}
+
+// ROS 2's is_async in lockstep: the controller runs in the cycle it is due, so its commands are those of the same
+// controller in the loop, to the bit, at every step (and at its own update_rate too).
+TEST(ControllerManagerLoop, AnAsyncControllerInLockstepCommandsBitForBitAsInTheLoop) {
+  const std::string dir = lcm_control::testing::temp_dir("async_lockstep");
+  auto run = [&](bool async) {
+    const std::string yaml = dir + (async ? "/async.yaml" : "/sync.yaml");
+    std::ofstream(yaml) << "controller_manager:\n  ros__parameters:\n    update_rate: 1000\n"
+                           "    tilt_ctl: {type: test/Sleeper}\n    slide_ctl: {type: test/Sleeper}\n"
+                           "tilt_ctl:\n  ros__parameters: {joint: tilt, is_async: "
+                        << (async ? "true" : "false")
+                        << "}\nslide_ctl:\n  ros__parameters: {joint: slide, update_rate: 250, is_async: "
+                        << (async ? "true" : "false") << "}\n";
+    Rig rig(test_registry(), data("test_bot.urdf"), yaml);
+    rig.start("tilt_ctl");
+    rig.start("slide_ctl");
+    EXPECT_EQ(rig.cm->loop().slots()[0]->async != nullptr, async);
+    g_sleeper.reset();
+    rig.cycle(400);
+    EXPECT_EQ(g_sleeper.updates, 500) << "400 + 100 updates";
+    EXPECT_EQ(g_sleeper.overlaps, 0);
+    EXPECT_EQ(g_sleeper.thread, std::this_thread::get_id()) << "in lockstep the loop's thread runs it";
+    std::vector<std::pair<double, double>> out;
+    for (const auto& c : rig.commands) out.emplace_back(c.command[0], c.command[1]);
+    return out;
+  };
+  const auto in_loop = run(false);
+  const auto on_thread = run(true);
+  ASSERT_GE(in_loop.size(), 400u);
+  ASSERT_EQ(on_thread.size(), in_loop.size());
+  for (size_t k = 0; k < in_loop.size(); ++k) ASSERT_EQ(on_thread[k], in_loop[k]) << "command " << k;
+}
+
+// ROS 2's is_async in real time: an update that sleeps 20 ms runs on the controller's own thread; every cycle is
+// answered meanwhile (its joint keeps the last command), a due update is skipped while one runs, commands and
+// switches that come meanwhile wait for it (never overlapping it), and a stop takes effect in its cycle.
+TEST(ControllerManagerLoop, AnAsyncControllerRunsOnItsOwnThreadAndNeverHoldsTheLoop) {
+  const std::string dir = lcm_control::testing::temp_dir("async_real_time");
+  const std::string yaml = dir + "/async.yaml";
+  std::ofstream(yaml) << "controller_manager:\n  ros__parameters:\n    update_rate: 1000\n"
+                         "    sleeper: {type: test/Sleeper}\n    other: {type: test/Recorder}\n"
+                         "sleeper:\n  ros__parameters: {joint: tilt, sleep_ms: 20, is_async: true}\n"
+                         "other:\n  ros__parameters: {joint: tilt, value: 7}\n";
+  Rig rig(test_registry(), data("test_bot.urdf"), yaml);
+  rig.lockstep = false;
+  g_sleeper.reset();
+  rig.start("sleeper");
+  ASSERT_TRUE(rig.load("other").ok);
+  Endpoints& ends = *rig.cm->loop().slots()[0]->endpoints;
+  AsyncUpdate& async = *rig.cm->loop().slots()[0]->async;
+  rig.commands.clear();
+  const int before = g_sleeper.updates;
+  bool held = false, published = false;
+  for (int k = 0; k < 100; ++k) {
+    const bool was_busy = async.busy();
+    rig.cycle();
+    if (k >= 10 && !published && !was_busy && async.busy()) {  // an update of 20 ms began now: the command waits
+      published = true;
+      float64_t v{};
+      v.data = 3.5;
+      rig.publish("sleeper/command", v);
+      held = ends.held() == 1 && g_sleeper.got == 0.0;
+    }
+    rig.cm->deliver_held();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_TRUE(held) << "a command that came while the update ran was held";
+  EXPECT_EQ(g_sleeper.got, 3.5) << "and delivered after it";
+  EXPECT_EQ(rig.commands.size(), 100u) << "every cycle answered";
+  const int updates = g_sleeper.updates - before;
+  EXPECT_GE(updates, 1);
+  EXPECT_LE(updates, 9) << "at most one update per 20 ms in 100 cycles of >= 1 ms";
+  EXPECT_GE(async.skipped(), 100 - 2 * updates);
+  EXPECT_NE(g_sleeper.thread, std::this_thread::get_id());
+  // The commands it wrote reached the hardware, each kept until the next one came.
+  int changes = 0;
+  for (size_t k = 1; k < rig.commands.size(); ++k)
+    if (rig.commands[k].command[0] != rig.commands[k - 1].command[0]) ++changes;
+  EXPECT_GE(changes, updates - 2);
+  EXPECT_LE(changes, updates + 1);
+
+  // A stop while an update runs: the switch is made in its cycle (another controller takes the joint at once), and
+  // stopping() waits for the update to end.
+  while (!async.busy()) rig.cycle();
+  const Reply r = rig.switch_({"other"}, {"sleeper"});
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_TRUE(has(r.message, "in one cycle")) << r.message;
+  rig.cycle();
+  EXPECT_EQ(rig.commands.back().command[0], 7.0) << "the other controller commands from the next cycle";
+  EXPECT_EQ(g_sleeper.stops, 0) << "not while its update runs";
+  std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  rig.cycle(3);
+  EXPECT_EQ(g_sleeper.stops, 1);
+  EXPECT_EQ(rig.commands.back().command[0], 7.0) << "its last update's command is not taken after it stopped";
+  EXPECT_EQ(g_sleeper.overlaps, 0);
 }
 
 // ROS 2's fallback_controllers: a controller that fails in its update is stopped in that cycle and its fallbacks
