@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <ctime>
+#include <utility>
 
 #include "control/angles.hpp"
 #include "lcm_control/hardware_command_t.hpp"
@@ -243,8 +245,29 @@ void Actuators::switch_mode(Actuator& a, int8_t wire_mode) {
   a.saturation.reset(a.q);  // a position goal moves from where the joint is, at most at the velocity limit
 }
 
+namespace {
+int64_t now_ns() {
+  timespec t{};
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return int64_t(t.tv_sec) * 1000000000 + t.tv_nsec;
+}
+}  // namespace
+
+int64_t Actuators::take_work_ns(int i) { return std::exchange(actuators_[size_t(i)].work_ns, 0); }
+
 void Actuators::apply(double dt) {
+  int64_t mark = now_ns();
   for (Actuator& a : actuators_) {
+    apply_one(a, dt);
+    const int64_t t = now_ns();
+    a.work_ns += t - mark;
+    mark = t;
+  }
+  for (const Passive& p : passive_) mb_.add_torque(p.link, passive_torque(p, mb_.position(p.link), mb_.velocity(p.link)));
+}
+
+void Actuators::apply_one(Actuator& a, double dt) {
+  {
     const bool hold = e_stop_ || hold_all_ || !a.commanded;
     if (hold && !a.holding) a.hold_position = a.q;
     a.holding = hold;
@@ -315,7 +338,6 @@ void Actuators::apply(double dt) {
     if (!std::isfinite(a.effort)) a.effort = 0;  // Bullet turns one Inf or NaN into NaN everywhere
     mb_.add_torque(a.link, a.effort + passive_torque(a.passive, q, qd));
   }
-  for (const Passive& p : passive_) mb_.add_torque(p.link, passive_torque(p, mb_.position(p.link), mb_.velocity(p.link)));
 }
 
 double Actuators::passive_torque(const Passive& p, double q, double qd) {
@@ -330,6 +352,7 @@ double Actuators::passive_torque(const Passive& p, double q, double qd) {
 }
 
 void Actuators::read(double dt) {
+  int64_t mark = now_ns();
   for (Actuator& a : actuators_) {
     a.q = mb_.position(a.link);
     a.qd = mb_.velocity(a.link);
@@ -337,6 +360,9 @@ void Actuators::read(double dt) {
     a.applied = motor ? motor->getAppliedImpulse(0) / dt : a.effort;
     if (a.braking) a.applied += a.brake->getAppliedImpulse(0) / dt;
     if (a.damper_on) a.applied += a.damper->applied_torque(dt);
+    const int64_t t = now_ns();
+    a.work_ns += t - mark;
+    mark = t;
   }
 }
 

@@ -77,6 +77,10 @@ class Actuators final : public PlayedHardware {
   void apply(double dt);  // torques and motor targets for the coming step
   void read(double dt);   // state and applied effort after it
 
+  // The nanoseconds apply() and read() spent on actuator i since the last call (its hardware component's share of
+  // the step: ros2_control's per-component read/write time).
+  int64_t take_work_ns(int i);
+
   // State after the last step, in actuator units.
   double position(int i) const override;
   double velocity(int i) const override;
@@ -98,12 +102,15 @@ class Actuators final : public PlayedHardware {
   };
 
   static constexpr int kWireModes = 4;  // MODE_NONE .. MODE_EFFORT
+  struct Actuator;
+  void apply_one(Actuator& a, double dt);
 
   struct Actuator {
     std::string name, joint;
     ActuatorMode mode = ActuatorMode::Effort;
     int8_t wire_mode = 0;
     int8_t next_wire_mode = 0;               // the mode of the newest command; apply() switches to it
+    int64_t work_ns = 0;                     // in apply() and read() since take_work_ns()
     bool offered[kWireModes] = {};           // by wire mode
     ActuatorMode mode_for[kWireModes] = {};  // how each offered wire mode is played
     int64_t rejected = 0;

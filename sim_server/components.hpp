@@ -29,6 +29,8 @@ class ComponentStates {
   std::vector<std::string> take(const hardware_command_t& command, GpioBank& gpio);
   bool holds(int actuator) const { return size_t(actuator) < held_.size() && held_[size_t(actuator)] != 0; }
   Lifecycle state(size_t component) const { return states_[component]; }
+  // Per actuator (bind()'s order): its component's index in components(), -1 none.
+  const std::vector<int>& component_of() const { return component_of_; }
 
   // The FAIL_COMPONENT test hook; "" or why not (no such component).
   std::string fail(const std::string& component, const std::string& reason, GpioBank& gpio);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "rt/log.hpp"
 
@@ -23,6 +24,13 @@ constexpr int64_t kPausedRepublishUs = 100000;
 Stepper::Stepper(Simulation& sim, SimIo& io, const StepperOptions& options)
     : sim_(sim), io_(io), opt_(options), period_us_(sim.control_period() * 1e6), paused_(options.start_paused) {
   step_request_.request_id = 0;
+  const size_t n = sim.components().components().size();
+  component_ns_.assign(n, 0);
+  component_exec_.resize(n);
+  component_period_.resize(n);
+  component_has_actuators_.assign(n, 0);
+  for (const int c : sim.components().component_of())
+    if (c >= 0) component_has_actuators_[size_t(c)] = 1;
 }
 
 bool Stepper::run(const std::atomic<bool>& stop) {
@@ -45,6 +53,7 @@ int64_t Stepper::step_timed(int64_t* end_us) {
   const int64_t t1 = monotonic_us();
   step_exec_.add(double(t1 - t0));
   run_step_exec_.add(double(t1 - t0));
+  time_components(t0);
   if (end_us) *end_us = t1;
   return t1 - t0;
 }
@@ -335,6 +344,19 @@ void Stepper::serve(const sim_request_t& req) {
   }
 }
 
+void Stepper::time_components(int64_t step_start_us) {
+  if (sim_.backend() != Backend::Bullet) return;
+  const std::vector<int>& of = sim_.components().component_of();
+  for (size_t a = 0; a < of.size(); ++a)
+    if (of[a] >= 0) component_ns_[size_t(of[a])] += sim_.actuators().take_work_ns(int(a));
+  for (size_t c = 0; c < component_ns_.size(); ++c) {
+    if (!component_has_actuators_[c]) continue;
+    component_exec_[c].add(double(std::exchange(component_ns_[c], 0)) * 1e-3);
+    if (last_step_start_us_ >= 0) component_period_[c].add(double(step_start_us - last_step_start_us_));
+  }
+  last_step_start_us_ = step_start_us;
+}
+
 void Stepper::tick_statistics(int64_t now) {
   if (now - w_.start_us < kStatsPeriodUs) return;
   loop_stats_t s{};
@@ -347,6 +369,9 @@ void Stepper::tick_statistics(int64_t now) {
   stats_.fill_and_reset(s);
   add_item(s, "step", "stage", step_exec_, nullptr);
   add_item(s, "publish", "stage", publish_exec_, nullptr);
+  for (size_t c = 0; c < component_exec_.size(); ++c)
+    if (component_has_actuators_[c])
+      add_item(s, sim_.components().components()[c].name, "component", component_exec_[c], &component_period_[c]);
   io_.publish_statistics(s);
   w_ = Window{now, sim_.step_count(), dropped};
 }

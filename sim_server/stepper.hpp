@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <vector>
 
 #include "rt/clock.hpp"
 #include "rt/log.hpp"
@@ -112,6 +113,13 @@ class Stepper {
   LoopStats stats_;
   ExecStats step_exec_, publish_exec_;
   ExecStats run_step_exec_;  // the whole run: never reset
+  // Per hardware component with actuators (ros2_control's per-component statistics): its actuators' share of each
+  // step (Actuators::take_work_ns) and the period between its steps.
+  void time_components(int64_t step_start_us);
+  std::vector<int64_t> component_ns_;
+  std::vector<ExecStats> component_exec_, component_period_;
+  std::vector<char> component_has_actuators_;
+  int64_t last_step_start_us_ = -1;
 };
 
 }  // namespace lcm_control::sim

@@ -334,7 +334,7 @@ TEST(ControllerManagerLoop, StatisticsReportAControllersExecutionTimeAndPeriodAs
   ASSERT_EQ(s.item, (std::vector<std::string>{"busy", "slow_busy"}));
   EXPECT_EQ(s.item_kind[0], "controller");
   EXPECT_EQ(s.item_count[0], 500);
-  EXPECT_NEAR(own_exec, 200.0, 20.0) << "the busy-wait itself";
+  EXPECT_GE(own_exec, 200.0) << "the busy-wait itself (longer when preempted: the statistics must follow it)";
   EXPECT_NEAR(s.item_exec_mean_us[0], own_exec, 0.1 * own_exec);
   EXPECT_GE(s.item_exec_p99_us[0], 0.98 * s.item_exec_mean_us[0]);
   EXPECT_LE(s.item_exec_p99_us[0], s.item_exec_max_us[0]);

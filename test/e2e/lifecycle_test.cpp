@@ -16,6 +16,7 @@
 #include "bus/bus.hpp"
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
+#include "lcm_control/loop_stats_t.hpp"
 #include "test/e2e/session.hpp"
 #include "test/support/lcm_test.hpp"
 
@@ -121,6 +122,39 @@ TEST_F(Lifecycle, AFailedGripperDeactivatesExactlyTheControllersUsingItAndSaysSo
   // Fixed and activated again, its controllers start.
   ASSERT_EQ(cmctl({"set-hardware-component-state", "gripper", "active"}, &out), 0) << out;
   ASSERT_EQ(cmctl({"switch", "--activate", "gripper_controller", "joint_state_broadcaster"}, &out), 0) << out;
+}
+
+// ROS 2's per-component statistics: sim_server times each hardware component's share of every step (its actuators'
+// commands applied and states read back) and reports it with the period between its steps; a component of sensors
+// only (the wrist) has no actuators to time.
+TEST_F(Lifecycle, StatisticsNameEveryComponentWithActuatorsWithItsShareOfTheStep) {
+  Bus bus(robot.url(), "");
+  Recorder<loop_stats_t> stats(bus.lcm(), "sim_server/statistics");
+  ASSERT_TRUE(pump_until(bus.lcm(), [&] { return stats.messages.size() >= 2; }, 5)) << robot.sim_output();
+  const loop_stats_t& s = stats.messages.back();
+  auto item = [&](const std::string& name) {
+    for (int k = 0; k < s.num_items; ++k)
+      if (s.item[size_t(k)] == name) return k;
+    return -1;
+  };
+  const int step = item("step"), arm = item("arm"), gripper = item("gripper");
+  ASSERT_GE(step, 0);
+  ASSERT_GE(arm, 0);
+  ASSERT_GE(gripper, 0);
+  EXPECT_EQ(item("wrist"), -1) << "sensors only";
+  for (const int c : {arm, gripper}) {
+    EXPECT_EQ(s.item_kind[size_t(c)], "component");
+    EXPECT_NEAR(double(s.item_count[size_t(c)]), double(s.item_count[size_t(step)]), 1.0);
+    EXPECT_GT(s.item_exec_mean_us[size_t(c)], 0.0);
+    EXPECT_LT(s.item_exec_mean_us[size_t(c)], s.item_exec_mean_us[size_t(step)]) << "a share of the step";
+    EXPECT_NEAR(s.item_period_mean_us[size_t(c)], 2000.0, 200.0) << "update_rate 500";
+  }
+  std::printf("components: arm %.2f us, gripper %.2f us of a %.2f us step; period %.1f us\n",
+              s.item_exec_mean_us[size_t(arm)], s.item_exec_mean_us[size_t(gripper)],
+              s.item_exec_mean_us[size_t(step)], s.item_period_mean_us[size_t(arm)]);
+  std::string out;
+  ASSERT_EQ(cmctl({"statistics"}, &out), 0) << out;
+  EXPECT_TRUE(has(out, "component")) << out;
 }
 
 // two_component_arm in lockstep for 2 s of sim time, the gripper commanded by a 60 Hz source, its trajectory and
