@@ -5,6 +5,7 @@
 #include <fcntl.h>
 #include <linux/futex.h>
 #include <poll.h>
+#include <pwd.h>
 #include <sched.h>
 #include <signal.h>
 #include <sys/eventfd.h>
@@ -105,6 +106,24 @@ class NamingLock {
 
 static_assert(std::atomic<uint32_t>::is_always_lock_free && std::atomic<int32_t>::is_always_lock_free);
 
+namespace {
+// "" when the open file is a regular file of this effective user that no other user may read or write, else what it is.
+std::string not_ours(int fd) {
+  struct stat st {};
+  if (fstat(fd, &st) != 0) return fmt::format("cannot read its owner: {}", std::strerror(errno));
+  if (!S_ISREG(st.st_mode)) return "it is not a regular file";
+  if (st.st_uid != geteuid()) {
+    const passwd* pw = getpwuid(st.st_uid);
+    return fmt::format("it belongs to {}uid {}, not to this user (uid {})", pw ? fmt::format("'{}', ", pw->pw_name) : "",
+                       st.st_uid, geteuid());
+  }
+  if ((st.st_mode & 077) != 0)
+    return fmt::format("its mode is {:04o}: other users may read or write it (this program makes it 0600)",
+                       st.st_mode & 07777);
+  return "";
+}
+}  // namespace
+
 ShmLink::ShmLink(const std::string& name) : path_("/dev/shm/lcm_control." + name), pid_(getpid()) {
   static_assert(sizeof(Segment) <= kHeaderBytes, "the header must fit before the data");
   auto fail = [&](const std::string& what) {
@@ -115,11 +134,19 @@ ShmLink::ShmLink(const std::string& name) : path_("/dev/shm/lcm_control." + name
   // The first process creates it under a name of its own, then links it in place: a reader never sees it half made.
   for (int attempt = 0; fd_ < 0; ++attempt) {
     if (attempt > 50) fail("it keeps disappearing while opened (another program removes it?)");
-    fd_ = open(path_.c_str(), O_RDWR | O_CLOEXEC);
+    fd_ = open(path_.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW);
     if (fd_ < 0 && errno != ENOENT)
-      fail(fmt::format("cannot open it: {} (it belongs to another user? remove it, or give --hardware-url "
-                       "shm:ANOTHER_NAME)",
+      fail(fmt::format("cannot open it: {} (it belongs to another user, or is a link? have its owner or root remove "
+                       "it, or give --hardware-url shm:ANOTHER_NAME)",
                        std::strerror(errno)));
+    if (fd_ >= 0) {
+      // A file someone else made, or left open to others, is refused: whoever can write it can read the robot's state
+      // and command its joints.
+      if (const std::string why = not_ours(fd_); !why.empty())
+        fail(fmt::format("{}; refused: its writer could read the robot's state and move its joints. Have its owner or "
+                         "root remove it, or give --hardware-url shm:ANOTHER_NAME",
+                         why));
+    }
     if (fd_ < 0) {
       const std::string tmp = fmt::format("{}.{}.new", path_, pid_);
       const int t = open(tmp.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0600);

@@ -2,10 +2,12 @@
 
 #include "description/robot_model.hpp"
 #include "description/control_config.hpp"
+#include "description/text.hpp"
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace lcm_control::cm {
@@ -44,16 +46,28 @@ ControllerError Params::error(const std::string& key, const std::string& problem
   return ControllerError(fmt::format("{}/{}: {}", where_, key, problem));
 }
 
+ControllerError Params::missing(const std::string& key, const std::string& what) const {
+  std::string near;
+  if (node_.IsMap()) {
+    std::vector<std::string> present;
+    for (const auto& kv : node_)
+      if (kv.first.IsScalar() && !read_.count(kv.first.Scalar())) present.push_back(kv.first.Scalar());
+    near = closest_name(key, present, std::max<size_t>(2, key.size() / 4));
+  }
+  return error(key, fmt::format("missing (required){}{}", what.empty() ? "" : ": " + what,
+                                near.empty() ? "" : fmt::format("; the file has '{}': did you mean '{}'?", near, key)));
+}
+
 std::string Params::string(const std::string& key) const {
   const YAML::Node n = node(key);
-  if (!n) throw error(key, "missing (required)");
+  if (!n) throw missing(key, "");
   if (!n.IsScalar() || n.Scalar().empty()) throw error(key, "expected a name, got " + kind(n));
   return n.Scalar();
 }
 
 double Params::number(const std::string& key) const {
   const YAML::Node n = node(key);
-  if (!n) throw error(key, "missing (required)");
+  if (!n) throw missing(key, "a number");
   return to_number(n, where_ + "/" + key);
 }
 
@@ -75,7 +89,7 @@ bool Params::boolean(const std::string& key, bool fallback) const {
 
 std::vector<std::string> Params::strings(const std::string& key) const {
   const YAML::Node n = node(key);
-  if (!n) throw error(key, "missing (required): a list of joint names");
+  if (!n) throw missing(key, key.find("joint") != std::string::npos ? "a list of joint names" : "a list of names");
   if (!n.IsSequence() || n.size() == 0) throw error(key, "expected a non-empty list of names, got " + kind(n));
   std::vector<std::string> out;
   for (const auto& e : n) {
@@ -89,7 +103,7 @@ std::vector<std::string> Params::strings(const std::string& key) const {
 
 PidGains Params::pid(const std::string& key) const {
   const YAML::Node n = node(key);
-  if (!n) throw error(key, "missing (required): a map like {p: 100, i: 0, d: 10, i_clamp: 0}");
+  if (!n) throw missing(key, "a map like {p: 100, i: 0, d: 10, i_clamp: 0}");
   return pid_from(n, where_ + "/" + key);
 }
 

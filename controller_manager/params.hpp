@@ -49,6 +49,8 @@ class Params {
   std::vector<std::string> unused() const;
 
   ControllerError error(const std::string& key, const std::string& problem) const;
+  // `key` is missing: `what` it should be, and a key present but unread that is close to it (a misspelling).
+  ControllerError missing(const std::string& key, const std::string& what) const;
 
  private:
   YAML::Node node_;

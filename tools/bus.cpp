@@ -103,6 +103,7 @@ class RateMeter {
     bus.subscribe(regex_escape(channel), &RateMeter::on, this, Bus::On::Shared, 10000);
   }
   int64_t total() const { return total_; }
+  int64_t fresh() const { return total_ - reported_; }  // messages since the last report()
   // One rostopic-hz line for the messages since the last report, over the window.
   std::string report() {
     const int64_t fresh = total_ - reported_;
@@ -145,6 +146,7 @@ int cmd_hz(Bus& bus, const std::string& name, size_t window, double duration) {
   Census census(bus);
   RateMeter meter(bus, channel, window);
   int64_t next = monotonic_us() + 1000000;
+  const int64_t start = monotonic_us();
   run_until(bus, census, channel, duration, [&] {
     if (monotonic_us() < next) return false;
     next += 1000000;
@@ -153,24 +155,29 @@ int cmd_hz(Bus& bus, const std::string& name, size_t window, double duration) {
     return false;
   });
   if (meter.total() == 0) nothing_on(channel, bus, census);
-  fmt::print("{}: {}\n", channel, meter.report());
+  if (meter.fresh() > 0) fmt::print("{}: {}\n", channel, meter.report());  // since the last second's line
+  const double seconds = double(monotonic_us() - start) * 1e-6;
+  fmt::print("{}: {} messages in {:.1f} s ({:.1f} Hz on average)\n", channel, meter.total(), seconds,
+             double(meter.total()) / seconds);
   return kExitOk;
 }
 
-// One channel and, optionally, a field path in its messages (`position`, `position[j2]`): what echo prints.
+// One channel and, optionally, field paths in its messages (`position`, `position[j2]`): what echo prints.
 struct EchoTarget {
-  std::string channel, field;
+  std::string channel;
+  std::vector<std::string> fields;  // none: the whole message
 };
 
-// What `bus echo NAME [--field F]` may mean: NAME is a channel (its field F, or the whole message); or, as rostopic
-// echo takes /joint_states/position, a channel followed by a field path ('/' between the field's parts as in ROS).
-std::vector<EchoTarget> echo_targets(const Bus& bus, const std::string& name, const std::string& field) {
-  std::vector<EchoTarget> out{{bus.channel(name), field}};
-  if (!field.empty()) return out;
+// What `bus echo NAME [--field F]...` may mean: NAME is a channel (its fields F, or the whole message); or, as
+// rostopic echo takes /joint_states/position, a channel followed by a field path ('/' between the field's parts as in
+// ROS).
+std::vector<EchoTarget> echo_targets(const Bus& bus, const std::string& name, const std::vector<std::string>& fields) {
+  std::vector<EchoTarget> out{{bus.channel(name), fields}};
+  if (!fields.empty()) return out;
   for (size_t cut = name.rfind('/'); cut != std::string::npos && cut > 0; cut = name.rfind('/', cut - 1)) {
     std::string tail = name.substr(cut + 1);
     std::replace(tail.begin(), tail.end(), '/', '.');
-    out.push_back({bus.channel(name.substr(0, cut)), tail});
+    out.push_back({bus.channel(name.substr(0, cut)), {tail}});
   }
   return out;
 }
@@ -194,12 +201,12 @@ class Echo {
     if (target != targets_.begin() && heard_whole_) return;  // the whole name is a channel: it wins
     heard_whole_ = heard_whole_ || target == targets_.begin();
     try {
-      if (!csv_ && target->field.empty()) {
+      if (!csv_ && target->fields.empty()) {
         fmt::print("{}---\n", message_yaml(rb->data, rb->data_size));
       } else {
         Decoded d = decode_fields(rb->data, rb->data_size);
         if (!d.ok()) throw std::runtime_error((d.type.empty() ? "" : d.type + ": ") + d.skip_reason);
-        if (!target->field.empty() && !only(d, target->channel, target->field)) return;
+        if (!target->fields.empty() && !only(d, target->channel, target->fields)) return;
         if (csv_) {
           csv_->write(d.fields);
           csv_->flush();
@@ -217,15 +224,20 @@ class Echo {
         fmt::print(stderr, "bus: {}: skipping a message ({} so far): {}\n", channel, skipped_, e.what());
     }
   }
-  // Keeps in d the fields `field` names (and utime, for CSV rows); false, and refused() says why, when it names none.
-  bool only(Decoded& d, const std::string& channel, const std::string& field) {
-    const std::vector<const Field*> picked = select_fields(d.fields, field);
-    if (picked.empty()) {
-      const std::vector<std::string> near = nearest_fields(d.fields, field);
-      refused_ = fmt::format("{} messages ({}) have no field '{}'; {}", channel, d.type, field,
-                             near.empty() ? "bus types " + short_type_name(d.type) + " lists the fields"
-                                          : "nearest: " + join(near));
-      return false;
+  // Keeps in d the fields `fields` name, in their order (and utime first, for CSV rows); false, and refused() says
+  // why, when one names none.
+  bool only(Decoded& d, const std::string& channel, const std::vector<std::string>& fields) {
+    std::vector<const Field*> picked;
+    for (const std::string& field : fields) {
+      const std::vector<const Field*> these = select_fields(d.fields, field);
+      if (these.empty()) {
+        const std::vector<std::string> near = nearest_fields(d.fields, field);
+        refused_ = fmt::format("{} messages ({}) have no field '{}'; {}", channel, d.type, field,
+                               near.empty() ? "bus types " + short_type_name(d.type) + " lists the fields"
+                                            : "nearest: " + join(near));
+        return false;
+      }
+      picked.insert(picked.end(), these.begin(), these.end());
     }
     std::vector<Field> kept;
     if (csv_)
@@ -242,10 +254,12 @@ class Echo {
   int64_t printed_ = 0, skipped_ = 0;
 };
 
-int cmd_echo(Bus& bus, const std::string& name, const std::string& field, bool csv, int64_t count, double duration) {
+int cmd_echo(Bus& bus, const std::string& name, std::vector<std::string> fields, bool csv, int64_t count,
+             double duration) {
   const std::string channel = bus.channel(name);
   Census census(bus);
-  const std::vector<EchoTarget> targets = echo_targets(bus, name, without_leading_slashes(field));
+  for (std::string& f : fields) f = without_leading_slashes(f);
+  const std::vector<EchoTarget> targets = echo_targets(bus, name, fields);
   std::vector<std::string> also;
   for (const auto& t : targets) also.push_back(t.channel);
   Echo echo(bus, targets, csv);
@@ -525,15 +539,16 @@ int main(int argc, char** argv) {
   hz->add_option("--duration", duration, "stop after S seconds")->check(CLI::PositiveNumber);
 
   bool csv = false;
-  std::string field;
+  std::vector<std::string> fields;
   auto* echo = app.add_subcommand("echo", "a channel's messages, decoded, or one field of them (rostopic echo)");
   echo->add_option("CHANNEL", channel,
                    "channel (the namespace is prefixed); CHANNEL/FIELD prints that field, as rostopic echo "
                    "/joint_states/position does")
       ->required();
-  echo->add_option("--field", field,
-                   "print only this field: a path as log2csv's columns (position[1], position) or the dashboard's "
-                   "label (position[j2])");
+  echo->add_option("--field", fields,
+                   "print only this field (again for more: --field position --field velocity): a path as log2csv's "
+                   "columns (position[1], position) or the dashboard's label (position[j2])")
+      ->allow_extra_args(false);
   echo->add_option("--count", count, "stop after N messages")->check(CLI::PositiveNumber);
   echo->add_option("--duration", duration, "stop after S seconds")->check(CLI::PositiveNumber);
   echo->add_flag("--csv", csv, "CSV rows (state-logger's columns) instead of YAML");
@@ -606,7 +621,7 @@ int main(int argc, char** argv) {
     if (netcheck->parsed())
       return cmd_netcheck(bus, answer_only && netcheck->count("--duration") == 0 ? 0.0 : net_duration, answer_only);
     if (hz->parsed()) return cmd_hz(bus, channel, window, duration);
-    if (echo->parsed()) return cmd_echo(bus, channel, field, csv, count, duration);
+    if (echo->parsed()) return cmd_echo(bus, channel, fields, csv, count, duration);
     return cmd_pub(bus, channel, type, assignments, rate, count);
   });
 }

@@ -71,7 +71,9 @@ int main(int argc, char** argv) {
     std::vector<std::string> errors, warnings = model.warnings;
     if (const std::string why = simulation_size_problem(model); !why.empty()) errors.push_back(why);
     size_t loadable = 0;
-    if (!config.empty()) {
+    // What launch and controller_manager would load: --config's YAML, or the one the URDF's gz plugin names in its
+    // <parameters> when there is none.
+    if (!model.config_path.empty()) {
       if (model.controllers.empty())
         errors.push_back(fmt::format(
             "{}: no controllers found (a controller is a map with a `type:` key, at the top level or under the "
@@ -115,7 +117,7 @@ int main(int argc, char** argv) {
     }
     std::printf("\nOK: %zu joints, %zu transmissions, %zu controllers", model.joints.size(),
                 model.transmissions.size(), model.controllers.size());
-    if (!config.empty() && loadable != model.controllers.size())
+    if (!model.config_path.empty() && loadable != model.controllers.size())
       std::printf(" (%zu load with this URDF, %zu %s not: see the warnings)", loadable,
                   model.controllers.size() - loadable, model.controllers.size() - loadable == 1 ? "does" : "do");
     std::printf("\n");

@@ -378,11 +378,32 @@ class NoNames : public Names {
 
 thread_local const Names* current_names = nullptr;
 
+// Evaluation nests as deep as the expressions (the parser bounds each) times the lambdas calling lambdas: bounded
+// here too, as Python's recursion limit does, far below what a thread's stack takes.
+constexpr int kMaxEvalDepth = 2000;
+thread_local int eval_depth = 0;
+class EvalDepth {
+ public:
+  EvalDepth() {
+    if (++eval_depth > kMaxEvalDepth) {
+      --eval_depth;
+      py::raise("RecursionError",
+                fmt::format("maximum recursion depth exceeded ({} levels of evaluation): a lambda that calls itself "
+                            "without end?",
+                            kMaxEvalDepth));
+    }
+  }
+  ~EvalDepth() { --eval_depth; }
+  EvalDepth(const EvalDepth&) = delete;
+  EvalDepth& operator=(const EvalDepth&) = delete;
+};
+
 class Evaluator {
  public:
   Evaluator(const Names& names, Locals locals) : names_(names), locals_(std::move(locals)) {}
 
   Value eval(const Node& n) {
+    const EvalDepth depth;
     switch (n.op) {
       case Op::Const: return n.value;
       case Op::Name: return name(n);

@@ -251,6 +251,10 @@ class Parser {
  public:
   explicit Parser(std::string_view text) : toks_(Lexer(text).run()) {}
 
+  // How deep the evaluator will recurse: parentheses, brackets and calls (each test()), unary operators, `not`, `**`,
+  // and each operator of a chain (a+b+c holds a+b in the outer +). Refused far below what a thread's stack takes.
+  static constexpr int kMaxDepth = 400;
+
   NodePtr run() {
     NodePtr n = testlist(/*allow_trailing_comma=*/true);
     if (peek().kind != Tok::End) unexpected();
@@ -311,6 +315,28 @@ class Parser {
     }
   }
 
+  class Deeper {
+   public:
+    explicit Deeper(Parser& p, bool enter = true) : p_(p) {
+      if (enter) more();
+    }
+    ~Deeper() { p_.depth_ -= n_; }
+    Deeper(const Deeper&) = delete;
+    Deeper& operator=(const Deeper&) = delete;
+    void more() {
+      ++n_;
+      if (++p_.depth_ > kMaxDepth)
+        throw EvalError("RecursionError",
+                        fmt::format("the expression nests deeper than {} levels at column {} (parentheses, unary "
+                                    "operators and each operator of a chain count): split it with xacro:property",
+                                    kMaxDepth, p_.peek().column));
+    }
+
+   private:
+    Parser& p_;
+    int n_ = 0;
+  };
+
   static std::shared_ptr<Node> node(Op op, int column) {
     auto n = std::make_shared<Node>();
     n->op = op;
@@ -340,6 +366,7 @@ class Parser {
   }
 
   NodePtr test() {
+    Deeper deeper(*this);
     if (is_kw("lambda")) return lambda();
     const int column = peek().column;
     NodePtr body = or_test();
@@ -366,8 +393,10 @@ class Parser {
   }
 
   NodePtr or_test() {
+    Deeper deeper(*this, false);
     NodePtr left = and_test();
     while (is_kw("or")) {
+      deeper.more();
       auto n = node(Op::Or, next().column);
       n->kids = {left, and_test()};
       left = n;
@@ -376,8 +405,10 @@ class Parser {
   }
 
   NodePtr and_test() {
+    Deeper deeper(*this, false);
     NodePtr left = not_test();
     while (is_kw("and")) {
+      deeper.more();
       auto n = node(Op::And, next().column);
       n->kids = {left, not_test()};
       left = n;
@@ -387,6 +418,7 @@ class Parser {
 
   NodePtr not_test() {
     if (is_kw("not")) {
+      Deeper deeper(*this);
       auto n = node(Op::Not, next().column);
       n->kids.push_back(not_test());
       return n;
@@ -442,6 +474,7 @@ class Parser {
 
   template <class Next>
   NodePtr binary_level(Next next_level, std::initializer_list<std::pair<const char*, Op>> ops) {
+    Deeper deeper(*this, false);
     NodePtr left = (this->*next_level)();
     while (true) {
       const Token& t = peek();
@@ -449,6 +482,7 @@ class Parser {
       bool matched = false;
       for (const auto& [text, op] : ops) {
         if (t.text == text) {
+          deeper.more();
           auto n = node(op, next().column);
           n->kids = {left, (this->*next_level)()};
           left = n;
@@ -473,6 +507,7 @@ class Parser {
     static const std::pair<const char*, Op> unary[] = {{"-", Op::Neg}, {"+", Op::Pos}, {"~", Op::Invert}};
     for (const auto& [text, op] : unary) {
       if (is_op(text)) {
+        Deeper deeper(*this);
         auto n = node(op, next().column);
         n->kids.push_back(factor());
         return n;
@@ -484,14 +519,17 @@ class Parser {
   NodePtr power() {
     NodePtr base = primary();
     if (!is_op("**")) return base;
+    Deeper deeper(*this);
     auto n = node(Op::Pow, next().column);
     n->kids = {base, factor()};
     return n;
   }
 
   NodePtr primary() {
+    Deeper deeper(*this, false);
     NodePtr n = atom();
     while (true) {
+      if (is_op(".") || is_op("(") || is_op("[")) deeper.more();
       if (is_op(".")) {
         next();
         if (peek().kind != Tok::Name) unexpected();
@@ -784,6 +822,7 @@ class Parser {
   }
 
   std::vector<Token> toks_;
+  int depth_ = 0;
   size_t pos_ = 0;
   std::vector<const Token*> open_;
 };

@@ -1,6 +1,8 @@
 // The minidom-like document tree: parsing a file as expat does, tree edits, and xacro's pretty printer.
 #include "description/xacro/xml_dom.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cstring>
 
@@ -235,7 +237,16 @@ class Parser {
     return n;
   }
 
+  // Elements nest at most this deep (a URDF nests a handful): every walk of the tree recurses per level.
+  static constexpr int kMaxDepth = 1000;
+
   Node* element() {
+    if (++depth_ > kMaxDepth)
+      fail(fmt::format("elements nest deeper than {} levels: every walk of the document recurses per level", kMaxDepth));
+    struct Leave {
+      int& d;
+      ~Leave() { --d; }
+    } leave{depth_};
     Node* e = arena_.make(NodeType::Element);
     e->file = file_;
     e->line = line_;
@@ -349,6 +360,7 @@ class Parser {
   Arena& arena_;
   size_t i_ = 0;
   int line_ = 1;
+  int depth_ = 0;
 };
 
 // minidom's _write_data (Python 3.8-3.12, which the official xacro's writer needs).

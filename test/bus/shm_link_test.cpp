@@ -4,7 +4,9 @@
 // Endpoints carry hardware messages there and mirror them to LCM when asked.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,6 +14,7 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <string>
 #include <thread>
@@ -278,6 +281,54 @@ TEST(ShmLink, TheFileGoesWithTheLastUserEvenAfterAKill) {
   EXPECT_TRUE(std::filesystem::exists(path));
 }
 
+// Another local user who makes the segment's file first (mode 0666, the right size) would read the robot's state and
+// command its joints: the file is refused naming its owner, as is one of ours that others may write, or a link.
+// Needs root, to be that other user (a process with uid 4242) and to give files away; skipped otherwise.
+TEST(ShmLink, ASegmentAnotherUserMadeOrLeftOpenToOthersIsRefusedByName) {
+  if (geteuid() != 0) GTEST_SKIP() << "needs root";
+  const std::string name = unique_name();
+  const std::string path = "/dev/shm/lcm_control." + name;
+  const pid_t squatter = fork();
+  if (squatter == 0) {
+    if (setgid(4242) != 0 || setuid(4242) != 0) _exit(2);
+    umask(0);
+    const int fd = open(path.c_str(), O_RDWR | O_CREAT | O_EXCL, 0666);
+    _exit(fd >= 0 && ftruncate(fd, off_t(64) << 20) == 0 ? 0 : 3);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(squatter, &status, 0), squatter);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "the squatter could not make " << path;
+  auto refusal = [&] {
+    try {
+      ShmLink link(name);
+    } catch (const BusError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  std::string why = refusal();
+  EXPECT_NE(why.find(path), std::string::npos) << why;
+  EXPECT_NE(why.find("uid 4242, not to this user"), std::string::npos) << why;
+  EXPECT_NE(why.find("shm:ANOTHER_NAME"), std::string::npos) << why;
+  // Ours, but open to others.
+  ASSERT_EQ(chown(path.c_str(), 0, 0), 0);
+  why = refusal();
+  EXPECT_NE(why.find("its mode is 0666"), std::string::npos) << why;
+  std::filesystem::remove(path);
+  // A link to a file elsewhere.
+  const std::string target = testing::temp_dir("shm_link") + "/target";
+  { std::ofstream(target) << "x"; }
+  std::filesystem::create_symlink(target, path);
+  why = refusal();
+  EXPECT_NE(why.find("is a link?"), std::string::npos) << why;
+  std::filesystem::remove(path);
+  // The file it makes itself is 0600 and its own.
+  ShmLink ok(name);
+  struct stat st {};
+  ASSERT_EQ(stat(path.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0600u);
+}
+
 TEST(ShmLink, AWriterKilledWhileWritingIsTakenOver) {
   const std::string name = unique_name();
   ShmLink a(name), b(name);
@@ -327,6 +378,7 @@ TEST(ShmLink, AHostileSizeIsSkippedAndCountedAndAForeignFileIsNamed) {
 
   const std::string foreign = "/dev/shm/lcm_control." + unique_name();
   { std::FILE* f = std::fopen(foreign.c_str(), "w"); std::fputs("not ours", f); std::fclose(f); }
+  chmod(foreign.c_str(), 0600);  // ours, as the program would make it: refused for what is in it
   try {
     ShmLink c(foreign.substr(std::string("/dev/shm/lcm_control.").size()));
     ADD_FAILURE() << "a foreign file was taken";

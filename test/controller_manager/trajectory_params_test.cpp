@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/joint_trajectory_controller_state_t.hpp"
@@ -138,4 +139,20 @@ TEST(ControllerManagerGroupEffortPosition, AJointWithoutItsPidIsRefusedNamingIt)
   EXPECT_FALSE(r.ok);
   EXPECT_TRUE(has(r.message, "spin")) << r.message;
   EXPECT_TRUE(has(r.message, "spin: {pid: {p: ..., i: ..., d: ...}}")) << r.message;
+}
+
+// A misspelt ROS 2 key is named with the one meant, and a list that is not of joints is not called one.
+TEST(ControllerManagerTrajectoryParams, AMisspeltRequiredKeyIsNamedWithTheOneMeant) {
+  const std::string dir = lcm_control::testing::temp_dir("misspelt_key");
+  const std::string yaml = dir + "/jtc.yaml";
+  std::ofstream(yaml) << "controller_manager:\n  ros__parameters:\n    update_rate: 1000\n"
+                         "    arm: {type: joint_trajectory_controller/JointTrajectoryController}\n"
+                         "arm:\n  ros__parameters:\n    joints: [slide, tilt]\n    command_interface: [position]\n"
+                         "    state_interfaces: [position, velocity]\n";
+  Rig rig(lcm_control::cm::builtin_registry(), lcm_control::testing::data("test_bot.urdf"), yaml);
+  const auto r = rig.load("arm");
+  ASSERT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "arm/command_interfaces: missing (required): a list of names; the file has "
+                             "'command_interface': did you mean 'command_interfaces'?"))
+      << r.message;
 }

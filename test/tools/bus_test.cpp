@@ -182,6 +182,8 @@ TEST(BusTool, ListHzAndEchoSeeWhatIsOnTheBus) {
   const double rate = std::stod(hz.output().substr(at + 14));
   EXPECT_GT(rate, 80);  // 5 ms period plus the publisher's own time: under 200 Hz, well over 80
   EXPECT_LT(rate, 205);
+  EXPECT_EQ(hz.output().find("no new messages"), std::string::npos) << "the last line is the run's: " << hz.output();
+  EXPECT_NE(hz.output().find(" messages in 2.2 s ("), std::string::npos) << hz.output();
 
   lt::ChildProcess echo({lt::bin("bus"), "--namespace", "robot", "echo", "slow", "--count", "2"}, env(url));
   ASSERT_EQ(echo.wait(20), 0) << echo.output();
@@ -241,6 +243,17 @@ TEST(BusTool, EchoPrintsOneFieldByRosPathOrDashboardLabelAndSuggestsTheNearestFo
                        env(url));
   ASSERT_EQ(csv.wait(20), 0) << csv.output();
   EXPECT_EQ(csv.output(), "utime,velocity[1]\n7,2\n");
+
+  lt::ChildProcess two({lt::bin("bus"), "echo", "joint_states", "--field", "position[j2]", "--field", "velocity[j2]",
+                        "--count", "1"},
+                       env(url));
+  ASSERT_EQ(two.wait(20), 0) << two.output();
+  EXPECT_EQ(two.output(), "position[j2]: -1.5\nvelocity[j2]: 2\n---\n");
+  lt::ChildProcess two_csv({lt::bin("bus"), "echo", "joint_states", "--field", "position[j1]", "--field",
+                            "velocity[j2]", "--csv", "--count", "1"},
+                           env(url));
+  ASSERT_EQ(two_csv.wait(20), 0) << two_csv.output();
+  EXPECT_EQ(two_csv.output(), "utime,position[0],velocity[1]\n7,0.25,2\n");
 
   lt::ChildProcess typo({lt::bin("bus"), "echo", "joint_states", "--field", "postion[j2]", "--duration", "5"},
                         env(url));

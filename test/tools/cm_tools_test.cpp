@@ -71,6 +71,20 @@ TEST_F(CmTools, SpawnerStartsTheTutorialControllersAndCmctlListsThemRunning) {
   EXPECT_EQ(out.substr(0, out.find('\n') + 1), "no controllers loaded\n") << out;
 }
 
+// A switch made after the spawner started its controllers (one stopped by hand) does not spoil its Ctrl-C: it stops
+// what still runs and unloads all it loaded.
+TEST_F(CmTools, SpawnerStopsAndUnloadsCleanlyAfterTheUserSwitched) {
+  ChildProcess spawner({bin("spawner"), "joint_state_controller", "j1_controller", "j2_controller", "--lcm-url", url_});
+  ASSERT_TRUE(spawner.wait_for_output("spawner: ready", 10.0)) << spawner.output();
+  auto [rc, out] = run({bin("cmctl"), "stop", "j2_controller"});
+  ASSERT_EQ(rc, 0) << out;
+  EXPECT_EQ(spawner.stop(5.0), 0) << spawner.output();
+  EXPECT_EQ(spawner.output().find("was refused"), std::string::npos) << spawner.output();
+  EXPECT_NE(spawner.output().find("stopped and unloaded, bye"), std::string::npos) << spawner.output();
+  std::tie(rc, out) = run({bin("cmctl"), "list"});
+  EXPECT_EQ(out.substr(0, out.find('\n') + 1), "no controllers loaded\n") << out;
+}
+
 // One good and one bad controller spawned together (ROS's spawner: the bad one is reported, the others run).
 TEST_F(CmTools, SpawnerNamesTheControllerThatFailsToLoadKeepsTheOthersAndExitsNonZero) {
   cm_->stop(5.0);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 
 #include "test/support/process.hpp"
 
@@ -101,4 +102,30 @@ TEST(Doctor, SeveralConfigsMergeAndAKeyIsBlamedOnTheFileItCameFrom) {
   EXPECT_TRUE(has(r.out, "joint_1_controller               loads")) << r.out;
   EXPECT_TRUE(has(r.out, dir + "/typo.yaml: arm_controller/state_publish_rat: not a parameter of")) << r.out;
   EXPECT_TRUE(has(r.out, "OK: 3 joints, 2 transmissions, 3 controllers\n")) << r.out;
+}
+
+// The ROS 2 way: the YAML comes through the gz plugin's <parameters>, not --config. doctor checks it as launch would
+// load it: a misspelt `joints:` fails here as it does with --config.
+TEST(Doctor, TheYamlOfTheGzPluginsParametersIsCheckedAsLaunchLoadsIt) {
+  const std::string dir = lt::temp_dir("doctor_plugin_yaml");
+  std::ifstream urdf_in(robot("two_component_arm.urdf")), yaml_in(robot("two_component_arm.yaml"));
+  std::stringstream urdf, yaml;
+  urdf << urdf_in.rdbuf();
+  yaml << yaml_in.rdbuf();
+  std::ofstream(dir + "/two_component_arm.urdf") << urdf.str();
+  std::ofstream(dir + "/two_component_arm.yaml") << yaml.str();
+  const DoctorRun ok = doctor({"--urdf", dir + "/two_component_arm.urdf"});
+  EXPECT_EQ(ok.rc, 0) << ok.out;
+  EXPECT_TRUE(has(ok.out, "arm_controller                   loads")) << ok.out;
+
+  std::string broken = yaml.str();
+  const size_t at = broken.find("    joints: [shoulder, elbow]");
+  ASSERT_NE(at, std::string::npos);
+  broken.replace(at, 11, "    joint: ");
+  std::ofstream(dir + "/two_component_arm.yaml") << broken;
+  const DoctorRun bad = doctor({"--urdf", dir + "/two_component_arm.urdf"});
+  EXPECT_EQ(bad.rc, 3) << bad.out;
+  EXPECT_TRUE(has(bad.out, "arm_controller/joints: missing (required): a list of joint names; the file has 'joint': "
+                           "did you mean 'joints'?"))
+      << bad.out;
 }

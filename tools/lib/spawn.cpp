@@ -104,10 +104,12 @@ bool Spawner::teardown(CmClient& cm, double timeout_s) {
   auto left = [&] { return std::max(0.05, double(end - monotonic_us()) / 1e6); };
   bool all_ok = true;
   try {
-    if (!running_.empty()) {
-      const cm_response_t r = cm.switch_controllers({}, running_, true, left());
+    // Best effort over everything it loaded: since it started them, the user may have stopped some and started
+    // others (a switch); those not running are left as they are.
+    {
+      const cm_response_t r = cm.switch_controllers({}, loaded_, false, left());
       if (!r.ok) {
-        say(fmt::format("stopping [{}] was refused: {}", fmt::join(running_, ", "), r.message));
+        say(fmt::format("stopping [{}] was refused: {}", fmt::join(loaded_, ", "), r.message));
         all_ok = false;
       }
       running_.clear();

@@ -1,6 +1,9 @@
 // The problems a user can act on: each names what is wrong, where (file:line), and the chain of macro calls and
 // includes that led there.
 #include <gtest/gtest.h>
+#include <pthread.h>
+
+#include <string>
 
 #include "test/description/xacro/xacro_test_util.hpp"
 
@@ -126,6 +129,78 @@ TEST(XacroErrors, FatalAndInfiniteRecursion) {
   EXPECT_CONTAINS(error_of(robot("<a v=\"${xacro.fatal('stop', 1)}\"/>\n")), "main.xacro:3: stop 1");
   EXPECT_CONTAINS(error_of(robot("<xacro:macro name=\"r\"><xacro:r/></xacro:macro>\n<xacro:r/>\n")),
                   "maximum recursion depth exceeded");
+}
+
+// Runs f on a thread with a stack of `bytes` (a quarter of a default thread's 8 MiB): the limits must hold there.
+template <class F>
+std::string on_small_stack(size_t bytes, F f) {
+  struct Job {
+    F f;
+    std::string out;
+  } job{std::move(f), {}};
+  pthread_attr_t attr;
+  pthread_attr_init(&attr);
+  pthread_attr_setstacksize(&attr, bytes);
+  pthread_t t;
+  const int rc = pthread_create(
+      &t, &attr,
+      [](void* p) -> void* {
+        auto* j = static_cast<Job*>(p);
+        j->out = j->f();
+        return nullptr;
+      },
+      &job);
+  pthread_attr_destroy(&attr);
+  if (rc != 0) return "pthread_create failed";
+  pthread_join(t, nullptr);
+  return job.out;
+}
+
+// Hostile nesting (issue 51): far past any real file, each refused with file:line and the limit, never a crash, even
+// on a thread with a quarter of the usual stack.
+TEST(XacroErrors, DeepNestingIsRefusedWithTheLimitNotACrash) {
+  const size_t kStack = 2u << 20;
+  auto expr = [](const std::string& e) { return robot("<a v=\"${" + e + "}\"/>\n"); };
+  const std::string parens = std::string(5000, '(') + "1" + std::string(5000, ')');
+  std::string chain = "1";
+  for (int k = 0; k < 20000; ++k) chain += "+1";
+  const struct {
+    const char* what;
+    std::string text;
+    const char* expected;
+  } cases[] = {
+      {"5,000 parentheses", expr(parens), "nests deeper than 400 levels"},
+      {"20,000 unary minus", expr(std::string(20000, '-') + "1"), "nests deeper than 400 levels"},
+      {"20,000 chained +", expr(chain), "nests deeper than 400 levels"},
+      {"20,000 not", expr([] {
+         std::string s;
+         for (int k = 0; k < 20000; ++k) s += "not ";
+         return s + "1";
+       }()),
+       "nests deeper than 400 levels"},
+      {"a lambda calling itself", expr("(lambda f: f(f))(lambda f: f(f))"), "maximum recursion depth exceeded"},
+  };
+  for (const auto& c : cases) {
+    const std::string msg = on_small_stack(kStack, [&] { return error_of(c.text); });
+    EXPECT_CONTAINS(msg, "main.xacro:3: RecursionError") << c.what;
+    EXPECT_CONTAINS(msg, c.expected) << c.what;
+  }
+  std::string deep;
+  for (int k = 0; k < 10000; ++k) deep += "<a>";
+  for (int k = 0; k < 10000; ++k) deep += "</a>";
+  const std::string msg = on_small_stack(kStack, [&] { return error_of(robot(deep + "\n")); });
+  EXPECT_CONTAINS(msg, "main.xacro");
+  EXPECT_CONTAINS(msg, "elements nest deeper than 1000 levels");
+  // What real files do stays well inside: 300 levels of parentheses, 300 chained operators, 900 nested elements.
+  EXPECT_EQ(on_small_stack(kStack, [&] { return error_of(expr(std::string(300, '(') + "1" + std::string(300, ')'))); }),
+            "");
+  std::string some = "1";
+  for (int k = 0; k < 300; ++k) some += "*1";
+  EXPECT_EQ(on_small_stack(kStack, [&] { return error_of(expr(some)); }), "");
+  std::string nested;
+  for (int k = 0; k < 900; ++k) nested += "<a>";
+  for (int k = 0; k < 900; ++k) nested += "</a>";
+  EXPECT_EQ(on_small_stack(kStack, [&] { return error_of(robot(nested + "\n")); }), "");
 }
 
 TEST(XacroErrors, TopFileMissing) {
