@@ -13,6 +13,8 @@
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <string>
+#include <unordered_map>
 
 #include "description/xacro/process_error.hpp"
 #include "description/xacro/python_expr.hpp"
@@ -172,7 +174,35 @@ double unit_expression(const YAML::Node& node) {
   }
 }
 
-Value convert(const YAML::Node& node) {
+// An alias (*a) is the anchored node itself in yaml-cpp's tree: converted once, by its place in the text, and shared
+// as PyYAML shares it, so that an anchor bomb (each level aliasing the one before ten times) reads in linear time.
+using Converted = std::unordered_map<size_t, Value>;
+Value convert(const YAML::Node& node, Converted& done);
+
+Value convert_collection(const YAML::Node& node, Converted& done) {
+  const YAML::Mark mark = node.Mark();
+  const bool known_place = mark.pos >= 0;
+  const size_t key = size_t(mark.pos) * 2 + (node.IsMap() ? 1 : 0);
+  if (known_place) {
+    if (const auto it = done.find(key); it != done.end()) return it->second;
+  }
+  Value v;
+  if (node.IsSequence()) {
+    List items;
+    items.reserve(node.size());
+    for (const YAML::Node& item : node) items.push_back(convert(item, done));
+    v = Value::list(std::move(items));
+  } else {
+    Dict d;
+    d.attribute_access = true;
+    for (const auto& kv : node) d.set(convert(kv.first, done), convert(kv.second, done));
+    v = Value::dict(std::move(d));
+  }
+  if (known_place) done.emplace(key, v);
+  return v;
+}
+
+Value convert(const YAML::Node& node, Converted& done) {
   switch (node.Type()) {
     case YAML::NodeType::Undefined:
     case YAML::NodeType::Null: return Value::none();
@@ -192,20 +222,15 @@ Value convert(const YAML::Node& node) {
       throw ProcessError(fmt::format("could not determine a constructor for the tag '{}' (YAML line {})", tag,
                                      node.Mark().line + 1));
     }
-    case YAML::NodeType::Sequence: {
-      List items;
-      items.reserve(node.size());
-      for (const YAML::Node& item : node) items.push_back(convert(item));
-      return Value::list(std::move(items));
-    }
-    case YAML::NodeType::Map: {
-      Dict d;
-      d.attribute_access = true;
-      for (const auto& kv : node) d.set(convert(kv.first), convert(kv.second));
-      return Value::dict(std::move(d));
-    }
+    case YAML::NodeType::Sequence:
+    case YAML::NodeType::Map: return convert_collection(node, done);
   }
   return Value::none();
+}
+
+Value convert(const YAML::Node& node) {
+  Converted done;
+  return convert(node, done);
 }
 
 }  // namespace

@@ -76,3 +76,35 @@ TEST(Gpio, ACommandOnAGpioOutputReadsBackOnItsStateInBullet) { commands_read_bac
 
 }  // namespace
 }  // namespace lcm_control::testing
+
+namespace lcm_control::testing {
+namespace {
+
+// ros2_control_demos' example 10 (../shared/ros2_robots/demo_gpio) with its own xacro and YAML, as its launch file
+// runs it: its GPIO controller's command on an output reads back on the state interface.
+TEST(Gpio, Ros2ControlDemosExample10RunsItsGpioController) {
+  const std::string dir = ros2_robots_dir();
+  if (dir.empty()) GTEST_SKIP() << "no ../shared/ros2_robots (set LCM_CONTROL_ROS2_ROBOTS to the folder)";
+  const std::string pkg = dir + "/demo_gpio/pkgs/ros2_control_demo_example_10";
+  LockstepSession robot(pkg + "/urdf/rrbot.urdf.xacro", pkg + "/config/rrbot_controllers.yaml",
+                        {"--package-path", dir + "/demo_gpio/pkgs"});
+  Bus bus(robot.url(), "");
+  Recorder<interface_group_values_t> states(bus.lcm(), "gpio_controller/gpio_states");
+  ASSERT_NO_FATAL_FAILURE(robot.start({"joint_state_broadcaster", "forward_position_controller", "gpio_controller"}));
+  ASSERT_TRUE(pump_until(bus.lcm(), [&] { return !states.messages.empty(); }, 10)) << robot.cm_output();
+  std::map<std::string, double> v = values_of(states.messages.back());
+  EXPECT_EQ(v["flange_vacuum/vacuum"], 1.0) << "its initial_value";
+  const interface_group_values_t vacuum = command("flange_vacuum", "vacuum", 0.27);
+  const interface_group_values_t analog = command("flange_analog_IOs", "analog_output1", 0.5);
+  bus.lcm().publish("gpio_controller/commands", &vacuum);
+  bus.lcm().publish("gpio_controller/commands", &analog);
+  ASSERT_TRUE(pump_until(bus.lcm(), [&] {
+    v = values_of(states.messages.back());
+    return v["flange_vacuum/vacuum"] == 0.27 && v["flange_analog_IOs/analog_output1"] == 0.5;
+  }, 10)) << "vacuum " << v["flange_vacuum/vacuum"] << ", analog_output1 " << v["flange_analog_IOs/analog_output1"]
+          << robot.cm_output() << robot.sim_output();
+  std::printf("example 10: vacuum 0.27 and analog_output1 0.5 read back on their state interfaces\n");
+}
+
+}  // namespace
+}  // namespace lcm_control::testing

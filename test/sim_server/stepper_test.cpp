@@ -80,7 +80,9 @@ TEST(sim_realtime, PacesToTheWallClockAndPublishesClockAndStatistics) {
   EXPECT_NEAR(s.real_time_factor, 1.0, 0.25);
   EXPECT_NEAR(double(s.cycles), 1000, 250);
   EXPECT_NEAR(s.period_mean_us, 1000, 250);
-  EXPECT_EQ(s.num_items, 2);
+  ASSERT_EQ(s.num_items, 3) << "the step, the publish, the robot's one hardware component";
+  EXPECT_EQ(s.item_kind[2], "component");
+  EXPECT_NEAR(s.item_period_mean_us[2], 1000, 250);
   std::printf("statistics: period %.1f us (jitter %.1f, max %.1f), step %.2f us mean, %lld overruns\n",
               s.period_mean_us, s.period_jitter_us, s.period_max_us, s.item_exec_mean_us[0],
               static_cast<long long>(s.overruns));
