@@ -261,11 +261,13 @@ void validate(RobotModel& model) {
 std::string simulation_size_problem(const RobotModel& model) {
   size_t moving = 0;
   for (const Joint& j : model.joints) moving += j.type != JointType::Fixed;
-  if (moving <= kMaxSimulatedJoints) return "";
-  return fmt::format("{}: {} moving joints: sim_server simulates at most {} (its solver's start-up time and memory grow "
-                     "with the square of the joints: 1,000 take about 4 s and 200 MB); fix joints that need not move, "
-                     "split the robot, or run it on mock hardware (--mock-hardware)",
-                     model.urdf_path, moving, kMaxSimulatedJoints);
+  const size_t all = model.joints.size();
+  if (all <= kMaxSimulatedJoints) return "";
+  return fmt::format("{}: {} joints ({} moving, {} fixed): sim_server simulates at most {} (every joint, a fixed one "
+                     "too, is a link of Bullet's multibody, whose start-up time and memory grow with the square of "
+                     "the links: 1,000 take about 4 s and 200 MB); merge links that need no joint of their own, split "
+                     "the robot, or run it on mock hardware (--mock-hardware)",
+                     model.urdf_path, all, moving, all - moving, kMaxSimulatedJoints);
 }
 
 }  // namespace lcm_control

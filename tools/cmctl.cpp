@@ -41,6 +41,9 @@ int main(int argc, char** argv) {
   std::vector<std::string> names, start, stop;
   bool best_effort = false, force = false;
   auto* list = app.add_subcommand("list", "controllers with type, state, joints and interface")->alias("list-controllers");
+  bool verbose = false;
+  list->add_flag("--verbose", verbose, "every joint of each controller (by default more than three are shown as "
+                                          "first..last (count))");
   auto* types = app.add_subcommand("list-types", "controller types this manager can load")->alias("list-controller-types");
   auto* interfaces = app.add_subcommand("list-hardware-interfaces",
                                         "each joint's command interfaces (available, claimed by whom) and state ones");
@@ -152,7 +155,7 @@ int main(int argc, char** argv) {
     if (list->parsed()) {
       r = cm.list(timeout);
       if (r.ok) {
-        fmt::print("{}", r.controllers.empty() ? "no controllers loaded\n" : controller_table(r.controllers, r.ros2));
+        fmt::print("{}", r.controllers.empty() ? "no controllers loaded\n" : controller_table(r.controllers, r.ros2, verbose));
         if (r.message.find(" listed, in load order: ") != std::string::npos) fmt::print("{}\n", r.message);
         if (!r.hardware.empty()) fmt::print("hardware: {}\n", r.hardware);
         std::vector<std::string> down;  // said only when one is not active

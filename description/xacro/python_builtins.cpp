@@ -6,6 +6,7 @@
 
 #include "description/xacro/python_args.hpp"
 #include "description/xacro/python_literals.hpp"
+#include "description/xacro/utf8.hpp"
 
 namespace lcm_control::xacro::py {
 
@@ -319,7 +320,7 @@ Tables make_tables() {
     arity("len", args, 1, 1);
     const Value& v = args[0];
     switch (v.kind()) {
-      case Kind::Str: return Value::integer(static_cast<int64_t>(v.as_str().size()));
+      case Kind::Str: return Value::integer(static_cast<int64_t>(code_point_count(v.as_str())));
       case Kind::List:
       case Kind::Tuple: return Value::integer(static_cast<int64_t>(v.as_list().size()));
       case Kind::Dict: return Value::integer(static_cast<int64_t>(v.as_dict().items.size()));

@@ -6,9 +6,11 @@
 #include <algorithm>
 #include <cmath>
 #include <unordered_map>
+#include <vector>
 
 #include "description/xacro/python_ast.hpp"
 #include "description/xacro/python_eval.hpp"
+#include "description/xacro/utf8.hpp"
 
 namespace lcm_control::xacro {
 
@@ -338,7 +340,11 @@ Value index(const Value& target, const Value& key) {
       if (!is_intlike(key))
         raise("TypeError", fmt::format("string indices must be integers, not '{}'", key.type_name()));
       const std::string& s = target.as_str();
-      return Value::string(std::string(1, s[static_cast<size_t>(normalize_index(key.as_int(), s.size(), "string"))]));
+      if (is_ascii(s))
+        return Value::string(std::string(1, s[static_cast<size_t>(normalize_index(key.as_int(), s.size(), "string"))]));
+      const std::vector<size_t> at = code_point_starts(s);  // by code point, as Python's str
+      const size_t k = static_cast<size_t>(normalize_index(key.as_int(), at.size() - 1, "string"));
+      return Value::string(s.substr(at[k], at[k + 1] - at[k]));
     }
     case Value::Kind::Dict: {
       const Dict& d = target.as_dict();
@@ -508,8 +514,11 @@ class Evaluator {
     const int64_t step = step_opt.value_or(1);
     if (step == 0) py::raise("ValueError", "slice step cannot be zero");
     int64_t size;
-    if (target.kind() == Value::Kind::Str)
-      size = static_cast<int64_t>(target.as_str().size());
+    std::vector<size_t> at;  // a non-ASCII string's code points
+    if (target.kind() == Value::Kind::Str) {
+      if (!is_ascii(target.as_str())) at = code_point_starts(target.as_str());
+      size = static_cast<int64_t>(at.empty() ? target.as_str().size() : at.size() - 1);
+    }
     else if (target.kind() == Value::Kind::List || target.kind() == Value::Kind::Tuple)
       size = static_cast<int64_t>(target.as_list().size());
     else
@@ -531,7 +540,13 @@ class Evaluator {
     for (int64_t i = start; step > 0 ? i < stop : i > stop; i += step) picks.push_back(static_cast<size_t>(i));
     if (target.kind() == Value::Kind::Str) {
       std::string out;
-      for (size_t i : picks) out += target.as_str()[i];
+      const std::string& s = target.as_str();
+      for (size_t i : picks) {
+        if (at.empty())
+          out += s[i];
+        else
+          out.append(s, at[i], at[i + 1] - at[i]);
+      }
       return Value::string(std::move(out));
     }
     List out;

@@ -1,7 +1,10 @@
 // The str methods of xacro's expressions and Python's formatting: str.format, format(v, spec) and '%'.
+#include <algorithm>
 #include <cstring>
+#include <vector>
 
 #include "description/xacro/python_args.hpp"
+#include "description/xacro/utf8.hpp"
 
 namespace lcm_control::xacro::py {
 
@@ -380,8 +383,12 @@ std::optional<Value> str_method(const Value& self, const std::string& name) {
     const bool up = name == "upper";
     return simple([up](const std::string& s, Args args) {
       arity(up ? "upper" : "lower", args, 0, 0);
-      std::string out = s;
-      for (char& c : out) c = static_cast<char>(up ? std::toupper(static_cast<unsigned char>(c)) : std::tolower(static_cast<unsigned char>(c)));
+      std::string out;
+      out.reserve(s.size());
+      for (size_t i = 0; i < s.size();) {
+        const uint32_t cp = next_code_point(s, i);
+        append_utf8(out, up ? upper_case(cp) : lower_case(cp));
+      }
       return Value::string(std::move(out));
     });
   }
@@ -389,12 +396,13 @@ std::optional<Value> str_method(const Value& self, const std::string& name) {
     const bool title = name == "title";
     return simple([title](const std::string& s, Args args) {
       arity(title ? "title" : "capitalize", args, 0, 0);
-      std::string out = s;
+      std::string out;
+      out.reserve(s.size());
       bool start = true;
-      for (char& c : out) {
-        const unsigned char u = static_cast<unsigned char>(c);
-        c = static_cast<char>(start ? std::toupper(u) : std::tolower(u));
-        start = title ? !std::isalpha(static_cast<unsigned char>(c)) : false;
+      for (size_t i = 0; i < s.size();) {
+        const uint32_t cp = next_code_point(s, i);
+        append_utf8(out, start ? upper_case(cp) : lower_case(cp));
+        start = title ? !is_cased_letter(cp) : false;
       }
       return Value::string(std::move(out));
     });
@@ -441,19 +449,23 @@ std::optional<Value> str_method(const Value& self, const std::string& name) {
     return simple([which](const std::string& s, Args args) {
       arity(which.c_str(), args, 1, 3);
       const std::string& sub = str_arg(which.c_str(), args[0]);
-      const int64_t size = static_cast<int64_t>(s.size());
+      // Positions are code points (Python's str): a non-ASCII string's are mapped to bytes and back.
+      const std::vector<size_t> cps = is_ascii(s) ? std::vector<size_t>{} : code_point_starts(s);
+      auto byte_at = [&](int64_t cp) { return cps.empty() ? size_t(cp) : cps[size_t(cp)]; };
+      const int64_t size = static_cast<int64_t>(cps.empty() ? s.size() : cps.size() - 1);
       auto clamp = [&](int64_t i) { return std::clamp<int64_t>(i < 0 ? i + size : i, 0, size); };
-      const size_t start = static_cast<size_t>(args.size() > 1 ? clamp(integer(which.c_str(), args[1])) : 0);
-      const size_t end = static_cast<size_t>(args.size() > 2 ? clamp(integer(which.c_str(), args[2])) : size);
+      const size_t start = byte_at(args.size() > 1 ? clamp(integer(which.c_str(), args[1])) : 0);
+      const size_t end = byte_at(args.size() > 2 ? clamp(integer(which.c_str(), args[2])) : size);
       const std::string part = end > start ? s.substr(start, end - start) : "";
       if (which == "count") return Value::integer(static_cast<int64_t>(count_occurrences(part, sub)));
       const size_t at = which[0] == 'r' ? part.rfind(sub) : part.find(sub);
       if (at == std::string::npos) {
         if (which == "index" || which == "rindex") raise("ValueError", "substring not found");
-        if (end < start && !sub.empty()) return Value::integer(-1);
         return Value::integer(-1);
       }
-      return Value::integer(static_cast<int64_t>(at + start));
+      const size_t byte = at + start;
+      if (cps.empty()) return Value::integer(static_cast<int64_t>(byte));
+      return Value::integer(static_cast<int64_t>(std::lower_bound(cps.begin(), cps.end(), byte) - cps.begin()));
     });
   }
   if (name == "format")
@@ -464,8 +476,9 @@ std::optional<Value> str_method(const Value& self, const std::string& name) {
     return simple([](const std::string& s, Args args) {
       arity("zfill", args, 1, 1);
       const int64_t width = integer("zfill", args[0]);
-      if (static_cast<int64_t>(s.size()) >= width) return Value::string(s);
-      const size_t fill = static_cast<size_t>(width) - s.size();
+      const size_t length = code_point_count(s);
+      if (static_cast<int64_t>(length) >= width) return Value::string(s);
+      const size_t fill = static_cast<size_t>(width) - length;
       if (!s.empty() && (s[0] == '-' || s[0] == '+')) return Value::string(s[0] + std::string(fill, '0') + s.substr(1));
       return Value::string(std::string(fill, '0') + s);
     });

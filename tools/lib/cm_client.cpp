@@ -290,10 +290,20 @@ std::string hardware_components_text(const std::vector<hardware_component_t>& co
   return out;
 }
 
-std::string controller_table(const std::vector<controller_info_t>& controllers, bool ros2) {
+namespace {
+// A controller's joints in the list's column: all of them up to three, else the first and last with the count (the
+// whole list is `cmctl list --verbose`'s).
+std::string joints_cell(const std::vector<std::string>& joints, bool verbose) {
+  if (joints.empty()) return "-";
+  if (verbose || joints.size() <= 3) return fmt::format("{}", fmt::join(joints, ","));
+  return fmt::format("{}..{} ({})", joints.front(), joints.back(), joints.size());
+}
+}  // namespace
+
+std::string controller_table(const std::vector<controller_info_t>& controllers, bool ros2, bool verbose) {
   std::vector<std::vector<std::string>> rows = {{"NAME", "TYPE", "STATE", "JOINTS", "INTERFACE"}};
   for (const auto& c : controllers)
-    rows.push_back({c.name, c.type, ros2 ? ros2_state(c.state) : c.state, c.joints.empty() ? "-" : fmt::format("{}", fmt::join(c.joints, ",")),
+    rows.push_back({c.name, c.type, ros2 ? ros2_state(c.state) : c.state, joints_cell(c.joints, verbose),
                     c.hardware_interface.empty() ? "-" : c.hardware_interface});
   return table_text(rows);
 }

@@ -96,7 +96,7 @@ std::string no_goal_result(CmClient& cm, const Bus& bus, const std::string& cont
 
 // "name  type  state  joints  interface" as an aligned table, one controller a line; with ros2, states as ROS 2
 // names them (ros2_state).
-std::string controller_table(const std::vector<controller_info_t>& controllers, bool ros2 = false);
+std::string controller_table(const std::vector<controller_info_t>& controllers, bool ros2 = false, bool verbose = false);
 // Rows as columns two spaces apart, each as wide as its widest cell: left-aligned, from column `right_from` on
 // right-aligned (numbers).
 std::string table_text(const std::vector<std::vector<std::string>>& rows, size_t right_from = SIZE_MAX);

@@ -504,3 +504,30 @@ TEST(XacroExpr, RepeatedExpressionsUseTheCacheAndStillSeeCurrentNames) {
 
 }  // namespace
 }  // namespace lcm_control::xacro
+
+namespace lcm_control::xacro {
+namespace {
+
+// Strings are code points, as Python's str (issue 51: 'é'[0] wrote a lone byte, len('é') was 2); case mapping covers
+// ASCII, Latin-1, Greek and Cyrillic (the guide's xacro section states it).
+TEST(XacroExpr, StringsAreMeasuredIndexedSlicedAndCaseMappedByCodePoint) {
+  EXPECT_EQ(S("len('é')"), "1");
+  EXPECT_EQ(S("len('naïve-Ω')"), "7");
+  EXPECT_EQ(S("'héllo'[1]"), "é");
+  EXPECT_EQ(S("'héllo'[-4]"), "é");
+  EXPECT_EQ(S("'héllo'[1:3]"), "él");
+  EXPECT_EQ(S("'héllo'[::-1]"), "olléh");
+  EXPECT_EQ(S("'é'.upper()"), "É");
+  EXPECT_EQ(S("'ΑΒΓ Ω'.lower()"), "αβγ ω");
+  EXPECT_EQ(S("'привет'.upper()"), "ПРИВЕТ");
+  EXPECT_EQ(S("'élan vital'.title()"), "Élan Vital");
+  EXPECT_EQ(S("'ÉCOLE'.capitalize()"), "École");
+  EXPECT_EQ(S("'xéy'.find('y')"), "2");
+  EXPECT_EQ(S("'éaéa'.rfind('a', 0, 2)"), "1");
+  EXPECT_EQ(S("'ab'.upper() + 'AB'.lower()"), "ABab");
+  EXPECT_EQ(S("'é'.zfill(3)"), "00é");
+  EXPECT_NE(Err("'é'[1]").find("IndexError"), std::string::npos) << Err("'é'[1]");
+}
+
+}  // namespace
+}  // namespace lcm_control::xacro

@@ -147,20 +147,23 @@ TEST(Limits, AGoalTooLargeToTakeIsRefusedOnTheResultChannelWithOneLogLine) {
 namespace {
 
 // A serial chain of n revolute links with limits and effort transmissions, and a joint_state_controller: its files.
-std::pair<std::string, std::string> write_chain(const std::string& folder, int n) {
+std::pair<std::string, std::string> write_chain(const std::string& folder, int n, bool fixed = false) {
   std::string urdf = "<robot name=\"chain\"><link name=\"base\"><inertial><mass value=\"1\"/><inertia ixx=\"0.01\" "
                      "iyy=\"0.01\" izz=\"0.01\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial></link>";
   for (int i = 0; i < n; ++i)
     urdf += fmt::format(
         "<link name=\"l{0}\"><inertial><origin xyz=\"0 0 0.05\"/><mass value=\"0.1\"/><inertia ixx=\"0.001\" "
         "iyy=\"0.001\" izz=\"0.001\" ixy=\"0\" ixz=\"0\" iyz=\"0\"/></inertial><collision><origin xyz=\"0 0 0.05\"/>"
-        "<geometry><box size=\"0.02 0.02 0.1\"/></geometry></collision></link><joint name=\"j{0}\" type=\"revolute\">"
+        "<geometry><box size=\"0.02 0.02 0.1\"/></geometry></collision></link><joint name=\"j{0}\" type=\"{2}\">"
         "<parent link=\"{1}\"/><child link=\"l{0}\"/><origin xyz=\"0 0 0.1\"/><axis xyz=\"0 1 0\"/><limit lower=\"-1\" "
-        "upper=\"1\" effort=\"10\" velocity=\"2\"/></joint><transmission name=\"t{0}\"><type>transmission_interface/"
-        "SimpleTransmission</type><joint name=\"j{0}\"><hardwareInterface>hardware_interface/EffortJointInterface"
-        "</hardwareInterface></joint><actuator name=\"m{0}\"><mechanicalReduction>1</mechanicalReduction></actuator>"
-        "</transmission>",
-        i, i == 0 ? std::string("base") : fmt::format("l{}", i - 1));
+        "upper=\"1\" effort=\"10\" velocity=\"2\"/></joint>{3}",
+        i, i == 0 ? std::string("base") : fmt::format("l{}", i - 1), fixed && i > 0 ? "fixed" : "revolute",
+        fixed && i > 0 ? std::string()
+                       : fmt::format("<transmission name=\"t{0}\"><type>transmission_interface/SimpleTransmission</type>"
+                                     "<joint name=\"j{0}\"><hardwareInterface>hardware_interface/EffortJointInterface"
+                                     "</hardwareInterface></joint><actuator name=\"m{0}\"><mechanicalReduction>1"
+                                     "</mechanicalReduction></actuator></transmission>",
+                                     i));
   urdf += "<gazebo><plugin name=\"gazebo_ros_control\" filename=\"libgazebo_ros_control.so\"/></gazebo></robot>";
   const std::string u = folder + fmt::format("/chain{}.urdf", n), y = folder + fmt::format("/chain{}.yaml", n);
   std::ofstream(u) << urdf;
@@ -193,7 +196,8 @@ TEST(Limits, ALongChainIsReadyQuicklyOrRefusedAtOnceWithTheLimitNamed) {
       EXPECT_EQ(rc, 3) << sim.output();
       EXPECT_EQ(doctor_rc, 3) << doctor.output();
       for (const std::string& out : {sim.output(), doctor.output()})
-        EXPECT_NE(out.find(fmt::format("{} moving joints: sim_server simulates at most 1000", n)), std::string::npos)
+        EXPECT_NE(out.find(fmt::format("{} joints ({} moving, 0 fixed): sim_server simulates at most 1000", n, n)),
+                  std::string::npos)
             << out;
     }
     figures += fmt::format("{} links: sim_server {} in {:.2f} s; ", n, rc == 0 ? "ready and stepped" : "refused", s);
@@ -201,6 +205,27 @@ TEST(Limits, ALongChainIsReadyQuicklyOrRefusedAtOnceWithTheLimitNamed) {
   std::filesystem::remove_all(folder);
   std::printf("RELIABILITY|limits|serial chains of 500 and 5,000 links|tried=2|ok=%d|crashes=0|hangs=0|%s\n",
               ::testing::Test::HasFailure() ? 0 : 2, figures.c_str());
+}
+
+// 20,000 links on fixed joints and one moving joint took 75 s to start: every joint counts against the limit, so
+// doctor and sim_server refuse it at once, naming the fixed ones.
+TEST(Limits, ManyLinksOnFixedJointsAreRefusedAtOnce) {
+  const std::string folder = lt::temp_dir("limits_fixed");
+  const auto [urdf, config] = write_chain(folder, 20000, true);
+  const auto t0 = std::chrono::steady_clock::now();
+  lt::ChildProcess sim({lt::bin("sim_server"), "--urdf", urdf, "--config", config, "--duration", "0.01"},
+                       {{"LCM_DEFAULT_URL", lt::unique_lcm_url()}});
+  const int rc = sim.wait(60);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  lt::ChildProcess doctor({lt::bin("doctor"), "--urdf", urdf, "--config", config});
+  EXPECT_EQ(doctor.wait(60), 3) << doctor.output();
+  EXPECT_EQ(rc, 3) << sim.output();
+  for (const std::string& out : {sim.output(), doctor.output()})
+    EXPECT_NE(out.find("20000 joints (1 moving, 19999 fixed): sim_server simulates at most 1000"), std::string::npos)
+        << out;
+  std::filesystem::remove_all(folder);
+  std::printf("RELIABILITY|limits|20,000 links on fixed joints|tried=1|ok=%d|crashes=0|hangs=0|refused in %.2f s\n",
+              ::testing::Test::HasFailure() ? 0 : 1, s);
 }
 
 // Item 1: 5,000 trajectory goals naming a 60 KB joint that clears the screen and forges a line (before: 300 MB of
