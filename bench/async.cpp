@@ -19,8 +19,8 @@
 #include <thread>
 #include <vector>
 
+#include "bench/pingpong.hpp"
 #include "bus/bus.hpp"
-#include "bus/hardware_wire.hpp"
 #include "controller_manager/manager.hpp"
 #include "controller_manager/registry.hpp"
 #include "description/robot_model.hpp"
@@ -29,6 +29,7 @@ namespace {
 
 using namespace lcm_control;
 using namespace lcm_control::cm;
+using lcm_control::bench::resting_state;
 
 int g_sleeper_updates = 0;
 
@@ -73,19 +74,7 @@ Figures run(const std::string& kind, double seconds, const std::string& dir) {
   registry.add("bench/Sleeper", [](const std::string&) { return std::make_unique<Sleeper>(); });
   Bus bus("memq://", "");
   RobotModel model = load_robot_model(std::string(LCM_CONTROL_SOURCE_DIR) + "/config/turret_bot.urdf", {yaml});
-  hardware_state_t st{};
-  st.session = 7;
-  st.lockstep = false;
-  st.period_us = 1000;
-  st.real_time_factor = 1;
-  st.num_actuators = int32_t(model.transmissions.size());
-  for (const TransmissionSpec& t : model.transmissions) {
-    st.name.push_back(t.actuator);
-    st.mode.push_back(wire_mode(t.interfaces.front()));
-  }
-  st.position.assign(st.name.size(), 0.0);
-  st.velocity.assign(st.name.size(), 0.0);
-  st.effort.assign(st.name.size(), 0.0);
+  hardware_state_t st = resting_state(model, 7, false);
   ControllerManager cm(std::move(model), bus, registry);
   std::vector<std::string> start = {"jsb", "j2"};
   if (kind != "none") start.push_back("sleeper");

@@ -37,19 +37,7 @@ class HardwarePinger {
  public:
   HardwarePinger(const std::string& url, const RobotModel& model) : lc_(url) {
     std::mt19937_64 rng(std::random_device{}());
-    state_.session = int64_t(rng() >> 1);
-    state_.lockstep = true;
-    state_.period_us = 1000;
-    state_.e_stop = false;
-    state_.real_time_factor = 0;
-    state_.num_actuators = int32_t(model.transmissions.size());
-    for (const TransmissionSpec& t : model.transmissions) {
-      state_.name.push_back(t.actuator);
-      state_.mode.push_back(wire_mode(t.interfaces.front()));
-    }
-    state_.position.assign(state_.name.size(), 0.0);
-    state_.velocity.assign(state_.name.size(), 0.0);
-    state_.effort.assign(state_.name.size(), 0.0);
+    state_ = resting_state(model, int64_t(rng() >> 1), true);
     buf_.resize(size_t(state_.getEncodedSize()));
     // What the controller manager answers: same actuators, mode and command per actuator.
     resize(cmd_, state_.num_actuators);

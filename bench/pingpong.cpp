@@ -1,6 +1,10 @@
 // Round-trip floors: raw UDP and bare LCM ping-pong clients and echo servers (see pingpong.hpp).
 #include "bench/pingpong.hpp"
 
+#include "bus/hardware_wire.hpp"
+#include "description/robot_model.hpp"
+#include "lcm_control/hardware_state_t.hpp"
+
 #include <arpa/inet.h>
 #include <linux/futex.h>
 #include <netinet/in.h>
@@ -22,6 +26,24 @@
 #include <stdexcept>
 
 namespace lcm_control::bench {
+
+hardware_state_t resting_state(const RobotModel& model, int64_t session, bool lockstep) {
+  hardware_state_t st{};
+  st.session = session;
+  st.lockstep = lockstep;
+  st.period_us = 1000;
+  st.e_stop = false;
+  st.real_time_factor = lockstep ? 0 : 1;
+  st.num_actuators = int32_t(model.transmissions.size());
+  for (const TransmissionSpec& t : model.transmissions) {
+    st.name.push_back(t.actuator);
+    st.mode.push_back(wire_mode(t.interfaces.front()));
+  }
+  st.position.assign(st.name.size(), 0.0);
+  st.velocity.assign(st.name.size(), 0.0);
+  st.effort.assign(st.name.size(), 0.0);
+  return st;
+}
 
 int64_t now_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())

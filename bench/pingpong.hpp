@@ -15,9 +15,18 @@
 #include <string>
 #include <vector>
 
+namespace lcm_control {
+struct RobotModel;
+class hardware_state_t;
+}  // namespace lcm_control
+
 namespace lcm_control::bench {
 
 int64_t now_ns();
+
+// What a hardware of `model` publishes at rest: its actuators in transmission order, each in its first interface's
+// mode, at 0; step 0, 1 ms period, not e-stopped.
+hardware_state_t resting_state(const RobotModel& model, int64_t session, bool lockstep);
 
 // Sorted-copy quantile (nearest rank), NaN for an empty set.
 double quantile(std::vector<double> v, double f);

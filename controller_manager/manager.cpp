@@ -685,14 +685,9 @@ void ControllerManager::flush_published() {
     if (slot->outbox) slot->outbox->flush();
 }
 
-bool ControllerManager::deliver_held() {
-  bool left = false;
+void ControllerManager::deliver_held() {
   for (const auto& slot : loop_.slots())
-    if (slot->async) {
-      slot->endpoints->deliver_held();
-      left = left || slot->endpoints->held() > 0;
-    }
-  return left;
+    if (slot->async) slot->endpoints->deliver_held();
 }
 
 void ControllerManager::poll(int64_t now) {

@@ -138,8 +138,8 @@ class ControllerManager {
   // Waits until the controllers' messages handed over so far have left (tests; not for the loop path).
   void flush_published();
   // Between cycles: what arrived for is_async controllers while their update ran (Endpoints::hold_while) is delivered
-  // to those whose thread is idle; whether any is still held.
-  bool deliver_held();
+  // to those whose thread is idle.
+  void deliver_held();
   // Stops and unloads every controller; returns what was done.
   std::string shutdown();
 

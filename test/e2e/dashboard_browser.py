@@ -109,6 +109,22 @@ def joint_positions(bin_dir, url):
     return dict(zip([n.strip() for n in names.group(1).split(",")], [float(x) for x in pos.group(1).split(",")]))
 
 
+def gains_of(wd, owner, joint, p):
+    """The gains panel on owner/joint once it shows p as its p gain: "owner/joint=p". The panel opens on the first
+    joint whose owner answers within the probe's second; on a loaded machine the expected owner may answer late and
+    the panel open on another joint (CI, once): then the test picks it, as a user would."""
+    shown_js = ("return document.getElementById('gains-owner').value + '/' + "
+                "document.getElementById('gains-joint').value + '=' + document.getElementById('gains-p').value")
+    first = wait_for("a joint with gains in the panel", lambda: (lambda v: not v.endswith("=") and v)(
+        wd.js(shown_js)), 15)
+    if not first.startswith(f"{owner}/{joint}="):
+        print("the panel opened on", first, f"- picking {owner}/{joint}")
+        wd.js(f"const o = document.getElementById('gains-owner'); o.value = '{owner}'; o.onchange();"
+              f"const j = document.getElementById('gains-joint'); j.value = '{joint}'; j.onchange();")
+    return wait_for(f"{owner}'s {joint} gains in the page", lambda: (lambda v: v.endswith("=" + p) and v)(
+        wd.js(shown_js)), 10)
+
+
 def whole_robot_in_view(wd, what):
     """The robot's bounding box, projected by the page's camera, on the canvas (and not a speck in it)."""
     box = wait_for(f"{what} in view", lambda: (lambda b: b and b["inside"] and b)(
@@ -237,18 +253,7 @@ def main():
 
         # Gains as rqt_reconfigure shows them: sim_server's j1 (turret_bot.yaml: p 150, d 50), then a new p applied
         # and read back from the owner with `tune`.
-        # The panel opens on the first joint whose owner answers within the probe's second; on a loaded machine
-        # sim_server's j1 may answer late and the panel open on another joint (CI, once): pick it as a user would.
-        shown_js = ("return document.getElementById('gains-owner').value + '/' + "
-                    "document.getElementById('gains-joint').value + '=' + document.getElementById('gains-p').value")
-        first = wait_for("a joint with gains in the panel", lambda: (lambda v: not v.endswith("=") and v)(
-            wd.js(shown_js)), 15)
-        if not first.startswith("sim_server/j1="):
-            print("the panel opened on", first, "- picking sim_server/j1")
-            wd.js("const o = document.getElementById('gains-owner'); o.value = 'sim_server'; o.onchange();"
-                  "const j = document.getElementById('gains-joint'); j.value = 'j1'; j.onchange();")
-        p = wait_for("sim_server's j1 gains in the page", lambda: (lambda v: v.endswith("=150") and v)(
-            wd.js(shown_js)), 10)
+        p = gains_of(wd, "sim_server", "j1", "150")
         print("gains shown:", p)
         wd.js("document.getElementById('gains-p').value = 160; document.getElementById('gains-apply').click()")
         msg = wait_for("the owner's confirmation", lambda: wd.js(
@@ -453,17 +458,7 @@ def tall_arm(wd, a, url, ns, page, chromium, work):
     whole_robot_in_view(wd, "tall_arm after the fit button")
 
     # Gains: sim_server has none for these effort joints; the panel opens on the first controller's PID.
-    # (An owner that misses the probe's second on a loaded machine is passed over: then pick it as a user would.)
-    shown_js = ("return document.getElementById('gains-owner').value + '/' + "
-                "document.getElementById('gains-joint').value + '=' + document.getElementById('gains-p').value")
-    first = wait_for("a joint with gains in the panel", lambda: (lambda v: not v.endswith("=") and v)(
-        wd.js(shown_js)), 15)
-    if not first.startswith("joint1_position_controller/joint1="):
-        print("the panel opened on", first, "- picking joint1_position_controller/joint1")
-        wd.js("const o = document.getElementById('gains-owner'); o.value = 'joint1_position_controller'; o.onchange();"
-              "const j = document.getElementById('gains-joint'); j.value = 'joint1'; j.onchange();")
-    shown = wait_for("joint1_position_controller's gains in the panel", lambda: (lambda v: v.endswith("=100") and v)(
-        wd.js(shown_js)), 10)
+    shown = gains_of(wd, "joint1_position_controller", "joint1", "100")
     labels = wd.js("return [...document.querySelectorAll('.gains-fields label')].map(l => l.textContent.trim())")
     message = wd.js("return document.getElementById('gains-message').textContent")
     print(f"gains shown: {shown} ({message}); fields: {labels}")

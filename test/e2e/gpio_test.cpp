@@ -38,6 +38,23 @@ interface_group_values_t command(const std::string& gpio, const std::string& ifa
   return c;
 }
 
+// Commands 0.27 on flange_vacuum/vacuum and 0.5 on flange_analog_IOs/analog_output1 through the GPIO controller, and
+// waits (at most timeout_s) for both to read back on their state interfaces; `v`: the last states seen.
+::testing::AssertionResult outputs_read_back(Bus& bus, const Recorder<interface_group_values_t>& states,
+                                             std::map<std::string, double>& v, double timeout_s) {
+  const interface_group_values_t vacuum = command("flange_vacuum", "vacuum", 0.27);
+  const interface_group_values_t analog = command("flange_analog_IOs", "analog_output1", 0.5);
+  bus.lcm().publish("gpio_controller/commands", &vacuum);
+  bus.lcm().publish("gpio_controller/commands", &analog);
+  if (pump_until(bus.lcm(), [&] {
+        v = values_of(states.messages.back());
+        return v["flange_vacuum/vacuum"] == 0.27 && v["flange_analog_IOs/analog_output1"] == 0.5;
+      }, timeout_s))
+    return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "vacuum " << v["flange_vacuum/vacuum"] << ", analog_output1 "
+                                       << v["flange_analog_IOs/analog_output1"];
+}
+
 void commands_read_back(const std::vector<std::string>& sim_flags) {
   RobotSession robot(source("test/robots/gpio_arm.urdf"), source("test/robots/gpio_arm.yaml"));
   Bus bus(robot.url(), "");
@@ -50,14 +67,7 @@ void commands_read_back(const std::vector<std::string>& sim_flags) {
   EXPECT_EQ(v.size(), 4u) << "every state interface of both gpios";
   EXPECT_EQ(v["flange_vacuum/vacuum"], 1.0) << "its initial_value";
   EXPECT_EQ(v["flange_analog_IOs/analog_output1"], 0.0);
-  const interface_group_values_t vacuum = command("flange_vacuum", "vacuum", 0.27);
-  const interface_group_values_t analog = command("flange_analog_IOs", "analog_output1", 0.5);
-  bus.lcm().publish("gpio_controller/commands", &vacuum);
-  bus.lcm().publish("gpio_controller/commands", &analog);
-  ASSERT_TRUE(pump_until(bus.lcm(), [&] {
-    v = values_of(states.messages.back());
-    return v["flange_vacuum/vacuum"] == 0.27 && v["flange_analog_IOs/analog_output1"] == 0.5;
-  }, 5)) << "vacuum " << v["flange_vacuum/vacuum"] << ", analog_output1 " << v["flange_analog_IOs/analog_output1"];
+  ASSERT_TRUE(outputs_read_back(bus, states, v, 5));
   EXPECT_EQ(v["flange_analog_IOs/analog_input1"], 0.0) << "an input nobody commands keeps its value";
   // An interface it does not command is dropped, named, and changes nothing.
   const interface_group_values_t wrong = command("flange_analog_IOs", "analog_input1", 3.0);
@@ -94,15 +104,7 @@ TEST(Gpio, Ros2ControlDemosExample10RunsItsGpioController) {
   ASSERT_TRUE(pump_until(bus.lcm(), [&] { return !states.messages.empty(); }, 10)) << robot.cm_output();
   std::map<std::string, double> v = values_of(states.messages.back());
   EXPECT_EQ(v["flange_vacuum/vacuum"], 1.0) << "its initial_value";
-  const interface_group_values_t vacuum = command("flange_vacuum", "vacuum", 0.27);
-  const interface_group_values_t analog = command("flange_analog_IOs", "analog_output1", 0.5);
-  bus.lcm().publish("gpio_controller/commands", &vacuum);
-  bus.lcm().publish("gpio_controller/commands", &analog);
-  ASSERT_TRUE(pump_until(bus.lcm(), [&] {
-    v = values_of(states.messages.back());
-    return v["flange_vacuum/vacuum"] == 0.27 && v["flange_analog_IOs/analog_output1"] == 0.5;
-  }, 10)) << "vacuum " << v["flange_vacuum/vacuum"] << ", analog_output1 " << v["flange_analog_IOs/analog_output1"]
-          << robot.cm_output() << robot.sim_output();
+  ASSERT_TRUE(outputs_read_back(bus, states, v, 10)) << robot.cm_output() << robot.sim_output();
   std::printf("example 10: vacuum 0.27 and analog_output1 0.5 read back on their state interfaces\n");
 }
 

@@ -106,14 +106,12 @@ bool Spawner::teardown(CmClient& cm, double timeout_s) {
   try {
     // Best effort over everything it loaded: since it started them, the user may have stopped some and started
     // others (a switch); those not running are left as they are.
-    {
-      const cm_response_t r = cm.switch_controllers({}, loaded_, false, left());
-      if (!r.ok) {
-        say(fmt::format("stopping [{}] was refused: {}", fmt::join(loaded_, ", "), r.message));
-        all_ok = false;
-      }
-      running_.clear();
+    const cm_response_t stopped = cm.switch_controllers({}, loaded_, false, left());
+    if (!stopped.ok) {
+      say(fmt::format("stopping [{}] was refused: {}", fmt::join(loaded_, ", "), stopped.message));
+      all_ok = false;
     }
+    running_.clear();
     while (!loaded_.empty()) {
       const std::string n = loaded_.back();
       const cm_response_t r = cm.unload({n}, left());

@@ -171,6 +171,26 @@ std::pair<std::string, std::string> write_chain(const std::string& folder, int n
   return {u, y};
 }
 
+// sim_server started on the files for 0.01 s (how long it took), then doctor on them: exit codes and outputs.
+struct Started {
+  int sim_rc = 0, doctor_rc = 0;
+  double sim_s = 0;
+  std::string sim_out, doctor_out;
+};
+Started start_sim_and_doctor(const std::string& urdf, const std::string& config) {
+  Started r;
+  const auto t0 = std::chrono::steady_clock::now();
+  lt::ChildProcess sim({lt::bin("sim_server"), "--urdf", urdf, "--config", config, "--duration", "0.01"},
+                       {{"LCM_DEFAULT_URL", lt::unique_lcm_url()}});
+  r.sim_rc = sim.wait(60);
+  r.sim_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.sim_out = sim.output();
+  lt::ChildProcess doctor({lt::bin("doctor"), "--urdf", urdf, "--config", config});
+  r.doctor_rc = doctor.wait(60);
+  r.doctor_out = doctor.output();
+  return r;
+}
+
 }  // namespace
 
 // Item 6: a 500-link chain is ready well within 10 s (27 s before: Bullet grew its Jacobian buffers one row at a
@@ -181,21 +201,17 @@ TEST(Limits, ALongChainIsReadyQuicklyOrRefusedAtOnceWithTheLimitNamed) {
   for (const int n : {500, 5000}) {
     SCOPED_TRACE(n);
     const auto [urdf, config] = write_chain(folder, n);
-    const auto t0 = std::chrono::steady_clock::now();
-    lt::ChildProcess sim({lt::bin("sim_server"), "--urdf", urdf, "--config", config, "--duration", "0.01"},
-                         {{"LCM_DEFAULT_URL", lt::unique_lcm_url()}});
-    const int rc = sim.wait(60);
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    lt::ChildProcess doctor({lt::bin("doctor"), "--urdf", urdf, "--config", config});
-    const int doctor_rc = doctor.wait(60);
-    EXPECT_LT(s, 10.0) << sim.output();
+    const Started r = start_sim_and_doctor(urdf, config);
+    const int rc = r.sim_rc;
+    const double s = r.sim_s;
+    EXPECT_LT(s, 10.0) << r.sim_out;
     if (n <= 1000) {
-      EXPECT_EQ(rc, 0) << sim.output();
-      EXPECT_EQ(doctor_rc, 0) << doctor.output();
+      EXPECT_EQ(rc, 0) << r.sim_out;
+      EXPECT_EQ(r.doctor_rc, 0) << r.doctor_out;
     } else {
-      EXPECT_EQ(rc, 3) << sim.output();
-      EXPECT_EQ(doctor_rc, 3) << doctor.output();
-      for (const std::string& out : {sim.output(), doctor.output()})
+      EXPECT_EQ(rc, 3) << r.sim_out;
+      EXPECT_EQ(r.doctor_rc, 3) << r.doctor_out;
+      for (const std::string& out : {r.sim_out, r.doctor_out})
         EXPECT_NE(out.find(fmt::format("{} joints ({} moving, 0 fixed): sim_server simulates at most 1000", n, n)),
                   std::string::npos)
             << out;
@@ -212,15 +228,11 @@ TEST(Limits, ALongChainIsReadyQuicklyOrRefusedAtOnceWithTheLimitNamed) {
 TEST(Limits, ManyLinksOnFixedJointsAreRefusedAtOnce) {
   const std::string folder = lt::temp_dir("limits_fixed");
   const auto [urdf, config] = write_chain(folder, 20000, true);
-  const auto t0 = std::chrono::steady_clock::now();
-  lt::ChildProcess sim({lt::bin("sim_server"), "--urdf", urdf, "--config", config, "--duration", "0.01"},
-                       {{"LCM_DEFAULT_URL", lt::unique_lcm_url()}});
-  const int rc = sim.wait(60);
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  lt::ChildProcess doctor({lt::bin("doctor"), "--urdf", urdf, "--config", config});
-  EXPECT_EQ(doctor.wait(60), 3) << doctor.output();
-  EXPECT_EQ(rc, 3) << sim.output();
-  for (const std::string& out : {sim.output(), doctor.output()})
+  const Started r = start_sim_and_doctor(urdf, config);
+  const double s = r.sim_s;
+  EXPECT_EQ(r.doctor_rc, 3) << r.doctor_out;
+  EXPECT_EQ(r.sim_rc, 3) << r.sim_out;
+  for (const std::string& out : {r.sim_out, r.doctor_out})
     EXPECT_NE(out.find("20000 joints (1 moving, 19999 fixed): sim_server simulates at most 1000"), std::string::npos)
         << out;
   std::filesystem::remove_all(folder);
