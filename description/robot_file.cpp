@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 
 #include "description/input_file.hpp"
@@ -22,7 +24,21 @@ std::string read_robot_file(const std::string& path, const LoadOptions& options,
   return text;
 }
 
-std::string expand_xacro(const std::string& path, const LoadOptions& options, std::vector<std::string>* files_read) {
+xacro::Budget xacro_budget(const LoadOptions& options) {
+  if (options.xacro_budget > 0) return xacro::Budget{}.scaled(options.xacro_budget);
+  const char* env = std::getenv("LCM_CONTROL_XACRO_BUDGET");
+  if (!env || !*env) return {};
+  char* end = nullptr;
+  const double factor = std::strtod(env, &end);
+  if (*end != '\0' || !(factor > 0) || !std::isfinite(factor))
+    throw ModelError(fmt::format("LCM_CONTROL_XACRO_BUDGET='{}' is not a factor: give a positive number such as 10 "
+                                 "(every expansion budget times 10), or unset it",
+                                 env));
+  return xacro::Budget{}.scaled(factor);
+}
+
+std::string expand_xacro(const std::string& path, const LoadOptions& options, std::vector<std::string>* files_read,
+                         xacro::BudgetUse* use) {
   read_input_file(path, "xacro", "");  // the checks every input file gets (exists, a regular file, its size)
   const std::vector<std::string> package_path = package_path_for(path, options.package_path);
   xacro::Options xo;
@@ -35,8 +51,10 @@ std::string expand_xacro(const std::string& path, const LoadOptions& options, st
       fmt::format("the package path is {}; give the folder that holds the package with --package-path DIR or "
                   "LCM_CONTROL_PACKAGE_PATH",
                   package_path.empty() ? "empty" : fmt::format("{}", fmt::join(package_path, ":")));
+  xo.budget = xacro_budget(options);
   try {
     xacro::Expansion e = xacro::expand_file(path, xo);
+    if (use) *use = e.budget_use;
     if (files_read) files_read->insert(files_read->end(), e.files_read.begin(), e.files_read.end());
     return std::move(e.xml);
   } catch (const xacro::XacroError& e) {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "description/robot_model.hpp"
+#include "description/xacro/budget.hpp"
 
 namespace lcm_control {
 
@@ -17,8 +18,12 @@ bool is_xacro_file(const std::string& path);
 std::string read_robot_file(const std::string& path, const LoadOptions& options,
                             std::vector<std::string>* files_read = nullptr);
 // `path` expanded as a xacro whatever its name (the xacro program's job), with its arguments
-// (options.xacro_args) and the package lookup every program uses.
+// (options.xacro_args), the package lookup every program uses and the expansion budget; `use`, if given, receives
+// what the expansion built against that budget.
 std::string expand_xacro(const std::string& path, const LoadOptions& options,
-                         std::vector<std::string>* files_read = nullptr);
+                         std::vector<std::string>* files_read = nullptr, xacro::BudgetUse* use = nullptr);
+// The expansion budget in force: the defaults times options.xacro_budget, else times $LCM_CONTROL_XACRO_BUDGET.
+// Throws ModelError for a variable that is not a positive number.
+xacro::Budget xacro_budget(const LoadOptions& options);
 
 }  // namespace lcm_control

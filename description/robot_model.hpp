@@ -146,6 +146,8 @@ struct LoadOptions {
   std::vector<std::pair<std::string, std::string>> args;
   // Arguments of a .xacro robot file (name:=value), from --xacro-arg or a launch file's `xacro_args:`.
   std::vector<std::pair<std::string, std::string>> xacro_args;
+  // Factor on xacro's expansion budget (xacro --budget); 0 takes $LCM_CONTROL_XACRO_BUDGET, else 1.
+  double xacro_budget = 0;
   // No config given: read the controllers from the gz_ros2_control plugin's <parameters>, as gz_ros2_control does
   // (the servers, doctor and launch; a program that needs only the URDF leaves it off).
   bool config_from_plugin = false;

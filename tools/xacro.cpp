@@ -20,17 +20,24 @@ int main(int argc, char** argv) {
       "xacro"};
   std::vector<std::string> positional, package_path;
   std::string output;
-  bool deps = false, inorder = false;
+  bool deps = false, inorder = false, stats = false;
+  double budget = 0;
   app.add_option("input", positional, "the xacro file, then NAME:=VALUE arguments for $(arg NAME)")->required();
   app.add_option("-o", output, "write the output to FILE instead of stdout")->type_name("FILE");
   app.add_flag("--deps", deps, "print the files the expansion reads (includes, YAML), space-separated, not the XML");
   app.add_flag("--inorder,-i", inorder, "accepted for compatibility (in-order processing is the only one)");
+  app.add_option("--budget", budget,
+                 "raise (or lower) every expansion budget by this factor; default: $LCM_CONTROL_XACRO_BUDGET, else 1")
+      ->type_name("FACTOR")
+      ->check(CLI::PositiveNumber);
+  app.add_flag("--stats", stats, "print what the expansion built against its budget to stderr");
   add_package_path_flag(app, package_path);
   app.get_option("--package-path")->allow_extra_args(false);  // NAME:=VALUE after it stays an argument
   return run_program(app, argc, argv, [&] {
     std::string input;
     LoadOptions options;
     options.package_path = package_path;
+    options.xacro_budget = budget;
     for (const std::string& p : positional) {
       if (p.find(":=") != std::string::npos) {
         try {
@@ -46,7 +53,19 @@ int main(int argc, char** argv) {
     }
     if (input.empty()) throw CLI::ValidationError("input", "expected exactly one input file as argument");
     std::vector<std::string> files_read;
-    const std::string xml = expand_xacro(input, options, &files_read);
+    xacro::BudgetUse use;
+    const std::string xml = expand_xacro(input, options, &files_read, &use);
+    if (stats) {
+      const xacro::Budget b = xacro_budget(options);
+      std::fprintf(stderr,
+                   "%s",
+                   fmt::format("expansion budget used (of the budget): largest string {} bytes ({}), largest list {} "
+                               "items ({}), evaluation steps {} ({}), XML nodes {} ({}), macro calls {} ({}), includes {} ({}), document text {} bytes ({})\n",
+                               use.largest_string, b.string_bytes, use.largest_list, b.list_items, use.operations, b.operations, use.nodes, b.nodes,
+                               use.macro_calls, b.macro_calls, use.includes, b.includes, use.document_bytes,
+                               b.document_bytes)
+                       .c_str());
+    }
     std::string text;
     if (deps) {
       // The official --deps: the files read besides the input, space-separated, no line end.

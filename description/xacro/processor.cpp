@@ -201,7 +201,9 @@ class Processor {
     const std::string* file = arena_.intern_file(path);
     Node* doc = nullptr;
     try {
-      doc = dom::parse(read_source_file(path), file, arena_);
+      const std::string text = read_source_file(path);
+      count_document_bytes(text.size());
+      doc = dom::parse(text, file, arena_);
     } catch (const dom::ParseError& e) {
       throw XacroError(fmt::format("{}:{}: XML parsing error: {}", path, e.line(), e.what()));
     } catch (const ProcessError& e) {
@@ -433,14 +435,20 @@ class Processor {
     }
     if (results.size() == 1) return results[0];
     std::string joined;
-    for (const Value& v : results) joined += v.kind() == Value::Kind::Str ? v.as_str() : str(v);
-    return Value::string(joined);
+    for (const Value& v : results) {
+      const std::string piece = v.kind() == Value::Kind::Str ? v.as_str() : str(v);
+      check_string(joined.size() + piece.size());
+      joined += piece;
+    }
+    return Value::string(std::move(joined));
   }
 
   std::string eval_str(const std::string& text, Table& symbols) {
     if (text.find('$') == std::string::npos) return text;
     Value v = eval_text(text, symbols);
-    return v.kind() == Value::Kind::Str ? v.as_str() : str(v);
+    std::string out = v.kind() == Value::Kind::Str ? v.as_str() : str(v);
+    count_document_bytes(out.size());
+    return out;
   }
 
   Value eval_expression(const std::string& expression, Table& symbols) {
@@ -722,6 +730,7 @@ class Processor {
           for (const std::string& f : filestack_) cycle += f + " -> ";
           throw ProcessError(fmt::format("include cycle: {}{}", cycle, filename));
         }
+      count_include();
       std::string text;
       try {
         text = read_source_file(filename);
@@ -734,6 +743,7 @@ class Processor {
       frames_.push_back(Frame{false, filename, nullptr, 0, elt->file, elt->line});
       Node* doc = nullptr;
       try {
+        count_document_bytes(text.size());
         doc = dom::parse(text, file, arena_);
       } catch (const dom::ParseError& e) {
         throw XacroError(fmt::format("{}:{}: XML parsing error: {}{}", filename, e.line(), e.what(), chain()));
@@ -881,6 +891,7 @@ class Processor {
                                      "point, in this scope, or in an included file)",
                                      node->name, fullname));
     if (frames_.size() > 400) throw ProcessError("maximum recursion depth exceeded when instantiating macro " + m->name);
+    count_macro_call();
     frames_.push_back(Frame{true, m->name, m->body->file, m->body->line, node->file, node->line});
 
     Node* body = arena_.clone(m->body);
@@ -1049,8 +1060,11 @@ class Processor {
 }  // namespace
 
 Expansion expand_file(const std::string& path, const Options& options) {
+  const BudgetScope budget(options.budget);
   Processor processor(options);
-  return processor.run(path);
+  Expansion out = processor.run(path);
+  out.budget_use = budget.use();
+  return out;
 }
 
 std::pair<std::string, std::string> parse_arg(const std::string& text) {

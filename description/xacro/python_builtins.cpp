@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "description/xacro/budget.hpp"
 #include "description/xacro/python_args.hpp"
 #include "description/xacro/python_literals.hpp"
 #include "description/xacro/utf8.hpp"
@@ -224,11 +225,13 @@ Value range_builtin(const List& args, const Kwargs& kwargs) {
     if (args.size() == 3) step = integer("range", args[2]);
   }
   if (step == 0) raise("ValueError", "range() arg 3 must not be zero");
+  const __int128 span = step > 0 ? __int128{stop} - start : __int128{start} - stop;  // no int64 overflow
+  const __int128 stride = step > 0 ? __int128{step} : -__int128{step};
+  const __int128 count = span <= 0 ? 0 : (span + stride - 1) / stride;
+  check_list(count > (__int128{1} << 62) ? size_t{1} << 62 : static_cast<size_t>(count));
   List out;
-  for (int64_t i = start; step > 0 ? i < stop : i > stop; i += step) {
-    out.push_back(Value::integer(i));
-    if (out.size() > 10000000) raise("MemoryError", "range too large");
-  }
+  out.reserve(static_cast<size_t>(count));
+  for (__int128 k = 0; k < count; ++k) out.push_back(Value::integer(static_cast<int64_t>(start + k * step)));
   return Value::list(std::move(out));
 }
 

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 #include <vector>
 
+#include "description/xacro/budget.hpp"
 #include "description/xacro/python_ast.hpp"
 #include "description/xacro/python_eval.hpp"
 #include "description/xacro/utf8.hpp"
@@ -117,14 +119,32 @@ double float_pow(double x, double y) {
   return r;
 }
 
+// The bytes of the strings a list holds by value (nested lists are shared, not copied).
+size_t string_bytes_in(const List& items) {
+  size_t bytes = 0;
+  for (const Value& v : items)
+    if (v.kind() == Value::Kind::Str) bytes += v.as_str().size();
+  return bytes;
+}
+
+// n copies of something of `size`, checked against the budget before anything is allocated.
+size_t repeated(size_t size, int64_t n) {
+  size_t total = 0;
+  if (__builtin_mul_overflow(size, static_cast<size_t>(n), &total)) total = std::numeric_limits<size_t>::max();
+  return total;
+}
+
 Value repeat(const Value& seq, const Value& count) {
   const int64_t n = std::max<int64_t>(0, count.as_int());
   if (seq.kind() == Value::Kind::Str) {
+    check_string(repeated(seq.as_str().size(), n));
     std::string out;
     out.reserve(seq.as_str().size() * static_cast<size_t>(n));
     for (int64_t i = 0; i < n; ++i) out += seq.as_str();
     return Value::string(std::move(out));
   }
+  check_list(repeated(seq.as_list().size(), n));
+  check_string(repeated(string_bytes_in(seq.as_list()), n));
   List out;
   for (int64_t i = 0; i < n; ++i) out.insert(out.end(), seq.as_list().begin(), seq.as_list().end());
   return seq.kind() == Value::Kind::Tuple ? Value::tuple(std::move(out)) : Value::list(std::move(out));
@@ -229,8 +249,13 @@ Value binary(Op op, const Value& a, const Value& b) {
   if (a.is_number() && b.is_number()) return numeric(op, a, b);
   const auto ka = a.kind(), kb = b.kind();
   if (op == Op::Add) {
-    if (ka == Value::Kind::Str && kb == Value::Kind::Str) return Value::string(a.as_str() + b.as_str());
+    if (ka == Value::Kind::Str && kb == Value::Kind::Str) {
+      check_string(a.as_str().size() + b.as_str().size());
+      return Value::string(a.as_str() + b.as_str());
+    }
     if (is_sequence(a) && ka == kb) {
+      check_list(a.as_list().size() + b.as_list().size());
+      check_string(string_bytes_in(a.as_list()) + string_bytes_in(b.as_list()));
       List out = a.as_list();
       out.insert(out.end(), b.as_list().begin(), b.as_list().end());
       return ka == Value::Kind::Tuple ? Value::tuple(std::move(out)) : Value::list(std::move(out));
@@ -301,6 +326,7 @@ List iterate(const Value& v) {
     case Value::Kind::Str: {
       List out;
       const std::string& s = v.as_str();
+      check_list(code_point_count(s));
       for (size_t i = 0; i < s.size();) {
         size_t len = 1;
         const unsigned char c = static_cast<unsigned char>(s[i]);
@@ -410,6 +436,7 @@ class Evaluator {
 
   Value eval(const Node& n) {
     const EvalDepth depth;
+    count_operation();
     switch (n.op) {
       case Op::Const: return n.value;
       case Op::Name: return name(n);
@@ -584,12 +611,14 @@ class Evaluator {
     for (size_t i = 0; i < parts.size(); ++i) locals_.emplace_back(f.targets[i], parts[i]);
   }
 
-  void generate(const Node& n, size_t level, List& out, Dict& dict_out) {
+  void generate(const Node& n, size_t level, List& out, Dict& dict_out, size_t& bytes) {
     if (level == n.fors.size()) {
       if (n.name == "dict")
         dict_out.set(eval(*n.kids[0]), eval(*n.kids[1]));
       else
         out.push_back(eval(*n.kids[0]));
+      check_list(out.size() + dict_out.items.size());
+      if (!out.empty() && out.back().kind() == Value::Kind::Str) check_string(bytes += out.back().as_str().size());
       return;
     }
     const ast::ForClause& f = n.fors[level];
@@ -599,7 +628,7 @@ class Evaluator {
       bool keep = true;
       for (const auto& c : f.conditions)
         if (!(keep = truthy(eval(*c)))) break;
-      if (keep) generate(n, level + 1, out, dict_out);
+      if (keep) generate(n, level + 1, out, dict_out, bytes);
       locals_.resize(mark);
     }
   }
@@ -607,7 +636,8 @@ class Evaluator {
   Value comprehension(const Node& n) {
     List out;
     Dict d;
-    generate(n, 0, out, d);
+    size_t bytes = 0;  // of the strings `out` holds
+    generate(n, 0, out, d, bytes);
     if (n.name == "dict") return Value::dict(std::move(d));
     return Value::list(std::move(out));
   }

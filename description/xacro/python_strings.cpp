@@ -1,8 +1,10 @@
 // The str methods of xacro's expressions and Python's formatting: str.format, format(v, spec) and '%'.
 #include <algorithm>
+#include <climits>
 #include <cstring>
 #include <vector>
 
+#include "description/xacro/budget.hpp"
 #include "description/xacro/python_args.hpp"
 #include "description/xacro/utf8.hpp"
 
@@ -22,6 +24,16 @@ struct Spec {
   int precision = -1;
   char type = 0;
 };
+
+// A width or precision's digits from s[i], saturating, checked against the string budget (a width is the size of
+// the string it pads to).
+size_t format_number(std::string_view s, size_t& i) {
+  size_t n = 0;
+  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i])))
+    n = std::min<size_t>(n * 10 + static_cast<size_t>(s[i++] - '0'), size_t{1} << 62);
+  check_string(n);
+  return n;
+}
 
 Spec parse_spec(std::string_view s) {
   Spec spec;
@@ -48,13 +60,13 @@ Spec parse_spec(std::string_view s) {
     }
     ++i;
   }
-  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) spec.width = spec.width * 10 + (s[i++] - '0');
+  spec.width = format_number(s, i);
   if (i < s.size() && (s[i] == ',' || s[i] == '_')) spec.grouping = s[i++];
   if (i < s.size() && s[i] == '.') {
     ++i;
     if (i >= s.size() || !std::isdigit(static_cast<unsigned char>(s[i]))) raise("ValueError", "Format specifier missing precision");
     spec.precision = 0;
-    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) spec.precision = spec.precision * 10 + (s[i++] - '0');
+    spec.precision = static_cast<int>(std::min<size_t>(format_number(s, i), INT_MAX));
   }
   if (i < s.size()) spec.type = s[i++];
   if (i < s.size()) raise("ValueError", "Invalid format specifier");
@@ -374,6 +386,7 @@ std::optional<Value> str_method(const Value& self, const std::string& name) {
         if (items[i].kind() != Kind::Str)
           raise("TypeError",
                 fmt::format("sequence item {}: expected str instance, {} found", i, items[i].type_name()));
+        check_string(out.size() + s.size() + items[i].as_str().size());
         if (i) out += s;
         out += items[i].as_str();
       }
@@ -419,6 +432,7 @@ std::optional<Value> str_method(const Value& self, const std::string& name) {
         for (size_t k = 0; k <= s.size(); ++k) {
           if (limit != 0) {
             out += to;
+            check_string(out.size());
             --limit;
           }
           if (k < s.size()) out += s[k];
@@ -426,7 +440,8 @@ std::optional<Value> str_method(const Value& self, const std::string& name) {
         return Value::string(std::move(out));
       }
       for (size_t j; limit != 0 && (j = s.find(from, i)) != std::string::npos; --limit) {
-        out += s.substr(i, j - i) + to;
+        out.append(s, i, j - i).append(to);
+        check_string(out.size());
         i = j + from.size();
       }
       return Value::string(out + s.substr(i));
@@ -478,6 +493,7 @@ std::optional<Value> str_method(const Value& self, const std::string& name) {
       const int64_t width = integer("zfill", args[0]);
       const size_t length = code_point_count(s);
       if (static_cast<int64_t>(length) >= width) return Value::string(s);
+      check_string(static_cast<size_t>(width));
       const size_t fill = static_cast<size_t>(width) - length;
       if (!s.empty() && (s[0] == '-' || s[0] == '+')) return Value::string(s[0] + std::string(fill, '0') + s.substr(1));
       return Value::string(std::string(fill, '0') + s);
@@ -577,11 +593,10 @@ std::string percent_format(const std::string& f, const Value& args) {
       if (f[i] == '#') spec.alternate = true;
       if (f[i] == '0') spec.fill = '0';
     }
-    while (i < f.size() && std::isdigit(static_cast<unsigned char>(f[i]))) spec.width = spec.width * 10 + (f[i++] - '0');
+    spec.width = format_number(f, i);
     if (i < f.size() && f[i] == '.') {
-      spec.precision = 0;
-      for (++i; i < f.size() && std::isdigit(static_cast<unsigned char>(f[i])); ++i)
-        spec.precision = spec.precision * 10 + (f[i] - '0');
+      ++i;
+      spec.precision = static_cast<int>(std::min<size_t>(format_number(f, i), INT_MAX));
     }
     if (i >= f.size()) raise("ValueError", "incomplete format");
     const char conv = f[i];

@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <iterator>
 
 namespace lcm_control::xacro {
 
@@ -24,9 +26,10 @@ std::string read_source_file(const std::string& path) {
     throw ProcessError(fmt::format("{} is larger than {} MB, more than any robot description", path,
                                    kMaxSourceBytes >> 20));
   std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  if (!in || !(ss << in.rdbuf()) || in.bad()) throw ProcessError(fmt::format("cannot read {}", path));
-  return ss.str();
+  if (!in) throw ProcessError(fmt::format("cannot read {}: {}", path, std::strerror(errno)));
+  std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) throw ProcessError(fmt::format("cannot read {}: {}", path, std::strerror(errno)));
+  return text;
 }
 
 }  // namespace lcm_control::xacro

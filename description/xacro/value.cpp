@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "description/xacro/budget.hpp"
+
 namespace lcm_control::xacro {
 
 namespace {
@@ -51,20 +53,62 @@ bool numeric_equal(const Value& a, const Value& b) {
 
 }  // namespace
 
+namespace {
+
+// Python's hash contract: values that compare equal hash equal (1, 1.0 and True alike). Lists and dicts, which
+// Python refuses as keys, all hash alike.
+std::size_t hash_of(const Value& v) {
+  switch (v.kind()) {
+    case Value::Kind::Bool:
+    case Value::Kind::Int: return std::hash<int64_t>{}(v.as_int());
+    case Value::Kind::Float: {
+      const double d = v.as_double();
+      if (d == std::floor(d) && std::abs(d) < 9.2e18) return std::hash<int64_t>{}(static_cast<int64_t>(d));
+      return std::hash<double>{}(d);
+    }
+    case Value::Kind::Str: return std::hash<std::string>{}(v.as_str());
+    case Value::Kind::Tuple: {
+      std::size_t h = 0x345678;
+      for (const Value& item : v.as_list()) h = h * 1000003 ^ hash_of(item);
+      return h;
+    }
+    default: return static_cast<std::size_t>(v.kind());
+  }
+}
+
+constexpr std::size_t kIndexFrom = 8;  // below, a linear search is as quick
+
+}  // namespace
+
+std::size_t Dict::position(const Value& key) const {
+  if (index.empty()) {
+    for (std::size_t i = 0; i < items.size(); ++i)
+      if (equal(items[i].first, key)) return i;
+    return items.size();
+  }
+  auto [first, last] = index.equal_range(hash_of(key));
+  for (auto it = first; it != last; ++it)
+    if (equal(items[it->second].first, key)) return it->second;
+  return items.size();
+}
+
 const Value* Dict::find(const Value& key) const {
-  for (const auto& [k, v] : items)
-    if (equal(k, key)) return &v;
-  return nullptr;
+  const std::size_t i = position(key);
+  return i < items.size() ? &items[i].second : nullptr;
 }
 
 void Dict::set(Value key, Value value) {
-  for (auto& [k, v] : items) {
-    if (equal(k, key)) {
-      v = std::move(value);
-      return;
-    }
+  const std::size_t i = position(key);
+  if (i < items.size()) {
+    items[i].second = std::move(value);
+    return;
   }
   items.emplace_back(std::move(key), std::move(value));
+  if (items.size() == kIndexFrom) {
+    for (std::size_t i = 0; i < items.size(); ++i) index.emplace(hash_of(items[i].first), i);
+  } else if (items.size() > kIndexFrom) {
+    index.emplace(hash_of(items.back().first), items.size() - 1);
+  }
 }
 
 Value Value::boolean(bool b) {
@@ -86,24 +130,28 @@ Value Value::floating(double d) {
 }
 
 Value Value::string(std::string s) {
+  check_string(s.size());
   Value v;
   v.v_.emplace<kStr>(std::move(s));
   return v;
 }
 
 Value Value::list(List items) {
+  check_list(items.size());
   Value v;
   v.v_.emplace<kList>(std::make_shared<const List>(std::move(items)));
   return v;
 }
 
 Value Value::tuple(List items) {
+  check_list(items.size());
   Value v;
   v.v_.emplace<kTuple>(std::make_shared<const List>(std::move(items)));
   return v;
 }
 
 Value Value::dict(Dict d) {
+  check_list(d.items.size());
   Value v;
   v.v_.emplace<kDict>(std::make_shared<const Dict>(std::move(d)));
   return v;
@@ -224,6 +272,7 @@ std::string repr(const Value& v) {
       for (size_t i = 0; i < items.size(); ++i) {
         if (i) out += ", ";
         out += repr(items[i]);
+        check_string(out.size());
       }
       if (tuple && items.size() == 1) out += ",";
       out += tuple ? ")" : "]";
@@ -236,6 +285,7 @@ std::string repr(const Value& v) {
         if (!first) out += ", ";
         first = false;
         out += repr(k) + ": " + repr(val);
+        check_string(out.size());
       }
       return out + "}";
     }

@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -21,10 +22,14 @@ using Kwargs = std::vector<std::pair<std::string, Value>>;
 // A Python dict: insertion-ordered. `attribute_access` marks xacro's dotified dicts (xacro.load_yaml, xacro.dotify),
 // whose keys may also be read as `d.key`.
 struct Dict {
-  std::vector<std::pair<Value, Value>> items;
+  std::vector<std::pair<Value, Value>> items;  // change them only through set(): `index` follows them
   bool attribute_access = false;
   const Value* find(const Value& key) const;
   void set(Value key, Value value);  // replaces an equal key in place, else appends
+
+ private:
+  std::size_t position(const Value& key) const;  // items.size() when absent
+  std::unordered_multimap<std::size_t, std::size_t> index;  // key hash -> position in items, from 8 items on
 };
 
 // A built-in function, a bound method ("a b".split) or one the processor supplies (xacro.load_yaml).

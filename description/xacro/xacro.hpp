@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "description/xacro/budget.hpp"
+
 namespace lcm_control::xacro {
 
 struct Options {
@@ -15,11 +17,13 @@ struct Options {
   std::function<std::string(const std::string& package)> find_package;  // the package's folder for $(find), "" if absent
   std::string package_search_note;  // appended to a "package not found" error: the folders searched and how to add one
   std::function<void(const std::string& line)> message;  // xacro.message/warning output and warnings; default: stderr
+  Budget budget;  // what the expansion may build; crossing it is an XacroError naming the budget
 };
 
 struct Expansion {
   std::string xml;                      // the expanded document, formatted as the official xacro prints it
   std::vector<std::string> files_read;  // every file read (xacro sources and YAML), as --deps lists them
+  BudgetUse budget_use;                 // what it built, against Options::budget
 };
 
 // A problem in the input: what(): the whole message, several lines: the problem with file:line, then the chain of

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstring>
 
+#include "description/xacro/budget.hpp"
 #include "description/xacro/utf8.hpp"
 
 namespace lcm_control::xacro::dom {
@@ -51,6 +52,7 @@ Node* Node::next_element() const {
 }
 
 Node* Arena::make(NodeType type) {
+  count_nodes(1);
   Node& n = nodes_.emplace_back();
   n.type = type;
   return &n;
@@ -61,6 +63,9 @@ Node* Arena::clone(const Node* src) {
   n->name = src->name;
   n->data = src->data;
   n->attrs = src->attrs;
+  size_t bytes = n->name.size() + n->data.size();
+  for (const Attr& a : n->attrs) bytes += a.name.size() + a.value.size();
+  count_document_bytes(bytes);
   n->file = src->file;
   n->line = src->line;
   for (const Node* c = src->first; c; c = c->next) append_child(n, clone(c));
@@ -416,6 +421,7 @@ void write_element(std::string& out, const Node* e, const std::string& indent) {
   for (const Node* c = e->first; c; c = c->next) {
     if (c->is_text() && is_blank(c->data)) continue;
     write_node(out, c, inner);
+    check_document(out.size());
   }
   out += indent;
   out += "</";

@@ -3,6 +3,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -25,12 +26,17 @@ double now_s() {
 std::string bin(const std::string& name) { return std::string(LCM_CONTROL_BIN_DIR) + "/" + name; }
 std::string source(const std::string& relative) { return std::string(LCM_CONTROL_SOURCE_DIR) + "/" + relative; }
 
-long rss_kb(pid_t pid) {
+namespace {
+long status_kb(pid_t pid, const std::string& field) {
   std::ifstream in("/proc/" + std::to_string(pid) + "/status");
   for (std::string line; std::getline(in, line);)
-    if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
+    if (line.rfind(field, 0) == 0) return std::atol(line.c_str() + field.size());
   return -1;
 }
+}  // namespace
+
+long rss_kb(pid_t pid) { return status_kb(pid, "VmRSS:"); }
+long peak_rss_kb(pid_t pid) { return status_kb(pid, "VmHWM:"); }
 
 std::string ros2_robots_dir() {
   const char* env = std::getenv("LCM_CONTROL_ROS2_ROBOTS");
@@ -78,6 +84,8 @@ bool ChildProcess::running() {
 int ChildProcess::wait(double timeout_s) {
   const double end = now_s() + timeout_s;
   while (running()) {
+    // The last reading, not the largest: a mark read between fork and exec is the parent's.
+    if (const long hwm = testing::peak_rss_kb(pid_); hwm >= 0) peak_rss_kb_ = hwm;
     if (now_s() > end) return -1;
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }

@@ -32,11 +32,14 @@ class ChildProcess {
   std::string output() const;
   // Waits until output() contains text; false on timeout or if the process exits first.
   bool wait_for_output(const std::string& text, double timeout_s);
+  // Its resident memory's high-water mark since its exec (VmHWM, kB) as wait() last read it while it ran; -1 before.
+  long peak_rss_kb() const { return peak_rss_kb_; }
 
  private:
   pid_t pid_ = -1;
   int status_ = -1;
   bool exited_ = false;
+  long peak_rss_kb_ = -1;
   std::string log_path_;
 };
 
@@ -71,6 +74,8 @@ std::string source(const std::string& relative);
 std::string ros2_robots_dir();
 // Resident memory of a process (VmRSS), kB; -1 when it is gone.
 long rss_kb(pid_t pid);
+// Its high-water mark since its last exec (VmHWM), kB; -1 when it is gone.
+long peak_rss_kb(pid_t pid);
 // A fresh, empty folder for one test's files.
 std::string temp_dir(const std::string& tag);
 
