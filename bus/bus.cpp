@@ -121,12 +121,12 @@ void Bus::mirror_hardware(double hz) {
 }
 
 std::string Bus::hardware_loss_note() {
-  std::string note;
+  std::string note = shm_ ? shm_->take_tampering_note() : "";
   if (const int64_t skipped = hardware_skipped(); skipped != skipped_noted_) {
-    note = fmt::format("skipped {} message(s) in {} whose size is past its {} MiB slot ({} so far): a program other "
+    note += fmt::format("{}skipped {} message(s) in {} whose size is past its {} MiB slot ({} so far): a program other "
                        "than sim_server and controller_manager writes that file; stop it, or give this robot another "
                        "--hardware-url shm:NAME",
-                       skipped - skipped_noted_, shm_->path(), ShmLink::kSlotBytes >> 20, skipped);
+                       note.empty() ? "" : "; ", skipped - skipped_noted_, shm_->path(), ShmLink::kSlotBytes >> 20, skipped);
     skipped_noted_ = skipped;
   }
   if (const int64_t refused = hardware_refused(); refused != refused_noted_) {

@@ -118,7 +118,7 @@ class Bus {
   // (ShmLink::too_large()); 0 on LCM.
   int64_t hardware_refused() const { return shm_ ? shm_->too_large() : 0; }
   // A line naming the segment and what to do for each of hardware_skipped() and hardware_refused() that grew since
-  // the last call, else "".
+  // the last call, and for what another process did to the segment (ShmLink::take_tampering_note()), else "".
   std::string hardware_loss_note();
   // The file descriptors to wait on: the shared bus's, then the hardware loop's when it has a URL of its own (on
   // shared memory, the shared bus's only: wait_us() waits on both).

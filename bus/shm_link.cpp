@@ -1,6 +1,7 @@
 #include "bus/shm_link.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <fcntl.h>
 #include <linux/futex.h>
@@ -107,6 +108,63 @@ class NamingLock {
 static_assert(std::atomic<uint32_t>::is_always_lock_free && std::atomic<int32_t>::is_always_lock_free);
 
 namespace {
+// The segments this process maps, for its SIGBUS handler. A file truncated under a mapping raises SIGBUS at the next
+// access past its new end; the handler maps zeros over that whole segment instead and marks it, so the access
+// completes, the link goes silent (the loop holds the robot as on a lost peer) and the process lives. Any other
+// SIGBUS goes to the handler that was there before (by default, it ends the process).
+struct Mapping {
+  std::atomic<uintptr_t> begin{0};
+  std::atomic<int> faulted{0};
+};
+constexpr int kMappings = 64;
+Mapping mappings[kMappings];
+struct sigaction previous_sigbus {};
+
+void on_sigbus(int sig, siginfo_t* info, void* context) {
+  const auto at = reinterpret_cast<uintptr_t>(info->si_addr);
+  for (Mapping& m : mappings) {
+    const uintptr_t b = m.begin.load(std::memory_order_acquire);
+    if (b == 0 || at < b || at >= b + kSegmentBytes) continue;
+    if (mmap(reinterpret_cast<void*>(b), kSegmentBytes, PROT_READ | PROT_WRITE,
+             MAP_FIXED | MAP_PRIVATE | MAP_ANONYMOUS, -1, 0) != MAP_FAILED) {
+      m.faulted.store(1, std::memory_order_release);
+      return;
+    }
+  }
+  if (previous_sigbus.sa_flags & SA_SIGINFO) {
+    previous_sigbus.sa_sigaction(sig, info, context);
+  } else if (previous_sigbus.sa_handler != SIG_DFL && previous_sigbus.sa_handler != SIG_IGN) {
+    previous_sigbus.sa_handler(sig);
+  } else {
+    signal(SIGBUS, SIG_DFL);  // the access raises it again, and the default ends the process
+  }
+}
+
+int register_mapping(void* at) {
+  static const bool installed = [] {
+    struct sigaction sa {};
+    sa.sa_sigaction = &on_sigbus;
+    sa.sa_flags = SA_SIGINFO;
+    sigemptyset(&sa.sa_mask);
+    return sigaction(SIGBUS, &sa, &previous_sigbus) == 0;
+  }();
+  if (!installed) return -1;
+  for (int i = 0; i < kMappings; ++i) {
+    uintptr_t free = 0;
+    if (mappings[i].begin.compare_exchange_strong(free, reinterpret_cast<uintptr_t>(at))) {
+      mappings[i].faulted.store(0);
+      return i;
+    }
+  }
+  return -1;
+}
+
+void unregister_mapping(int i) {
+  if (i >= 0) mappings[i].begin.store(0, std::memory_order_release);
+}
+}  // namespace
+
+namespace {
 // "" when the open file is a regular file of this effective user that no other user may read or write, else what it is.
 std::string not_ours(int fd) {
   struct stat st {};
@@ -194,8 +252,10 @@ ShmLink::ShmLink(const std::string& name) : path_("/dev/shm/lcm_control." + name
   if (m == MAP_FAILED) fail(fmt::format("cannot map it: {}", std::strerror(errno)));
   seg_ = static_cast<Segment*>(m);
   data_ = static_cast<uint8_t*>(m) + kHeaderBytes;
+  mapping_ = register_mapping(m);
   if (std::memcmp(seg_->magic, kMagic, sizeof(kMagic)) != 0 || seg_->version != kVersion ||
       seg_->slot_bytes != kSlotBytes || seg_->slots != kSlots || seg_->readers != kReaders) {
+    unregister_mapping(mapping_);
     munmap(m, kSegmentBytes);
     seg_ = nullptr;
     fail("it is not a segment of this lcm_control version: stop the program using it, or remove the file");
@@ -214,6 +274,7 @@ ShmLink::ShmLink(const std::string& name) : path_("/dev/shm/lcm_control." + name
     }
   }
   if (me_ < 0) {
+    unregister_mapping(mapping_);
     munmap(seg_, kSegmentBytes);
     seg_ = nullptr;
     fail(fmt::format("{} processes have it open already, the most it takes: is a program started many times on "
@@ -234,6 +295,7 @@ ShmLink::~ShmLink() {
   if (seg_) {
     seg_->reader[me_].mask.store(0);
     seg_->reader[me_].pid.store(0);
+    unregister_mapping(mapping_);
     munmap(seg_, kSegmentBytes);
   }
   if (fd_ >= 0) {
@@ -281,6 +343,7 @@ void ShmLink::update_mask() {
   uint32_t mask = 0;
   for (int s = 0; s < kSlots; ++s)
     if (!slot_subs_[s].empty()) mask |= 1u << s;
+  mask_ = mask;
   seg_->reader[me_].mask.store(mask);
 }
 
@@ -347,6 +410,10 @@ void ShmLink::ring(int slot) {
 }
 
 int ShmLink::publish(const std::string& channel, const void* data, size_t size) {
+  if (truncated()) {  // the loop is lost, but the mirror still shows the robot in lcm-spy
+    mirror(channel, data, size);
+    return -1;
+  }
   if (size > kSlotBytes) {
     ++too_large_;
     return -1;
@@ -379,30 +446,105 @@ int ShmLink::publish(const std::string& channel, const void* data, size_t size) 
   h.size.store(uint32_t(size), std::memory_order_relaxed);
   h.seq.store(q + 2, std::memory_order_release);
   ring(s);
-  if (mirror_) {
-    const int64_t now = monotonic_us();
-    if (now - mirrored_us_[s] >= mirror_period_us_) {
-      mirrored_us_[s] = now;
-      mirror_->publish(channel, data, unsigned(size));
-    }
-  }
+  mirror(channel, data, size);
   return 0;
+}
+
+void ShmLink::mirror(const std::string& channel, const void* data, size_t size) {
+  if (!mirror_) return;
+  int s = 0;
+  while (s < kSlots && !(bound_[s] && slot_name_[s] == channel)) ++s;
+  if (s == kSlots) return;
+  const int64_t now = monotonic_us();
+  if (now - mirrored_us_[s] < mirror_period_us_) return;
+  mirrored_us_[s] = now;
+  mirror_->publish(channel, data, unsigned(size));
 }
 
 bool ShmLink::news(int s, uint32_t& q) {
   if (slot_subs_[s].empty()) return false;
   const SlotHeader& h = seg_->slot[s];
   q = h.seq.load(std::memory_order_acquire);
-  if (q == seen_[s] || (q & 1)) return false;
-  if (h.writer.load(std::memory_order_relaxed) == me_) {  // our own message
+  if (q & 1) {  // being written; held so past kStuckUs by a writer that died there, or by another program
+    if (odd_since_us_[s] < 0 || odd_seq_[s] != q) {
+      odd_since_us_[s] = monotonic_us();
+      odd_seq_[s] = q;
+    } else if (monotonic_us() - odd_since_us_[s] > kStuckUs) {
+      odd_held_[s] = true;
+    }
+    return false;
+  }
+  odd_since_us_[s] = -1;
+  if (q == seen_[s]) return false;
+  const int32_t w = h.writer.load(std::memory_order_relaxed);
+  if (w == me_) {  // our own message
     seen_[s] = q;
     return false;
+  }
+  if (w != last_writer_[s] && w >= 0 && w < kReaders) {
+    if (last_writer_[s] >= 0 && !two_said_[s]) {  // a second writer, unless the first is gone (a restarted peer)
+      const int32_t before = seg_->reader[last_writer_[s]].pid.load(), now = seg_->reader[w].pid.load();
+      if (before > 0 && now > 0 && before != now && alive(before)) {
+        two_writers_[s][0] = before;
+        two_writers_[s][1] = now;
+      }
+    }
+    last_writer_[s] = w;
   }
   return true;
 }
 
+bool ShmLink::truncated() const {
+  return mapping_ >= 0 && mappings[mapping_].faulted.load(std::memory_order_relaxed) != 0;
+}
+
+void ShmLink::check_place() {
+  ReaderPlace& r = seg_->reader[me_];
+  if (r.mask.load(std::memory_order_relaxed) == mask_ && r.pid.load(std::memory_order_relaxed) == pid_) return;
+  if (truncated()) return;  // zeros where the file was cut, not a rewrite
+  place_rewritten_ = true;
+  r.mask.store(mask_);
+  r.pid.store(pid_);
+}
+
+std::string ShmLink::take_tampering_note() {
+  std::vector<std::string> said;
+  if (truncated() && !truncated_said_) {
+    truncated_said_ = true;
+    said.push_back(fmt::format("{} was truncated under this process (by a program of this user other than "
+                               "sim_server and controller_manager?): its hardware loop is lost and the robot is held as "
+                               "on a lost peer; stop that program and restart the robot's programs",
+                               path_));
+  }
+  if (place_rewritten_ && !place_said_) {
+    place_said_ = true;
+    said.push_back(fmt::format("this process's reader place {} in {} was rewritten by another process (restored): a "
+                               "program other than sim_server and controller_manager writes that file; stop it",
+                               me_, path_));
+  }
+  for (int s = 0; s < kSlots; ++s) {
+    if (odd_held_[s] && !odd_said_[s]) {
+      odd_said_[s] = true;
+      said.push_back(fmt::format("channel '{}' in {} was held mid-write for over {} ms: its messages are not "
+                                 "delivered while it is (a writer that stopped there, or another program)",
+                                 slot_name_[s], path_, kStuckUs / 1000));
+    }
+    if (two_writers_[s][0] != 0 && !two_said_[s]) {
+      two_said_[s] = true;
+      said.push_back(fmt::format("channel '{}' in {} is written by two live processes, pid {} and pid {}: one robot "
+                                 "takes one sim_server and one controller_manager; stop the other, or give it its own "
+                                 "--hardware-url shm:NAME",
+                                 slot_name_[s], path_, two_writers_[s][0], two_writers_[s][1]));
+    }
+  }
+  return fmt::format("{}", fmt::join(said, "; "));
+}
+
 bool ShmLink::has_new() {
   static_assert(kSlots <= 32);
+  if (truncated()) return false;
+  check_place();
+  if (truncated()) return false;  // the check met the file's new end
   if (const uint32_t names = seg_->names.load(std::memory_order_acquire); names != names_seen_) {
     names_seen_ = names;  // a slot was named since: a pattern may want it
     bind_slots();
@@ -425,6 +567,7 @@ bool ShmLink::take(int s, uint32_t q) {
     if (buf_.size() < size) buf_.resize(size);  // grows to the largest message once
     std::memcpy(buf_.data(), data_ + size_t(s) * kSlotBytes, size);
     std::atomic_thread_fence(std::memory_order_acquire);
+    if (truncated()) return false;  // the copy met the file's new end: zeros, not a message
     const uint32_t again = h.seq.load(std::memory_order_relaxed);
     if (again == q) {
       seen_[s] = q;

@@ -86,11 +86,18 @@ class ShmLink {
   int64_t too_large() const { return too_large_; }  // publish() refused: over kSlotBytes
   int64_t stolen() const { return stolen_; }        // a slot taken over from a writer that died while writing
 
+  // What another process did to the segment, each kind said once, "" when nothing new: the file truncated under
+  // this process (its pages then read as zeros instead of raising SIGBUS: the loop is lost, as on a lost peer), this
+  // process's reader place rewritten (restored), a slot held mid-write past kStuckUs, a channel written by two live
+  // processes. Detected on the hot path with flags only; the text is made here.
+  std::string take_tampering_note();
+
  private:
   struct Segment;
   int slot_of(const std::string& channel, bool claim);
   void bind_slots();  // matches subscriptions to the slots other processes have bound since
   void ring(int slot);
+  void mirror(const std::string& channel, const void* data, size_t size);  // to mirror_, at most its rate
   void ring_self();
   void update_mask();
   // Whether slot `s` holds a message for this process not taken yet (subscribed, written whole, by another process),
@@ -131,6 +138,20 @@ class ShmLink {
   int watch_stop_fd_ = -1;
   std::thread watcher_;
   int64_t malformed_ = 0, too_large_ = 0, stolen_ = 0;
+
+  // Tampering seen, for take_tampering_note(): set on the hot path, said once each.
+  void check_place();
+  uint32_t mask_ = 0;                // the reader mask this process set
+  bool place_rewritten_ = false, place_said_ = false;
+  bool truncated() const;  // the file shrank under this mapping: zeros are mapped in its place
+  int64_t odd_since_us_[kSlots] = {-1, -1, -1, -1};
+  uint32_t odd_seq_[kSlots] = {};
+  bool odd_held_[kSlots] = {}, odd_said_[kSlots] = {};
+  int last_writer_[kSlots] = {-1, -1, -1, -1};
+  int32_t two_writers_[kSlots][2] = {};  // their pids, once seen
+  bool two_said_[kSlots] = {};
+  int mapping_ = -1;  // this segment's place in the SIGBUS handler's table
+  bool truncated_said_ = false;
 };
 
 // The segment name for `--hardware-url` "shm" (the namespace's, per user) or "shm:NAME"; "" when the URL is not

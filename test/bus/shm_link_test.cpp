@@ -2,16 +2,19 @@
 // a wait ends on a message or a watched descriptor and never outlives its timeout, the file goes with the last user
 // (a killed one too), a writer killed mid-write is taken over, hostile slot contents are skipped, and the Bus and
 // Endpoints carry hardware messages there and mirror them to LCM when asked.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
+#include <pwd.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -284,13 +287,40 @@ TEST(ShmLink, TheFileGoesWithTheLastUserEvenAfterAKill) {
 // Another local user who makes the segment's file first (mode 0666, the right size) would read the robot's state and
 // command its joints: the file is refused naming its owner, as is one of ours that others may write, or a link.
 // Needs root, to be that other user (a process with uid 4242) and to give files away; skipped otherwise.
+// A user of the machine made for the test (useradd), removed after it.
+class TestUser {
+ public:
+  TestUser() : name_("lcmsq" + std::to_string(getpid() % 1000000)) {
+    const std::string add = "useradd -M -N -s /usr/sbin/nologin " + name_ + " 2>/dev/null";
+    if (std::system(add.c_str()) != 0) return;
+    if (const passwd* pw = getpwnam(name_.c_str())) {
+      uid_ = pw->pw_uid;
+      gid_ = pw->pw_gid;
+    }
+  }
+  ~TestUser() {
+    if (uid_ >= 0) std::system(("userdel " + name_ + " 2>/dev/null").c_str());
+  }
+  TestUser(const TestUser&) = delete;
+  TestUser& operator=(const TestUser&) = delete;
+  const std::string& name() const { return name_; }
+  int uid() const { return uid_; }
+  int gid() const { return gid_; }
+
+ private:
+  std::string name_;
+  int uid_ = -1, gid_ = -1;
+};
+
 TEST(ShmLink, ASegmentAnotherUserMadeOrLeftOpenToOthersIsRefusedByName) {
   if (geteuid() != 0) GTEST_SKIP() << "needs root";
+  const TestUser squatter_user;
+  ASSERT_GE(squatter_user.uid(), 0) << "useradd " << squatter_user.name() << " failed";
   const std::string name = unique_name();
   const std::string path = "/dev/shm/lcm_control." + name;
   const pid_t squatter = fork();
   if (squatter == 0) {
-    if (setgid(4242) != 0 || setuid(4242) != 0) _exit(2);
+    if (setgid(gid_t(squatter_user.gid())) != 0 || setuid(uid_t(squatter_user.uid())) != 0) _exit(2);
     umask(0);
     const int fd = open(path.c_str(), O_RDWR | O_CREAT | O_EXCL, 0666);
     _exit(fd >= 0 && ftruncate(fd, off_t(64) << 20) == 0 ? 0 : 3);
@@ -308,7 +338,10 @@ TEST(ShmLink, ASegmentAnotherUserMadeOrLeftOpenToOthersIsRefusedByName) {
   };
   std::string why = refusal();
   EXPECT_NE(why.find(path), std::string::npos) << why;
-  EXPECT_NE(why.find("uid 4242, not to this user"), std::string::npos) << why;
+  EXPECT_NE(why.find(fmt::format("it belongs to '{}', uid {}, not to this user", squatter_user.name(),
+                                 squatter_user.uid())),
+            std::string::npos)
+      << why;
   EXPECT_NE(why.find("shm:ANOTHER_NAME"), std::string::npos) << why;
   // Ours, but open to others.
   ASSERT_EQ(chown(path.c_str(), 0, 0), 0);
@@ -474,6 +507,94 @@ TEST(ShmLink, AMessageTooLargeForTheSlotIsCountedAndNamedOnce) {
   // On LCM nothing is refused for its size here.
   Bus plain(url, "r", "", HardwareReader::Direct);
   EXPECT_EQ(plain.hardware_refused(), 0);
+}
+
+// Issue 51: what another process of the user can do to the segment, each detected and said once, the link going on
+// (or, truncated, going silent as a lost peer would) and no process killed by SIGBUS.
+TEST(ShmLink, EachAttackOnTheSegmentIsSaidOnceAndNoneKills) {
+  const std::string name = unique_name();
+  ShmLink a(name), b(name);  // a writes "s", b reads it; places 0 and 1
+  Inbox at_b;
+  b.subscribe("s", at_b.handler());
+  auto send = [&](ShmLink& from, const std::string& text) {
+    const auto m = bytes(text);
+    return from.publish("s", m.data(), m.size());
+  };
+  ASSERT_EQ(send(a, "one"), 0);
+  ASSERT_EQ(b.handle_queued(), 1);
+  EXPECT_EQ(b.take_tampering_note(), "");
+  testing::MappedSegment seg(a.path());
+  ASSERT_TRUE(seg.ok());
+
+  // b's reader place rewritten: its mask cleared (a would stop ringing it) and its pid changed.
+  seg.words()[testing::MappedSegment::reader_mask_word(1)] = 0;
+  seg.words()[testing::MappedSegment::reader_pid_word(1)] = 1;
+  EXPECT_FALSE(b.has_new());
+  ASSERT_EQ(send(a, "two"), 0);
+  EXPECT_EQ(b.handle_queued(), 1) << "restored: still delivered";
+  std::string note = b.take_tampering_note();
+  EXPECT_NE(note.find("reader place 1 in " + a.path() + " was rewritten by another process (restored)"),
+            std::string::npos)
+      << note;
+  EXPECT_EQ(b.take_tampering_note(), "") << "said once";
+
+  // The slot held mid-write past 100 ms.
+  auto* seq = reinterpret_cast<std::atomic<uint32_t>*>(&seg.words()[seg.sequence_word("s")]);
+  seq->fetch_add(1);
+  EXPECT_FALSE(b.has_new());
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  EXPECT_FALSE(b.has_new());
+  note = b.take_tampering_note();
+  EXPECT_NE(note.find("channel 's' in " + a.path() + " was held mid-write for over 100 ms"), std::string::npos)
+      << note;
+  seq->fetch_add(1);  // released
+  ASSERT_EQ(send(a, "three"), 0);
+  EXPECT_EQ(b.handle_queued(), 1);
+  EXPECT_EQ(b.take_tampering_note(), "");
+
+  // A second live writer on the channel (another process).
+  int ready[2], done[2];
+  ASSERT_EQ(pipe(ready), 0);
+  ASSERT_EQ(pipe(done), 0);
+  const pid_t other = fork();
+  if (other == 0) {
+    ShmLink c(name);
+    const auto m = bytes("from the other writer");
+    c.publish("s", m.data(), m.size());
+    char x = 1;
+    if (write(ready[1], &x, 1) != 1) _exit(2);
+    if (read(done[0], &x, 1) != 1) _exit(3);  // alive until the parent has looked
+    _exit(0);
+  }
+  char x = 0;
+  ASSERT_EQ(read(ready[0], &x, 1), 1);
+  EXPECT_EQ(b.handle_queued(), 1);
+  ASSERT_EQ(send(a, "four"), 0);
+  EXPECT_EQ(b.handle_queued(), 1);
+  note = b.take_tampering_note();
+  EXPECT_NE(note.find("channel 's' in " + a.path() + " is written by two live processes"), std::string::npos) << note;
+  EXPECT_NE(note.find("pid " + std::to_string(other)), std::string::npos) << note;
+  ASSERT_EQ(write(done[1], &x, 1), 1);
+  int status = 0;
+  ASSERT_EQ(waitpid(other, &status, 0), other);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  EXPECT_EQ(b.take_tampering_note(), "");
+
+  // The file truncated under both: the accesses past its end read zeros instead of raising SIGBUS, the link goes
+  // silent, each says so once.
+  ASSERT_TRUE(seg.truncate(0));
+  EXPECT_EQ(send(a, "five"), 0);  // faults inside, survives
+  EXPECT_EQ(send(a, "six"), -1) << "silent from then on";
+  EXPECT_FALSE(b.has_new());
+  EXPECT_EQ(b.handle_queued(), 0);
+  EXPECT_FALSE(b.wait_us(20000));
+  for (ShmLink* link : {&a, &b}) {
+    note = link->take_tampering_note();
+    EXPECT_NE(note.find(a.path() + " was truncated under this process"), std::string::npos) << note;
+    EXPECT_NE(note.find("held as on a lost peer"), std::string::npos) << note;
+    EXPECT_EQ(link->take_tampering_note(), "");
+  }
+  EXPECT_EQ(at_b.got.back(), "four");
 }
 
 }  // namespace

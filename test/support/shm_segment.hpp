@@ -1,5 +1,5 @@
 // A hardware loop segment (bus/shm_link.hpp) mapped as a hostile process would map it, for tests that write into it
-// behind ShmLink's back: a sequence left odd, a size past the slot.
+// behind ShmLink's back: a sequence left odd, a size past the slot, a reader place rewritten, the file truncated.
 #pragma once
 
 #include <fcntl.h>
@@ -42,6 +42,12 @@ class MappedSegment {
         return k + 2;
     return -1;
   }
+  // The indices of reader place p's pid and slot mask words: the places follow a 64-byte block of magic, sizes and the
+  // naming lock, 64 bytes each, {pid, doorbell, waiting, mask, ...}.
+  static int reader_pid_word(int p) { return 16 + 16 * p; }
+  static int reader_mask_word(int p) { return 16 + 16 * p + 3; }
+  // Cuts the file to `bytes`, as another process of the user could.
+  bool truncate(off_t bytes) const { return ftruncate(fd_, bytes) == 0; }
   // The index of that slot's sequence word (odd while a writer is in it, +2 for each whole write), or -1.
   int sequence_word(const std::string& channel) const {
     const int size = size_word(channel);

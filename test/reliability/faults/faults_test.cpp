@@ -25,6 +25,7 @@
 #include "lcm_control/loop_stats_t.hpp"
 #include "test/support/lcm_test.hpp"
 #include "test/support/process.hpp"
+#include "test/support/shm_segment.hpp"
 
 namespace lt = lcm_control::testing;
 using namespace lcm_control;
@@ -323,6 +324,49 @@ TEST(Faults, OverSharedMemoryEitherPeerKilledHoldsAndRecovers) {
   controller_manager_killed(hw, 2);
   sim_server_killed(hw);
   EXPECT_FALSE(std::filesystem::exists("/dev/shm/lcm_control." + hw.substr(4))) << "left behind";
+}
+
+// Issue 51: a process of the user rewrites both programs' reader places, then truncates the file under them. Each
+// program says each once, neither is killed (no SIGBUS), and sim_server holds the robot as on a lost peer.
+TEST(Faults, OverSharedMemoryASegmentTamperedWithIsSaidOnceAndTheRobotHeld) {
+  const std::string hw = "shm:tamper-" + std::to_string(getpid());
+  Robot robot(false, hw);
+  Watcher w(robot.url());
+  std::unique_ptr<lt::ChildProcess> sim;
+  ASSERT_EQ(robot.bring_up(sim, 1.5), "");
+  {
+    lt::MappedSegment seg("/dev/shm/lcm_control." + hw.substr(4));
+    ASSERT_TRUE(seg.ok());
+    for (int p = 0; p < 8; ++p)
+      if (seg.words()[lt::MappedSegment::reader_pid_word(p)] != 0) seg.words()[lt::MappedSegment::reader_mask_word(p)] = 0;
+    sleep_s(1.5);
+    const double before = w.now();
+    sleep_s(0.5);
+    EXPECT_GT(w.between(before, w.now()).size(), 100u) << "restored: the loop runs on";
+    ASSERT_TRUE(seg.truncate(0));
+  }
+  const double cut = w.now();
+  sleep_s(2.5);
+  const auto held = w.between(cut + 0.5, w.now());
+  EXPECT_GT(held.size(), 100u) << "sim_server's state still mirrored to the bus";
+  const auto [h1, h2] = drift(held);
+  EXPECT_LE(h1, 1e-3);
+  EXPECT_LE(h2, 0.01);
+  EXPECT_TRUE(sim->running()) << sim->output();
+  EXPECT_TRUE(robot.manager().running()) << robot.manager().output();
+  auto count = [](const std::string& text, const std::string& what) {
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+    return n;
+  };
+  for (lt::ChildProcess* p : {sim.get(), &robot.manager()}) {
+    EXPECT_EQ(count(p->output(), "was rewritten by another process (restored)"), 1u) << p->output();
+    EXPECT_EQ(count(p->output(), "was truncated under this process"), 1u) << p->output();
+  }
+  std::printf("RELIABILITY|faults|shared memory rewritten and truncated under both programs|tried=2|ok=%d|crashes=0|"
+              "hangs=0|each said once by each program; held within %.5f m / %.5f rad over %zu states after the cut\n",
+              sim->running() && robot.manager().running() ? 2 : 0, h1, h2, held.size());
+  if (std::getenv("LCM_CONTROL_SHOW_NOTES")) std::printf("%s\n%s\n", sim->output().c_str(), robot.manager().output().c_str());
 }
 
 TEST(Faults, StoppedFor3sAndContinuedInRealTimeAndLockstep) {
