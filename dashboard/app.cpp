@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <cstdio>
@@ -331,6 +332,29 @@ int run(Options& o) {
     const size_t slash = rest.find('/');
     if (slash == std::string::npos) return std::string();
     return WebServer::file_under(find_package_dir(rest.substr(0, slash), package_path), rest.substr(slash + 1));
+  });
+  // file:// mesh URIs (xacro's force_abs_paths: UR's descriptions), as /file/<absolute path>: only inside a package
+  // that the package path finds (what /package/ serves) or the URDF's folder, so that the page cannot read any
+  // other file of the user's.
+  web.route("/file/", [&](const std::string& rest) {
+    const fs::path wanted = fs::path("/" + rest).lexically_normal();
+    auto under = [&](const fs::path& root) {
+      const fs::path inside = wanted.lexically_relative(root);
+      return inside.empty() || *inside.begin() == ".." ? std::string() : WebServer::file_under(root, inside.string());
+    };
+    if (!urdf_dir.empty())
+      if (const std::string f = under(fs::absolute(urdf_dir).lexically_normal()); !f.empty()) return f;
+    std::vector<fs::path> roots;  // the path's own folders are not packages, even when one is named as its package
+    for (const std::string& p : package_path) roots.push_back(fs::absolute(p).lexically_normal());
+    fs::path prefix = "/";
+    for (const fs::path& part : wanted.relative_path()) {
+      prefix /= part;
+      const std::string dir = find_package_dir(part.string(), package_path);
+      if (!dir.empty() && fs::absolute(dir).lexically_normal() == prefix &&
+          std::find(roots.begin(), roots.end(), prefix) == roots.end())
+        return under(prefix);
+    }
+    return std::string();
   });
   Dashboard d(o, bus, web, opened, sent, closed);
   CmWorker cm(o.bus, web, o.timeout_s);

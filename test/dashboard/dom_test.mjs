@@ -5,7 +5,7 @@ import assert from 'node:assert/strict';
 import { readFileSync } from 'node:fs';
 
 const src = readFileSync(process.argv[2], 'utf8');
-const { shown, kShownChars, kTitleChars, el, nameEl, options } = await import(`data:text/javascript,${encodeURIComponent(src)}`);
+const { shown, kShownChars, kTitleChars, el, nameEl, options, distinctLabels } = await import(`data:text/javascript,${encodeURIComponent(src)}`);
 
 assert.equal(shown('j2_controller'), 'j2_controller');
 assert.equal(shown(42), '42');
@@ -53,3 +53,16 @@ options(select, ['sim_server', 'c\u001b[2J']);
 assert.deepEqual(select.children.map((o) => [o.attributes.value, o.attributes.title, o.children[0]]),
   [['sim_server', 'sim_server', 'sim_server'], ['c\u001b[2J', 'c\\x1b[2J', 'c\\x1b[2J']]);
 console.log('dom_test: ok');
+
+// Slider labels that stay distinct in a narrow column: the shared prefix and suffix (at a separator) left off.
+assert.deepEqual(distinctLabels(['shoulder_pan_joint', 'shoulder_lift_joint', 'elbow_joint', 'wrist_1_joint']),
+  ['shoulder_pan', 'shoulder_lift', 'elbow', 'wrist_1']);
+assert.deepEqual(distinctLabels(['ur_shoulder_pan_joint', 'ur_shoulder_lift_joint']), ['pan', 'lift']);
+assert.deepEqual(distinctLabels(['joint_1', 'joint_2', 'joint_7']), ['1', '2', '7']);
+assert.deepEqual(distinctLabels(['left_wheel', 'right_wheel']), ['left', 'right']);
+assert.deepEqual(distinctLabels(['j1', 'j2']), ['j1', 'j2']); // no separator: whole
+assert.deepEqual(distinctLabels(['arm/a', 'arm/a_b']), ['a', 'a_b']);
+assert.deepEqual(distinctLabels(['x_a', 'x_a']), ['x_a', 'x_a']); // the same name twice: whole
+assert.deepEqual(distinctLabels(['only_one_joint']), ['only_one_joint']);
+assert.deepEqual(distinctLabels([]), []);
+console.log('dom_test: distinctLabels ok');

@@ -38,6 +38,14 @@ TEST(DashboardProgram, ServesTheUrdfItsMeshesAndPackagesButNothingOutside) {
   EXPECT_EQ(http_get(port, "/robot/modes_bot.urdf").status, 200);
   EXPECT_EQ(http_get(port, "/robot/cube.stl").status, 200);  // a mesh beside the URDF (a relative filename)
   EXPECT_EQ(http_get(port, "/package/my_robot/meshes/cube.stl").status, 200);
+  // file:// URIs (xacro's force_abs_paths) as /file/<absolute path>: inside a package or the URDF's folder only.
+  const std::string pkgs = fs::canonical(dir / "pkgs").string();
+  EXPECT_EQ(http_get(port, "/file" + pkgs + "/my_robot/meshes/cube.stl").status, 200);
+  EXPECT_EQ(http_get(port, "/file" + fs::canonical(source("test/sim_server/data/cube.stl")).string()).status, 200);
+  for (const std::string& outside : std::vector<std::string>{"/file/etc/passwd", "/file" + pkgs + "/secret.txt",
+                                    "/file" + pkgs + "/my_robot/../secret.txt", "/file" + pkgs + "/my_robot/%2e%2e/secret.txt",
+                                    "/file" + pkgs + "/my_robot", "/file/"})
+    EXPECT_EQ(http_get(port, outside).status, 404) << outside;
   for (const char* outside : {"/robot/../pendulum.yaml", "/robot/%2e%2e/pendulum.yaml",
                               "/package/my_robot/../secret.txt", "/package/my_robot/%2e%2e/secret.txt",
                               "/package/no_such_pkg/meshes/cube.stl", "/package/my_robot", "/robot/"})

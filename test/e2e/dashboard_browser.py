@@ -171,7 +171,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bin-dir", required=True)
     ap.add_argument("--source-dir", required=True)
-    ap.add_argument("--robot", choices=["turret_bot", "tall_arm", "bumper_bot"], default="turret_bot")
+    ap.add_argument("--robot", choices=["turret_bot", "tall_arm", "bumper_bot", "ur5e"], default="turret_bot")
     ap.add_argument("--screenshot", help="where to save the page (default: the test's temporary folder)")
     a = ap.parse_args()
 
@@ -199,20 +199,36 @@ def main():
 
     wd = None
     try:
-        files = os.path.join(a.source_dir, {"turret_bot": "config", "tall_arm": "test/e2e/data",
-                                             "bumper_bot": "test/robots/mobile"}[a.robot])
         ns = ["--namespace", a.robot] if a.robot == "tall_arm" else []
-        if a.robot == "bumper_bot":
+        view_flags = []
+        if a.robot == "ur5e":
+            # UR's own description as ur_simulation_gz loads it: file:// mesh URIs (force_abs_paths), a large
+            # ground-plane link, six joints whose names share prefixes, no PID gains.
+            robots = os.environ.get("LCM_CONTROL_ROS2_ROBOTS") or os.path.join(a.source_dir, "../shared/ros2_robots")
+            pkgs = os.path.join(os.path.realpath(robots), "ur5e", "pkgs")
+            if not os.path.isdir(pkgs):
+                print(f"SKIPPED: no UR5e package at {pkgs} (LCM_CONTROL_ROS2_ROBOTS)")
+                return SKIP
+            urdf = os.path.join(pkgs, "ur_simulation_gz/urdf/ur_gz.urdf.xacro")
+            config = os.path.join(pkgs, "ur_simulation_gz/config/ur_controllers.yaml")
+            view_flags = ["--package-path", pkgs]
+            for arg in ("name:=ur", "ur_type:=ur5e", "safety_limits:=true", f"simulation_controllers:={config}"):
+                view_flags += ["--xacro-arg", arg]
+            robot = ["--urdf", urdf, "--config", config, *view_flags,
+                     "--controllers", "joint_state_broadcaster,forward_position_controller"]
+        elif a.robot == "bumper_bot":
+            files = os.path.join(a.source_dir, "test/robots/mobile")
             urdf = os.path.join(files, "bumper_bot.urdf.xacro")
             robot = ["--urdf", urdf, "--config", os.path.join(files, "bumper_bot_controllers.yaml")]
         else:
+            files = os.path.join(a.source_dir, {"turret_bot": "config", "tall_arm": "test/e2e/data"}[a.robot])
             urdf = os.path.join(files, f"{a.robot}.urdf")
             robot = [os.path.join(files, f"{a.robot}.launch.yaml")]
         launch = start([os.path.join(a.bin_dir, "launch"), *robot, "--lcm-url", url], "launch.log")
         wait_for("launch up", lambda: "[launch] up:" in log("launch.log") or launch.poll() is not None, 60)
         assert launch.poll() is None, "launch ended:\n" + log("launch.log")
         dash = start([os.path.join(a.bin_dir, "dashboard"), "--lcm-url", url, "--port", "0", *ns,
-                      "--urdf", urdf], "dashboard.log")
+                      "--urdf", urdf, *view_flags], "dashboard.log")
         page = wait_for("the dashboard's URL", lambda: re.search(r"http://127\.0\.0\.1:\d+/", log("dashboard.log"))
                         or dash.poll() is not None, 20)
         assert dash.poll() is None, "dashboard ended:\n" + log("dashboard.log")
@@ -225,6 +241,25 @@ def main():
         wait_for("chromedriver", lambda: _ready(wd), 20)
         wd.start(chromium, os.path.join(work, "profile"))
         wd.go(page)
+        if a.robot == "ur5e":
+            ur5e(wd)
+            wd.screenshot(a.screenshot or os.path.join(work, "dashboard.png"))
+            # A file:// mesh outside every package and the URDF's folder is refused, and the page says so.
+            foreign = os.path.join(work, "foreign_mesh.urdf")
+            with open(foreign, "w") as f:
+                f.write('<robot name="foreign"><link name="base"><visual><geometry>'
+                        '<mesh filename="file:///etc/hostname.stl"/></geometry></visual></link></robot>\n')
+            other = start([os.path.join(a.bin_dir, "dashboard"), "--lcm-url", url, "--port", "0", "--urdf", foreign],
+                          "dashboard2.log")
+            page2 = wait_for("the second dashboard's URL", lambda: re.search(
+                r"http://127\.0\.0\.1:\d+/", log("dashboard2.log")) or other.poll() is not None, 20)
+            wd.go(page2.group(0))
+            note = wait_for("the refused mesh named on the page", lambda: (lambda t: t and "not shown" in t and t)(
+                wd.js("return document.getElementById('view-note').textContent")), 20)
+            print("a mesh outside:", note)
+            assert "/file/etc/hostname.stl" in note and "--package-path" in note, note
+            print("dashboard_browser ur5e: ok")
+            return 0
         if a.robot == "bumper_bot":
             bumper_bot(wd)
             wd.screenshot(a.screenshot or os.path.join(work, "dashboard.png"))
@@ -436,6 +471,52 @@ def bumper_bot(wd):
     assert size[1] < 0.1, f"the ring stands on its edge: {size[1]:.3f} m tall (a Z_UP file turned to Y_UP)"
     assert abs(size[0] - 0.34) < 0.02 and abs(size[2] - 0.34) < 0.02, f"not a 34 cm ring seen flat: {size}"
     whole_robot_in_view(wd, "bumper_bot")
+
+
+def ur5e(wd):
+    """The UR5e as a ROS 2 user brings it: its name in the header, all its meshes (file:// URIs) shown, the arm
+    framed rather than its 5 x 5 m ground plane (at least 10 % of the 3D view's pixels), six distinct slider labels,
+    and a gains panel that says there are no PID gains instead of an error."""
+    name = wait_for("the robot's name in the header", lambda: wd.js(
+        "return window.dashboard.view.robot && document.getElementById('robot-name').textContent"), 30)
+    print("header:", name)
+    assert name.split(" · ")[0] == "ur", name
+    meshes = wait_for("the arm's meshes", lambda: wd.js(
+        "const v = window.dashboard.view; let n = 0; v.robot.traverse(o => { if (o.isMesh) n++; });"
+        "return n >= 7 && n"), 30)
+    time.sleep(1.0)  # the loading manager frames the robot once every mesh is in
+    note = wd.js("return document.getElementById('view-note').textContent")
+    print(f"{meshes} meshes; view note: {note}")
+    assert "not shown" not in note, note
+    spans = [whole_robot_in_view(wd, "ur5e")]
+    upright = wd.js("return window.dashboard.view.coverage()")
+    print(f"standing straight up (all joints 0), the arm covers {100 * upright:.1f} % of the 3D view's pixels")
+    labels = wait_for("forward_position_controller's sliders", lambda: (lambda v: len(v) == 6 and v)(wd.js(
+        "return [...document.querySelectorAll('.command .slider .joint')].map(s => s.textContent)")), 20)
+    print("slider labels:", labels)
+    assert len(set(labels)) == 6 and "shoulder_pan" in labels and "shoulder_lift" in labels, labels
+    # UR's home pose (shoulder_lift -90 deg, elbow 90 deg) from the sliders, then the fit button, as a user would.
+    for joint, value in (("shoulder_lift_joint", -1.5708), ("elbow_joint", 1.5708)):
+        wd.js(f"const s = document.getElementById('slider-forward_position_controller-{joint}'); s.value = {value};"
+              "s.dispatchEvent(new Event('input')); s.dispatchEvent(new Event('change'));")
+    wait_for("the home pose", lambda: wd.js(
+        "const j = window.dashboard.view.robot.joints; return Math.abs(j.shoulder_lift_joint.angle + 1.5708) < 0.01 &&"
+        " Math.abs(j.elbow_joint.angle - 1.5708) < 0.01"), 20)
+    wd.js("document.getElementById('view-fit').click()")
+    time.sleep(0.5)
+    spans.append(whole_robot_in_view(wd, "ur5e at home"))
+    share = wd.js("return window.dashboard.view.coverage()")
+    print(f"at home, the arm covers {100 * share:.1f} % of the 3D view's pixels")
+    # Framed, not a speck under a 5 x 5 m plane: the arm's box spans most of the view's height, and its own pixels
+    # (the plane, grid and axes left out) are a real share of a 2:1 view an upright arm can fill only in height.
+    for box in spans:
+        assert (box["bottom"] - box["top"]) / box["height"] >= 0.7, box
+    assert min(upright, share) >= 0.04, f"the arm is a speck: {100 * upright:.1f} / {100 * share:.1f} % of the view"
+    gains = wait_for("the gains panel's answer", lambda: (lambda m: m and not m.startswith("asking") and m)(wd.js(
+        "const m = document.getElementById('gains-message'); return m && m.textContent")), 40)
+    error = wd.js("return document.getElementById('gains-message').classList.contains('error')")
+    print("gains:", gains, "(error)" if error else "")
+    assert not error, gains
 
 
 def tall_arm(wd, a, url, ns, page, chromium, work):

@@ -1,4 +1,4 @@
-import { el, nameEl, shown } from './dom.js';
+import { distinctLabels, el, nameEl, shown } from './dom.js';
 
 // Command channels of the running controllers (rqt's message publisher): a slider per joint within its URDF limits,
 // and an expression in i and t streamed by the server at a rate, like turret-cmd. What a controller takes is what its
@@ -107,6 +107,7 @@ export class Commands {
     const follow = (this.sliders[channel] = { c, values, rows: [], touched: -Infinity });
     this.states[`${c.name}/state`] = follow;
     if (kind === 'gripper') return this.gripperBlock(c, div, channel, values, follow);
+    const labels = distinctLabels(c.joints);
     c.joints.forEach((joint, k) => {
       const [lo, hi] = range(kind, this.joints[joint]);
       const row = document.createElement('label');
@@ -128,7 +129,8 @@ export class Commands {
         this.send(c.name, channel, group, values, false);
       };
       slider.onchange = () => this.send(c.name, channel, group, values, true);
-      row.append(nameEl('span', 'joint', joint), slider, out);
+      const label = el('span', { class: 'joint', title: joint }, labels[k]);
+      row.append(label, slider, out);
       div.appendChild(row);
     });
     const expr = document.createElement('div');

@@ -32,3 +32,19 @@ export function nameEl(tag, cls, text) {
 export function options(select, values) {
   select.replaceChildren(...values.map((v) => el('option', { value: v, title: v }, v)));
 }
+
+// Short labels for names shown side by side in a narrow column (a controller's joints by its sliders): the prefix and
+// suffix all of them share (up to a '_', '/', '-' or '.') left off, so that shoulder_pan_joint and shoulder_lift_joint
+// read "shoulder_pan" and "shoulder_lift", ur_joint_1 .. ur_joint_6 "1" .. "6". A name that would be left empty, or a
+// single name, stays whole.
+export function distinctLabels(names) {
+  if (names.length < 2) return [...names];
+  const sep = /[_\/.-]/;
+  let pre = 0;
+  for (let k = 0; names.every((n) => k < n.length && n[k] === names[0][k]); ++k) if (sep.test(names[0][k])) pre = k + 1;
+  let suf = 0;
+  for (let k = 1; names.every((n) => k <= n.length - pre && n[n.length - k] === names[0][names[0].length - k]); ++k)
+    if (sep.test(names[0][names[0].length - k])) suf = k;
+  const labels = names.map((n) => n.slice(pre, n.length - suf));
+  return labels.every((l) => l.length > 0) && new Set(labels).size === labels.length ? labels : [...names];
+}

@@ -101,7 +101,7 @@ export class Gains {
       }
     }
     this.select(...pairs[0]);
-    this.show(false, `no joint with gains: asked ${[...new Set(pairs.map(([o]) => o))].join(', ')} ` +
+    this.show(true, `no PID gains on this robot's controllers or joints: asked ${[...new Set(pairs.map(([o]) => o))].join(', ')} ` +
       '(a position joint gets them from gazebo_ros_control/pid_gains, a controller from its pid)');
   }
 

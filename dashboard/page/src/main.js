@@ -23,6 +23,7 @@ const state = { hello: null, status: null, controllersOk: null, cmMessage: '', e
 window.dashboard = { conn, view, plots, channels, controllers, commands, gains, state };
 
 view.onLoad.push((joints) => {
+  header();
   commands.setJoints(joints);
   gains.update(controllers.list, joints);
 });
@@ -35,11 +36,21 @@ conn.on('hello', (h) => {
   state.hello = h;
   channels.setSchema(h.schema);
   gains.setSchema(h.schema);
-  $('robot-name').textContent = `${h.namespace ? `namespace ${h.namespace} · ` : ''}${h.lcm_url}${h.read_only ? ' · read-only' : ''}`;
+  header();
   document.body.classList.toggle('read-only', h.read_only);
   if (!view.robot) view.load(h.urdf);
   banner();
 });
+// The robot's name (from its URDF), its namespace, read-only; the bus in the tooltip.
+function header() {
+  const h = state.hello;
+  if (!h) return;
+  const name = view.robot?.robotName || (h.urdf ? '' : 'no URDF');
+  $('robot-name').textContent = shown([name, h.namespace && `namespace ${h.namespace}`, h.read_only && 'read-only']
+    .filter(Boolean).join(' · '));
+  $('robot-name').title = shown(`bus ${h.lcm_url}`);
+}
+
 conn.on('msg', (f) => {
   if (!f.msg) return;
   channels.message(f.channel, f.type, f.msg);

@@ -6,8 +6,16 @@ import { ColladaLoader } from 'three/examples/jsm/loaders/ColladaLoader.js';
 import { OBJLoader } from 'three/examples/jsm/loaders/OBJLoader.js';
 import { STLLoader } from 'three/examples/jsm/loaders/STLLoader.js';
 
+// A mesh's URL as the server serves it: a file:// URI (xacro's force_abs_paths, UR's descriptions) resolved against
+// the URDF's URL becomes /file/<absolute path>, which the server answers inside the package path and the URDF's folder.
+export function meshUrl(path) {
+  const at = path.indexOf('file://');
+  return at < 0 ? path : `/file${path.slice(at + 'file://'.length)}`;
+}
+
 // urdf-loader's loadMeshCb: (path, manager, material, done(object, error)).
 export function loadMesh(path, manager, material, done) {
+  path = meshUrl(path);
   const failed = (err) => done(null, err);
   if (/\.stl$/i.test(path)) {
     new STLLoader(manager).load(path, (geometry) => done(new THREE.Mesh(geometry, material || new THREE.MeshPhongMaterial())), null, failed);

@@ -3,7 +3,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 import URDFLoader from 'urdf-loader';
-import { el } from './dom.js';
+import { el, kTitleChars, shown } from './dom.js';
 import { fitDistance, screenRect } from './fit.js';
 import { loadMesh } from './meshes.js';
 
@@ -46,27 +46,74 @@ export class RobotView {
     this.resize();
   }
 
-  // The robot's bounding box in the scene: its shapes, and its links' origins (a robot with no visual still has those).
+  // The robot's bounding box in the scene: its links' origins (a robot with no visual still has those) and shapes,
+  // but not the shapes of a link welded to the root (a ground plane, a table, a world of its own) that would
+  // dwarf the links that move: a 5 x 5 m plane under an arm would leave the arm a speck.
   box() {
     this.world.updateMatrixWorld(true);
-    const box = new THREE.Box3().setFromObject(this.world);
-    for (const link of Object.values(this.robot.links || {})) box.expandByPoint(link.getWorldPosition(new THREE.Vector3()));
+    const links = Object.values(this.robot.links || {});
+    const box = new THREE.Box3();
+    for (const link of links) box.expandByPoint(link.getWorldPosition(new THREE.Vector3()));
+    const shapes = (link) => {
+      const b = new THREE.Box3();
+      for (const c of link.children) if (!c.isURDFJoint && !c.isURDFLink) b.expandByObject(c);
+      return b;
+    };
+    const moving = new THREE.Box3();
+    for (const link of links) if (this.moves(link)) moving.union(shapes(link));
+    box.union(moving);
+    const reach = moving.isEmpty() ? Infinity : 2 * moving.getSize(new THREE.Vector3()).length();
+    this.leftOut = [];
+    for (const link of links) {
+      if (this.moves(link)) continue;
+      const b = shapes(link);
+      if (b.isEmpty()) continue;
+      if (b.getSize(new THREE.Vector3()).length() <= reach) box.union(b);
+      else this.leftOut.push(link);
+    }
     return box;
   }
 
-  // The camera looks at the robot's bounding sphere from where it looks now, far enough to see all of it.
+  // Whether a link moves: a joint that is not fixed lies between it and the root.
+  moves(link) {
+    for (let o = link.parent; o && o !== this.world; o = o.parent) if (o.isURDFJoint && o.jointType !== 'fixed') return true;
+    return false;
+  }
+
+  // The camera looks at the robot from where it looks now: first far enough to see its bounding sphere, then closer
+  // until its box fills 90 % of the view's narrower side (a sphere around a tall thin arm leaves most of the view
+  // empty).
   fit() {
     if (!this.renderer || !this.world) return;
     const sphere = this.box().getBoundingSphere(new THREE.Sphere());
     const radius = Math.max(sphere.radius, 0.05);
     const direction = this.camera.position.clone().sub(this.controls.target);
     if (direction.lengthSq() < 1e-12) direction.set(1, 0.5, 1);
-    const distance = fitDistance(radius, this.camera.fov, this.camera.aspect);
+    direction.normalize();
+    let distance = fitDistance(radius, this.camera.fov, this.camera.aspect);
     this.controls.target.copy(sphere.center);
-    this.camera.position.copy(sphere.center).addScaledVector(direction.normalize(), distance);
-    this.camera.near = distance / 100;
-    this.camera.far = distance * 100;
-    this.camera.updateProjectionMatrix();
+    const place = () => {
+      this.camera.position.copy(sphere.center).addScaledVector(direction, distance);
+      this.camera.near = distance / 100;
+      this.camera.far = distance * 100;
+      this.camera.updateProjectionMatrix();
+      this.camera.updateMatrixWorld();
+    };
+    place();
+    let whole = distance; // the nearest distance seen that shows all of the box
+    for (let k = 0; k < 4; ++k) {
+      const r = this.projectedBox();
+      const fill = r ? Math.max((r.right - r.left) / r.width, (r.bottom - r.top) / r.height) : 0;
+      if (!r || !r.inside || !(fill > 0.05)) break;
+      whole = distance;
+      if (fill > 0.85) break;
+      distance *= fill / 0.9;
+      place();
+    }
+    if (distance !== whole && !this.projectedBox()?.inside) {
+      distance = whole;
+      place();
+    }
     this.controls.update();
     this.moved = false;
     this.invalidate();
@@ -82,6 +129,30 @@ export class RobotView {
       corners.push(new THREE.Vector3(x, y, z).project(this.camera));
     const canvas = this.renderer.domElement;
     return screenRect(corners, canvas.clientWidth, canvas.clientHeight);
+  }
+
+  // The share of the view's pixels the robot covers, drawn once without the grid, the axes and the links the frame
+  // leaves out (a ground plane), and read back from the canvas; null without a robot or WebGL. For the browser test,
+  // and for anyone asking from the console.
+  coverage() {
+    if (!this.renderer || !this.world) return null;
+    this.box();
+    const helpers = this.scene.children.filter((c) => c.type === 'GridHelper' || c.type === 'AxesHelper');
+    for (const link of this.leftOut) for (const c of link.children) if (!c.isURDFJoint && !c.isURDFLink) helpers.push(c);
+    for (const h of helpers) h.visible = false;
+    this.renderer.render(this.scene, this.camera);
+    const gl = this.renderer.getContext();
+    const w = gl.drawingBufferWidth;
+    const h = gl.drawingBufferHeight;
+    const px = new Uint8Array(w * h * 4);
+    gl.readPixels(0, 0, w, h, gl.RGBA, gl.UNSIGNED_BYTE, px);
+    for (const o of helpers) o.visible = true;
+    this.invalidate();
+    const bg = px.slice(0, 3); // a corner: the background
+    let covered = 0;
+    for (let i = 0; i < px.length; i += 4)
+      if (Math.abs(px[i] - bg[0]) + Math.abs(px[i + 1] - bg[1]) + Math.abs(px[i + 2] - bg[2]) > 12) ++covered;
+    return covered / (w * h);
   }
 
   // Draws on the next animation frame, once however often it is asked: a still robot costs the browser nothing.
@@ -114,6 +185,14 @@ export class RobotView {
     // Meshes arrive after the URDF: draw again as each one loads.
     const manager = new THREE.LoadingManager();
     manager.onProgress = () => this.invalidate();
+    const failed = [];
+    manager.onError = (mesh) => {
+      failed.push(mesh);
+      this.meshNote = `${failed.length} mesh${failed.length > 1 ? 'es' : ''} not shown (first: ${failed[0]}): meshes ` +
+        "are served from packages on --package-path and the URDF's folder";
+      this.note.textContent = shown(`${this.loadedNote || ''} · ${this.meshNote}`, kTitleChars);
+      this.note.classList.add('error');
+    };
     manager.onLoad = () => (this.moved || !this.world ? this.invalidate() : this.fit()); // meshes change the box
     const loader = new URDFLoader(manager);
     loader.packages = (pkg) => `/package/${pkg}`;
@@ -139,7 +218,8 @@ export class RobotView {
             effort: Number(j.limit?.effort ?? 0),
           };
         }
-        this.note.textContent = `${robot.robotName || 'robot'} from ${url}`;
+        this.loadedNote = `${robot.robotName || 'robot'} from ${url}`;
+        this.note.textContent = shown(this.meshNote ? `${this.loadedNote} · ${this.meshNote}` : this.loadedNote, kTitleChars);
         this.fit();
 
         for (const fn of this.onLoad) fn(this.joints);
