@@ -2,7 +2,7 @@
 
 Debian packages LCM for C, C++, Java and Lua but not Python. With LCM's module
 (`pip install lcm`) use `lcm.LCM(url)`; this class offers the part of its API
-the examples use (publish, subscribe, handle_timeout), speaking the same wire
+the examples use (publish, subscribe, unsubscribe, handle_timeout), speaking the same wire
 format (LCM's "LC02" short messages, which hold any message up to 65,000
 bytes; larger, fragmented ones are skipped) on the same `udpm://` URL.
 """
@@ -43,8 +43,14 @@ class LCM:
         self._send.sendto(packet, (self.group, self.port))
 
     def subscribe(self, channel_regex, handler):
-        """handler(channel, data) for every message whose channel matches the whole regex, as LCM does."""
-        self._handlers.append((re.compile(channel_regex), handler))
+        """handler(channel, data) for every message whose channel matches the whole regex, as LCM does; returns
+        the subscription, for unsubscribe()."""
+        subscription = (re.compile(channel_regex), handler)
+        self._handlers.append(subscription)
+        return subscription
+
+    def unsubscribe(self, subscription):
+        self._handlers = [s for s in self._handlers if s is not subscription]
 
     def handle_timeout(self, timeout_ms):
         """Handles one message if one comes within timeout_ms; returns 1 if it did, 0 on timeout."""
