@@ -29,7 +29,10 @@ int main(int argc, char** argv) {
       "In lockstep mode the controller manager starts first, the controllers are spawned and the file's commands "
       "registered as command sources, and only then sim_server starts: every run is the same from step 0.",
       "launch"};
-  app.add_option("FILE", o.file, "launch file: YAML (see config/turret_bot.launch.yaml) or ROS launch XML");
+  std::vector<std::string> positional;
+  app.add_option("FILE", positional,
+                 "launch file: YAML (see config/turret_bot.launch.yaml) or ROS launch XML, then NAME:=VALUE for its "
+                 "<arg>s as roslaunch takes them (the same as --arg NAME=VALUE)");
   app.add_option("--urdf", o.urdf,
                  "without a FILE: the robot (.urdf or .xacro) to start with sim_server, controller_manager and a "
                  "spawner, as a launch file with only urdf:, config: and controllers: would");
@@ -78,6 +81,7 @@ int main(int argc, char** argv) {
   app.add_option("--inactive", o.inactive, "controllers to load without starting (a,b; ROS 2's spawner --inactive)")
       ->delimiter(',');
   add_package_path_flag(app, o.package_path);
+  app.get_option("--package-path")->allow_extra_args(false);  // NAME:=VALUE after it stays an argument
   add_xacro_arg_flag(app, o.xacro_args);
   add_simulate_hardware_flag(app, o.simulate_hardware);
   add_bus_flags(app, o.bus);
@@ -94,6 +98,15 @@ int main(int argc, char** argv) {
   app.add_option("--dashboard-port", o.dashboard_port, "the dashboard's port (default 8080; 0: one the system picks)")
       ->check(CLI::Range(0, 65535));
   return run_program(app, argc, argv, [&] {
+    for (const std::string& p : positional) {
+      if (p.find(":=") != std::string::npos)
+        o.args.push_back(p);
+      else if (o.file.empty())
+        o.file = p;
+      else
+        throw CLI::ValidationError("FILE", "one launch file, then NAME:=VALUE arguments; got '" + o.file + "' and '" +
+                                               p + "'");
+    }
     o.base = fixed_base ? "fixed" : floating_base ? "floating" : "";
     return run_launch(o);
   });

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <filesystem>
 #include <fstream>
 
 #include "description/robot_model.hpp"
@@ -399,4 +400,72 @@ TEST(LaunchFile, AnEvalErrorShowsTheWholeExpression) {
             std::string::npos)
       << p;
   EXPECT_NE(p.find("no_such_arg"), std::string::npos) << p;
+}
+
+// Issue 48: a robot's launch file included by another, as catkin packages split them: <include> followed with its
+// <arg>s (and pass_all_args), relative files from the included file's own folder, and NAME:=VALUE from the command
+// line overriding a default; each mistake named with the file and line.
+TEST(LaunchFile, IncludesAreFollowedWithTheirArgsAndTheCommandLineOverridesDefaults) {
+  const std::string dir = lt::temp_dir("launch_include");
+  std::filesystem::create_directories(dir + "/robot/urdf");
+  write(dir + "/robot/urdf", "arm.urdf", "<robot name='arm'/>");
+  write(dir + "/robot", "controllers.yaml", "a: 1\n");
+  write(dir + "/robot", "upload.launch", R"L(<launch>
+  <arg name="model" default="urdf/missing.urdf"/>
+  <arg name="controllers" default="joint_state_controller"/>
+  <param name="robot_description" textfile="$(arg model)"/>
+  <rosparam command="load" file="controllers.yaml"/>
+  <node name="spawner" pkg="controller_manager" type="spawner" args="$(arg controllers)"/>
+</launch>)L");
+  const std::string top = write(dir, "top.launch", R"L(<launch>
+  <arg name="controllers" default="j1_controller"/>
+  <include file="$(find gazebo_ros)/launch/empty_world.launch"/>
+  <node name="spawn" pkg="gazebo_ros" type="spawn_model" args="-urdf -param robot_description -model arm"/>
+  <include file="robot/upload.launch">
+    <arg name="model" value="urdf/arm.urdf"/>
+    <arg name="controllers" value="$(arg controllers) j2_controller"/>
+  </include>
+</launch>)L");
+  LaunchPlan plan = read_launch_file(top, {});
+  EXPECT_EQ(plan.urdf, std::filesystem::canonical(dir + "/robot/urdf/arm.urdf").string());
+  ASSERT_EQ(plan.configs.size(), 1u);
+  EXPECT_EQ(plan.configs[0], std::filesystem::canonical(dir + "/robot/controllers.yaml").string());
+  EXPECT_EQ(plan.controllers, (std::vector<std::string>{"j1_controller", "j2_controller"}));
+  bool noted = false;
+  for (const auto& n : plan.notes) noted = noted || n.find("included " + dir + "/robot/upload.launch with 2") != std::string::npos;
+  EXPECT_TRUE(noted);
+  // NAME:=VALUE on the command line takes the place of a default, as roslaunch's.
+  plan = read_launch_file(top, {}, {{"controllers", "j9_controller"}});
+  EXPECT_EQ(plan.controllers, (std::vector<std::string>{"j9_controller", "j2_controller"}));
+  // pass_all_args: the included file sees every argument of the file that includes it.
+  const std::string all = write(dir, "all.launch", R"L(<launch>
+  <arg name="model" default="urdf/arm.urdf"/>
+  <arg name="controllers" default="j1_controller"/>
+  <node name="spawn" pkg="gazebo_ros" type="spawn_model" args="-urdf -param robot_description -model arm"/>
+  <include file="robot/upload.launch" pass_all_args="true"/>
+</launch>)L");
+  plan = read_launch_file(all, {}, {{"controllers", "j2_controller"}});
+  EXPECT_EQ(plan.controllers, (std::vector<std::string>{"j2_controller"}));
+
+  // An argument the included file does not declare, a fixed one passed, a file that includes itself.
+  std::string p = problems_of([&] {
+    read_launch_file(write(dir, "bad.launch", R"L(<launch>
+  <node name="spawn" pkg="gazebo_ros" type="spawn_model" args="-urdf -param robot_description -model arm"/>
+  <include file="robot/upload.launch"><arg name="modle" value="urdf/arm.urdf"/></include>
+</launch>)L"),
+                     {});
+  });
+  EXPECT_NE(p.find("bad.launch:3: <include>: modle:=urdf/arm.urdf is not an argument of " + dir +
+                   "/robot/upload.launch (it declares: model, controllers)"),
+            std::string::npos)
+      << p;
+  write(dir, "fixed.launch", "<launch><arg name='x' value='1'/></launch>");
+  p = problems_of([&] {
+    read_launch_file(write(dir, "f.launch", "<launch><include file='fixed.launch'><arg name='x' value='2'/></include>"
+                                            "</launch>"),
+                     {});
+  });
+  EXPECT_NE(p.find("x:=2 cannot be passed: value=\"1\" fixes this argument"), std::string::npos) << p;
+  p = problems_of([&] { read_launch_file(write(dir, "loop.launch", "<launch><include file='loop.launch'/></launch>"), {}); });
+  EXPECT_NE(p.find("loop.launch:1: <include>: " + dir + "/loop.launch includes itself"), std::string::npos) << p;
 }

@@ -9,11 +9,14 @@
 
 namespace lcm_control::tools {
 
-// Reads either format (XML if the file starts with '<' after blanks, else YAML).
-// Throws ModelError naming the file, line or key at fault.
-LaunchPlan read_launch_file(const std::string& path, const std::vector<std::string>& package_path);
+// Reads either format (XML if the file starts with '<' after blanks, else YAML). `args`: NAME:=VALUE from the
+// command line, which a ROS launch file's <arg default=> take as roslaunch does (its <include>s followed, each with
+// its own <arg>s). Throws ModelError naming the file, line or key at fault.
+LaunchPlan read_launch_file(const std::string& path, const std::vector<std::string>& package_path,
+                            const std::vector<std::pair<std::string, std::string>>& args = {});
 LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::string>& package_path);
-LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::string>& package_path);
+LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::string>& package_path,
+                           const std::vector<std::pair<std::string, std::string>>& args = {});
 
 // What both readers share: the file's text (ModelError if it is not a file), a path made absolute from the launch
 // file's folder, and the fix named for an $(arg) without a value.

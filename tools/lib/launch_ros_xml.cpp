@@ -1,10 +1,12 @@
 // ROS launch XML (the tutorial's gazebo_ros_control.launch and its kind), mapped onto our programs.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <tinyxml2.h>
 
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
+#include <algorithm>
 #include <map>
 
 #include "description/robot_model.hpp"
@@ -21,12 +23,15 @@ namespace {
 using Args = std::vector<std::pair<std::string, std::string>>;
 
 struct RosReader {
-  RosReader(const std::string& file, const std::vector<std::string>& packages, LaunchPlan& out)
-      : path(file), package_path(packages), plan(out) {}
-  const std::string& path;
+  RosReader(std::string file, const std::vector<std::string>& packages, LaunchPlan& out, Args given)
+      : path(std::move(file)), package_path(packages), plan(out), passed(std::move(given)) {}
+  const std::string path;
   const std::vector<std::string>& package_path;
   LaunchPlan& plan;
   Args args;
+  Args passed;                   // NAME:=VALUE from the command line (the top file) or the <include>'s <arg>s
+  std::vector<std::string> used;  // the passed names an <arg> took
+  std::vector<std::string> files;  // this file and those that included it, innermost last (for cycles)
   std::vector<std::pair<std::string, std::string>> textfile_params;  // name -> file
   std::map<std::string, std::vector<std::pair<std::string, std::string>>> xacro_params;  // name -> its xacro args
   bool gazebo = false, spawn_model = false, unpause = false;
@@ -186,13 +191,86 @@ struct RosReader {
     plan.notes.push_back(where(e) + ": xacro " + file + " is expanded by lcm_control's own xacro");
   }
 
+  // <include file="..."> followed as roslaunch does: the file's <arg>s take the include's <arg name value> children
+  // (and all of this file's with pass_all_args="true"); one it does not declare is an error, as in roslaunch.
+  void include(const tinyxml2::XMLElement* e) {
+    const std::string file = absolute_from(attr(e, "file"), fs::path(path).parent_path().string());
+    if (file.empty()) return (void)problems.push_back(where(e) + ": no file=");
+    if (std::find(files.begin(), files.end(), file) != files.end())
+      return (void)problems.push_back(fmt::format("{}: {} includes itself (through {})", where(e), file,
+                                                  fmt::join(files, " -> ")));
+    if (files.size() >= 20)
+      return (void)problems.push_back(fmt::format("{}: includes nest deeper than 20 files", where(e)));
+    Args given;
+    if (attr(e, "pass_all_args") == "true") given = args;
+    for (auto* a = e->FirstChildElement("arg"); a; a = a->NextSiblingElement("arg")) {
+      if (!enabled(a)) continue;
+      const std::string name = attr(a, "name");
+      given.erase(std::remove_if(given.begin(), given.end(), [&](const auto& g) { return g.first == name; }), given.end());
+      given.emplace_back(name, attr(a, a->Attribute("value") ? "value" : "default"));
+    }
+    tinyxml2::XMLDocument doc;
+    const std::string text = read_launch_text(file);
+    if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS)
+      return (void)problems.push_back(fmt::format("{}:{}: malformed XML (included from {})", file, doc.ErrorLineNum(),
+                                                  where(e)));
+    const tinyxml2::XMLElement* root = doc.FirstChildElement("launch");
+    if (!root) return (void)problems.push_back(fmt::format("{}: no <launch> element (included from {})", file, where(e)));
+    RosReader child(file, package_path, plan, given);
+    child.files = files;
+    child.files.push_back(file);
+    child.group_ns = group_ns;
+    const size_t configs_before = plan.configs.size();
+    for (auto* c = root->FirstChildElement(); c; c = c->NextSiblingElement()) {
+      try {
+        child.element(c);
+      } catch (const ModelError& err) {
+        child.problems.insert(child.problems.end(), err.problems().begin(), err.problems().end());
+      }
+    }
+    // Its relative files are its own folder's.
+    const std::string dir = fs::path(file).parent_path().string();
+    for (size_t k = configs_before; k < plan.configs.size(); ++k) plan.configs[k] = absolute_from(plan.configs[k], dir);
+    for (auto& [name, f] : child.textfile_params) textfile_params.emplace_back(name, absolute_from(f, dir));
+    for (auto& x : child.xacro_params) xacro_params[x.first] = x.second;
+    if (plan.urdf.size() && fs::path(plan.urdf).is_relative() && child.spawn_model) plan.urdf = absolute_from(plan.urdf, dir);
+    gazebo = gazebo || child.gazebo;
+    spawn_model = spawn_model || child.spawn_model;
+    unpause = unpause || child.unpause;
+    if (!child.spawn_param.empty()) spawn_param = child.spawn_param;
+    problems.insert(problems.end(), child.problems.begin(), child.problems.end());
+    if (attr(e, "pass_all_args") != "true")
+      for (const auto& [name, value] : given)
+        if (std::find(child.used.begin(), child.used.end(), name) == child.used.end())
+          problems.push_back(fmt::format("{}: {}:={} is not an argument of {} (it declares: {})", where(e), name, value,
+                                         file, declared(child)));
+    plan.notes.push_back(fmt::format("{}: included {}{}", where(e), file,
+                                     given.empty() ? "" : fmt::format(" with {} argument(s)", given.size())));
+  }
+  static std::string declared(const RosReader& r) {
+    std::vector<std::string> names;
+    for (const auto& a : r.args) names.push_back(a.first);
+    return names.empty() ? "none" : fmt::format("{}", fmt::join(names, ", "));
+  }
+
   void element(const tinyxml2::XMLElement* e) {
     if (!enabled(e)) return;
     const std::string tag = e->Name();
     if (tag == "arg") {
       const std::string name = attr(e, "name");
-      const char* value = e->Attribute("value") ? "value" : (e->Attribute("default") ? "default" : nullptr);
-      if (value) args.emplace_back(name, attr(e, value));
+      const auto given = std::find_if(passed.begin(), passed.end(), [&](const auto& a) { return a.first == name; });
+      if (given != passed.end()) used.push_back(name);
+      if (e->Attribute("value")) {
+        if (given != passed.end())
+          problems.push_back(fmt::format("{}: {}:={} cannot be passed: value=\"{}\" fixes this argument (roslaunch "
+                                         "takes only those with default=)",
+                                         where(e), name, given->second, attr(e, "value")));
+        args.emplace_back(name, attr(e, "value"));
+      } else if (given != passed.end()) {
+        args.emplace_back(name, given->second);
+      } else if (e->Attribute("default")) {
+        args.emplace_back(name, attr(e, "default"));
+      }
     } else if (tag == "param") {
       const std::string name = strip_slash(attr(e, "name"));
       if (e->Attribute("textfile")) {
@@ -231,7 +309,7 @@ struct RosReader {
         }
         plan.notes.push_back(where(e) + ": gazebo_ros world -> sim_server + controller_manager");
       } else {
-        plan.notes.push_back(where(e) + ": include of " + file + " not followed; ignored");
+        include(e);
       }
     } else if (tag == "group") {
       const std::string outer = group_ns;
@@ -248,7 +326,8 @@ struct RosReader {
 
 }  // namespace
 
-LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::string>& package_path) {
+LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::string>& package_path,
+                           const std::vector<std::pair<std::string, std::string>>& args) {
   std::string text = read_launch_text(path);
   LaunchPlan plan;
   plan.file = path;
@@ -262,7 +341,8 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
                                  doc.ErrorStr() ? trim(doc.ErrorStr()) : "parse error"));
   const tinyxml2::XMLElement* root = doc.FirstChildElement("launch");
   if (!root) throw ModelError(fmt::format("{}: no <launch> element; is this a ROS launch file?", path));
-  RosReader r(path, package_path, plan);
+  RosReader r(path, package_path, plan, args);
+  r.files.push_back(fs::weakly_canonical(fs::absolute(path)).string());
   for (auto* e = root->FirstChildElement(); e; e = e->NextSiblingElement()) {
     try {
       r.element(e);
@@ -289,6 +369,13 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
     r.problems.push_back(fmt::format(
         "{}: nothing to simulate: no <include> of gazebo_ros's world launch file and no spawn_model node", path));
   plan.args = r.args;
+  for (const auto& [name, value] : args)  // not declared: still given to the controllers' YAML ($(arg NAME))
+    if (std::find(r.used.begin(), r.used.end(), name) == r.used.end()) {
+      plan.notes.push_back(fmt::format("{}: {}:={}: the file declares no <arg name=\"{}\">; passed to the "
+                                       "controllers' YAML only",
+                                       path, name, value, name));
+      plan.args.emplace_back(name, value);
+    }
   if (plan.paused && r.unpause) {
     plan.paused = false;  // as in Gazebo: spawn_model -unpause starts physics once the model is in
     plan.notes.push_back(path + ": paused=true with spawn_model -unpause: sim_server runs from the start");

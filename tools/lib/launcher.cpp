@@ -442,7 +442,9 @@ int run_launch(const LaunchOptions& o) {
   const bool from_flags = o.file.empty() || !o.urdf.empty();
   if (!from_flags && !o.configs.empty())
     throw CLI::ValidationError("--config", "goes with --urdf; a launch FILE names its own config");
-  LaunchPlan plan = from_flags ? plan_from_flags(o) : read_launch_file(o.file, o.package_path);
+  std::vector<std::pair<std::string, std::string>> args;
+  for (const auto& a : o.args) args.push_back(parse_arg(a));
+  LaunchPlan plan = from_flags ? plan_from_flags(o) : read_launch_file(o.file, o.package_path, args);
   if (o.dashboard && (o.robots > 0 || !plan.robots.empty()))
     throw CLI::ValidationError("--dashboard",
                                "one dashboard shows one robot: with several, start one per robot "
