@@ -98,6 +98,8 @@ class ShmLink {
   void bind_slots();  // matches subscriptions to the slots other processes have bound since
   void ring(int slot);
   void mirror(const std::string& channel, const void* data, size_t size);  // to mirror_, at most its rate
+  bool truncated() const;  // the file shrank under this mapping: zeros are mapped in its place
+  void check_place();      // restores this process's reader place if another process rewrote it
   void ring_self();
   void update_mask();
   // Whether slot `s` holds a message for this process not taken yet (subscribed, written whole, by another process),
@@ -140,10 +142,8 @@ class ShmLink {
   int64_t malformed_ = 0, too_large_ = 0, stolen_ = 0;
 
   // Tampering seen, for take_tampering_note(): set on the hot path, said once each.
-  void check_place();
-  uint32_t mask_ = 0;                // the reader mask this process set
+  uint32_t mask_ = 0;  // the reader mask this process set
   bool place_rewritten_ = false, place_said_ = false;
-  bool truncated() const;  // the file shrank under this mapping: zeros are mapped in its place
   int64_t odd_since_us_[kSlots] = {-1, -1, -1, -1};
   uint32_t odd_seq_[kSlots] = {};
   bool odd_held_[kSlots] = {}, odd_said_[kSlots] = {};

@@ -9,8 +9,8 @@ namespace lcm_control::xacro {
 
 struct Budget {
   // Defaults: at least 400 times what the largest ROS 2 robot of the test suite builds (the UR5e: strings of 270
-  // bytes, lists of 60 items, 1,412 evaluation steps, 2,490 nodes, 50 macro calls, 4 includes, 91 KB of document text), and small enough
-  // that reaching any of them costs < 500 MB and < 2 s.
+  // bytes, lists of 60 items, 1,412 evaluation steps, 2,490 nodes, 50 macro calls, 4 includes, 91 KB of document
+  // text), and small enough that reaching any of them costs < 500 MB and < 2 s.
   std::size_t string_bytes = 16u << 20;    // one string value
   std::size_t list_items = 1u << 18;       // one list, tuple or dict
   std::size_t operations = 4u << 20;       // expression evaluation steps, all of them (a loop that builds nothing)
