@@ -65,7 +65,6 @@ class Robot:
         self.timeout = timeout
         self._latest = None
         self._answers = {}
-        self._results = {}
         self._listed = {}
         self.lc.subscribe(re.escape(self.channel("joint_states")), self._on_joint_states)
         self.lc.subscribe(re.escape(self.channel("controller_manager/response")), self._on_response)
