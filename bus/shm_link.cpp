@@ -411,7 +411,7 @@ void ShmLink::ring(int slot) {
 
 int ShmLink::publish(const std::string& channel, const void* data, size_t size) {
   if (truncated()) {  // the loop is lost, but the mirror still shows the robot in lcm-spy
-    mirror(channel, data, size);
+    if (const int s = slot_of(channel, false); s >= 0) mirror(s, channel, data, size);
     return -1;
   }
   if (size > kSlotBytes) {
@@ -446,15 +446,12 @@ int ShmLink::publish(const std::string& channel, const void* data, size_t size) 
   h.size.store(uint32_t(size), std::memory_order_relaxed);
   h.seq.store(q + 2, std::memory_order_release);
   ring(s);
-  mirror(channel, data, size);
+  mirror(s, channel, data, size);
   return 0;
 }
 
-void ShmLink::mirror(const std::string& channel, const void* data, size_t size) {
+void ShmLink::mirror(int s, const std::string& channel, const void* data, size_t size) {
   if (!mirror_) return;
-  int s = 0;
-  while (s < kSlots && !(bound_[s] && slot_name_[s] == channel)) ++s;
-  if (s == kSlots) return;
   const int64_t now = monotonic_us();
   if (now - mirrored_us_[s] < mirror_period_us_) return;
   mirrored_us_[s] = now;

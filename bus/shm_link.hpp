@@ -97,7 +97,7 @@ class ShmLink {
   int slot_of(const std::string& channel, bool claim);
   void bind_slots();  // matches subscriptions to the slots other processes have bound since
   void ring(int slot);
-  void mirror(const std::string& channel, const void* data, size_t size);  // to mirror_, at most its rate
+  void mirror(int slot, const std::string& channel, const void* data, size_t size);  // to mirror_, at most its rate
   bool truncated() const;  // the file shrank under this mapping: zeros are mapped in its place
   void check_place();      // restores this process's reader place if another process rewrote it
   void ring_self();
