@@ -103,7 +103,10 @@ class Dashboard {
     tools::sleep_until_us(until);
     bus_.handle_shared(kMaxDrain);
     for (auto& [conn, text] : opened_.take()) hello(conn);
-    for (auto& [conn, text] : closed_.take()) stop_streams_of(conn);
+    for (auto& [conn, text] : closed_.take()) {
+      stop_streams_of(conn);
+      told_.erase(conn);
+    }
     for (auto& [conn, text] : inbox_.take()) serve(conn, text);
     tick_streams();
     const int64_t t = monotonic_us();
@@ -164,6 +167,9 @@ class Dashboard {
     const Parsed p = parse_request(text, o_.read_only);
     if (!p.ok()) {
       web_.send(conn, reply_json(p.request.id, false, p.error));
+      if (told_.insert(conn).second)
+        std::fprintf(stderr, "dashboard: browser %d sent a request that was refused: %s (its next ones are answered "
+                     "the same way, without a line here)\n", conn, p.error.c_str());
       return;
     }
     const int64_t id = p.request.id;
@@ -281,6 +287,7 @@ class Dashboard {
   std::string prefix_;
   std::map<std::string, ExprStream> streams_;
   std::set<std::string> own_;  // channels this dashboard publishes on: its echo is not a sign of life
+  std::set<int> told_;          // browsers whose refused request the log has named
   int64_t next_flush_ = 0, next_status_ = 0;
 };
 
@@ -314,7 +321,7 @@ int run(Options& o) {
                  "dashboard: warning: serving on %s: the dashboard has no authentication, so anyone who can reach "
                  "this port can command the robot (--read-only refuses commands)\n",
                  o.bind.c_str());
-  lower_priority(o.nice);  // before any thread: LCM's and civetweb's threads inherit it
+  lower_priority(o.nice);  // before any thread: LCM's and the web server's threads inherit it
   install_stop_signals();
   Bus bus(o.bus.lcm_url, o.bus.ns, "", HardwareReader::Direct);
   const auto package_path = package_path_for(o.urdf, o.package_path);

@@ -65,7 +65,7 @@ Parsed parse_request(const std::string& text, bool read_only) {
   json j;
   try {
     j = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // a syntax error, or a number out of range ([1e400])
     out.error = fmt::format("not JSON: {}", e.what());
     return out;
   }

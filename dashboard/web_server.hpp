@@ -1,25 +1,18 @@
-// The dashboard's HTTP and WebSocket server (civetweb): the page's files from a folder, a few routes the program
-// adds (the URDF, the robot's meshes), and the browsers' WebSocket connections on /ws, each with a number.
+// The dashboard's HTTP and WebSocket server (Boost.Beast on one thread of its own): the page's files from a folder, a
+// few routes the program adds (the URDF, the robot's meshes), and the browsers' WebSocket connections on /ws, each
+// with a number. Whatever a client sends, it holds no thread and no more memory than the limits below.
 #pragma once
 
-#include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <functional>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
-
-struct mg_context;
-struct mg_connection;
 
 namespace lcm_control::dashboard {
 
 class WebServer {
  public:
-  struct Handlers {
+  struct Handlers {  // called on the server's thread: hand the work on, do not block
     std::function<void(int id)> opened;                           // a browser connected (send it a hello)
     std::function<void(int id, const std::string& text)> text;    // one text message from browser id
     std::function<void(int id)> closed;
@@ -34,19 +27,30 @@ class WebServer {
   WebServer(const WebServer&) = delete;
   WebServer& operator=(const WebServer&) = delete;
 
-  // GET PREFIX<rest> answered by route(rest); add before browsers connect.
+  // GET PREFIX<rest> answered by route(rest) (the longest prefix that matches).
   void route(const std::string& prefix, Route route);
 
   int port() const { return port_; }
-  // Text to one browser / to all, queued: each browser has a writer thread of its own, so one that stops reading
-  // holds up neither the caller nor the other browsers. A browser more than kMaxQueued frames behind loses its
-  // oldest (counted in dropped()). send() is false when the browser is gone.
+  // Text to one browser / to all, queued: a browser that stops reading holds up neither the caller nor the other
+  // browsers. A browser more than kMaxQueued frames behind loses its oldest (counted in dropped()). send() is false
+  // when the browser is gone.
   bool send(int id, const std::string& text);
   void broadcast(const std::string& text);
-  size_t connections();
+  size_t connections();  // WebSocket browsers
   int64_t dropped();
+  int64_t closed_for_room();  // connections closed (the idle longest first) to make room for a new one
 
   static constexpr size_t kMaxQueued = 1000;
+  // Incoming WebSocket messages larger than this are refused from their frame's header, before any of it is read
+  // (the connection is closed with status 1009).
+  static constexpr size_t kMaxIncoming = 64 * 1024;
+  // A request's line and headers: at most this many bytes, within this long (a client that trickles them is closed).
+  static constexpr size_t kMaxHeaderBytes = 16 * 1024;
+  static constexpr int kHeaderTimeoutMs = 1000;
+  // Open connections (HTTP and WebSocket) from one client address, and in all. A new one at either bound closes the
+  // one that has been idle longest (of that address, or of all), so a new client is always served.
+  static constexpr size_t kMaxPerClient = 32;
+  static constexpr size_t kMaxConnections = 128;
 
   // Whether `bind` is this computer's loopback (then only the loopback names are answered, see refuse_reason).
   static bool loopback(const std::string& bind);
@@ -61,42 +65,15 @@ class WebServer {
   // this server served (Origin = http://Host), and a server on loopback answers only to its loopback names.
   static std::string refuse_reason(const std::string& host, const std::string& origin, bool loopback_only);
 
-  // Incoming WebSocket messages larger than this are refused (the connection is closed).
-  static constexpr size_t kMaxIncoming = 64 * 1024;
+  // The path of a request target (before any '?') with its %XX escapes decoded into `path`; false for a bad escape
+  // or a NUL.
+  static bool decode_path(const std::string& target, std::string& path);
+
+  struct Impl;
 
  private:
-  static void on_ready(mg_connection*, void*);
-  static int on_data(mg_connection*, int bits, char* data, size_t len, void*);
-  static void on_close(const mg_connection*, void*);
-  static int on_route(mg_connection*, void*);
-  static int on_request(mg_connection*);
-
-  mg_context* ctx_ = nullptr;
-  Handlers handlers_;
+  std::unique_ptr<Impl> impl_;
   int port_ = 0;
-  bool loopback_only_ = true;
-  // One browser: its connection, what waits to be written, and the thread that writes it.
-  struct Browser {
-    mg_connection* conn = nullptr;
-    std::deque<std::string> queue;
-    std::condition_variable cv;
-    bool closing = false;
-    std::thread writer;
-  };
-  void write_loop(Browser* b);
-  bool enqueue(Browser& b, const std::string& text);  // with mutex_ held
-
-  std::mutex mutex_;
-  std::map<int, std::unique_ptr<Browser>> conns_;
-  int64_t dropped_ = 0;
-  std::map<const mg_connection*, int> ids_;
-  std::map<int, std::string> partial_;  // a fragmented message until its last frame
-  int next_id_ = 1;
-  struct RouteEntry {
-    std::string prefix;
-    Route route;
-  };
-  std::map<std::string, RouteEntry> routes_;
 };
 
 }  // namespace lcm_control::dashboard

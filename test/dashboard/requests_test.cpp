@@ -43,12 +43,27 @@ TEST(DashboardRequests, RefusesWhatIsMalformedAndSaysWhy) {
       {R"({"op": "expr", "channel": "x", "expressions": ["t"], "rate": 0})", "'rate'"},
       {R"({"op": "expr", "channel": "x", "expressions": ["t"], "rate": 1e9})", "'rate'"},
       {R"({"id": "seven", "op": "cm", "call": "list"})", "'id' must be an integer"},
+      // What ended the dashboard once (a number out of range is not a parse_error), and other types in odd places.
+      {"[1e400]", "not JSON"},
+      {R"({"op": "publish", "channel": "x", "type": "float64_t", "msg": {"data": -1e400}})", "not JSON"},
+      {R"({"id": 1e30, "op": "cm", "call": "list"})", "'id' must be an integer"},
+      {R"({"op": 5})", "'op'"},
+      {R"({"op": "cm", "call": "switch", "start": "j1"})", "list of names"},
+      {R"({"op": "expr", "channel": "x", "expressions": ["t"], "rate": "fast"})", "'rate'"},
+      {"\"\xff\"", "not JSON"},
   };
   for (const auto& [text, why] : cases) {
     const auto p = parse_request(text, false);
     EXPECT_FALSE(p.ok()) << text;
     EXPECT_NE(p.error.find(why), std::string::npos) << text << " -> " << p.error;
   }
+}
+
+TEST(DashboardRequests, DeepNestingWithinTheMessageLimitIsRefusedNotACrash) {
+  const size_t depth = 30000;  // 60 KB: under the WebSocket's 64 KB limit
+  const auto p = parse_request(std::string(depth, '[') + std::string(depth, ']'), false);
+  EXPECT_FALSE(p.ok());
+  EXPECT_NE(p.error.find("JSON object"), std::string::npos) << p.error;
 }
 
 TEST(DashboardRequests, ReadOnlyShowsButRefusesEveryCommand) {
