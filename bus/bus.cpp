@@ -184,8 +184,8 @@ std::vector<int> Bus::fds() {
 }
 
 namespace {
-int handle_queued(lcm::LCM& lc, LcmSocket* socket, int max) {
-  if (socket) return socket->handle_queued(max);
+int handle_queued(lcm::LCM& lc, LcmSocket* socket, int max, int64_t budget_us = 0) {
+  if (socket) return socket->handle_queued(max, budget_us > 0 ? monotonic_us() + budget_us : INT64_MAX);
   int handled = 0;
   for (; handled < max; ++handled) {
     const int n = lc.handleTimeout(0);
@@ -197,7 +197,7 @@ int handle_queued(lcm::LCM& lc, LcmSocket* socket, int max) {
 }  // namespace
 
 int Bus::handle_shared(int max) {
-  const int n = handle_queued(*lcm_, shared_socket_.get(), max);
+  const int n = handle_queued(*lcm_, shared_socket_.get(), max, pass_budget_us_);
   if (shm_ && n < max) shm_->fd_drained();  // all read: its watcher looks again
   return n;
 }

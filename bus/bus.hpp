@@ -131,6 +131,10 @@ class Bus {
   int wait_until_us(int64_t deadline_us);
   // Handle what is queued (at most `max` messages) without blocking: how many, -1 on an error.
   int handle_shared(int max = 1000);
+  // A pass of handle_shared() reads the shared bus's socket for at most this long (0, the default: no bound), so that
+  // a large message arriving in many fragments (a 4 MiB trajectory goal) is read over several passes, with the
+  // hardware loop's own socket looked at between them. Only where the socket is read directly.
+  void set_pass_budget_us(int64_t us) { pass_budget_us_ = us; }
   int handle_hardware(int max = 1000);
   const std::string& url() const { return url_; }
   const std::string& ns() const { return ns_; }
@@ -168,6 +172,7 @@ class Bus {
   };
   std::vector<std::unique_ptr<Subscription>> subscriptions_;
   int64_t skipped_noted_ = 0, refused_noted_ = 0;
+  int64_t pass_budget_us_ = 0;  // set_pass_budget_us()
 };
 
 namespace detail {

@@ -48,6 +48,14 @@ void Endpoints::hold(Handler& h, const lcm::ReceiveBuffer& rb) {
   held_.push_back({&h, std::vector<uint8_t>(data, data + rb.data_size), rb.recv_utime});
 }
 
+void Endpoints::deliver_result(Intake::Result result) {
+  if (busy_ && busy_()) {
+    held_results_.push_back(std::move(result));
+  } else {
+    result();
+  }
+}
+
 size_t Endpoints::deliver_held() {
   size_t n = 0;
   while (!held_.empty() && !(busy_ && busy_())) {
@@ -55,6 +63,12 @@ size_t Endpoints::deliver_held() {
     held_.pop_front();
     lcm::ReceiveBuffer rb{m.bytes.data(), static_cast<uint32_t>(m.bytes.size()), m.recv_utime};
     m.handler->deliver(rb);
+    ++n;
+  }
+  while (!held_results_.empty() && !(busy_ && busy_())) {
+    Intake::Result r = std::move(held_results_.front());
+    held_results_.pop_front();
+    r();
     ++n;
   }
   return n;

@@ -1,7 +1,8 @@
 // The bus layer both processes use: the LCM endpoints of one owner (a controller, the services, sim_server's I/O):
 // subscriptions that decode into a message kept between calls (no allocation once warm) and are removed with the
-// Endpoints, on LCM's thread or on a socket read directly (Bus::shared_socket(), hardware_socket()), and
-// publishers that encode into a reused buffer, or into an Outbox's slot (rt/outbox.hpp).
+// Endpoints, on LCM's thread or on a socket read directly (Bus::shared_socket(), hardware_socket()), subscriptions
+// whose large messages are decoded and prepared off the loop (rt/intake.hpp), and publishers that encode into a
+// reused buffer, or into an Outbox's slot (rt/outbox.hpp).
 #pragma once
 
 #include <cstdint>
@@ -14,6 +15,7 @@
 
 #include "bus/bus.hpp"
 #include "bus/lcm_socket.hpp"
+#include "rt/intake.hpp"
 #include "rt/outbox.hpp"
 
 namespace lcm_control {
@@ -114,6 +116,53 @@ class Endpoints {
     subscribe_decoded<Msg>(channel, std::move(on_msg), std::move(on_bad), false, {});
   }
 
+  // For messages too large to take in between two cycles (trajectory goals): the bytes are kept (moved out of the
+  // socket's buffer when it put them together: LcmSocket::take_delivered), decoded into a new Msg and given to
+  // `prepare` on the intake's thread (set_intake); what prepare returns runs on the loop's thread at the intake's
+  // next drain, held as the handlers are while busy() (hold_while). Without an intake, or with one in place,
+  // everything runs in the handler. on_bad: as subscribe(), on the loop's thread. prepare must not touch what the
+  // loop uses (capture copies, or what is never changed).
+  template <class Msg>
+  void subscribe_off_loop(const std::string& channel, std::function<Intake::Result(const Msg&)> prepare,
+                          std::function<void(const std::string&)> on_bad = {}) {
+    if (on_bad) on_lost(channel, [on_bad](const LcmSocket::Lost& lost) { on_bad(describe(lost)); });
+    subscribe_raw(channel, [this, prepare, on_bad, channel](const lcm::ReceiveBuffer& rb) {
+      std::vector<uint8_t> bytes =
+          socket_ ? socket_->take_delivered(rb)
+                  : std::vector<uint8_t>(static_cast<const uint8_t*>(rb.data),
+                                         static_cast<const uint8_t*>(rb.data) + rb.data_size);
+      std::weak_ptr<char> life = life_;
+      Intake::Job job = [this, life, bytes = std::move(bytes), prepare, on_bad, channel]() -> Intake::Result {
+        Intake::Result result;
+        {
+          Msg msg;
+          if (decode_guarded(msg, bytes.data(), bytes.size())) {
+            result = prepare(msg);
+          } else if (on_bad) {
+            result = [on_bad, why = "could not decode " + std::to_string(bytes.size()) + " bytes on '" + channel +
+                                    "' as " + Msg::getTypeName()] { on_bad(why); };
+          }
+        }  // the message is freed here, on the intake's thread
+        if (!result) return {};
+        return [this, life, result = std::move(result)]() mutable {
+          if (life.lock()) deliver_result(std::move(result));
+        };
+      };
+      if (intake_) {
+        intake_->submit(std::move(job));
+      } else if (Intake::Result r = job()) {
+        r();
+      }
+    });
+  }
+  // subscribe_off_loop() prepares on this intake's thread from now on (nullptr: in the handler).
+  void set_intake(Intake* intake) { intake_ = intake; }
+  // Frees `garbage` on the intake's thread (here without one): a replaced trajectory of 100,000 points.
+  template <class T>
+  void dispose(T&& garbage) {
+    if (intake_) intake_->dispose(std::forward<T>(garbage));
+  }
+
   // A message on `channel` lost on the way, too large or with fragments missing (bus/lcm_socket.hpp): `handler`
   // hears of it. Only where the Endpoints read a socket directly: lcm::LCM drops such messages unseen.
   void on_lost(const std::string& channel, LcmSocket::LostHandler handler);
@@ -128,7 +177,7 @@ class Endpoints {
   static constexpr size_t kHeldMax = 1000;
   void hold_while(std::function<bool()> busy) { busy_ = std::move(busy); }
   size_t deliver_held();
-  size_t held() const { return held_.size(); }
+  size_t held() const { return held_.size() + held_results_.size(); }
   int64_t held_dropped() const { return held_dropped_; }
   // Every channel subscribed, in subscription order (tests send to each).
   std::vector<std::string> channels() const;
@@ -188,8 +237,12 @@ class Endpoints {
     int64_t recv_utime;
   };
   void hold(Handler& h, const lcm::ReceiveBuffer& rb);
+  void deliver_result(Intake::Result result);
   std::function<bool()> busy_;
   std::deque<Held> held_;
+  std::deque<Intake::Result> held_results_;  // results of subscribe_off_loop held while busy
+  Intake* intake_ = nullptr;
+  std::shared_ptr<char> life_ = std::make_shared<char>();  // results of jobs outliving the Endpoints are dropped
   int64_t held_dropped_ = 0;
   lcm::LCM& lc_;
   LcmSocket* socket_ = nullptr;

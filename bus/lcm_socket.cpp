@@ -340,9 +340,9 @@ bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* chann
     ++p->received;
     return false;
   }
-  if (p->wanted) {
-    if (p->data.size() < size_t(p->filled) + chunk_size) p->data.resize(size_t(p->filled) + chunk_size);
-    std::memcpy(p->data.data() + p->filled, chunk, chunk_size);
+  if (p->wanted) {  // appended, not resized and overwritten: no zero-fill of what arrives
+    p->data.resize(p->filled);
+    p->data.insert(p->data.end(), chunk, chunk + chunk_size);
   }
   p->filled += chunk_size;
   if (++p->received < p->count) return false;
@@ -353,6 +353,7 @@ bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* chann
     return false;
   }
   ++reassembled_;
+  delivering_ = p;
   *channel = p->channel;
   *payload = p->data.data();
   *size = int(total);
@@ -401,6 +402,7 @@ bool LcmSocket::receive(ssize_t* n, std::string_view* channel, const uint8_t** p
   msg.msg_iovlen = 1;
   msg.msg_control = control;
   msg.msg_controllen = sizeof(control);
+  delivering_ = nullptr;
   *n = recvmsg(fd_, &msg, MSG_DONTWAIT);
   if (*n < 0) return false;
   arrived_us_ = -1;
@@ -413,10 +415,11 @@ bool LcmSocket::receive(ssize_t* n, std::string_view* channel, const uint8_t** p
   return parse(int(*n), from, channel, payload, size);
 }
 
-int LcmSocket::handle_queued(int max) {
+int LcmSocket::handle_queued(int max, int64_t until_us) {
   expire(monotonic_us());
   int read = 0;
   for (; read < max; ++read) {
+    if (read > 0 && until_us != INT64_MAX && monotonic_us() >= until_us) break;
     ssize_t n = 0;
     std::string_view channel;
     const uint8_t* payload = nullptr;
@@ -425,12 +428,31 @@ int LcmSocket::handle_queued(int max) {
     if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR ? read : -1;
     if (!complete) continue;
     const lcm::ReceiveBuffer rb{const_cast<uint8_t*>(payload), uint32_t(size), arrived_us_ >= 0 ? arrived_us_ : wall_us()};
+    if (delivering_) {  // a put-together message may be taken by its one receiver (take_delivered)
+      size_t receivers = 0;
+      for (const Entry& e : subscribers_) receivers += e.channel == channel;
+      if (!patterns_.empty()) receivers += matching(channel).size();
+      if (receivers != 1 || delivering_->data.capacity() <= kKeptBytes) delivering_ = nullptr;
+    }
     for (const Entry& e : subscribers_)
       if (e.channel == channel) e.handler(rb);
     if (!patterns_.empty())
       for (const size_t i : matching(channel)) patterns_[i].handler(rb, name_);
+    delivering_ = nullptr;
   }
   return read;
+}
+
+std::vector<uint8_t> LcmSocket::take_delivered(const lcm::ReceiveBuffer& rb) {
+  std::vector<uint8_t> bytes;
+  if (delivering_ && delivering_->data.data() == rb.data) {
+    bytes.swap(delivering_->data);
+    bytes.resize(rb.data_size);
+    delivering_ = nullptr;
+  } else {
+    bytes.assign(static_cast<const uint8_t*>(rb.data), static_cast<const uint8_t*>(rb.data) + rb.data_size);
+  }
+  return bytes;
 }
 
 const uint8_t* LcmSocket::wait_for(std::string_view channel, int timeout_ms, int* size) {

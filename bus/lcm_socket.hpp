@@ -94,9 +94,15 @@ class LcmSocket {
   int subscribe_pattern(const std::string& pattern, ChannelHandler handler);
   static constexpr size_t kMatchedChannels = 1024;
 
-  // Handles the datagrams already queued, without blocking, at most `max`: how many were read, or -1 on a socket
-  // error. No allocation once subscribed.
-  int handle_queued(int max = 1000);
+  // Handles the datagrams already queued, without blocking, at most `max` and none after the monotonic time
+  // `until_us` (the first is always read): how many were read, or -1 on a socket error. No allocation once
+  // subscribed.
+  int handle_queued(int max = 1000, int64_t until_us = INT64_MAX);
+
+  // In the handler of the message `rb` being delivered: its bytes, to keep. A message put together from fragments in
+  // a buffer over kKeptBytes, which has one receiver here, is moved out (its buffer would be given back anyway):
+  // taking a 4 MiB goal costs no copy. Any other is copied.
+  std::vector<uint8_t> take_delivered(const lcm::ReceiveBuffer& rb);
 
   // Waits up to timeout_ms for a message on `channel`, skipping (not handling) every other datagram: its payload,
   // or nullptr on timeout. For start-up checks and benchmarks, not for a socket with subscribers (its filter admits only theirs).
@@ -175,6 +181,7 @@ class LcmSocket {
   int64_t reassembled_ = 0, incomplete_ = 0, too_large_ = 0, not_lcm_ = 0;
   std::vector<std::string> filter_names_;
   int64_t arrived_us_ = -1;  // the kernel's arrival stamp of the datagram receive() read last, -1 without one
+  Partial* delivering_ = nullptr;  // the put-together message being delivered, while its one receiver may take it
 };
 
 // One line for a lost message: its channel, size and why, with what to do.

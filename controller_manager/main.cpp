@@ -88,13 +88,16 @@ int main(int argc, char** argv) {
                                    urdf));
     Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url, hardware_reader_named(bus_flags.hardware_reader));
     bus.mirror_hardware(bus_flags.hardware_mirror_hz);
-    // Between two cycles, a request's work (Services) and the destruction of unloaded controllers (poll) take at
-    // most this long each before the next hardware state is looked for.
+    // Between two cycles, a request's work (Services), the destruction of unloaded controllers (poll) and the reading
+    // of the shared bus (a 4 MiB goal's fragments) take at most this long each before the next hardware state is
+    // looked for.
     constexpr int64_t kSliceUs = 250;
     constexpr int64_t kLongestWaitUs = 20000;  // housekeeping (silence, statistics) runs at least this often
+    bus.set_pass_budget_us(kSliceUs);
     cm::ManagerOptions options;
     options.silence_us = static_cast<int64_t>(silence_s * 1e6);
     options.slice_us = kSliceUs;
+    options.intake_thread = true;
     const size_t configured = model.controllers.size();
     const size_t actuated = model.transmissions.size();
     cm::Registry registry = cm::builtin_registry();
@@ -119,7 +122,7 @@ int main(int argc, char** argv) {
       int64_t wait_us =
           spin_us > 0 ? manager.state_arrivals().sleep_us(monotonic_us(), spin_us, kLongestWaitUs) : kLongestWaitUs;
       if (services.has_work() || manager.has_work()) wait_us = 0;
-      else if (manager.reading_config()) wait_us = std::min<int64_t>(wait_us, 1000);
+      else if (manager.reading_config() || manager.taking_in()) wait_us = std::min<int64_t>(wait_us, 1000);
       if (wait_us == 0) sched_yield();  // spinning: the simulator, woken to its deadline on this CPU, runs first
       if (!bus.handle_us(wait_us, 1000) && !stop_requested()) {
         if (++errors > 100) throw std::runtime_error("LCM keeps failing to receive; giving up");

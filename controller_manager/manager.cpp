@@ -64,6 +64,7 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       options_(options),
       outbox_lcm_(outbox_lcm(bus)),
       outbox_(outbox_lcm_ ? *outbox_lcm_ : bus.lcm()),
+      intake_(options_.intake_thread ? std::make_unique<Intake>() : nullptr),
       hw_(model_),
       loop_(hw_),
       endpoints_(bus, Endpoints::On::Shared),
@@ -340,6 +341,7 @@ Reply ControllerManager::load(const std::string& name) {
   slot->endpoints = std::make_unique<Endpoints>(bus_, Endpoints::On::Shared);
   if (model_.ros2_parameter_file && wants_async(*spec)) slot->outbox = std::make_unique<Outbox>(outbox_lcm_ ? *outbox_lcm_ : bus_.lcm());
   slot->endpoints->set_outbox(slot->outbox ? slot->outbox.get() : &outbox_);
+  slot->endpoints->set_intake(intake_.get());
   const ControllerCheck c = instantiate(*spec, *slot->endpoints, &slot->controller, &slot->shadow);
   if (c.outcome != ControllerCheck::Loads)
     return {false, c.outcome == ControllerCheck::NotImplemented || c.message.rfind(spec->file, 0) == 0
@@ -652,6 +654,7 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
   hw_status_.seen(st, now);
   if (ShmLink* shm = bus_.hardware_shm()) shm->yield_first(st.lockstep);
   outbox_.send_here(st.lockstep);
+  if (intake_) intake_->set_in_place(st.lockstep);
   if (silent_) {
     silent_ = false;
     // In lockstep, time stands still while nobody answers: the next step of the
@@ -692,6 +695,7 @@ void ControllerManager::deliver_held() {
 
 void ControllerManager::poll(int64_t now) {
   if (outbox_.sends_here()) outbox_.send_queued();  // what a paused lockstep's controllers published meanwhile
+  if (intake_) intake_->drain();                     // goals prepared off the loop, taken whole
   deliver_held();
   sources_.poll();
   if (loop_.has_state() && !silent_ && now - last_state_us_ > options_.silence_us) {

@@ -14,6 +14,7 @@
 
 #include "controller_manager/arrival_clock.hpp"
 #include "bus/bus.hpp"
+#include "rt/intake.hpp"
 #include "rt/outbox.hpp"
 #include "rt/log.hpp"
 #include "description/robot_model.hpp"
@@ -54,6 +55,9 @@ struct ManagerOptions {
   // 0: every request's work is done when asked (tests). Otherwise the controller manager program's slice: a reload
   // reads the YAML on a worker thread and unloaded controllers are destroyed by poll() in slices this long.
   int64_t slice_us = 0;
+  // Trajectory goals and other large messages decoded and planned on a thread of its own (rt/intake.hpp), except in
+  // lockstep (the program). false: in the handler (tests).
+  bool intake_thread = false;
 };
 
 // A LOAD or UNLOAD of many names, served a few names at a time between cycles (step()); `reply` is final when
@@ -110,6 +114,8 @@ class ControllerManager {
   bool has_work() const { return !retired_.empty(); }
   // A reload's YAML is being read on the worker thread: poll() finishes the reload when it is read.
   bool reading_config() const { return reload_read_.valid(); }
+  // Goals are being prepared off the loop, or wait to be taken by poll().
+  bool taking_in() const { return intake_ && intake_->busy(); }
 
   // One hardware/state message (already checked): bind, cycle, publish the command.
   void on_hardware_state(const hardware_state_t& state);
@@ -188,6 +194,7 @@ class ControllerManager {
   // that it outlives them and sends what they publish when stopped.
   std::unique_ptr<lcm::LCM> outbox_lcm_;
   Outbox outbox_;
+  std::unique_ptr<Intake> intake_;  // outlives the controllers, whose endpoints hand it their goals
   Hardware hw_;
   Loop loop_;
   std::vector<std::unique_ptr<ControllerSlot>> retired_;  // unloaded, not destroyed yet (slice_us > 0)

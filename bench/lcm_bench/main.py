@@ -14,7 +14,7 @@ from .results import write_results, write_section
 from .session import Bench
 from .table import table
 
-TARGETS = ["sim_server", "controller_manager", "cmctl", "bench_physics", "bench_stiff", "bench_async", "bench_loop", "bench_realtime",
+TARGETS = ["sim_server", "controller_manager", "cmctl", "bench_physics", "bench_stiff", "bench_async", "bench_goal_intake", "bench_loop", "bench_realtime",
            "bench_pingpong"]
 
 

@@ -6,7 +6,7 @@ import tempfile
 import threading
 import time
 
-from . import async_update, lockstep, physics, realtime, round_trip, stiff
+from . import async_update, goal_intake, lockstep, physics, realtime, round_trip, stiff
 from .ports import lcm_url
 from .processes import Proc, load_and_start
 from .robots import MODELS, models
@@ -82,6 +82,7 @@ class Bench:
         physics.run(self)
         stiff.run(self)
         async_update.run(self)
+        goal_intake.run(self)
         self.say("starting one controller_manager per model")
         self.start_managers()
         self.say("2/4 loop round trip vs bare LCM and raw UDP")

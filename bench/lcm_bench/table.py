@@ -98,6 +98,17 @@ def table(b):
                                 for k in ("none", "async", "sync")) if d is r[names[0]] else "–",
             "is_async p99 ≤ 1.5x without it",
             yes(a["async"]["p99"] <= 1.5 * a["none"]["p99"]))
+    g = r.get("goal_intake")
+    if g:
+        gr, gc = g["rows"], g["cost"]
+        row("1d. 100,000-point goals (3.6 MB), 4/s, at 1 kHz (`bench_goal_intake`): loop busy per period p50 / p99 / max "
+            "µs and periods over 1 ms, without goals; off the loop; in the loop (one goal: decode + plan ms)",
+            lambda d: "; ".join("{} / **{}** / {} ({})".format(fmt(gr[k]["p50"]), fmt(gr[k]["p99"]), fmt(gr[k]["max"]),
+                                                              gr[k]["over_1ms"])
+                                for k in ("none", "off_loop", "in_loop"))
+            + " ({} + {})".format(fmt(gc["decode_ms"]), fmt(gc["plan_ms"])) if d is r[names[0]] else "–",
+            "off the loop: no period over 1 ms, every goal taken",
+            yes(gr["off_loop"]["over_1ms"] == 0 and gr["off_loop"]["taken"] == gr["off_loop"]["sent"] > 0))
     row("2. payload state / command, bytes", lambda d: "{} / {}".format(*d["rtt"]["sizes"]))
 
     def mpp(k):

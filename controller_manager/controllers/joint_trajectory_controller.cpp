@@ -79,6 +79,34 @@ Interface ros2_command_interface(Params& p, std::vector<std::string>& notes) {
                                                   fmt::join(c, ", ")));
 }
 
+// What a goal is checked and planned against off the loop: fixed when the controller is made.
+struct Limit {
+  bool has = false;
+  double lower = 0, upper = 0;
+};
+struct GoalRules {
+  std::vector<std::string> joints;
+  std::vector<char> continuous;
+  std::vector<Limit> limits;
+  bool allow_partial = false, interpolate = true;
+};
+struct GoalIds {
+  int64_t utime = 0, goal_id = 0;
+};
+// A goal as prepared off the loop: refused (error), an empty trajectory (stop), or planned.
+struct PreparedGoal {
+  GoalIds ids;
+  std::string error;
+  bool empty = false;
+  std::vector<int> index;        // controller joint -> goal column (-1: left out)
+  std::vector<double> first;     // each joint's first position
+  std::vector<char> continuous;
+  Trajectory::Plan plan;
+  int beyond = 0;                // positions beyond a joint limit; the first is named in limit_note
+  std::string limit_note;
+  double duration = 0;
+};
+
 class JointTrajectoryController : public Controller {
  public:
   // No `iface`: ROS 2's controller, whose command_interfaces choose it.
@@ -171,8 +199,24 @@ class JointTrajectoryController : public Controller {
     feedback_pub_ = ctx.endpoints().publisher<trajectory_status_t>(ctx.channel("feedback"));
     result_pub_ = ctx.endpoints().publisher<trajectory_status_t>(ctx.channel("result"));
     state_pub_ = ctx.endpoints().publisher<joint_trajectory_controller_state_t>(ctx.channel("state"));
-    ctx.endpoints().subscribe_fresh<joint_trajectory_t>(
-        ctx.channel("command"), [this](const joint_trajectory_t& g) { on_goal(g); },
+    // A goal is decoded, checked and planned off the loop (Endpoints::subscribe_off_loop), from what never changes
+    // once the controller is made (the rules); the loop takes it whole between cycles.
+    auto rules = std::make_shared<GoalRules>();
+    rules->joints = names_;
+    for (const JointData* j : joints_) {
+      rules->continuous.push_back(j->continuous);
+      rules->limits.push_back(j->urdf && j->urdf->has_position_limits ? Limit{true, j->urdf->lower, j->urdf->upper}
+                                                                      : Limit{});
+    }
+    rules->allow_partial = allow_partial_;
+    rules->interpolate = interpolate_;
+    endpoints_ = &ctx.endpoints();
+    ctx.endpoints().subscribe_off_loop<joint_trajectory_t>(
+        ctx.channel("command"),
+        [this, rules](const joint_trajectory_t& g) -> Intake::Result {
+          auto goal = std::make_shared<PreparedGoal>(prepare_goal(*rules, g));
+          return [this, goal] { take_goal(*goal); };
+        },
         [this](const std::string& why) {
           ++dropped_;
           bad_log_.warn(fmt::format("{}: {}", name_, why));
@@ -188,7 +232,7 @@ class JointTrajectoryController : public Controller {
       std::memcpy(&g.goal_id, lost.head + 16, 8);
       g.utime = int64_t(be64toh(uint64_t(g.utime)));
       g.goal_id = int64_t(be64toh(uint64_t(g.goal_id)));
-      answer(g, trajectory_status_t::REJECTED,
+      answer(GoalIds{g.utime, g.goal_id}, trajectory_status_t::REJECTED,
              fmt::format("{}: goal {} rejected: {}", name_, g.goal_id, describe(lost)));
     });
   }
@@ -406,7 +450,7 @@ class JointTrajectoryController : public Controller {
     goal_active_ = false;
   }
 
-  void answer(const joint_trajectory_t& g, int8_t status, const std::string& message) {
+  void answer(const GoalIds& g, int8_t status, const std::string& message) {
     trajectory_status_t r;
     r.utime = g.utime;
     r.goal_id = g.goal_id;
@@ -416,14 +460,14 @@ class JointTrajectoryController : public Controller {
     result_pub_.publish(r);
   }
 
-  void reject(const joint_trajectory_t& g, const std::string& why) {
+  void reject(const GoalIds& g, const std::string& why) {
     const std::string message = fmt::format("{}: goal {} rejected: {}", name_, g.goal_id, why);
     answer(g, trajectory_status_t::REJECTED, message);
     goal_log_.warn(message);
   }
 
   // An empty trajectory: stop where the trajectory is now, ramping down over stop_trajectory_duration.
-  void stop(const joint_trajectory_t& g) {
+  void stop(const GoalIds& g) {
     if (goal_active_) {
       std::snprintf(text_, sizeof text_, "stopped by an empty trajectory (goal %lld)", static_cast<long long>(g.goal_id));
       finish(Time{static_cast<int64_t>(last_t_ * 1e6)}, trajectory_status_t::PREEMPTED, text_);
@@ -436,105 +480,138 @@ class JointTrajectoryController : public Controller {
     goal_log_.info(fmt::format("{}: goal {}: empty trajectory, stopping", name_, g.goal_id));
   }
 
-  // Runs between cycles, in the loop's thread: may allocate.
-  void on_goal(const joint_trajectory_t& g) {
-    if (!running_) return reject(g, "the controller is not running");
-    const size_t n = names_.size();
+  // Off the loop (the intake's thread): the goal checked and planned from the rules alone. What needs the
+  // controller's state (running, where the trajectory is now) is left to take_goal().
+  static PreparedGoal prepare_goal(const GoalRules& r, const joint_trajectory_t& g) {
+    PreparedGoal out;
+    out.ids = {g.utime, g.goal_id};
+    auto refuse = [&out](std::string why) {
+      out.error = std::move(why);
+      return std::move(out);
+    };
+    const size_t n = r.joints.size();
     if (g.num_joints != static_cast<int32_t>(g.joint_names.size()) ||
         g.num_points != static_cast<int32_t>(g.points.size()))
-      return reject(g, "array sizes do not match num_joints / num_points");
-    if (g.points.empty()) return stop(g);
-    std::vector<int> index(n, -1);  // controller joint -> goal column
-    for (size_t c = 0; c < g.joint_names.size(); ++c) {
-      const auto it = std::find(names_.begin(), names_.end(), g.joint_names[c]);
-      if (it == names_.end())
-        return reject(g, fmt::format("joint '{}' is not controlled here (joints: {})", clip(g.joint_names[c]),
-                                     fmt::join(names_, ", ")));
-      if (index[it - names_.begin()] >= 0)
-        return reject(g, fmt::format("joint '{}' is listed twice", clip(g.joint_names[c])));
-      index[it - names_.begin()] = static_cast<int>(c);
+      return refuse("array sizes do not match num_joints / num_points");
+    if (g.points.empty()) {
+      out.empty = true;
+      return out;
     }
-    if (!allow_partial_)
+    out.index.assign(n, -1);  // controller joint -> goal column
+    for (size_t c = 0; c < g.joint_names.size(); ++c) {
+      const auto it = std::find(r.joints.begin(), r.joints.end(), g.joint_names[c]);
+      if (it == r.joints.end())
+        return refuse(fmt::format("joint '{}' is not controlled here (joints: {})", clip(g.joint_names[c]),
+                                  fmt::join(r.joints, ", ")));
+      if (out.index[it - r.joints.begin()] >= 0)
+        return refuse(fmt::format("joint '{}' is listed twice", clip(g.joint_names[c])));
+      out.index[it - r.joints.begin()] = static_cast<int>(c);
+    }
+    if (!r.allow_partial)
       for (size_t k = 0; k < n; ++k)
-        if (index[k] < 0)
-          return reject(g, fmt::format("joint '{}' is missing (a goal must name all of: {}; or set "
-                                       "allow_partial_joints_goal: true)",
-                                       names_[k], fmt::join(names_, ", ")));
-    std::vector<SplineState> start(n);
-    for (size_t k = 0; k < n; ++k) current_->sample(last_t_, k, start[k]);
+        if (out.index[k] < 0)
+          return refuse(fmt::format("joint '{}' is missing (a goal must name all of: {}; or set "
+                                    "allow_partial_joints_goal: true)",
+                                    r.joints[k], fmt::join(r.joints, ", ")));
     std::vector<Waypoint> points;
-    int beyond = 0;  // positions beyond a joint limit; the first one is named
+    points.reserve(g.points.size());
     std::string limit_note;
     double prev = 0;
     for (size_t i = 0; i < g.points.size(); ++i) {
       const trajectory_point_t& p = g.points[i];
       if (!std::isfinite(p.time_from_start) || p.time_from_start <= prev)
-        return reject(g,
-                      fmt::format("point {}: time_from_start {} must be greater than {}", i, p.time_from_start, prev));
+        return refuse(fmt::format("point {}: time_from_start {} must be greater than {}", i, p.time_from_start, prev));
       prev = p.time_from_start;
       const size_t m = g.joint_names.size();
       if (p.num_positions != static_cast<int32_t>(m) || p.positions.size() != m)
-        return reject(g, fmt::format("point {}: {} positions for {} joints", i, p.positions.size(), m));
+        return refuse(fmt::format("point {}: {} positions for {} joints", i, p.positions.size(), m));
       if (p.num_velocities != static_cast<int32_t>(p.velocities.size()) ||
           p.num_accelerations != static_cast<int32_t>(p.accelerations.size()))
-        return reject(g, fmt::format("point {}: array sizes do not match num_velocities / num_accelerations", i));
+        return refuse(fmt::format("point {}: array sizes do not match num_velocities / num_accelerations", i));
       if (!p.velocities.empty() && p.velocities.size() != m)
-        return reject(g, fmt::format("point {}: {} velocities for {} joints (give none or one per joint)", i,
-                                     p.velocities.size(), m));
+        return refuse(fmt::format("point {}: {} velocities for {} joints (give none or one per joint)", i,
+                                  p.velocities.size(), m));
       if (!p.accelerations.empty() && (p.accelerations.size() != m || p.velocities.empty()))
-        return reject(g, fmt::format("point {}: accelerations need velocities and one value per joint", i));
+        return refuse(fmt::format("point {}: accelerations need velocities and one value per joint", i));
       Waypoint w;
-      w.time = last_t_ + p.time_from_start;
+      w.time = p.time_from_start;
+      w.pos.reserve(n);
       for (size_t k = 0; k < n; ++k) {
-        const int c = index[k];
-        if (c < 0) {  // left out (allow_partial_joints_goal): holds where the trajectory is now
-          w.pos.push_back(start[k].pos);
+        const int c = out.index[k];
+        if (c < 0) {  // left out (allow_partial_joints_goal): holds where the trajectory is (its offset, at start)
+          w.pos.push_back(0.0);
           if (!p.velocities.empty()) w.vel.push_back(0.0);
           if (!p.accelerations.empty()) w.acc.push_back(0.0);
           continue;
         }
         const double pos = p.positions[c];
         if (!std::isfinite(pos))
-          return reject(g, fmt::format("point {}: joint '{}' position is NaN/Inf", i, names_[k]));
-        const Joint* u = joints_[k]->urdf;
-        if (u && u->has_position_limits && (pos < u->lower || pos > u->upper) && beyond++ == 0)
-          limit_note = fmt::format("point {} puts joint '{}' at {:g}, beyond its limits [{:g}, {:g}]", i, names_[k],
-                                   pos, u->lower, u->upper);
+          return refuse(fmt::format("point {}: joint '{}' position is NaN/Inf", i, r.joints[k]));
+        const Limit& l = r.limits[k];
+        if (l.has && (pos < l.lower || pos > l.upper) && out.beyond++ == 0)
+          limit_note = fmt::format("point {} puts joint '{}' at {:g}, beyond its limits [{:g}, {:g}]", i, r.joints[k],
+                                   pos, l.lower, l.upper);
         w.pos.push_back(pos);
         if (!p.velocities.empty()) w.vel.push_back(p.velocities[c]);
         if (!p.accelerations.empty()) w.acc.push_back(p.accelerations[c]);
       }
       if (!std::all_of(w.vel.begin(), w.vel.end(), [](double v) { return std::isfinite(v); }) ||
           !std::all_of(w.acc.begin(), w.acc.end(), [](double v) { return std::isfinite(v); }))
-        return reject(g, fmt::format("point {}: NaN/Inf velocity or acceleration", i));
+        return refuse(fmt::format("point {}: NaN/Inf velocity or acceleration", i));
       points.push_back(std::move(w));
     }
+    out.first.assign(n, 0.0);
+    for (size_t k = 0; k < n; ++k) out.first[k] = points.front().pos[k];
+    out.continuous = r.continuous;
+    out.limit_note = std::move(limit_note);
+    out.duration = prev;
+    out.plan = Trajectory::Plan::make(n, points, r.interpolate);
+    return out;
+  }
+
+  // Between cycles, in the loop's thread: a prepared goal taken whole (O(joints): the plan started where the
+  // trajectory is now; the replaced trajectory freed off the loop).
+  void take_goal(PreparedGoal& p) {
+    if (!running_) {
+      endpoints_->dispose(std::move(p.plan));  // freed off the loop, as a replaced trajectory is
+      return reject(p.ids, "the controller is not running");
+    }
+    if (!p.error.empty()) return reject(p.ids, p.error);
+    if (p.empty) return stop(p.ids);
+    const size_t n = names_.size();
+    std::vector<SplineState> start(n);
+    std::vector<double> offset(n, 0.0);
     for (size_t k = 0; k < n; ++k) {
-      if (joints_[k]->continuous && index[k] >= 0) {  // go the short way round to the first point
-        const double shift =
-            points.front().pos[k] - (start[k].pos + shortest_angular_distance(start[k].pos, points.front().pos[k]));
-        for (auto& w : points) w.pos[k] -= shift;
+      current_->sample(last_t_, k, start[k]);
+      if (p.index[k] < 0) {
+        offset[k] = start[k].pos;  // a joint the goal leaves out holds where it is
+      } else if (p.continuous[k]) {  // go the short way round to the first point
+        offset[k] = -(p.first[k] - (start[k].pos + shortest_angular_distance(start[k].pos, p.first[k])));
       }
     }
-    Trajectory next = Trajectory::build(last_t_, start, points, interpolate_);
+    const size_t points = p.plan.points();
+    Trajectory next = Trajectory::start(std::move(p.plan), last_t_, start, offset);
     if (goal_active_) {
-      std::snprintf(text_, sizeof text_, "replaced by goal %lld", static_cast<long long>(g.goal_id));
+      std::snprintf(text_, sizeof text_, "replaced by goal %lld", static_cast<long long>(p.ids.goal_id));
       finish(Time{static_cast<int64_t>(last_t_ * 1e6)}, trajectory_status_t::PREEMPTED, text_);
     }
     limit_note_.clear();
-    if (beyond > 0) {  // as ROS: accepted, and the joint stops at its limit
-      limit_note_ = fmt::format(" ({}{}; the joint stops at its limit)", limit_note,
-                                beyond > 1 ? fmt::format(", and {} more positions beyond a limit", beyond - 1) : "");
+    if (p.beyond > 0) {  // as ROS: accepted, and the joint stops at its limit
+      limit_note_ = fmt::format(" ({}{}; the joint stops at its limit)", p.limit_note,
+                                p.beyond > 1 ? fmt::format(", and {} more positions beyond a limit", p.beyond - 1) : "");
       goal_log_.warn(fmt::format("{}: goal {}: {}{}: accepted as ROS does; the joint stops at its limit", name_,
-                                 g.goal_id, limit_note, beyond > 1 ? fmt::format(" (and {} more)", beyond - 1) : ""));
+                                 p.ids.goal_id, p.limit_note,
+                                 p.beyond > 1 ? fmt::format(" (and {} more)", p.beyond - 1) : ""));
     }
-    active_ = std::move(next);
+    std::swap(active_, next);
+    endpoints_->dispose(std::move(next));  // the replaced trajectory
     current_ = &active_;
-    goal_id_ = g.goal_id;
+    goal_id_ = p.ids.goal_id;
     goal_active_ = true;
     last_feedback_ = -1e9;
     std::fill(max_path_err_.begin(), max_path_err_.end(), 0.0);
-    goal_log_.info(fmt::format("{}: goal {} accepted: {} points over {:.3f} s", name_, g.goal_id, points.size(), prev));
+    goal_log_.info(
+        fmt::format("{}: goal {} accepted: {} points over {:.3f} s", name_, p.ids.goal_id, points, p.duration));
   }
 
   Interface iface_;
@@ -558,6 +635,7 @@ class JointTrajectoryController : public Controller {
   joint_trajectory_controller_state_t state_;
   char text_[512] = {};
   std::string limit_note_;
+  Endpoints* endpoints_ = nullptr;
   BusLog bad_log_;   // what the bus sent that could not be a goal: clipped and rate-limited
   BusLog goal_log_;  // goals taken or refused: as many as anyone sends, so clipped and rate-limited too  // appended to the goal's result: a position beyond a limit (set between cycles)
   Publisher<trajectory_status_t> feedback_pub_, result_pub_;

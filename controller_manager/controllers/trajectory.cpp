@@ -31,44 +31,83 @@ Trajectory::Segment Trajectory::quintic(double t0, double t1, const SplineState&
   return s;
 }
 
-Trajectory Trajectory::build(double t0, const std::vector<SplineState>& start, const std::vector<Waypoint>& points,
-                             bool interpolate) {
+namespace {
+
+// A waypoint's velocity when it gives none, from its neighbours: the harmonic mean of the two slopes, 0 where they
+// differ in sign (no overshoot).
+double estimated_velocity(double t0, double p0, double t1, double p1, double t2, double p2) {
+  const double s0 = (p1 - p0) / (t1 - t0), s1 = (p2 - p1) / (t2 - t1);
+  return s0 * s1 <= 0 ? 0.0 : 2.0 / (1.0 / s0 + 1.0 / s1);
+}
+
+}  // namespace
+
+Trajectory::Segment Trajectory::segment(const Plan::Knot& from, double from_v, const Plan::Knot& to, double to_v) {
+  if (to.has_acc) return quintic(from.t, to.t, {from.p, from_v, from.a}, {to.p, to_v, to.a});
+  return cubic(from.t, to.t, from.p, from_v, to.p, to_v);
+}
+
+Trajectory::Plan Trajectory::Plan::make(size_t joints, const std::vector<Waypoint>& points, bool interpolate) {
+  Plan plan;
+  const size_t n = points.size();
+  plan.points_ = n;
+  plan.end_ = n == 0 ? 0.0 : points.back().time;
+  plan.steps_ = !interpolate;
+  plan.joints_.resize(joints);
+  std::vector<Knot> k(n);
+  for (size_t j = 0; j < joints; ++j) {
+    for (size_t i = 0; i < n; ++i) {
+      const Waypoint& w = points[i];
+      k[i] = Knot{w.time, w.pos[j], w.vel.empty() ? 0.0 : w.vel[j], w.acc.empty() ? 0.0 : w.acc[j], !w.vel.empty(),
+                  !w.acc.empty()};
+    }
+    for (size_t i = 1; i + 1 < n; ++i)  // the first waypoint's depends on the start: start() estimates it
+      if (!k[i].has_vel) k[i].v = estimated_velocity(k[i - 1].t, k[i - 1].p, k[i].t, k[i].p, k[i + 1].t, k[i + 1].p);
+    Joint& J = plan.joints_[j];
+    J.segments.resize(n);
+    for (size_t i = 2; i < n; ++i) J.segments[i] = segment(k[i - 1], k[i - 1].v, k[i], k[i].v);
+    if (n > 0) J.first = k[0];
+    if (n > 1) J.second = k[1];
+  }
+  return plan;
+}
+
+Trajectory Trajectory::start(Plan&& plan, double t0, const std::vector<SplineState>& start,
+                             const std::vector<double>& offset) {
   Trajectory tr;
   tr.t0_ = t0;
-  tr.t1_ = points.empty() ? t0 : points.back().time;
-  tr.steps_ = !interpolate;
-  const size_t n = start.size();
-  tr.segments_.resize(n);
-  for (size_t j = 0; j < n; ++j) {
-    // Knots: the start state, then every waypoint.
-    std::vector<double> t{t0}, p{start[j].pos}, v{start[j].vel}, a{start[j].acc};
-    std::vector<bool> has_vel{true}, has_acc{true};
-    for (const auto& w : points) {
-      t.push_back(w.time);
-      p.push_back(w.pos[j]);
-      has_vel.push_back(!w.vel.empty());
-      has_acc.push_back(!w.acc.empty());
-      v.push_back(w.vel.empty() ? 0.0 : w.vel[j]);
-      a.push_back(w.acc.empty() ? 0.0 : w.acc[j]);
+  tr.t1_ = t0 + plan.end_;
+  tr.steps_ = plan.steps_;
+  const size_t joints = plan.joints_.size();
+  tr.offset_.assign(joints, 0.0);
+  if (!offset.empty()) tr.offset_ = offset;
+  tr.segments_.resize(joints);
+  for (size_t j = 0; j < joints; ++j) {
+    Plan::Joint& J = plan.joints_[j];
+    if (plan.points_ > 0) {
+      const Plan::Knot s{0.0, start[j].pos - tr.offset_[j], start[j].vel, start[j].acc, true, true};
+      const Plan::Knot& a = J.first;
+      double v1 = a.v;
+      if (!a.has_vel && plan.points_ > 1) v1 = estimated_velocity(s.t, s.p, a.t, a.p, J.second.t, J.second.p);
+      J.segments[0] = segment(s, s.v, a, v1);
+      if (plan.points_ > 1) J.segments[1] = segment(a, v1, J.second, J.second.v);
     }
-    for (size_t k = 1; k + 1 < t.size(); ++k) {
-      if (has_vel[k]) continue;
-      const double s0 = (p[k] - p[k - 1]) / (t[k] - t[k - 1]), s1 = (p[k + 1] - p[k]) / (t[k + 1] - t[k]);
-      v[k] = s0 * s1 <= 0 ? 0.0 : 2.0 / (1.0 / s0 + 1.0 / s1);  // harmonic mean: no overshoot
-    }
-    for (size_t k = 1; k < t.size(); ++k) {
-      if (has_acc[k])
-        tr.segments_[j].push_back(quintic(t[k - 1], t[k], {p[k - 1], v[k - 1], a[k - 1]}, {p[k], v[k], a[k]}));
-      else
-        tr.segments_[j].push_back(cubic(t[k - 1], t[k], p[k - 1], v[k - 1], p[k], v[k]));
-    }
+    tr.segments_[j] = std::move(J.segments);
   }
   return tr;
+}
+
+Trajectory Trajectory::build(double t0, const std::vector<SplineState>& start, const std::vector<Waypoint>& points,
+                             bool interpolate) {
+  std::vector<Waypoint> relative = points;
+  for (Waypoint& w : relative) w.time -= t0;
+  return Trajectory::start(Plan::make(start.size(), relative, interpolate), t0, start);
 }
 
 Trajectory Trajectory::hold(double t0, const std::vector<double>& pos) {
   Trajectory tr;
   tr.segments_.resize(pos.size(), std::vector<Segment>(1));
+  tr.offset_.assign(pos.size(), 0.0);
   tr.set_hold(t0, pos.data());
   return tr;
 }
@@ -78,35 +117,41 @@ void Trajectory::set_hold(double t0, const double* pos) {
   for (size_t j = 0; j < segments_.size(); ++j) {
     Segment& s = segments_[j][0];
     s = Segment{};
-    s.t0 = s.t1 = t0;
     s.c[0] = pos[j];
+    offset_[j] = 0.0;
   }
 }
 
 void Trajectory::set_stop(double t0, double duration, const SplineState* from) {
   t0_ = t0;
-  t1_ = t0 + std::max(0.0, duration);
+  const double d = std::max(0.0, duration);
+  t1_ = t0 + d;
   for (size_t j = 0; j < segments_.size(); ++j) {
     Segment& s = segments_[j][0];
+    offset_[j] = 0.0;
     const SplineState a{from[j].pos, duration > 0 ? from[j].vel : 0.0, 0.0};
     if (duration <= 0 || a.vel == 0) {
       s = Segment{};
-      s.t0 = t0;
-      s.t1 = t1_;
+      s.t1 = d;
       s.c[0] = a.pos;
       continue;
     }
-    const Segment there_and_back = quintic(t0, t0 + 2 * duration, a, {a.pos, -a.vel, 0.0});
+    const Segment there_and_back = quintic(0.0, 2 * duration, a, {a.pos, -a.vel, 0.0});
     const double tau = duration;
     const double* c = there_and_back.c;
     const SplineState rest{c[0] + tau * (c[1] + tau * (c[2] + tau * (c[3] + tau * (c[4] + tau * c[5])))), 0.0, 0.0};
-    s = quintic(t0, t1_, a, rest);
+    s = quintic(0.0, d, a, rest);
   }
 }
 
-void Trajectory::sample(double t, size_t joint, SplineState& out) const {
+void Trajectory::sample(double time, size_t joint, SplineState& out) const {
   const auto& segs = segments_[joint];
   if (segs.empty()) return;
+  sample_relative(time - t0_, segs, out);
+  out.pos += offset_[joint];
+}
+
+void Trajectory::sample_relative(double t, const std::vector<Segment>& segs, SplineState& out) const {
   const Segment* s = nullptr;
   double tau;
   if (t >= segs.back().t1) {

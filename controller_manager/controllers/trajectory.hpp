@@ -6,6 +6,9 @@
 // waypoint's time on (the start state until the first). Before its start a
 // trajectory holds its first state, after its end the last position. sample()
 // does not allocate.
+// A goal's trajectory is planned before its start state is known (Plan, off the
+// control loop: all but the two segments the start state reaches) and started
+// in the loop (Trajectory::start, O(joints)).
 #pragma once
 
 #include <cstddef>
@@ -18,14 +21,48 @@ struct SplineState {
 };
 
 struct Waypoint {
-  double time = 0;                    // absolute, seconds on the controller clock
+  double time = 0;                    // seconds: absolute for build(), from the start for Plan::make()
   std::vector<double> pos, vel, acc;  // vel and acc empty when not given
 };
 
 class Trajectory {
+  struct Segment {
+    double t0 = 0, t1 = 0;  // seconds from the trajectory's start
+    double c[6] = {0, 0, 0, 0, 0, 0};  // in tau = t - t0
+  };
+
  public:
+  // A trajectory's waypoints worked out before its start: times from the start (strictly increasing, > 0;
+  // validated by the caller), positions less an offset per joint that start() adds back (a continuous joint's turn,
+  // a joint a partial goal leaves out).
+  class Plan {
+   public:
+    static Plan make(size_t joints, const std::vector<Waypoint>& points, bool interpolate = true);
+    size_t points() const { return points_; }
+    double duration() const { return end_; }
+
+   private:
+    friend class Trajectory;
+    struct Knot {
+      double t = 0, p = 0, v = 0, a = 0;
+      bool has_vel = false, has_acc = false;
+    };
+    struct Joint {
+      std::vector<Segment> segments;  // one per waypoint; the first two are made by start()
+      Knot first, second;             // the first two waypoints (second.v final)
+    };
+    std::vector<Joint> joints_;
+    size_t points_ = 0;
+    double end_ = 0;
+    bool steps_ = false;
+  };
+
+  // `plan` from t0 in `start` (one state per joint, absolute positions); offset: per joint, added to the plan's
+  // positions (empty: none). Takes the plan's storage: no allocation beyond the per-joint offsets.
+  static Trajectory start(Plan&& plan, double t0, const std::vector<SplineState>& start,
+                          const std::vector<double>& offset = {});
   // Starts at t0 in `start` (one state per joint) and passes every waypoint
-  // (times strictly increasing, after t0; validated by the caller).
+  // (absolute times strictly increasing, after t0; validated by the caller).
   static Trajectory build(double t0, const std::vector<SplineState>& start, const std::vector<Waypoint>& points,
                           bool interpolate = true);
   // Holding still at `pos` from t0; set_hold() reuses the storage of a hold trajectory.
@@ -42,13 +79,12 @@ class Trajectory {
   double end_time() const { return t1_; }
 
  private:
-  struct Segment {
-    double t0 = 0, t1 = 0;
-    double c[6] = {0, 0, 0, 0, 0, 0};  // in tau = t - t0
-  };
   static Segment cubic(double t0, double t1, double p0, double v0, double p1, double v1);
   static Segment quintic(double t0, double t1, const SplineState& a, const SplineState& b);
+  static Segment segment(const Plan::Knot& from, double from_v, const Plan::Knot& to, double to_v);
+  void sample_relative(double t, const std::vector<Segment>& segs, SplineState& out) const;
   std::vector<std::vector<Segment>> segments_;
+  std::vector<double> offset_;  // per joint, added to every position sampled
   double t0_ = 0, t1_ = 0;
   bool steps_ = false;  // no interpolation
 };

@@ -196,6 +196,39 @@ TEST(LcmSocket, PutsFragmentedMessagesTogetherAsLcmSendsThem) {
   EXPECT_EQ(socket.incomplete(), 1);
 }
 
+// A large message put together from fragments is moved out to its one receiver (a trajectory goal taken in off the
+// loop costs no copy); with two receivers, or a small one, each gets a copy and the socket keeps its buffer.
+TEST(LcmSocket, ItsOneReceiverTakesALargeMessageWithoutACopy) {
+  const std::string url = lt::unique_lcm_url();
+  LcmSocket socket(url);
+  lcm::LCM lc(url);
+  std::vector<std::vector<uint8_t>> taken;
+  std::vector<const void*> where;
+  socket.subscribe("goal", [&](const lcm::ReceiveBuffer& rb) {
+    taken.push_back(socket.take_delivered(rb));
+    where.push_back(rb.data);
+  });
+  std::vector<uint8_t> big(1000000), small(100);
+  for (size_t i = 0; i < big.size(); ++i) big[i] = uint8_t(i * 7 + 3);
+  lc.publish("goal", big.data(), unsigned(big.size()));
+  lc.publish("goal", small.data(), unsigned(small.size()));
+  ASSERT_TRUE(pump(socket, [&] { return taken.size() == 2; }));
+  EXPECT_EQ(taken[0], big);
+  EXPECT_EQ(taken[0].data(), where[0]) << "moved, not copied";
+  EXPECT_EQ(socket.reassembly_bytes(), 0u) << "the buffer went with the message";
+  EXPECT_EQ(taken[1], small);
+  EXPECT_NE(taken[1].data(), where[1]);
+
+  std::vector<uint8_t> second;
+  socket.subscribe("goal", [&](const lcm::ReceiveBuffer& rb) {
+    second.assign(static_cast<const uint8_t*>(rb.data), static_cast<const uint8_t*>(rb.data) + rb.data_size);
+  });
+  lc.publish("goal", big.data(), unsigned(big.size()));
+  ASSERT_TRUE(pump(socket, [&] { return taken.size() == 3 && !second.empty(); }));
+  EXPECT_EQ(taken[2], big);
+  EXPECT_NE(taken[2].data(), where[2]) << "two receivers: copied";
+  EXPECT_EQ(second, big);
+}
 
 // Issue 35, item 4: forged first fragments of huge messages, and messages that never complete, cost memory only as
 // their fragments arrive and only for a while; the subscriber hears of each loss on its channel.

@@ -2,7 +2,9 @@
 // simulated actuators): what it commands, how it starts, its parameters.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <thread>
 
 #include "controller_manager/gains.hpp"
 #include "lcm_control/controller_state_t.hpp"
@@ -11,6 +13,7 @@
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
+#include "rt/clock.hpp"
 #include "test/controller_manager/rig.hpp"
 #include "test/support/lcm_test.hpp"
 
@@ -374,6 +377,45 @@ TEST(ControllerManagerTrajectoryController, AGoalWithoutVelocitiesAfterOneWithTh
   EXPECT_EQ(result.messages[1].goal_id, 10);
   EXPECT_EQ(result.messages[1].status, trajectory_status_t::SUCCEEDED) << result.messages[1].message;
   EXPECT_NEAR(rig.actuator("slide_motor").position, 0.2, 1e-9);
+}
+
+// A goal taken in off the loop (the controller manager program's intake thread): decoded and planned on the intake's
+// thread, taken whole by poll() between cycles, never before; the trajectory is the one the loop itself would have
+// taken in that cycle, command for command, bit for bit.
+TEST(ControllerManagerTrajectoryController, AGoalTakenInOffTheLoopIsTakenWholeAtPollAndFollowedAsInTheLoop) {
+  cm::ManagerOptions off;
+  off.intake_thread = true;
+  Rig in_loop, off_loop(cm::builtin_registry(), lcm_control::testing::data("test_bot.urdf"),
+                        lcm_control::testing::data("test_bot.yaml"), off);
+  Recorder<trajectory_status_t> in_result(in_loop.bus.lcm(), "trajectory/result");
+  Recorder<trajectory_status_t> off_result(off_loop.bus.lcm(), "trajectory/result");
+  Recorder<trajectory_status_t> off_feedback(off_loop.bus.lcm(), "trajectory/feedback");
+  for (Rig* r : {&in_loop, &off_loop}) {
+    r->start("trajectory");
+    r->cycle(10);
+  }
+  const joint_trajectory_t g =
+      trajectory_goal(21, {"tilt", "slide"}, {{0.4, {0.2, 0.1}}, {0.8, {0.5, 0.3}}, {1.2, {0.3, 0.6}}, {1.5, {0.1, 0.2}}});
+  in_loop.publish("trajectory/command", g);
+  off_loop.publish("trajectory/command", g);
+  for (int k = 0; k < 2000 && off_loop.cm->taking_in(); ++k) {
+    if (k == 200) {  // planned, not taken: the loop still holds
+      EXPECT_TRUE(off_loop.cm->taking_in());
+      EXPECT_TRUE(off_feedback.messages.empty());
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    if (k >= 200) off_loop.cm->poll(monotonic_us());
+  }
+  EXPECT_FALSE(off_loop.cm->taking_in());
+  in_loop.cycle(1800);
+  off_loop.cycle(1800);
+  ASSERT_EQ(in_result.messages.size(), 1u);
+  ASSERT_EQ(off_result.messages.size(), 1u);
+  EXPECT_EQ(off_result.messages[0].status, trajectory_status_t::SUCCEEDED) << off_result.messages[0].message;
+  ASSERT_EQ(in_loop.commands.size(), off_loop.commands.size());
+  for (size_t k = 0; k < in_loop.commands.size(); ++k)
+    for (int a = 0; a < in_loop.commands[k].num_actuators; ++a)
+      ASSERT_EQ(in_loop.commands[k].command[a], off_loop.commands[k].command[a]) << "cycle " << k << " actuator " << a;
 }
 
 // An effort PID's command holds -d*velocity (its D term from the measured velocity); the command says so, so that

@@ -22,10 +22,10 @@ inline std::string data(const std::string& file) { return source("test/controlle
 
 struct Rig {
   explicit Rig(const cm::Registry& registry = cm::builtin_registry(), const std::string& urdf = data("test_bot.urdf"),
-               const std::string& yaml = data("test_bot.yaml"))
+               const std::string& yaml = data("test_bot.yaml"), cm::ManagerOptions options = {})
       : model(load_robot_model(urdf, yaml)), bus("memq://", "") {
     act = actuators_for(model);
-    cm = std::make_unique<cm::ControllerManager>(model, bus, registry);
+    cm = std::make_unique<cm::ControllerManager>(model, bus, registry, options);
   }
 
   // n control steps of `period_us` each.

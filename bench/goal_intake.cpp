@@ -1,0 +1,200 @@
+// bench_goal_intake: 100,000-point trajectory goals (3.6 MB each, four a second) sent over real LCM to the turret_bot's
+// trajectory controller while a 1 kHz real-time hardware is played on absolute deadlines, in one process, as the
+// controller manager program reads them: the shared bus's socket read directly, then poll() between cycles. Each
+// period's busy time on the loop's thread (on_hardware_state + the socket + poll) is timed: with the goals taken in
+// off the loop (the intake's thread, as the program does), in the loop (as before), and without goals. Also the
+// cost of one goal's decode and plan on one thread.
+//   bench_goal_intake [--seconds S] [--smoke]
+// Prints per kind (none, off_loop, in_loop)
+//   goal_intake KIND PERIODS P50_US P99_US MAX_US OVER_1MS GOALS_SENT GOALS_TAKEN
+// and `goal_cost POINTS BYTES DECODE_MS PLAN_MS`.
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench/pingpong.hpp"
+#include "bus/bus.hpp"
+#include "controller_manager/controllers/trajectory.hpp"
+#include "controller_manager/manager.hpp"
+#include "controller_manager/registry.hpp"
+#include "description/robot_model.hpp"
+#include "lcm_control/joint_trajectory_t.hpp"
+#include "lcm_control/trajectory_status_t.hpp"
+#include "rt/clock.hpp"
+
+namespace {
+
+using namespace lcm_control;
+using namespace lcm_control::cm;
+using lcm_control::bench::resting_state;
+
+constexpr int kPoints = 100000;
+
+joint_trajectory_t goal_of(int points) {
+  joint_trajectory_t g{};
+  g.num_joints = 2;
+  g.joint_names = {"j1", "j2"};
+  g.num_points = points;
+  g.points.resize(size_t(points));
+  for (int i = 0; i < points; ++i) {
+    auto& p = g.points[size_t(i)];
+    p.time_from_start = 0.5 + i * 1e-4;
+    p.num_positions = 2;
+    p.positions = {0.5 + 0.2 * std::sin(i * 1e-3), 0.1 * std::cos(i * 1e-3)};
+  }
+  return g;
+}
+
+struct Figures {
+  std::vector<double> busy_us;
+  int sent = 0, taken = 0;
+};
+
+Figures run(const std::string& kind, double seconds, const std::string& dir, const std::string& url) {
+  const std::string yaml = dir + "/bench_goal_intake.yaml";
+  std::ofstream(yaml) << "joint_state_controller: {type: joint_state_controller/JointStateController, "
+                         "publish_rate: 50}\n"
+                         "trajectory_controller:\n  type: position_controllers/JointTrajectoryController\n"
+                         "  joints: [j1, j2]\n";
+  Registry registry;
+  register_builtin(registry);
+  Bus bus(url, "", "", HardwareReader::Direct);
+  bus.set_pass_budget_us(250);  // as the controller manager program reads
+  RobotModel model = load_robot_model(std::string(LCM_CONTROL_SOURCE_DIR) + "/config/turret_bot.urdf", {yaml});
+  hardware_state_t st = resting_state(model, 7, false);
+  ManagerOptions options;
+  options.slice_us = 250;
+  options.intake_thread = kind == "off_loop";
+  ControllerManager cm(std::move(model), bus, registry, options);
+  for (const char* n : {"joint_state_controller", "trajectory_controller"})
+    if (!cm.load(n).ok) throw std::runtime_error(std::string("cannot load ") + n);
+  cm.switch_controllers({"joint_state_controller", "trajectory_controller"}, {}, 2, [](const Reply&) {});
+
+  Figures f;
+  std::atomic<bool> done{false};
+  std::atomic<int> sent{0}, taken{0};
+  std::thread sender;
+  if (kind != "none") {
+    sender = std::thread([&] {
+      lcm::LCM lc(url);
+      struct Feedback {  // each goal taken is followed on <name>/feedback under its id
+        std::atomic<int>* taken;
+        int64_t last = 0;
+        void on(const lcm::ReceiveBuffer*, const std::string&, const trajectory_status_t* r) {
+          if (r->goal_id != last) ++*taken;
+          last = r->goal_id;
+        }
+      } feedback{&taken};
+      lc.subscribe("trajectory_controller/feedback", &Feedback::on, &feedback);
+      joint_trajectory_t g = goal_of(kPoints);
+      std::vector<uint8_t> bytes(size_t(g.getEncodedSize()));
+      int64_t next = monotonic_us() + 200000;
+      while (!done) {
+        lc.handleTimeout(10);
+        if (monotonic_us() < next) continue;
+        next += 250000;
+        g.goal_id = sent + 1;
+        g.encode(bytes.data(), 0, int(bytes.size()));
+        if (lc.publish("trajectory_controller/command", bytes.data(), unsigned(bytes.size())) == 0) ++sent;
+      }
+      for (int k = 0; k < 50; ++k) lc.handleTimeout(10);  // the last results
+    });
+  }
+  const int64_t periods = int64_t(seconds * 1000);
+  f.busy_us.reserve(size_t(periods));
+  timespec next{};
+  clock_gettime(CLOCK_MONOTONIC, &next);
+  for (int64_t k = 0; k < periods; ++k) {
+    next.tv_nsec += 1000000;
+    if (next.tv_nsec >= 1000000000) {
+      next.tv_nsec -= 1000000000;
+      ++next.tv_sec;
+    }
+    clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
+    st.step = k;
+    st.utime = k * 1000;
+    const auto t0 = std::chrono::steady_clock::now();
+    cm.on_hardware_state(st);
+    bus.handle_us(0, 1000);
+    cm.poll(monotonic_us());
+    const auto t1 = std::chrono::steady_clock::now();
+    if (k >= 100) f.busy_us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+  }
+  for (int k = 0; k < 200 && cm.taking_in(); ++k) {  // what is still being taken in
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    bus.handle_us(0, 1000);
+    cm.poll(monotonic_us());
+  }
+  done = true;
+  if (sender.joinable()) sender.join();
+  f.sent = sent;
+  f.taken = taken;
+  return f;
+}
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, size_t(p * double(v.size() - 1) + 0.5))];
+}
+
+void goal_cost() {
+  const joint_trajectory_t g = goal_of(kPoints);
+  std::vector<uint8_t> bytes(size_t(g.getEncodedSize()));
+  g.encode(bytes.data(), 0, int(bytes.size()));
+  const auto t0 = std::chrono::steady_clock::now();
+  joint_trajectory_t d;
+  d.decode(bytes.data(), 0, int(bytes.size()));
+  const auto t1 = std::chrono::steady_clock::now();
+  std::vector<Waypoint> w(d.points.size());
+  for (size_t i = 0; i < w.size(); ++i) {
+    w[i].time = d.points[i].time_from_start;
+    w[i].pos = d.points[i].positions;
+  }
+  const Trajectory::Plan plan = Trajectory::Plan::make(2, w, true);
+  const auto t2 = std::chrono::steady_clock::now();
+  std::printf("goal_cost %zu %zu %.2f %.2f\n", plan.points(), bytes.size(),
+              std::chrono::duration<double, std::milli>(t1 - t0).count(),
+              std::chrono::duration<double, std::milli>(t2 - t1).count());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double seconds = 5;
+  for (int k = 1; k < argc; ++k) {
+    if (!std::strcmp(argv[k], "--smoke")) seconds = 1.0;
+    else if (!std::strcmp(argv[k], "--seconds") && k + 1 < argc) seconds = std::atof(argv[++k]);
+  }
+  const std::string dir = std::filesystem::temp_directory_path().string();
+  // A receive buffer that holds a whole goal's fragments (capped by net.core.rmem_max).
+  const std::string url =
+      "udpm://239.255.76.67:" + std::to_string(20000 + getpid() % 20000) + "?ttl=0&recv_buf_size=16777216";
+  try {
+    goal_cost();
+    for (const char* kind : {"none", "off_loop", "in_loop"}) {
+      const Figures f = run(kind, seconds, dir, url);
+      const auto over = std::count_if(f.busy_us.begin(), f.busy_us.end(), [](double us) { return us > 1000; });
+      std::printf("goal_intake %s %zu %.1f %.1f %.1f %ld %d %d\n", kind, f.busy_us.size(), percentile(f.busy_us, 0.5),
+                  percentile(f.busy_us, 0.99),
+                  f.busy_us.empty() ? 0.0 : *std::max_element(f.busy_us.begin(), f.busy_us.end()), long(over), f.sent,
+                  f.taken);
+      std::fflush(stdout);
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bench_goal_intake: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,78 @@
+#include "rt/intake.hpp"
+
+#include "rt/scheduling.hpp"
+
+namespace lcm_control {
+
+Intake::Intake() : thread_([this] { work(); }) {}
+
+Intake::~Intake() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+    jobs_.clear();
+  }
+  wake_.notify_one();
+  thread_.join();
+}
+
+void Intake::enqueue(Job job) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    jobs_.push_back(std::move(job));
+  }
+  wake_.notify_one();
+}
+
+void Intake::submit(Job job) {
+  if (!in_place()) return enqueue(std::move(job));
+  {  // what was submitted before takes effect first
+    std::unique_lock<std::mutex> lock(mutex_);
+    idle_.wait(lock, [&] { return jobs_.empty() && running_ == 0; });
+  }
+  drain();
+  if (Result r = job()) r();
+}
+
+size_t Intake::drain() {
+  std::deque<Result> ready;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (results_.empty()) return 0;
+    ready.swap(results_);
+  }
+  size_t n = 0;
+  for (Result& r : ready)
+    if (r) {
+      r();
+      ++n;
+    }
+  return n;
+}
+
+bool Intake::busy() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return !jobs_.empty() || running_ > 0 || !results_.empty();
+}
+
+void Intake::work() {
+  become_background_thread("lcm_ctl intake");  // never ahead of the loop for a CPU, whatever the loop's policy
+  std::unique_lock<std::mutex> lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [&] { return stop_ || !jobs_.empty(); });
+    if (stop_) return;
+    Job job = std::move(jobs_.front());
+    jobs_.pop_front();
+    ++running_;
+    lock.unlock();
+    Result r = job();
+    job = nullptr;  // what the job held is freed here, not on the loop
+    done_.fetch_add(1, std::memory_order_relaxed);
+    lock.lock();
+    if (r) results_.push_back(std::move(r));
+    --running_;
+    if (jobs_.empty() && running_ == 0) idle_.notify_all();
+  }
+}
+
+}  // namespace lcm_control

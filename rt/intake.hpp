@@ -1,0 +1,66 @@
+// Work a message needs before a loop can take it (decoding, checking, planning), done on a thread of its own, so
+// that a large message (a 100,000-point trajectory goal) never stalls a cycle: submit() hands the job over, and the
+// loop's thread runs each job's result (what the job returns) at its next drain(), between cycles, in the order the
+// jobs were submitted, all of one job's work taken whole. In place (lockstep, or without a thread), a job and its
+// result run at once in submit(), so that runs repeat bit for bit. dispose() lets the thread free what the loop no
+// longer needs (a replaced trajectory).
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <type_traits>
+
+namespace lcm_control {
+
+class Intake {
+ public:
+  using Result = std::function<void()>;  // runs on the loop's thread
+  using Job = std::function<Result()>;   // runs on the intake's thread: must not touch what the loop uses
+
+  Intake();
+  ~Intake();  // drops the jobs not yet run and the results not yet taken
+  Intake(const Intake&) = delete;
+  Intake& operator=(const Intake&) = delete;
+
+  // On: submit() runs the job and its result at once, after the results of the jobs submitted before (waiting for
+  // them). Off (the default): the thread runs it.
+  void set_in_place(bool on) { in_place_.store(on, std::memory_order_relaxed); }
+  bool in_place() const { return in_place_.load(std::memory_order_relaxed); }
+
+  void submit(Job job);
+  // The results of the jobs done, in their order; how many ran. Loop thread only.
+  size_t drain();
+  // Jobs waiting, running, or whose results wait for drain().
+  bool busy() const;
+  // Destroys `garbage` (moved in) on the intake's thread, in place or not: freeing has no result to order.
+  template <class T>
+  void dispose(T&& garbage) {
+    auto held = std::make_shared<std::decay_t<T>>(std::forward<T>(garbage));
+    enqueue([held]() mutable -> Result {
+      held.reset();
+      return {};
+    });
+  }
+  int64_t done() const { return done_.load(std::memory_order_relaxed); }  // jobs run on the thread
+
+ private:
+  void work();
+  void enqueue(Job job);
+  mutable std::mutex mutex_;
+  std::condition_variable wake_, idle_;
+  std::deque<Job> jobs_;
+  std::deque<Result> results_;
+  size_t running_ = 0;
+  bool stop_ = false;
+  std::atomic<bool> in_place_{false};
+  std::atomic<int64_t> done_{0};
+  std::thread thread_;
+};
+
+}  // namespace lcm_control
