@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <pthread.h>
+
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 
@@ -81,6 +84,21 @@ void check_document(std::size_t bytes) {
   if (!in_force) return;
   const std::size_t limit = BudgetCounters::budget(*in_force).document_bytes;
   if (bytes > limit) over("a written document of {} bytes", bytes, limit, "bytes");
+}
+
+bool stack_nearly_full() {
+  thread_local uintptr_t lowest = [] {  // the lowest usable address of this thread's stack, found once
+    pthread_attr_t attr;
+    void* base = nullptr;
+    size_t size = 0, guard = 0;
+    if (pthread_getattr_np(pthread_self(), &attr) != 0) return uintptr_t{0};
+    pthread_attr_getstack(&attr, &base, &size);
+    pthread_attr_getguardsize(&attr, &guard);
+    pthread_attr_destroy(&attr);
+    return reinterpret_cast<uintptr_t>(base) + guard;
+  }();
+  const auto here = reinterpret_cast<uintptr_t>(__builtin_frame_address(0));
+  return lowest != 0 && here < lowest + kStackReserve;
 }
 
 }  // namespace lcm_control::xacro

@@ -56,4 +56,10 @@ void count_include();
 void count_document_bytes(std::size_t bytes);
 void check_document(std::size_t bytes);  // the document as written out, indentation included
 
+// Whether the calling thread's stack has less than kStackReserve left below the caller's frame: the recursive
+// readers and evaluators refuse to go deeper then, whatever their level counts say, so that a build whose frames
+// are larger (unoptimised, sanitised) or a thread with a small stack stops with a message, never a crash.
+inline constexpr std::size_t kStackReserve = 256u << 10;
+bool stack_nearly_full();
+
 }  // namespace lcm_control::xacro

@@ -417,12 +417,13 @@ thread_local int eval_depth = 0;
 class EvalDepth {
  public:
   EvalDepth() {
-    if (++eval_depth > kMaxEvalDepth) {
-      --eval_depth;
+    if (++eval_depth > kMaxEvalDepth || stack_nearly_full()) {
+      const int levels = eval_depth--;
       py::raise("RecursionError",
-                fmt::format("maximum recursion depth exceeded ({} levels of evaluation): a lambda that calls itself "
-                            "without end?",
-                            kMaxEvalDepth));
+                fmt::format("maximum recursion depth exceeded ({} levels of evaluation{}): a lambda that calls "
+                            "itself without end?",
+                            levels > kMaxEvalDepth ? kMaxEvalDepth : levels,
+                            levels > kMaxEvalDepth ? "" : ", the thread's stack nearly full"));
     }
   }
   ~EvalDepth() { --eval_depth; }

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "description/xacro/budget.hpp"
 #include "description/xacro/python_ast.hpp"
 
 #include "description/xacro/utf8.hpp"
@@ -325,7 +326,7 @@ class Parser {
     Deeper& operator=(const Deeper&) = delete;
     void more() {
       ++n_;
-      if (++p_.depth_ > kMaxDepth)
+      if (++p_.depth_ > kMaxDepth || stack_nearly_full())
         throw EvalError("RecursionError",
                         fmt::format("the expression nests deeper than {} levels at column {} (parentheses, unary "
                                     "operators and each operator of a chain count): split it with xacro:property",

@@ -246,7 +246,7 @@ class Parser {
   static constexpr int kMaxDepth = 1000;
 
   Node* element() {
-    if (++depth_ > kMaxDepth)
+    if (++depth_ > kMaxDepth || stack_nearly_full())
       fail(fmt::format("elements nest deeper than {} levels: every walk of the document recurses per level", kMaxDepth));
     struct Leave {
       int& d;
