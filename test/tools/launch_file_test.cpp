@@ -3,6 +3,7 @@
 #include "tools/lib/launch_file.hpp"
 
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include <array>
 #include <filesystem>
@@ -108,8 +109,9 @@ TEST(LaunchFile, ArgsConditionsAndSpawnerFlags) {
   <node name="sp" pkg="controller_manager" type="spawner" args="--stopped --timeout 5 $(arg controllers)"/>
 </launch>)L");
   const LaunchPlan plan = read_launch_file(file, {lt::source("test/tools/data")});
-  EXPECT_EQ(plan.controllers, (std::vector<std::string>{"j1_controller", "j2_controller"}));
-  EXPECT_EQ(plan.spawner_args, (std::vector<std::string>{"--stopped", "--timeout", "5"}));
+  EXPECT_TRUE(plan.controllers.empty());  // --stopped: loaded and left stopped, as ROS 1's spawner
+  EXPECT_EQ(plan.inactive, (std::vector<std::string>{"j1_controller", "j2_controller"}));
+  EXPECT_EQ(plan.spawner_args, (std::vector<std::string>{"--timeout", "5"}));
   EXPECT_FALSE(plan.state_publisher);
   bool ignored = false;
   for (const auto& n : plan.notes) ignored = ignored || n.find("joint_state_publisher/joint_state_publisher has no") != std::string::npos;
@@ -405,6 +407,59 @@ TEST(LaunchFile, AnEvalErrorShowsTheWholeExpression) {
 // Issue 48: a robot's launch file included by another, as catkin packages split them: <include> followed with its
 // <arg>s (and pass_all_args), relative files from the included file's own folder, and NAME:=VALUE from the command
 // line overriding a default; each mistake named with the file and line.
+// A package's own launch file as ROS 1 packages write them: the robot in a <group ns>, its controllers' YAML inline
+// (one with subst_value, one under an ns), and two spawner nodes, the second --stopped: each node's controllers as
+// it asked, the group's namespace for the robot.
+TEST(LaunchFile, EachSpawnerNodeInlineRosparamAndTheGroupsNamespace) {
+  const std::string dir = lt::temp_dir("launch_groups");
+  const std::string file = write(dir, "robot.launch", R"L(<launch>
+  <arg name="rate" default="50"/>
+  <include file="$(find gazebo_ros)/launch/empty_world.launch"/>
+  <group ns="robot1">
+    <param name="robot_description" textfile="$(find turret_bot)/urdf/turret_bot.urdf"/>
+    <rosparam subst_value="true">
+      joint_state_controller:
+        type: joint_state_controller/JointStateController
+        publish_rate: $(arg rate)   # from the launch file's arg
+    </rosparam>
+    <rosparam ns="j1_controller">
+type: effort_controllers/JointPositionController
+joint: j1
+pid: {p: 100, d: $(arg rate)}
+    </rosparam>
+    <node name="spawn" pkg="gazebo_ros" type="spawn_model" args="-urdf -param robot_description -model x"/>
+    <node name="running" pkg="controller_manager" type="spawner" args="joint_state_controller j1_controller --timeout 5"/>
+    <node name="idle" pkg="controller_manager" type="spawner" args="--stopped j2_controller --timeout 9"/>
+  </group>
+</launch>)L");
+  const LaunchPlan plan = read_launch_file(file, {lt::source("test/tools/data")}, {{"rate", "125"}});
+  EXPECT_EQ(plan.ns, "robot1");
+  EXPECT_EQ(plan.controllers, (std::vector<std::string>{"joint_state_controller", "j1_controller"}));
+  EXPECT_EQ(plan.inactive, (std::vector<std::string>{"j2_controller"}));
+  EXPECT_EQ(plan.spawner_args, (std::vector<std::string>{"--timeout", "9"}));
+  ASSERT_EQ(plan.configs.size(), 2u);
+  const YAML::Node first = YAML::LoadFile(plan.configs[0]), second = YAML::LoadFile(plan.configs[1]);
+  EXPECT_EQ(first["joint_state_controller"]["publish_rate"].as<int>(), 125);
+  EXPECT_EQ(second["j1_controller"]["joint"].as<std::string>(), "j1");
+  EXPECT_EQ(second["j1_controller"]["pid"]["d"].as<std::string>(), "$(arg rate)") << "no subst_value: as written";
+  std::string notes;
+  for (const auto& n : plan.notes) notes += n + "\n";
+  EXPECT_NE(notes.find("robot.launch:18: <node name=\"idle\">: loaded, left stopped (--stopped): j2_controller"),
+            std::string::npos)
+      << notes;
+  EXPECT_NE(notes.find("robot.launch:11: <rosparam>: inline YAML under j1_controller -> "), std::string::npos) << notes;
+
+  // Nested groups compose; a spawner's own ns goes inside them.
+  const LaunchPlan nested = read_launch_file(write(dir, "nested.launch", R"L(<launch>
+  <param name="robot_description" textfile="$(find turret_bot)/urdf/turret_bot.urdf"/>
+  <rosparam command="load" file="$(find turret_bot)/config/config.yaml"/>
+  <node name="spawn" pkg="gazebo_ros" type="spawn_model" args="-urdf -param robot_description -model x"/>
+  <group ns="lab"><group ns="cell2"><node name="sp" pkg="controller_manager" type="spawner" args="j1_controller"/></group></group>
+</launch>)L"),
+                                             {lt::source("test/tools/data")});
+  EXPECT_EQ(nested.ns, "lab/cell2");
+}
+
 TEST(LaunchFile, IncludesAreFollowedWithTheirArgsAndTheCommandLineOverridesDefaults) {
   const std::string dir = lt::temp_dir("launch_include");
   std::filesystem::create_directories(dir + "/robot/urdf");

@@ -2,10 +2,13 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <tinyxml2.h>
+#include <unistd.h>
 
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 #include <algorithm>
 #include <map>
 
@@ -58,7 +61,71 @@ struct RosReader {
     }
     return true;
   }
-  std::string group_ns;  // ns of the enclosing <group>, if any
+  std::string group_ns;  // ns of the enclosing <group>s, if any ("a/b" for nested groups)
+  int spawner_nodes = 0;
+  int inline_params = 0;
+
+  // --timeout SECONDS and the like once among the spawner's flags: the longest of the spawner nodes'.
+  void longest_flag(const std::string& flag, const std::string& value) {
+    auto& a = plan.spawner_args;
+    for (size_t k = 0; k + 1 < a.size(); ++k)
+      if (a[k] == flag) {
+        if (std::atof(value.c_str()) > std::atof(a[k + 1].c_str())) a[k + 1] = value;
+        return;
+      }
+    a.push_back(flag);
+    a.push_back(value);
+  }
+
+  // An inline <rosparam> (its text, with $(arg)s and $(find)s replaced when subst_value="true"), under its ns, as a
+  // YAML file of its own beside the others: /tmp/lcm_control-UID/, named after the launch file and line, so that a
+  // relaunch rewrites it.
+  std::string inline_yaml(const tinyxml2::XMLElement* e) {
+    std::string text = e->GetText() ? e->GetText() : "";
+    if (attr(e, "subst_value") == "true") text = substitute(text, Substitutions{package_path, args, kLaunchArgFix}, where(e));
+    std::vector<std::string> lines;
+    size_t indent = std::string::npos;
+    for (size_t at = 0; at <= text.size();) {
+      const size_t end = std::min(text.find('\n', at), text.size());
+      std::string line = text.substr(at, end - at);
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      const size_t first = line.find_first_not_of(" \t");
+      if (first != std::string::npos && line[first] != '#') indent = std::min(indent, first);
+      lines.push_back(line);
+      at = end + 1;
+    }
+    if (indent == std::string::npos) return "";
+    std::string prefix;
+    std::string yaml;
+    if (e->Attribute("ns"))
+      for (const auto& part : split_ns(attr(e, "ns"))) {
+        yaml += prefix + part + ":\n";
+        prefix += "  ";
+      }
+    for (const std::string& line : lines)
+      yaml += line.find_first_not_of(" \t") == std::string::npos ? "\n" : prefix + line.substr(std::min(indent, line.size())) + "\n";
+    const fs::path dir = fs::temp_directory_path() / fmt::format("lcm_control-{}", getuid());
+    std::error_code ec;
+    fs::create_directory(dir, ec);
+    fs::permissions(dir, fs::perms::owner_all, ec);
+    const fs::path file =
+        dir / fmt::format("{}-{:x}-line{}.yaml", fs::path(path).stem().string(),
+                          std::hash<std::string>{}(fs::weakly_canonical(fs::absolute(path)).string()), e->GetLineNum());
+    std::ofstream out(file);
+    out << yaml;
+    if (!out) throw ModelError(fmt::format("{}: cannot write the inline YAML to {}", where(e), file.string()));
+    return file.string();
+  }
+  static std::vector<std::string> split_ns(const std::string& ns) {
+    std::vector<std::string> parts;
+    size_t at = 0;
+    while (at <= ns.size()) {
+      const size_t end = std::min(ns.find('/', at), ns.size());
+      if (end > at) parts.push_back(ns.substr(at, end - at));
+      at = end + 1;
+    }
+    return parts;
+  }
 
   // The controllers' namespace: the spawner's ns (inside its group's), as ROS resolves it.
   void set_ns(const tinyxml2::XMLElement* e, const std::string& ns) {
@@ -126,16 +193,19 @@ struct RosReader {
       plan.notes.push_back(where(e) + ": gazebo_ros spawn_model -> sim_server loads the URDF");
     } else if (pkg == "controller_manager" && type == "spawner") {
       if (!name.empty()) plan.spawner_name = name;
-      if (e->Attribute("ns")) set_ns(e, attr(e, "ns"));
+      if (e->Attribute("ns")) {
+        set_ns(e, attr(e, "ns"));
+      } else if (!group_ns.empty()) {
+        set_ns(e, "/" + group_ns);  // the <group ns> it is in
+      }
+      bool stopped = false;
+      std::vector<std::string> names;
       for (size_t k = 0; k < words.size(); ++k) {
         const std::string& w = words[k];
         if (w == "--stopped") {
-          plan.spawner_args.push_back(w);
+          stopped = true;
         } else if ((w == "--timeout" || w == "--shutdown-timeout") && k + 1 < words.size()) {
-          if (std::atof(words[k + 1].c_str()) > 0) {
-            plan.spawner_args.push_back(w);
-            plan.spawner_args.push_back(words[k + 1]);
-          }
+          if (std::atof(words[k + 1].c_str()) > 0) longest_flag(w, words[k + 1]);
           ++k;
         } else if (w == "--namespace" || w == "--wait-for") {
           plan.notes.push_back(where(e) + ": spawner " + w + " is not supported; ignored");
@@ -146,9 +216,15 @@ struct RosReader {
           problems.push_back(where(e) + ": spawner argument " + w +
                              " is a YAML file; name the controllers instead (the config is the <rosparam> file)");
         } else {
-          plan.controllers.push_back(w);
+          names.push_back(w);
         }
       }
+      // Each spawner node's controllers as it asked: started, or (--stopped) loaded and left stopped.
+      auto& into = stopped ? plan.inactive : plan.controllers;
+      into.insert(into.end(), names.begin(), names.end());
+      if (++spawner_nodes > 1 || stopped)
+        plan.notes.push_back(fmt::format("{}: {} {}", where(e), stopped ? "loaded, left stopped (--stopped):" : "started:",
+                                         names.empty() ? "no controllers" : fmt::format("{}", fmt::join(names, ", "))));
     } else {
       plan.notes.push_back(fmt::format("{}: node {}/{} has no lcm_control equivalent; ignored", where(e), pkg, type));
     }
@@ -287,7 +363,16 @@ struct RosReader {
         return;
       }
       if (!e->Attribute("file")) {
-        problems.push_back(where(e) + ": inline <rosparam> YAML is not supported; use file=");
+        const std::string file = inline_yaml(e);
+        if (file.empty()) {
+          plan.notes.push_back(where(e) + ": an empty <rosparam>; ignored");
+          return;
+        }
+        plan.configs.push_back(file);
+        plan.notes.push_back(fmt::format("{}: inline YAML{}{} -> {}", where(e),
+                                         e->Attribute("ns") ? " under " + attr(e, "ns") : "",
+                                         attr(e, "subst_value") == "true" ? " (substituted)" : "", file));
+        ++inline_params;
         return;
       }
       if (e->Attribute("ns")) plan.notes.push_back(where(e) + ": ns=\"" + attr(e, "ns") + "\" ignored");
@@ -313,7 +398,11 @@ struct RosReader {
       }
     } else if (tag == "group") {
       const std::string outer = group_ns;
-      if (e->Attribute("ns")) group_ns = attr(e, "ns");
+      if (e->Attribute("ns")) {  // nested groups compose; a leading '/' starts from the root
+        const std::string ns = attr(e, "ns");
+        group_ns = ns.rfind('/', 0) == 0 || outer.empty() ? ns : outer + "/" + ns;
+        while (!group_ns.empty() && group_ns.front() == '/') group_ns.erase(0, 1);
+      }
       for (auto* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) element(c);
       group_ns = outer;
     } else if (tag == "remap" || tag == "machine" || tag == "env" || tag == "test") {
