@@ -354,7 +354,10 @@ std::vector<uint8_t> lcm_short(uint32_t seqno, const std::string& channel, size_
 // 100,000 names, the dashboard 26, turret-cmd 11).
 TEST(Limits, NewChannelNamesDoNotGrowAnyLongRunningProgram) {
   Robot robot;
-  ASSERT_NO_FATAL_FAILURE(robot.bring_up("auto"));
+  // A hardware URL of its own, not `auto`: auto picks a port from the namespace alone, so a robot without one there
+  // shared its loop with bench_robots_smoke's lockstep robot whenever the two ran together (launch then refused
+  // that robot: "hardware already publishes 'hardware/state' in the default namespace").
+  ASSERT_NO_FATAL_FAILURE(robot.bring_up(lt::unique_lcm_url()));
   const std::string dir = lt::temp_dir("limits_names");
   const auto env = robot.env();
   lt::ChildProcess logger({lt::bin("state-logger"), "joint_states", "--output", dir + "/joint_states.csv"}, env);
