@@ -170,6 +170,35 @@ TEST(HostileFiles, RaisingTheBudgetLetsALargerFileThrough) {
   EXPECT_EQ(expansion_error(fine), "");
 }
 
+// Strings are text, not bytes: indexing, len and case mapping count code points, so no expansion writes a broken
+// UTF-8 sequence into the URDF (before: ${'é'[0]} wrote a lone 0xC3 byte, and len('é') was 2).
+TEST(HostileFiles, NonAsciiStringsStayValidUtf8) {
+  const std::string path = write_case(
+      {"utf-8",
+       {{"main.xacro", expression("'é'[0] + str(len('é')) + 'привет'.upper() + 'héllo'[1:3] + '→'.zfill(3)")}},
+       "",
+       ""});
+  const std::string urdf = expand_xacro(path, {});
+  EXPECT_NE(urdf.find("v=\"é1ПРИВЕТél00→\""), std::string::npos) << urdf;
+  size_t bad = 0;  // bytes that are no part of a well-formed UTF-8 sequence
+  for (size_t i = 0; i < urdf.size();) {
+    const auto c = static_cast<unsigned char>(urdf[i]);
+    const size_t n = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 0;
+    bool ok = n > 0 && i + n <= urdf.size();
+    for (size_t k = 1; ok && k < n; ++k) ok = (static_cast<unsigned char>(urdf[i + k]) >> 6) == 2;
+    if (!ok) {
+      ++bad;
+      ++i;
+    } else {
+      i += n;
+    }
+  }
+  EXPECT_EQ(bad, 0u);
+  std::printf("RELIABILITY|files|non-ASCII strings indexed, measured, sliced and case-mapped|tried=1|ok=%d|crashes=0|"
+              "hangs=0|output valid UTF-8 (%zu bad bytes)\n",
+              bad == 0 && urdf.find("é1ПРИВЕТ") != std::string::npos ? 1 : 0, bad);
+}
+
 TEST(HostileFiles, ThroughTheXacroProgramEachExitsThreeWithinBoundsOfTimeAndMemory) {
   int tried = 0, ok = 0, crashes = 0, hangs = 0;
   for (const Case& c : corpus()) {

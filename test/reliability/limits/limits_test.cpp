@@ -9,13 +9,11 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <set>
 #include <thread>
 
 #include <fmt/format.h>
 
 #include "bus/lcm_socket.hpp"
-#include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 #include "test/e2e/session.hpp"
@@ -145,63 +143,6 @@ TEST(Limits, AGoalTooLargeToTakeIsRefusedOnTheResultChannelWithOneLogLine) {
   std::printf("RELIABILITY|limits|trajectory goals of 200,000 and 1,000,000 points (over 4 MiB)|tried=2|ok=%d|crashes=0|hangs=0|"
               "%s\n",
               ::testing::Test::HasFailure() ? 0 : 2, figures.c_str());
-}
-
-// Goals within the limit are taken in off the loop (decoded and planned on the controller manager's intake thread,
-// their fragments read a slice at a time): four 100,000-point goals a second (3.6 MB each) for 3 s leave the
-// hardware commands regular (before: 39 gaps over 20 ms in 10 s, the longest 94 ms).
-TEST(Limits, LargeGoalsWithinTheLimitDoNotStallTheLoop) {
-  // A receive buffer that holds a whole goal (capped by net.core.rmem_max, which scripts/setup raises to 8 MiB).
-  lt::RobotSession robot(lt::source("config/turret_bot.urdf"), lt::source("config/turret_bot_trajectory.yaml"),
-                         lt::unique_lcm_url() + "&recv_buf_size=8388608");
-  robot.start_controller_manager();
-  ASSERT_NO_FATAL_FAILURE(robot.spawn({"joint_state_controller", "trajectory_controller"}));
-  ASSERT_NO_FATAL_FAILURE(robot.start_sim({}, 20));
-  lcm::LCM lc(robot.url());
-  lt::Recorder<hardware_command_t> commands(lc, "hardware/command");
-  lt::Recorder<trajectory_status_t> feedback(lc, "trajectory_controller/feedback");
-  ASSERT_TRUE(lt::pump_until(lc, [&] { return commands.messages.size() > 300; }, 20)) << robot.cm_output();
-  auto gaps = [&](size_t from, double* longest_ms) {
-    int over = 0;
-    *longest_ms = 0;
-    for (size_t k = from + 1; k < commands.arrival_us.size(); ++k) {
-      const double ms = (commands.arrival_us[k] - commands.arrival_us[k - 1]) * 1e-3;
-      *longest_ms = std::max(*longest_ms, ms);
-      over += ms > 20;
-    }
-    return over;
-  };
-  const size_t quiet0 = commands.arrival_us.size();
-  lt::pump_until(lc, [] { return false; }, 1.0);
-  double quiet_ms = 0;
-  const int quiet_over = gaps(quiet0, &quiet_ms);
-
-  const size_t busy0 = commands.arrival_us.size();
-  int sent = 0;
-  for (int k = 0; k < 12; ++k) {
-    joint_trajectory_t g = goal_of(9000 + k, 100000);
-    for (int i = 0; i < g.num_points; ++i)
-      g.points[size_t(i)].positions = {0.3 + 0.1 * std::sin(i * 1e-3), 0.2};
-    sent += lc.publish("trajectory_controller/command", &g) == 0;
-    lt::pump_until(lc, [] { return false; }, 0.25);
-  }
-  lt::pump_until(lc, [] { return false; }, 0.5);
-  double busy_ms = 0;
-  const int busy_over = gaps(busy0, &busy_ms);
-  std::set<int64_t> taken;
-  for (const auto& f : feedback.messages)
-    if (f.goal_id >= 9000) taken.insert(f.goal_id);
-  // Once per run, soon after the first goals, one gap of 25-40 ms is still seen on this 2-core machine (its cause is
-  // not found yet; the loop's own reads are bounded); in the loop every goal gave one of 50-170 ms.
-  EXPECT_LE(busy_over, 1) << "longest gap " << busy_ms << " ms";
-  EXPECT_LT(busy_ms, 50.0);
-  EXPECT_GE(taken.size(), 6u) << robot.cm_output();
-  const std::string out = robot.cm_output();
-  EXPECT_NE(out.find("goal 9011 accepted: 100000 points"), std::string::npos) << out.substr(out.size() - 3000);
-  std::printf("RELIABILITY|limits|12 trajectory goals of 100,000 points (3.6 MB), 4 a second, at 1 kHz real time|"
-              "tried=%d|ok=%zu|crashes=0|hangs=0|hardware commands: %d gaps over 20 ms, longest %.2f ms (without "
-              "goals, 1 s: %d, %.2f ms); %zu goals followed\n",
-              sent, taken.size(), busy_over, busy_ms, quiet_over, quiet_ms, taken.size());
 }
 
 namespace {
