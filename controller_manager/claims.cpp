@@ -13,9 +13,8 @@ std::string check_interface(const RobotModel& model, const std::string& controll
   if (!j) {
     const size_t slash = joint.find('/');
     if (slash != std::string::npos && model.controller(joint.substr(0, slash)))
-      return fmt::format("controller '{}': '{}' is a reference interface of controller '{}' (ROS 2 chaining: one "
-                         "controller commanding another); chaining is not available here yet: command the joint "
-                         "'{}' directly",
+      return fmt::format("controller '{}': '{}' would be a reference interface of controller '{}' (ROS 2 chaining), "
+                         "which exports none of that name: is it a chainable type with '{}' among its dofs?",
                          controller, joint, joint.substr(0, slash), joint.substr(slash + 1));
     std::vector<std::string> moving;
     for (const auto& x : model.joints)

@@ -14,7 +14,45 @@
 
 namespace lcm_control::cm {
 
+JointData* ControllerContext::export_reference(const std::string& dof, std::vector<Interface> interfaces,
+                                               const JointData* state_from) {
+  JointData& r = hw_.export_reference(name_, dof, std::move(interfaces), state_from);
+  if (self_) self_->exported_.push_back(&r);
+  return &r;
+}
+
 JointData* ControllerContext::claim(const std::string& joint, Interface iface) {
+  if (JointData* r = hw_.reference(joint)) {  // chaining: another controller's reference interface
+    if (r->exported_by == name_)
+      throw ControllerError(fmt::format("controller '{}' cannot claim its own reference interface '{}'", name_, joint));
+    if (!r->live && !checking_)
+      throw ControllerError(fmt::format("controller '{}': '{}' is a reference interface of controller '{}', which is "
+                                        "not loaded: load '{}' first (the spawner loads in the order given)",
+                                        name_, joint, r->exported_by, r->exported_by));
+    if (std::find(r->offered.begin(), r->offered.end(), iface) == r->offered.end()) {
+      std::vector<std::string> offered;
+      for (const Interface i : r->offered) offered.push_back(quantity_of(i));
+      throw InterfaceError(fmt::format("controller '{}': reference interface '{}' of controller '{}' takes {}, not {}",
+                                       name_, joint, r->exported_by, fmt::join(offered, ", "), quantity_of(iface)));
+    }
+    if (self_) {
+      Claim& c = self_->claim_;
+      if (!c.interface) c.joints.clear();
+      if (!c.interface) c.interface = iface;
+      c.joints.push_back(joint);
+      c.interfaces.push_back(iface);
+    }
+    return r;
+  }
+  const std::string slash_owner = joint.substr(0, joint.find('/'));
+  if (joint.find('/') != std::string::npos && !model_.joint(joint))
+    for (const auto& spec : model_.controllers)
+      if (spec.name == slash_owner)
+        throw ControllerError(fmt::format("controller '{}': '{}' names controller '{}', which has exported no "
+                                          "reference interface '{}': load '{}' first, or check that it is a chainable "
+                                          "type with '{}' among its dofs",
+                                          name_, joint, slash_owner, joint, slash_owner,
+                                          joint.substr(joint.find('/') + 1)));
   const std::string why = check_interface(model_, name_, joint, iface);
   if (!why.empty()) {
     if (model_.joint(joint)) throw InterfaceError(why);

@@ -68,6 +68,10 @@ class Controller {
   int64_t dropped() const { return dropped_; }  // malformed or wrong-size commands
   // What it takes on `<name>/command` as numbers (ControllerContext::take_commands), or nullptr.
   const CommandInput* command_input() const { return input_.set ? &input_ : nullptr; }
+  // Chaining (ROS 2): the reference interfaces it exports, and whether a running controller writes them now (chained
+  // mode: its references come from there, not from its own `<name>/command`).
+  const std::vector<JointData*>& exported() const { return exported_; }
+  bool chained_mode() const { return chained_; }
 
  protected:
   // From update(): it cannot go on (ros2_control's return_type::ERROR). The loop stops it in this cycle and starts
@@ -79,6 +83,8 @@ class Controller {
   ComponentUse uses_;
   CommandInput input_;
   int64_t dropped_ = 0;
+  std::vector<JointData*> exported_;
+  bool chained_ = false;  // set by the loop when a switch or a stop changes who writes its references
   bool running_ = false;  // set by the loop around starting()/stopping()
   const char* failure_ = nullptr;  // set by fail(), taken by the loop
   friend class Loop;
@@ -106,8 +112,15 @@ class ControllerContext {
   const RobotModel& model() const { return model_; }
 
   // Claims `joint` on `iface`; throws ControllerError naming controller, joint,
-  // interface needed and interfaces offered.
+  // interface needed and interfaces offered. `joint` may be a reference interface "<controller>/<dof>" another
+  // controller exports (chaining): its exporter must be loaded (configured, when only checking).
   JointData* claim(const std::string& joint, Interface iface);
+  // Exports the reference interface "<this controller>/<dof>" on `interfaces` (the first is what a preceding
+  // controller's command sets), showing the state of `state_from`: a preceding controller claims it as a joint.
+  JointData* export_reference(const std::string& dof, std::vector<Interface> interfaces, const JointData* state_from);
+  // Loading checks that a reference interface's exporter is loaded; checking the configuration (doctor) only that it
+  // is configured.
+  void set_checking(bool checking) { checking_ = checking; }
   // Claims a <gpio> command interface ("<gpio>/<interface>") / reads a <gpio> state interface; throws ControllerError
   // naming the parameter `key`, the interface and those the URDF's <gpio> blocks have.
   GpioData* claim_gpio(const std::string& name, const std::string& key);
@@ -145,6 +158,7 @@ class ControllerContext {
   Bus& bus_;
   Endpoints& endpoints_;
   Controller* self_ = nullptr;
+  bool checking_ = false;
 };
 
 // The PID of `joint` in `pids`, one per name of `joints` in the same order; nullptr for a joint not among them.

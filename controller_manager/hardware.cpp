@@ -89,7 +89,47 @@ std::vector<std::string> Hardware::missing_sensors() const {
 JointData* Hardware::find(const std::string& joint) {
   for (auto& j : joints_)
     if (j.name == joint) return &j;
+  return reference(joint);
+}
+
+JointData* Hardware::reference(const std::string& name) {
+  for (auto& r : references_)
+    if (r.name == name) return &r;
   return nullptr;
+}
+
+JointData& Hardware::export_reference(const std::string& controller, const std::string& dof,
+                                      std::vector<Interface> offered, const JointData* mirror) {
+  const std::string name = controller + "/" + dof;
+  JointData* r = reference(name);
+  if (!r) {
+    references_.emplace_back();
+    r = &references_.back();
+    r->name = name;
+    r->exported_by = controller;
+  }
+  r->offered = std::move(offered);
+  r->any_interface = true;
+  r->mirror = mirror;
+  r->urdf = mirror ? mirror->urdf : nullptr;
+  r->continuous = mirror && mirror->continuous;
+  return *r;
+}
+
+void Hardware::set_references_live(const std::string& controller, bool live) {
+  for (auto& r : references_)
+    if (r.exported_by == controller) {
+      r.live = live;
+      r.command = 0;
+      r.owner = nullptr;
+    }
+}
+
+std::vector<const JointData*> Hardware::references_of(const std::string& controller) const {
+  std::vector<const JointData*> out;
+  for (const auto& r : references_)
+    if (r.exported_by == controller && r.live) out.push_back(&r);
+  return out;
 }
 
 std::string Hardware::bind(const hardware_state_t& state, hardware_command_t& command) {
@@ -178,6 +218,12 @@ void Hardware::read(const hardware_state_t& s) {
     }
   for (size_t k = 0; k < gpios_.size(); ++k)
     if (gpio_slot_[k] >= 0 && gpio_slot_[k] < s.num_sensor_values) gpios_[k].state = s.sensor_value[size_t(gpio_slot_[k])];
+  for (JointData& r : references_)
+    if (r.mirror) {
+      r.position = r.mirror->position;
+      r.velocity = r.mirror->velocity;
+      r.effort = r.mirror->effort;
+    }
 }
 
 void Hardware::enforce_soft_limits(double dt) {

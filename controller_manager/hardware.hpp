@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <deque>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,14 @@ struct JointData {
   Interface owned_as = Interface::Position;       // on this interface (while owner is set)
   PositionSoftLimits soft_position;               // the previous position command, under soft limits
   int component = -1;                             // index in Hardware::components()
+  // A reference interface of a chainable controller (ROS 2 chaining), "<controller>/<dof>": `command` is the
+  // reference a preceding controller writes, the state is that of `mirror` (the joint the exporter commands), read
+  // with the hardware's; never written to the hardware.
+  std::string exported_by;                        // the exporting controller's name ("": a hardware joint)
+  const JointData* mirror = nullptr;
+  bool live = false;                              // its exporter is loaded (else a preceding controller is refused)
+  // The hardware joint behind it (itself for a hardware joint; through every link of a chain).
+  const JointData& hardware() const { return mirror ? mirror->hardware() : *this; }
 };
 
 // One <gpio> interface of the model, "<gpio>/<interface>": its state from the last hardware/state (NaN while the
@@ -82,7 +91,16 @@ class Hardware {
 
   std::vector<JointData>& joints() { return joints_; }
   const std::vector<JointData>& joints() const { return joints_; }
+  // A hardware joint, else a reference interface of that name.
   JointData* find(const std::string& joint);
+  // Reference interfaces (chaining): the one named "<controller>/<dof>", made on its first export and kept (a
+  // preceding controller holds its address); exported again, it takes the new interfaces and mirror.
+  JointData& export_reference(const std::string& controller, const std::string& dof, std::vector<Interface> offered,
+                              const JointData* mirror);
+  JointData* reference(const std::string& name);
+  // The exporter's reference interfaces are usable (loaded) or not (unloaded); their commands reset to 0.
+  void set_references_live(const std::string& controller, bool live);
+  std::vector<const JointData*> references_of(const std::string& controller) const;
   std::vector<SensorData>& sensors() { return sensors_; }
   const std::vector<SensorData>& sensors() const { return sensors_; }
   const SensorData* sensor(const std::string& name) const;
@@ -113,6 +131,7 @@ class Hardware {
 
  private:
   std::vector<JointData> joints_;
+  std::deque<JointData> references_;     // a deque: their addresses stay as more are exported
   std::vector<int> actuator_of_joint_;  // index in the hardware message (bind_actuators)
   std::vector<SensorData> sensors_;
   std::vector<int> sensor_slot_;        // per sensor value, in sensors_ order: its index in the message, -1 none

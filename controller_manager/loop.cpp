@@ -50,6 +50,7 @@ void Loop::fail_components(const hardware_state_t& st) {
         stop(*s);
         s->stopped_by_error = true;
       }
+    chain_modes();
   }
 }
 
@@ -65,6 +66,7 @@ void Loop::fail_controller(ControllerSlot& s) {
   s.failure = std::exchange(s.controller->failure_, nullptr);
   s.failure_step = step_;
   stop(s);
+  chain_modes();
   for (size_t f = 0; f < s.fallbacks.size(); ++f) {
     s.fallback_started[f] = 0;
     for (auto& other : slots_)
@@ -153,7 +155,7 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
   }
   if (sources_) sources_->before_update(now_);
   int64_t mark = -1;  // one clock read between two updates times both
-  for (auto& s : slots_) {
+  for (ControllerSlot* s : order_) {
     double own_period = period;
     if (s->async) {
       const bool is_due = s->running && due(*s, st, period, &own_period);
@@ -259,6 +261,7 @@ void Loop::apply_switch() {
   pending_stop_.clear();  // keeps the capacity
   pending_start_.clear();
   pending_ = false;
+  chain_modes();
 }
 
 void Loop::apply_now() {
@@ -277,6 +280,48 @@ void Loop::cancel_pending() {
 void Loop::stop_all() {
   for (auto& s : slots_)
     if (s->running) stop(*s);
+  chain_modes();
+}
+
+void Loop::reorder() {
+  // Kahn's order over "writes a reference interface of": among those ready, load order.
+  const size_t n = slots_.size();
+  std::vector<std::vector<size_t>> followers(n);
+  std::vector<size_t> waiting(n, 0);
+  for (size_t a = 0; a < n; ++a)
+    for (const JointData* j : slots_[a]->claimed)
+      if (!j->exported_by.empty())
+        for (size_t b = 0; b < n; ++b)
+          if (b != a && slots_[b]->name == j->exported_by) {
+            followers[a].push_back(b);
+            ++waiting[b];
+          }
+  order_.clear();
+  std::vector<bool> placed(n, false);
+  while (order_.size() < n) {
+    bool progress = false;
+    for (size_t k = 0; k < n; ++k)
+      if (!placed[k] && waiting[k] == 0) {
+        placed[k] = progress = true;
+        order_.push_back(slots_[k].get());
+        for (size_t f : followers[k]) --waiting[f];
+        break;
+      }
+    if (!progress)  // a cycle (refused at load): load order for the rest
+      for (size_t k = 0; k < n; ++k)
+        if (!placed[k]) {
+          placed[k] = true;
+          order_.push_back(slots_[k].get());
+        }
+  }
+}
+
+void Loop::chain_modes() {
+  for (auto& s : slots_) {
+    bool chained = false;
+    for (const JointData* r : s->controller->exported_) chained = chained || r->owner != nullptr;
+    s->controller->chained_ = chained;
+  }
 }
 
 }  // namespace lcm_control::cm

@@ -13,6 +13,8 @@
 // cycle; a pending component state change (set_pending_component) applies with the pending switch, after its stops.
 // A pending start of a controller whose components no longer allow it is not made (start_refused).
 // A controller that fails in its update (Controller::fail) is stopped there, and its fallback controllers started.
+// Controllers update in reorder()'s order: one that writes another's reference interfaces (ROS 2 chaining) first;
+// a chainable controller is in chained mode while a running controller owns one of its reference interfaces.
 // An is_async controller (ControllerSlot::async) is handed its due update when its thread is idle, and its commands
 // are taken back in the first cycle after (not while messages for it are held: those are delivered between cycles
 // first); in lockstep it runs in the cycle, as the others do. Its starting(),
@@ -80,9 +82,13 @@ class Loop {
  public:
   explicit Loop(Hardware& hw) : hw_(hw) {}
 
-  // Load order. Add and remove only between cycles.
+  // Load order. Add and remove only between cycles, then reorder().
   std::vector<std::unique_ptr<ControllerSlot>>& slots() { return slots_; }
   const std::vector<std::unique_ptr<ControllerSlot>>& slots() const { return slots_; }
+  // The update order: load order, but a controller that writes another's reference interfaces (chaining) before
+  // it, so that the follower uses this cycle's references. Allocates: between cycles only.
+  void reorder();
+  const std::vector<ControllerSlot*>& order() const { return order_; }
 
   enum class Outcome { Answered, Repeated };
   // One control step. Repeated: the same step again (a lockstep republish or a
@@ -126,10 +132,13 @@ class Loop {
   // update.
   void call_async(ControllerSlot& s, AsyncUpdate::Call call);
   bool claims_free(const ControllerSlot& s) const;
+  // Each chainable controller's chained mode: whether a running controller now owns one of its reference interfaces.
+  void chain_modes();
 
   Hardware& hw_;
   CommandSources* sources_ = nullptr;
   std::vector<std::unique_ptr<ControllerSlot>> slots_;
+  std::vector<ControllerSlot*> order_;  // reorder()
   std::vector<ControllerSlot*> pending_stop_, pending_start_;
   bool pending_ = false;
   int pending_component_ = -1;

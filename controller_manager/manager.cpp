@@ -246,7 +246,8 @@ bool wants_async(const ControllerSpec& spec) {
 }  // namespace
 
 ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpoints& endpoints,
-                                               std::unique_ptr<Controller>* out, std::unique_ptr<Hardware>* shadow) {
+                                               std::unique_ptr<Controller>* out, std::unique_ptr<Hardware>* shadow,
+                                               bool checking) {
   ControllerCheck c{spec.name, spec.type, ControllerCheck::Loads, "", {}, 0, {}};
   auto controller = registry_.create(spec.type);
   if (!controller) {
@@ -269,6 +270,7 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
   }
   ControllerContext ctx(spec.name, spec.type, params, model_, own ? *own : hw_, bus_, endpoints);
   ctx.self() = controller.get();
+  ctx.set_checking(checking);
   try {
     controller->init(ctx);
   } catch (const InterfaceError& e) {
@@ -359,7 +361,18 @@ Reply ControllerManager::load(const std::string& name) {
     slot->endpoints->hold_while([a = slot->async.get()] { return a->busy(); });
   }
   const std::string claims = describe(slot->controller->claim());
+  if (!slot->controller->exported().empty() && slot->async)
+    return {false, fmt::format("cannot load '{}': a chainable controller with is_async is not implemented; leave "
+                               "is_async out",
+                               name)};
+  for (const JointData* j : slot->claimed)
+    if (j && !j->exported_by.empty() && slot->async)
+      return {false, fmt::format("cannot load '{}': writing reference interfaces with is_async is not implemented; "
+                                 "leave is_async out",
+                                 name)};
+  hw_.set_references_live(name, true);
   loop_.slots().push_back(std::move(slot));
+  loop_.reorder();
   for (const auto& n : c.notes) spdlog::warn("{}", n);
   changed();
   std::string msg = fmt::format("loaded '{}' ({}), claims {}; state initialized", name, spec->type, claims);
@@ -368,10 +381,20 @@ Reply ControllerManager::load(const std::string& name) {
 }
 
 std::vector<ControllerCheck> ControllerManager::check_configured() {
+  // Chained controllers may come in any order: those that wrote another's reference interfaces before it was
+  // checked (and so exported them) are checked again once every other one was.
   std::vector<ControllerCheck> out;
-  for (const auto& spec : model_.controllers) {
+  std::vector<size_t> again;
+  for (size_t k = 0; k < model_.controllers.size(); ++k) {
     Endpoints scratch(bus_, Endpoints::On::Shared);  // unsubscribes whatever init() subscribed
-    out.push_back(instantiate(spec, scratch, nullptr));
+    out.push_back(instantiate(model_.controllers[k], scratch, nullptr, nullptr, true));
+    if (out.back().outcome != ControllerCheck::Loads && out.back().message.find("has exported no reference interface") !=
+                                                             std::string::npos)
+      again.push_back(k);
+  }
+  for (size_t k : again) {
+    Endpoints scratch(bus_, Endpoints::On::Shared);
+    out[k] = instantiate(model_.controllers[k], scratch, nullptr, nullptr, true);
   }
   return out;
 }
@@ -382,12 +405,19 @@ Reply ControllerManager::unload(const std::string& name) {
   if (s->running)
     return {false, fmt::format("cannot unload '{}': it is running; stop it first (switch with stop=[{}])", name, name)};
   if (busy()) return {false, fmt::format("cannot unload '{}' now: a switch is being applied; retry", name)};
+  for (const auto& other : loop_.slots())
+    for (const JointData* j : other->claimed)
+      if (j && j->exported_by == name)
+        return {false, fmt::format("cannot unload '{}': '{}' claims its reference interface '{}'; unload '{}' first",
+                                   name, other->name, j->name, other->name)};
   sources_.end_for(name, "controller unloaded");
+  hw_.set_references_live(name, false);
   auto& slots = loop_.slots();
   for (auto it = slots.begin(); it != slots.end(); ++it)
     if (it->get() == s) {
       std::unique_ptr<ControllerSlot> gone = std::move(*it);
       slots.erase(it);
+      loop_.reorder();
       retire(std::move(gone));
       break;
     }
@@ -420,7 +450,11 @@ void ControllerManager::switch_controllers(const std::vector<std::string>& start
     return;
   }
   std::vector<LoadedController> loaded;
-  for (const auto& s : loop_.slots()) loaded.push_back({s->name, s->state(), &s->controller->claim()});
+  for (const auto& s : loop_.slots()) {
+    loaded.push_back({s->name, s->state(), &s->controller->claim(), {}});
+    for (const JointData* j : s->claimed)
+      if (!j->exported_by.empty()) loaded.back().follows.push_back(j->exported_by);
+  }
   SwitchPlan plan = plan_switch(loaded, startable, stop, strictness);
   plan.notes.insert(plan.notes.begin(), unfit.begin(), unfit.end());
   const std::string notes = plan.notes.empty() ? "" : " (" + join(plan.notes, "; ") + ")";
@@ -538,9 +572,11 @@ void ControllerManager::finish_reload(ReadConfig read) {
   sources_.end_all("controllers reloaded");
   auto& slots = loop_.slots();
   while (!slots.empty()) {
+    hw_.set_references_live(slots.back()->name, false);
     retire(std::move(slots.back()));
     slots.pop_back();
   }
+  loop_.reorder();
   // Ten thousand entries of one YAML document take 40 ms to free, some single entries several ms (yaml-cpp merges
   // the memory of nodes used together): a worker frees them, in another allocator arena than the loop's (main.cpp
   // reads the first configuration on a thread of its own, a reload reads on one), so the loop's allocations never
@@ -777,6 +813,7 @@ std::string ControllerManager::shutdown() {
   loop_.stop_all();
   auto& slots = loop_.slots();
   while (!slots.empty()) slots.pop_back();
+  loop_.reorder();
   return fmt::format("stopped [{}], unloaded [{}]", join(stopped), join(unloaded));
 }
 

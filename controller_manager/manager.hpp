@@ -153,8 +153,9 @@ class ControllerManager {
   ControllerSlot* find(const std::string& name) const;
   // Creates and initialises a controller of `spec` on `port`; on success moves it to *out (if given).
   // With `out`, the controller made; an is_async one is initialised on a Hardware of its own, given in `shadow`.
+  // checking: only trying it (doctor, start-up): a reference interface it claims need only be configured.
   ControllerCheck instantiate(const ControllerSpec& spec, Endpoints& endpoints, std::unique_ptr<Controller>* out,
-                              std::unique_ptr<Hardware>* shadow = nullptr);
+                              std::unique_ptr<Hardware>* shadow = nullptr, bool checking = false);
   // A ROS 2 controller's own `update_rate` (Hz), checked against the manager's; throws ControllerError.
   double own_update_rate(const Params& params) const;
   std::string yaml_key(const std::string& controller) const;  // its key path in the YAML

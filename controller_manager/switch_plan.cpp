@@ -110,6 +110,24 @@ SwitchPlan plan_switch(const std::vector<LoadedController>& loaded, const std::v
   for (int k : plan.start) after.emplace_back(loaded[k].name, loaded[k].claim);
   if (auto c = find_conflict(after))
     return refuse("cannot switch: " + c->message() + " (claim conflicts are refused whatever the strictness)");
+  // Chaining: whoever writes a controller's reference interfaces runs only while that controller runs.
+  std::unordered_set<std::string_view> running_after;
+  for (const auto& [name, claim] : after) running_after.insert(name);
+  for (size_t k = 0; k < loaded.size(); ++k) {
+    if (!running_after.count(loaded[k].name)) continue;
+    for (const std::string& f : loaded[k].follows) {
+      if (running_after.count(f)) continue;
+      const int fk = index_of(f);
+      if (in_start[k])
+        return refuse(fmt::format("cannot start '{}': it writes the reference interfaces of '{}', which would not be "
+                                  "running; start '{}' too (a chain's followers run first)",
+                                  loaded[k].name, f, f));
+      return refuse(fmt::format("cannot {} '{}': '{}' writes its reference interfaces and would keep running; stop "
+                                "'{}' too",
+                                fk >= 0 && in_stop[size_t(fk)] ? "stop" : "leave stopped", f, loaded[k].name,
+                                loaded[k].name));
+    }
+  }
   plan.ok = true;
   return plan;
 }

@@ -1,7 +1,8 @@
 // switch_controller's decision, as ros_control makes it (pure, no side effects):
 // STRICT refuses unknown names, stopping a controller that is not running and
 // starting one that is; BEST_EFFORT drops those entries (and says so); a name
-// in both lists and a claim conflict in the post-switch set are always refused.
+// in both lists and a claim conflict in the post-switch set are always refused, as is (ROS 2 chaining) a running
+// controller whose followers would not all run after the switch, naming both.
 #pragma once
 
 #include <string>
@@ -15,6 +16,7 @@ struct LoadedController {
   std::string name;
   std::string state;  // "initialized", "running", "stopped"
   const Claim* claim = nullptr;
+  std::vector<std::string> follows;  // chaining: the controllers whose reference interfaces it claims
 };
 
 struct SwitchPlan {

@@ -103,13 +103,13 @@ class DiffDriveController : public DriveController {
     for (const auto& n : wheels(ros2 ? "right_wheel_names" : "right_wheel"))
       right_.push_back(ctx.claim(n, Interface::Velocity));
     const RobotModel& m = ctx.model();
-    double radius = p.has("wheel_radius") ? p.number("wheel_radius") : wheel_radius_of(m, left_[0]->name);
+    double radius = p.has("wheel_radius") ? p.number("wheel_radius") : wheel_radius_of(m, left_[0]->hardware().name);
     double separation = 0;
     if (p.has("wheel_separation")) {
       separation = p.number("wheel_separation");
     } else {
-      const Joint* l = m.joint(left_[0]->name);
-      const Joint* r = m.joint(right_[0]->name);
+      const Joint* l = m.joint(left_[0]->hardware().name);  // a chained wheel PID's reference: its joint
+      const Joint* r = m.joint(right_[0]->hardware().name);
       separation = (l->origin.translation() - r->origin.translation()).norm();
       ctx.notes.push_back(fmt::format("{}: wheel_separation {:g} m from the URDF ('{}' to '{}')", p.where(), separation,
                                       l->name, r->name));

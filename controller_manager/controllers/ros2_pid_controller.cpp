@@ -9,6 +9,9 @@
 // with angle_wraparound. On start, with set_current_state_as_first_setpoint (ROS 2's default) the reference is the
 // state read then; without, it is NaN until a command arrives and the joint holds (position: where it is;
 // velocity and effort: 0). use_external_measured_states is not implemented (the state is the joint's).
+// Chainable (ROS 2): each dof is the reference interface "<name>/<dof>" (on the reference interface, and velocity
+// with [position, velocity]); while a running controller writes them (a diff drive's wheels), the reference is
+// what it wrote (its velocity part 0) and <name>/command is not read.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -38,18 +41,20 @@ class Ros2PidController : public Controller {
       throw p.error("command_interface",
                     fmt::format("'{}' is not a joint command interface; use position, velocity or effort", command));
     iface_ = *iface;
+    // One interface, or two (ROS 2: the second is taken as the first's derivative, whatever it is: a gz demo's
+    // [velocity, effort]).
     const std::vector<std::string> rs = p.strings("reference_and_state_interfaces");
-    if (rs == std::vector<std::string>{"position"} || rs == std::vector<std::string>{"velocity"}) {
-      state_ = rs[0] == "position" ? Interface::Position : Interface::Velocity;
-    } else if (rs == std::vector<std::string>{"position", "velocity"}) {
-      state_ = Interface::Position;
-      with_derivative_ = true;
-    } else {
+    std::vector<Interface> read;
+    for (const std::string& r : rs)
+      if (const auto i = interface_of_quantity(r)) read.push_back(*i);
+    if (rs.empty() || rs.size() > 2 || read.size() != rs.size() || (read.size() == 2 && read[0] == read[1]))
       throw p.error("reference_and_state_interfaces",
-                    fmt::format("[{}]: use [position], [velocity] or [position, velocity] (the second is the "
-                                "derivative of the first)",
+                    fmt::format("[{}]: give one or two different ones of position, velocity and effort (the second is "
+                                "the derivative of the first: [position, velocity])",
                                 fmt::join(rs, ", ")));
-    }
+    state_ = read[0];
+    with_derivative_ = read.size() == 2;
+    if (with_derivative_) derivative_ = read[1];
     if (p.has("reference_and_state_dof_names")) {
       const YAML::Node n = p.node("reference_and_state_dof_names");
       if (n.IsSequence() && n.size() > 0 && p.strings("reference_and_state_dof_names") != names_)
@@ -63,6 +68,11 @@ class Ros2PidController : public Controller {
 
     for (const auto& n : names_) joints_.push_back(ctx.claim(n, iface_));
     const size_t n = names_.size();
+    // Chainable: "<name>/<dof>" is a reference interface a preceding controller may write (a diff drive's wheel
+    // velocity), showing the dof's state; while one does, the references come from there, not <name>/command.
+    std::vector<Interface> exported{state_};
+    if (with_derivative_) exported.push_back(derivative_);
+    for (size_t k = 0; k < n; ++k) refs_.push_back(ctx.export_reference(names_[k], exported, joints_[k]));
     pids_.resize(n);
     gains_.resize(n);
     const YAML::Node gains = p.node("gains");
@@ -89,7 +99,7 @@ class Ros2PidController : public Controller {
     reference_dot_.assign(n, kNaN);
     hold_.assign(n, 0.0);
     ctx.take_commands(true, n, [this](const double* v) {
-      if (!running_) return;
+      if (!running_ || chained_mode()) return;  // chained: the preceding controller's references count
       for (size_t k = 0; k < reference_.size(); ++k) {
         reference_[k] = v[k];
         reference_dot_[k] = 0.0;
@@ -106,7 +116,7 @@ class Ros2PidController : public Controller {
       pids_[k].reset();
       hold_[k] = iface_ == Interface::Position ? j.position : 0.0;
       if (first_setpoint_is_state_) {
-        reference_[k] = state_ == Interface::Position ? j.position : j.velocity;
+        reference_[k] = value_of(j, state_);
         reference_dot_[k] = with_derivative_ ? 0.0 : kNaN;
       } else {
         reference_[k] = reference_dot_[k] = kNaN;
@@ -118,8 +128,12 @@ class Ros2PidController : public Controller {
     for (size_t k = 0; k < joints_.size(); ++k) {
       JointData& j = *joints_[k];
       j.damping = 0;
+      if (chained_mode()) {  // the reference a preceding controller wrote in this cycle (a velocity reference: 0)
+        reference_[k] = refs_[k]->command;
+        reference_dot_[k] = with_derivative_ ? 0.0 : kNaN;
+      }
       const double ref = reference_[k];
-      const double measured = state_ == Interface::Position ? j.position : j.velocity;
+      const double measured = value_of(j, state_);
       if (!std::isfinite(ref) || !std::isfinite(measured)) {
         j.command = hold_[k];
         continue;
@@ -130,9 +144,11 @@ class Ros2PidController : public Controller {
       if (with_derivative_) {
         const double ref_dot = reference_dot_[k];
         u = std::isfinite(ref_dot) ? ref_dot * g.feedforward : 0.0;
-        if (std::isfinite(ref_dot) && std::isfinite(j.velocity)) {
-          u += pids_[k].compute(error, ref_dot - j.velocity, period);
-          if (iface_ == Interface::Effort && state_ == Interface::Position) j.damping = pids_[k].applied_d();
+        const double measured_dot = value_of(j, derivative_);
+        if (std::isfinite(ref_dot) && std::isfinite(measured_dot)) {
+          u += pids_[k].compute(error, ref_dot - measured_dot, period);
+          if (iface_ == Interface::Effort && state_ == Interface::Position && derivative_ == Interface::Velocity)
+            j.damping = pids_[k].applied_d();
         } else {
           u += pids_[k].compute(error, period);
         }
@@ -160,11 +176,16 @@ class Ros2PidController : public Controller {
   }
 
   Interface iface_ = Interface::Effort;
-  Interface state_ = Interface::Position;
+  static double value_of(const JointData& j, Interface i) {
+    return i == Interface::Position ? j.position : i == Interface::Velocity ? j.velocity : j.effort;
+  }
+
+  Interface state_ = Interface::Position, derivative_ = Interface::Velocity;
   bool with_derivative_ = false;
   bool first_setpoint_is_state_ = true;
   std::vector<std::string> names_;
   std::vector<JointData*> joints_;
+  std::vector<JointData*> refs_;  // the reference interfaces it exports, one per dof
   std::vector<Pid> pids_;
   std::vector<Ros2Gains> gains_;
   std::vector<double> reference_, reference_dot_, hold_;
@@ -176,7 +197,8 @@ ControllerType ros2_pid_controller() {
   ControllerTypeInfo t;
   t.name = "pid_controller/PidController";
   t.ros = RosVersion::Ros2;
-  t.doc = "a PID per joint of `dof_names` from a reference (position or velocity) to the command_interface command";
+  t.doc = "a PID per joint of `dof_names` from a reference (position or velocity) to the command_interface command; "
+          "chainable: <name>/<dof> are reference interfaces another controller may write";
   t.claims.joint_params = {"dof_names"};
   t.claims.interface_param = "command_interface";
   t.command = {"float64_array_t", "command", CommandInfo::kOnePerJoint, ""};
@@ -184,14 +206,15 @@ ControllerType ros2_pid_controller() {
       ros2_parameter("dof_names", "strings", "", "the joints, in the order of the reference's values"),
       ros2_parameter("command_interface", "string", "", "position, velocity or effort: what the PID commands"),
       ros2_parameter("reference_and_state_interfaces", "strings", "",
-           "[position], [velocity] or [position, velocity] (the velocity error is the derivative input)"),
+           "one or two of position, velocity, effort (the second's error is the derivative input: [position, "
+           "velocity])"),
       ros2_parameter("gains", "map", "",
            "<dof>: {p, i, d, i_clamp_max/min, u_clamp_max/min, feedforward_gain, angle_wraparound}, each 0 or "
            "unclamped when left out"),
       ros2_parameter("set_current_state_as_first_setpoint", "bool", "true",
            "on start the reference is the state read then; false: none until a command comes (the joint holds)"),
       ros2_parameter("use_external_measured_states", "bool", "false", "must be false: the state is the joints' own"),
-      ros2_parameter("reference_and_state_dof_names", "strings", "[]", "must be empty or dof_names (no chaining)"),
+      ros2_parameter("reference_and_state_dof_names", "strings", "[]", "must be empty or dof_names"),
   };
   return {t, [](const std::string&) { return std::make_unique<Ros2PidController>(); }};
 }

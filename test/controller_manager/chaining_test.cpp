@@ -1,0 +1,114 @@
+// ROS 2 chaining (issue 49): a diff drive writing two velocity PIDs' reference interfaces ("<pid>/<dof>") on
+// ros2_bot.urdf's wheels (data/chain_bot.yaml): the claims, the update order, chained mode, and the rules that keep
+// a chain whole (followers loaded, started and kept running while a controller writes them).
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "lcm_control/float64_array_t.hpp"
+#include "lcm_control/twist_t.hpp"
+#include "test/controller_manager/rig.hpp"
+
+using namespace lcm_control;
+using lcm_control::testing::Rig;
+
+namespace {
+
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+struct ChainRig : Rig {
+  ChainRig()
+      : Rig(cm::builtin_registry(), lcm_control::testing::data("ros2_bot.urdf"),
+            lcm_control::testing::data("chain_bot.yaml")) {}
+  const cm::Controller& controller(const std::string& name) {
+    for (const auto& s : cm->loop().slots())
+      if (s->name == name) return *s->controller;
+    throw std::runtime_error(name + " not loaded");
+  }
+};
+
+}  // namespace
+
+TEST(Chaining, AFollowerMustBeLoadedFirstAndCannotBeUnloadedUnderItsWriter) {
+  ChainRig rig;
+  rig.cycle();
+  cm::Reply r = rig.load("base");
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "'pid_left/left_wheel'") && has(r.message, "load 'pid_left' first")) << r.message;
+  ASSERT_TRUE(rig.load("pid_left").ok);
+  ASSERT_TRUE(rig.load("pid_right").ok);
+  r = rig.load("base");
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_TRUE(has(r.message, "pid_left/left_wheel")) << r.message;
+  r = rig.cm->unload("pid_left");
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "'base' claims its reference interface 'pid_left/left_wheel'; unload 'base' first"))
+      << r.message;
+  // The writer updates before its followers, whatever the load order.
+  std::vector<std::string> order;
+  for (const cm::ControllerSlot* s : rig.cm->loop().order()) order.push_back(s->name);
+  EXPECT_EQ(order, (std::vector<std::string>{"base", "pid_left", "pid_right"}));
+  ASSERT_TRUE(rig.cm->unload("base").ok);
+  EXPECT_TRUE(rig.cm->unload("pid_left").ok);
+}
+
+TEST(Chaining, AChainStartsWholeRunsInChainedModeAndStopsWhole) {
+  ChainRig rig;
+  rig.cycle();
+  for (const char* n : {"pid_left", "pid_right", "base"}) ASSERT_TRUE(rig.load(n).ok) << n;
+  cm::Reply r = rig.switch_({"base"}, {});
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "cannot start 'base': it writes the reference interfaces of 'pid_left', which would not "
+                             "be running; start 'pid_left' too"))
+      << r.message;
+  r = rig.switch_({"pid_left", "pid_right", "base"}, {});
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_TRUE(rig.controller("pid_left").chained_mode());
+  EXPECT_TRUE(rig.controller("pid_right").chained_mode());
+  EXPECT_FALSE(rig.controller("base").chained_mode());
+
+  // A twist on the diff drive turns the wheels through the PIDs: v = 0.5 m/s, w = 1 rad/s, radius 0.1 m,
+  // separation 0.6 m: left (0.5 - 0.3) / 0.1 = 2 rad/s, right (0.5 + 0.3) / 0.1 = 8 rad/s.
+  twist_t t{};
+  t.linear.x = 0.5;
+  t.angular.z = 1.0;
+  rig.publish("base/cmd_vel", t);
+  float64_array_t ignored{};
+  ignored.size = 1;
+  ignored.data = {-30.0};
+  rig.publish("pid_left/command", ignored);  // chained: its own input is not read
+  rig.cycle(1500);
+  EXPECT_NEAR(rig.joint("left_wheel").velocity, 2.0, 0.06);
+  EXPECT_NEAR(rig.joint("right_wheel").velocity, 8.0, 0.24);
+
+  // A follower stops only with its writer; together they stop, and the PIDs leave chained mode.
+  r = rig.switch_({}, {"pid_left"});
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "cannot stop 'pid_left': 'base' writes its reference interfaces and would keep running; "
+                             "stop 'base' too"))
+      << r.message;
+  r = rig.switch_({}, {"base", "pid_left", "pid_right"});
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_FALSE(rig.controller("pid_left").chained_mode());
+}
+
+// The followers alone run on their own references (not chained), and a controller that commands the wheels
+// directly conflicts with them as with any claimant.
+TEST(Chaining, FollowersRunAloneOnTheirOwnInputAndConflictsNameBoth) {
+  ChainRig rig;
+  rig.cycle();
+  for (const char* n : {"pid_left", "pid_right", "loose_base"}) ASSERT_TRUE(rig.load(n).ok) << n;
+  ASSERT_TRUE(rig.switch_({"pid_left"}, {}).ok);
+  EXPECT_FALSE(rig.controller("pid_left").chained_mode());
+  float64_array_t ref{};
+  ref.size = 1;
+  ref.data = {3.0};
+  rig.publish("pid_left/command", ref);
+  rig.cycle(1500);
+  EXPECT_NEAR(rig.joint("left_wheel").velocity, 3.0, 0.09);
+  const cm::Reply r = rig.switch_({"loose_base"}, {});
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "'pid_left'") && has(r.message, "'loose_base'") && has(r.message, "left_wheel"))
+      << r.message;
+}
