@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "tools/lib/cm_client.hpp"
+#include "tools/lib/cm_views.hpp"
 
 namespace lcm_control::tools {
 namespace {
@@ -38,6 +39,27 @@ TEST(CmctlList, MoreThanThreeJointsAreShownAsFirstLastAndCount) {
   EXPECT_NE(all.find("shoulder_pan_joint,shoulder_lift_joint,elbow_joint,wrist_1_joint,wrist_2_joint,wrist_3_joint"),
             std::string::npos)
       << all;
+}
+
+// A controller that writes another's reference interfaces (ROS 2 chaining) is shown as a link of the chain, in text
+// and in Graphviz.
+TEST(CmctlChains, AControllerWritingReferenceInterfacesIsALinkOfTheChain) {
+  cm_response_t list{};
+  list.controllers = {controller("pid_left", {"left_wheel"}), controller("base", {"pid_left/left_wheel"})};
+  for (auto& c : list.controllers) c.hardware_interface = "VelocityJointInterface";
+  list.num_controllers = 2;
+  const std::string text = controller_chains_text(list);
+  EXPECT_NE(text.find("base (joint_trajectory_controller/JointTrajectoryController, running)\n  writes "
+                      "pid_left/left_wheel/velocity -> pid_left (its reference interface)"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("no chained controllers"), std::string::npos) << text;
+  EXPECT_NE(controller_chains_dot(list).find("\"base\" -> \"pid_left\" [label=\"pid_left/left_wheel/velocity\"]"),
+            std::string::npos)
+      << controller_chains_dot(list);
+  list.controllers.pop_back();
+  list.num_controllers = 1;
+  EXPECT_NE(controller_chains_text(list).find("no chained controllers"), std::string::npos);
 }
 
 }  // namespace

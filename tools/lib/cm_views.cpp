@@ -4,6 +4,7 @@
 #include <fmt/ranges.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <set>
@@ -101,11 +102,35 @@ std::string hardware_status_text(const cm_response_t& list) {
   return out;
 }
 
+namespace {
+// The controller whose reference interface `joint` is ("<controller>/<dof>", ROS 2 chaining), or nullptr.
+const controller_info_t* exporter_of(const cm_response_t& list, const std::string& joint) {
+  const size_t slash = joint.find('/');
+  if (slash == std::string::npos) return nullptr;
+  for (const auto& c : list.controllers)
+    if (c.name == joint.substr(0, slash)) return &c;
+  return nullptr;
+}
+// "velocity" of "VelocityJointInterface".
+std::string quantity_in(const std::string& hardware_interface) {
+  std::string q = hardware_interface.substr(0, hardware_interface.find("JointInterface"));
+  for (char& c : q) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return q;
+}
+}  // namespace
+
 std::string controller_chains_text(const cm_response_t& list) {
   std::string out;
+  size_t chained = 0;
   for (const auto& ctl : list.controllers) {
     out += fmt::format("{} ({}, {})\n", ctl.name, ctl.type, list.ros2 ? ros2_state(ctl.state) : ctl.state);
     std::set<std::string> components;
+    for (const auto& j : ctl.joints)
+      if (const controller_info_t* to = exporter_of(list, j)) {
+        out += fmt::format("  writes {}/{} -> {} (its reference interface)\n", j, quantity_in(ctl.hardware_interface),
+                           to->name);
+        ++chained;
+      }
     for (const auto& j : list.joints)
       if (j.claimed_by == ctl.name) {
         const hardware_component_t* c = component_of_joint(list, j.joint);
@@ -117,7 +142,7 @@ std::string controller_chains_text(const cm_response_t& list) {
     out += fmt::format("  uses hardware components: {}\n",
                        components.empty() ? "-" : fmt::format("{}", fmt::join(components, ", ")));
   }
-  out += "no chained controllers: each claims hardware interfaces only\n";
+  if (chained == 0) out += "no chained controllers: each claims hardware interfaces only\n";
   return out;
 }
 
@@ -128,6 +153,10 @@ std::string controller_chains_dot(const cm_response_t& list) {
   for (const auto& ctl : list.controllers) {
     out += fmt::format("  \"{}\" [label=\"{}\\n{}\"];\n", ctl.name, ctl.name,
                        list.ros2 ? ros2_state(ctl.state) : ctl.state);
+    for (const auto& j : ctl.joints)
+      if (const controller_info_t* to = exporter_of(list, j))
+        out += fmt::format("  \"{}\" -> \"{}\" [label=\"{}/{}\"];\n", ctl.name, to->name, j,
+                           quantity_in(ctl.hardware_interface));
     for (const auto& c : list.components) {
       if (std::find(c.controllers.begin(), c.controllers.end(), ctl.name) == c.controllers.end()) continue;
       std::vector<std::string> claimed;
