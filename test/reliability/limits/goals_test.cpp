@@ -13,32 +13,13 @@
 #include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 #include "test/e2e/session.hpp"
+#include "test/reliability/limits/goals.hpp"
 #include "test/support/lcm_test.hpp"
 #include "test/support/process.hpp"
 
 namespace lt = lcm_control::testing;
 using namespace lcm_control;
 
-namespace {
-
-// Two joints, positions only, within turret_bot's limits: 36 bytes a point.
-joint_trajectory_t goal_of(int64_t id, int points) {
-  joint_trajectory_t g{};
-  g.goal_id = id;
-  g.num_joints = 2;
-  g.joint_names = {"j1", "j2"};
-  g.num_points = points;
-  g.points.resize(size_t(points));
-  for (int i = 0; i < points; ++i) {
-    auto& p = g.points[size_t(i)];
-    p.time_from_start = 1.0 + i * 1e-3;
-    p.num_positions = 2;
-    p.positions = {0.3 + 0.1 * std::sin(i * 1e-3), 0.2};
-  }
-  return g;
-}
-
-}  // namespace
 
 // Goals within the limit are taken in off the loop (decoded and planned on the controller manager's intake thread,
 // their fragments read a slice at a time): four 100,000-point goals a second (3.6 MB each) for 3 s leave the
@@ -72,7 +53,9 @@ TEST(Limits, LargeGoalsWithinTheLimitDoNotStallTheLoop) {
   // Encoded before the window, so that this process only sends during it.
   std::vector<std::vector<uint8_t>> goals;
   for (int k = 0; k < 12; ++k) {
-    const joint_trajectory_t g = goal_of(9000 + k, 100000);
+    const joint_trajectory_t g = lt::goal_of(9000 + k, 100000, [](int i) {
+      return std::array<double, 2>{0.3 + 0.1 * std::sin(i * 1e-3), 0.2};
+    });
     goals.emplace_back(size_t(g.getEncodedSize()));
     g.encode(goals.back().data(), 0, int(goals.back().size()));
   }

@@ -17,6 +17,7 @@
 #include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 #include "test/e2e/session.hpp"
+#include "test/reliability/limits/goals.hpp"
 #include "test/support/lcm_test.hpp"
 #include "test/support/process.hpp"
 
@@ -49,21 +50,7 @@ void send_fragment(lt::RawSender& sender, uint32_t seqno, uint32_t total, uint32
                                number == 0 ? lt::named_payload(channel, bytes) : std::vector<uint8_t>(bytes, 0x5a)));
 }
 
-joint_trajectory_t goal_of(int64_t id, int points) {
-  joint_trajectory_t g{};
-  g.goal_id = id;
-  g.num_joints = 2;
-  g.joint_names = {"j1", "j2"};
-  g.num_points = points;
-  g.points.resize(size_t(points));
-  for (int i = 0; i < points; ++i) {
-    auto& p = g.points[size_t(i)];
-    p.time_from_start = 1.0 + i * 1e-3;
-    p.num_positions = 2;
-    p.positions = {0.1, 0.1};
-  }
-  return g;
-}
+using lt::goal_of;
 
 }  // namespace
 
