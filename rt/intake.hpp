@@ -41,8 +41,8 @@ class Intake {
   // Destroys `garbage` (moved in) on the intake's thread, in place or not: freeing has no result to order.
   template <class T>
   void dispose(T&& garbage) {
-    auto held = std::make_shared<std::decay_t<T>>(std::forward<T>(garbage));
-    enqueue([held]() mutable -> Result {
+    // Moved into the job, so the job holds the only reference whenever the thread runs it.
+    enqueue([held = std::make_shared<std::decay_t<T>>(std::forward<T>(garbage))]() mutable -> Result {
       held.reset();
       return {};
     });

@@ -14,7 +14,7 @@ using namespace lcm_control;
 namespace {
 
 void wait_until(const std::function<bool()>& done) {
-  for (int k = 0; k < 2000 && !done(); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  for (int k = 0; k < 10000 && !done(); ++k) std::this_thread::sleep_for(std::chrono::milliseconds(1));
 }
 
 }  // namespace
