@@ -94,6 +94,10 @@ Actuators::Actuators(const RobotModel& model, Multibody& mb) : mb_(mb) {
       a.damper_on = true;
     }
     choose_damping(a);
+    if (a.damper && a.inertia > 0 && a.passive.damping * dt / a.inertia > kImplicitDamping)
+      a.implicit_urdf_damping = std::exchange(a.passive.damping, 0.0);
+    else
+      cap_damping(a.passive, mj, model.urdf_path);
     a.position_motor_on = a.position_motor != nullptr;
     a.velocity_motor_on = a.velocity_motor != nullptr;
     a.braking = a.brake != nullptr;
@@ -124,15 +128,19 @@ Actuators::Passive Actuators::passive_for(const MultibodyJoint& mj, const std::s
                                       "on a joint nothing drives has no such limit",
                                       urdf, j.name, p.stiffness, dt, mj.effective_inertia));
   }
-  if (!p.implicit && mj.effective_inertia > 0 && p.damping * dt > mj.effective_inertia) {
-    p.damping = mj.effective_inertia / dt;
-    warnings_.push_back(fmt::format("{}: joint '{}': damping {:g} is too stiff for a {:g} s step with inertia {:g}; "
-                                    "simulated with {:g}",
-                                    urdf, j.name, j.damping, dt, mj.effective_inertia, p.damping));
-  }
+  if (!actuated) cap_damping(p, mj, urdf);
   p.friction_speed =
       mj.effective_inertia > 0 ? std::max(kMinFrictionSpeed, 2 * p.friction * dt / mj.effective_inertia) : 1.0;
   return p;
+}
+
+void Actuators::cap_damping(Passive& p, const MultibodyJoint& mj, const std::string& urdf) {
+  const double dt = mb_.dt();
+  if (p.implicit || mj.effective_inertia <= 0 || p.damping * dt <= mj.effective_inertia) return;
+  p.damping = mj.effective_inertia / dt;
+  warnings_.push_back(fmt::format("{}: joint '{}': damping {:g} is too stiff for a {:g} s step with inertia {:g}; "
+                                  "simulated with {:g}",
+                                  urdf, mj.urdf->name, mj.urdf->damping, dt, mj.effective_inertia, p.damping));
 }
 
 bool Actuators::offers(int i, int8_t wire_mode) const {
@@ -275,9 +283,11 @@ void Actuators::apply_one(Actuator& a, double dt) {
     if (a.commanded && a.next_wire_mode != a.wire_mode) switch_mode(a, a.next_wire_mode);
     set_in_world(a.position_motor, a.position_motor_on, a.mode == ActuatorMode::PositionDirect);
     set_in_world(a.velocity_motor, a.velocity_motor_on, a.mode == ActuatorMode::VelocityMotor);
-    set_in_world(a.damper, a.damper_on,
-                 (a.mode == ActuatorMode::PositionPid && a.implicit_d) ||
-                     (a.mode == ActuatorMode::Effort && a.implicit_effort_d && !hold));
+    const bool pid_d = a.mode == ActuatorMode::PositionPid && a.implicit_d;
+    const bool effort_d = a.mode == ActuatorMode::Effort && a.implicit_effort_d && !hold;
+    const double c = a.implicit_urdf_damping;
+    set_in_world(a.damper, a.damper_on, pid_d || effort_d || c > 0);
+    if (c > 0 && !pid_d && !effort_d) a.damper->set(c, 0.0, -kUnlimitedEffort, kUnlimitedEffort);
     const bool brakeable_mode = a.mode != ActuatorMode::PositionDirect && a.mode != ActuatorMode::VelocityMotor;
     set_in_world(a.brake, a.braking, brakeable_mode && brakes_ && !e_stop_ && (hold_all_ || !a.commanded));
     if (a.braking) {
@@ -291,16 +301,17 @@ void Actuators::apply_one(Actuator& a, double dt) {
         const double goal = position_goal(a, hold, dt);
         const double error = a.continuous ? shortest_angular_distance(q, goal) : goal - q;
         const double u = a.pid.compute(error, dt);
-        if (!a.damper_on) {
+        if (!pid_d) {
           a.effort = clamp_abs(u, e_max);
         } else {
           // d*(goal rate - v_next) in the solver instead of d*de/dt = d*(goal rate - v_now) here; together within
-          // the effort limit.
+          // the effort limit; the URDF's damping c (towards 0) in the same row.
           const double step = a.continuous ? shortest_angular_distance(a.last_goal, goal) : goal - a.last_goal;
           const double goal_rate = a.have_last_goal ? step / dt : 0.0;
           a.effort = clamp_abs(u - a.pid.last_d_term(), e_max);
           const double limit = std::isfinite(e_max) ? e_max : kUnlimitedEffort;
-          a.damper->set(a.pid.gains().d, goal_rate, -limit - a.effort, limit - a.effort);
+          const double d = a.pid.gains().d;
+          a.damper->set(d + c, d * goal_rate / (d + c), -limit - a.effort, limit - a.effort);
         }
         a.last_goal = goal;
         a.have_last_goal = true;
@@ -325,13 +336,14 @@ void Actuators::apply_one(Actuator& a, double dt) {
       case ActuatorMode::Effort:
         if (hold) {
           a.effort = 0;
-        } else if (!a.damper_on) {
+        } else if (!effort_d) {
           a.effort = clamp_abs(a.command, e_max);
         } else {
-          // The command's -d*v_then as -d*v_next in the solver; together within the effort limit.
+          // The command's -d*v_then as -d*v_next in the solver; together within the effort limit; the URDF's
+          // damping in the same row.
           const double limit = std::isfinite(e_max) ? e_max : kUnlimitedEffort;
           a.effort = a.command + a.effort_damping * qd;
-          a.damper->set(a.effort_damping, 0.0, -limit - a.effort, limit - a.effort);
+          a.damper->set(a.effort_damping + c, 0.0, -limit - a.effort, limit - a.effort);
         }
         break;
     }

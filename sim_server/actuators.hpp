@@ -133,6 +133,9 @@ class Actuators final : public PlayedHardware {
     bool implicit_d = false;
     double effort_damping = 0;  // joint units: the -d*v part of `command` in effort mode
     bool implicit_effort_d = false;
+    // The URDF <dynamics damping> when c*dt/I passes kImplicitDamping and the joint has a damper: in the solver, in
+    // every mode and while held, instead of the explicit -c*v (then passive.damping is 0).
+    double implicit_urdf_damping = 0;
     bool position_motor_on = false, velocity_motor_on = false, braking = false, damper_on = false;
     double last_goal = 0;
     bool have_last_goal = false;
@@ -149,6 +152,8 @@ class Actuators final : public PlayedHardware {
   void set_in_world(btMultiBodyJointMotor* motor, bool& in_world, bool on);
   btMultiBodyJointMotor* active_motor(const Actuator& a) const;
   Passive passive_for(const MultibodyJoint& j, const std::string& urdf, bool actuated);
+  // Lowers an explicit damping too stiff for the step to the stable c = I/dt, with a warning.
+  void cap_damping(Passive& p, const MultibodyJoint& mj, const std::string& urdf);
   // The explicit part: friction, and damping and spring unless `implicit` takes them (then sets it for the step).
   double passive_torque(const Passive& p, double q, double qd);
 

@@ -150,5 +150,38 @@ TEST(sim_stiff, AnEffortCommandsDampingIsAppliedImplicitlyOnALightUprightArm) {
   EXPECT_LE(excess, 1e-6);
 }
 
+// A light wheel's URDF damping far past what an explicit torque can take (c*dt/I = 8.9): simulated whole, in the
+// solver, not lowered to I/dt. An effort u then spins it at u/c (lowered, it would be 8.9 times as fast), and a
+// velocity PID through effort (the gz diffbot's p 0.1, i 1, feedforward 0.95) settles on its reference instead of
+// swinging between the velocity limits.
+TEST(sim_stiff, AStiffUrdfDampingOnAnActuatedJointIsAppliedWholeInTheSolver) {
+  const RobotModel m = load_robot_model(data("light_wheel.urdf"), "");
+  const double c = m.joint("wheel_joint")->damping;
+  {
+    Simulation sim(m, {});
+    for (const std::string& w : sim.warnings()) EXPECT_EQ(w.find("too stiff"), std::string::npos) << w;
+    Actuators& act = sim.actuators();
+    run(sim, 500, [&](int) { act.set_command(0, kEff, 0.1, 0.0); });
+    EXPECT_NEAR(act.joint_velocity(0), 0.1 / c, 0.01 * 0.1 / c);
+  }
+  Simulation sim(m, {});
+  Actuators& act = sim.actuators();
+  const double reference = 5.0;
+  double integral = 0, worst_late = 0;
+  run(
+      sim, 3000,
+      [&](int) {
+        const double error = reference - act.joint_velocity(0);
+        integral = std::clamp(integral + 1.0 * error * sim.control_period(), -20.0, 20.0);
+        act.set_command(0, kEff, 0.95 * reference + 0.1 * error + integral, 0.0);
+      },
+      [&](int k) {
+        if (k >= 2000) worst_late = std::max(worst_late, std::abs(act.joint_velocity(0) - reference));
+      });
+  std::printf("light wheel: %.4f rad/s for %.1f; in the last second at most %.2e off\n", act.joint_velocity(0),
+              reference, worst_late);
+  EXPECT_LT(worst_late, 0.01 * reference);
+}
+
 }  // namespace
 }  // namespace lcm_control::sim
