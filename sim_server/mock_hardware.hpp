@@ -3,7 +3,8 @@
 // position (plus the block's position_state_following_offset); with
 // calculate_dynamics the velocity is its finite difference, and a velocity
 // command is integrated into the position (otherwise it only sets the
-// velocity); an effort command becomes the effort. Mimic joints follow their
+// velocity; calculate_dynamics defaults to true for ros2_control_demos'
+// hardware, which integrates); an effort command becomes the effort. Mimic joints follow their
 // joint (multiplier x position + offset, multiplier x velocity). Nobody
 // commanding, the watchdog or the e-stop hold the position with velocity and
 // effort 0. Pure: no Bullet, no LCM, no allocation after construction.

@@ -79,6 +79,19 @@ TEST(MockHardware, VelocityWithoutDynamicsOnlySetsTheVelocity) {
   EXPECT_EQ(hw.position(1), 0.0);
 }
 
+// ros2_control_demos' hardware (a diffbot's, a car's) integrates its wheels' velocity commands: played as mock
+// hardware, calculate_dynamics is on unless the block says otherwise.
+TEST(MockHardware, ADemoPluginIntegratesVelocityUnlessItsBlockSaysOtherwise) {
+  for (const bool said_false : {false, true}) {
+    RobotModel m = mock_arm(said_false ? Ros2Params{{"calculate_dynamics", "false"}} : Ros2Params{});
+    m.ros2_control.at(0).plugin = "ros2_control_demo_example_2/DiffBotSystemHardware";
+    MockHardware hw(m, {});
+    hw.set_command(1, kVel, 0.5);
+    for (int k = 0; k < 1001; ++k) hw.step(kDt);
+    EXPECT_NEAR(hw.position(1), said_false ? 0.0 : 0.5, 1e-9) << (said_false ? "calculate_dynamics false" : "demo");
+  }
+}
+
 TEST(MockHardware, NobodyCommandingHoldsThePositionAndAModeNotOfferedHoldsToo) {
   MockHardware hw(mock_arm({{"calculate_dynamics", "true"}}), {});
   hw.set_command(0, kVel, 1.0);
