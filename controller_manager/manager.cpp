@@ -284,6 +284,8 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
   }
   c.notes = std::move(ctx.notes);
   if (params.has("plugin")) params.node("plugin");  // the controller library, loaded before (plugins.hpp)
+  // Every ROS 2 node has use_sim_time; here controllers always run on the simulator's clock.
+  if (model_.ros2_parameter_file && params.has("use_sim_time")) params.node("use_sim_time");
   if (model_.ros2_parameter_file && params.has("update_rate")) {  // every ROS 2 controller's own rate
     try {
       c.update_rate_hz = own_update_rate(params);

@@ -127,6 +127,7 @@ class DiffDriveController : public DriveController {
     if (!(rate_ > 0)) throw p.error("publish_rate", fmt::format("{} Hz: must be > 0", rate_));
     timeout_ = p.number("cmd_vel_timeout", 0.5);
     open_loop_ = p.boolean("open_loop", false);
+    position_feedback_ = p.boolean("position_feedback", true);
     const size_t window = static_cast<size_t>(std::max(1.0, p.number("velocity_rolling_window_size", 10)));
     linear_mean_ = angular_mean_ = RollingMean(window);
     linear_ = read_limits(p, "linear", "x", ros2);
@@ -198,6 +199,11 @@ class DiffDriveController : public DriveController {
     for (const JointData* j : js) s += j->position;
     return s / static_cast<double>(js.size());
   }
+  static double mean_velocity(const std::vector<JointData*>& js) {
+    double s = 0;
+    for (const JointData* j : js) s += j->velocity;
+    return s / static_cast<double>(js.size());
+  }
   void brake() {
     for (JointData* j : left_) j->command = 0;
     for (JointData* j : right_) j->command = 0;
@@ -209,14 +215,19 @@ class DiffDriveController : public DriveController {
     angular_mean_.clear();
   }
 
-  // Dead reckoning over one period: from the wheels (or, open_loop, from the command).
+  // Dead reckoning over one period: from the wheels' positions (position_feedback) or velocities, or, open_loop,
+  // from the command.
   void integrate(double v_cmd, double w_cmd, double period) {
     double ds = v_cmd * period, dth = w_cmd * period;
     if (!open_loop_) {
       const double l = mean_position(left_), r = mean_position(right_);
-      const double dl = (l - left_prev_) * left_radius_, dr = (r - right_prev_) * right_radius_;
+      double dl = (l - left_prev_) * left_radius_, dr = (r - right_prev_) * right_radius_;
       left_prev_ = l;
       right_prev_ = r;
+      if (!position_feedback_) {
+        dl = mean_velocity(left_) * period * left_radius_;
+        dr = mean_velocity(right_) * period * right_radius_;
+      }
       ds = (dl + dr) / 2;
       dth = (dr - dl) / separation_;
     }
@@ -238,7 +249,7 @@ class DiffDriveController : public DriveController {
 
   std::vector<JointData*> left_, right_;
   double left_radius_ = 0, right_radius_ = 0, separation_ = 0, rate_ = 50, timeout_ = 0.5;
-  bool open_loop_ = false;
+  bool open_loop_ = false, position_feedback_ = true;
   SpeedLimits linear_, angular_;
   double cmd_v_ = 0, cmd_w_ = 0, cmd_time_ = 0, last_v_ = 0, last_w_ = 0;
   bool cmd_new_ = false;
@@ -287,7 +298,8 @@ ControllerType diff_drive_controller() {
       ignored("use_stamped_vel", "bool", false, true),
       ignored("tf_frame_prefix_enable", "bool", false, true),
       ignored("tf_frame_prefix", "string", false, true),
-      {"position_feedback", "bool", "true", "", "position_feedback", "odometry from wheel velocities", false},
+      {"position_feedback", "bool", "true", "", "position_feedback",
+       "odometry from the wheels' positions; false: from their velocities"},
       {"open_loop", "bool", "false", "open_loop", "open_loop", "odometry from the commands instead of the wheels"},
       {"velocity_rolling_window_size", "number", "10", "velocity_rolling_window_size", "velocity_rolling_window_size",
        "samples averaged into the odometry's velocity"},

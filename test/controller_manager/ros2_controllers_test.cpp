@@ -8,6 +8,7 @@
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
+#include "lcm_control/odometry_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 #include "lcm_control/twist_t.hpp"
 #include "test/controller_manager/rig.hpp"
@@ -223,6 +224,42 @@ TEST(Ros2Controllers, DiffDriveReadsRos2WheelNamesAndLimitsWithoutHasFlags) {
   // 0.5 m/s on wheels of radius 0.1: 5 rad/s each.
   EXPECT_NEAR(rig.joint("left_wheel").velocity, 5.0, 1e-6);
   EXPECT_NEAR(rig.joint("right_wheel").velocity, 5.0, 1e-6);
+}
+
+// position_feedback (ROS 2, default true): odometry from the wheels' positions, or with false from their
+// velocities. With encoders that never count (the positions stay 0), only the velocities see the base move.
+// use_sim_time, which every ROS 2 node has, loads without a word.
+TEST(Ros2Controllers, DiffDriveOdometryFromWheelVelocitiesWithoutPositionFeedback) {
+  for (const bool feedback : {true, false}) {
+    Ros2Rig rig;
+    for (auto& c : rig.model.controllers)
+      if (c.name == "base") {
+        c.params["position_feedback"] = feedback;
+        c.params["use_sim_time"] = true;
+      }
+    rig.cm = std::make_unique<cm::ControllerManager>(rig.model, rig.bus, cm::builtin_registry());
+    Recorder<odometry_t> odom(rig.bus.lcm(), "base/odom");
+    rig.cycle();
+    const cm::Reply loaded = rig.load("base");
+    ASSERT_TRUE(loaded.ok) << loaded.message;
+    EXPECT_FALSE(has(loaded.message, "position_feedback")) << loaded.message;
+    EXPECT_FALSE(has(loaded.message, "use_sim_time")) << loaded.message;
+    ASSERT_TRUE(rig.switch_({"base"}, {}).ok);
+    twist_t t{};
+    t.linear.x = 0.4;
+    for (int k = 0; k < 1000; ++k) {
+      if (k % 100 == 0) rig.publish("base/cmd_vel", t);
+      rig.cycle();
+      for (auto& a : rig.act)
+        if (a.name.find("wheel") != std::string::npos) a.position = 0;
+    }
+    ASSERT_FALSE(odom.messages.empty());
+    const double x = odom.messages.back().position.x;
+    if (feedback)
+      EXPECT_NEAR(x, 0.0, 1e-9) << "from positions that never moved";
+    else
+      EXPECT_NEAR(x, 0.4, 0.02) << "from the wheels' 4 rad/s for a second";
+  }
 }
 
 // publish_cmd (ROS 1) / publish_limited_velocity (ROS 2): the twist after the limits on <name>/cmd_vel_out, every
