@@ -16,6 +16,7 @@
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/odometry_t.hpp"
 #include "lcm_control/twist_t.hpp"
+#include "test/e2e/mobile_session.hpp"
 #include "test/e2e/session.hpp"
 #include "test/support/lcm_test.hpp"
 #include "tools/lib/sim_client.hpp"
@@ -23,105 +24,22 @@
 namespace lcm_control::testing {
 namespace {
 
-constexpr int kChunk = 5;  // control steps (100 Hz) per twist: 0.05 s; the drives' timeouts are 0.5 s
-
 std::string mobile(const std::string& file) { return source("test/robots/mobile/" + file); }
 
-// A pose in the plane.
-struct Pose2 {
-  double x = 0, y = 0, yaw = 0;
-};
-
-Pose2 pose_of(const odometry_t& m) { return {m.position.x, m.position.y, m.yaw}; }
-
-// `p` seen from `origin`'s frame.
-Pose2 relative(const Pose2& origin, const Pose2& p) {
-  const double c = std::cos(origin.yaw), s = std::sin(origin.yaw), dx = p.x - origin.x, dy = p.y - origin.y;
-  return {c * dx + s * dy, -s * dx + c * dy, std::remainder(p.yaw - origin.yaw, 2 * M_PI)};
-}
-
-double angle_between(double a, double b) { return std::abs(std::remainder(a - b, 2 * M_PI)); }
-
-// One mobile robot in lockstep: controller_manager, sim_server paused, joint_state_broadcaster and the drive spawned.
-class DriveSession {
+// One of our own mobile robots (test/robots/mobile) with joint_state_broadcaster and its drive.
+class DriveSession : public MobileSession {
  public:
-  DriveSession(const std::string& urdf, const std::string& config, std::string controller, std::string command,
-               std::string odometry, std::vector<std::string> xacro_args = {})
-      : robot_(mobile(urdf), mobile(config)),
-        bus_(robot_.url(), ""),
-        controller_(std::move(controller)),
-        command_(controller_ + "/" + command),
-        odom_(bus_.lcm(), controller_ + "/" + odometry),
-        truth_(bus_.lcm(), "sim_server/base_pose"),
-        states_(bus_.lcm(), "joint_states"),
-        sim_client_(bus_, "drives_test") {
-    for (const auto& a : xacro_args) extra_.insert(extra_.end(), {"--xacro-arg", a});
-  }
-
-  void start() {
-    robot_.start_controller_manager(extra_);
-    std::vector<std::string> sim = extra_;
-    sim.insert(sim.end(), {"--mode", "lockstep", "--paused"});
-    robot_.start_sim(sim);
-    robot_.spawn({"joint_state_broadcaster", controller_});
-    pump_until(bus_.lcm(), [] { return false; }, 0.1);
-  }
-
-  // `steps` control steps with no command (the drive's timeout passes: it stops).
-  void idle(int steps) {
-    const sim_response_t r = sim_client_.step(steps, 30);
-    ASSERT_TRUE(r.ok) << r.message;
-    settle();
-  }
-
-  // vx, vy m/s and wz rad/s, a fresh twist every kChunk steps, until `done` or max_s of sim time; then, with `stop`,
-  // a zero twist (as the drive tool ends), so that the drive does not go on until its timeout.
-  void drive(double vx, double vy, double wz, double max_s, const std::function<bool()>& done = {},
-             bool stop = true) {
-    twist_t t{};
-    t.linear.x = vx;
-    t.linear.y = vy;
-    t.angular.z = wz;
-    const int chunks = int(std::lround(max_s * 100 / kChunk));
-    for (int k = 0; k <= chunks; ++k) {
-      if (k == chunks || (done && done())) {
-        if (!stop) return;
-        t = twist_t{};
-      }
-      bus_.lcm().publish(command_, &t);
-      // The controller manager must have it before the steps' first state (datagrams from two processes are not
-      // ordered on loopback).
-      pump_until(bus_.lcm(), [] { return false; }, 0.005);
-      const sim_response_t r = sim_client_.step(kChunk, 10);
-      ASSERT_TRUE(r.ok) << r.message;
-      settle();
-      if (t.linear.x == 0 && t.linear.y == 0 && t.angular.z == 0) return;
-    }
-  }
-
-  void settle() { pump_until(bus_.lcm(), [] { return false; }, 0.02); }
-  Pose2 odometry() const { return odom_.messages.empty() ? Pose2{} : pose_of(odom_.messages.back()); }
-  Pose2 truth() const { return truth_.messages.empty() ? Pose2{} : pose_of(truth_.messages.back()); }
-  const odometry_t& truth_message() const { return truth_.messages.back(); }
-  const std::vector<odometry_t>& odometry_messages() const { return odom_.messages; }
-  const std::vector<odometry_t>& truth_messages() const { return truth_.messages; }
-  double position(const std::string& joint) const {
-    const joint_state_t& s = states_.messages.back();
-    for (int i = 0; i < s.num_joints; ++i)
-      if (s.name[size_t(i)] == joint) return s.position[size_t(i)];
-    ADD_FAILURE() << "no joint '" << joint << "' in joint_states";
-    return NAN;
-  }
-  std::string output() const { return robot_.cm_output() + robot_.sim_output(); }
+  DriveSession(const std::string& urdf, const std::string& config, const std::string& controller,
+               const std::string& command, const std::string& odometry, std::vector<std::string> xacro_args = {})
+      : MobileSession(mobile(urdf), mobile(config), {"joint_state_broadcaster", controller}, controller + "/" + command,
+                      controller + "/" + odometry, xacro_flags(xacro_args)) {}
 
  private:
-  RobotSession robot_;
-  Bus bus_;
-  std::string controller_, command_;
-  Recorder<odometry_t> odom_, truth_;
-  Recorder<joint_state_t> states_;
-  tools::SimClient sim_client_;
-  std::vector<std::string> extra_;
+  static std::vector<std::string> xacro_flags(const std::vector<std::string>& args) {
+    std::vector<std::string> out;
+    for (const auto& a : args) out.insert(out.end(), {"--xacro-arg", a});
+    return out;
+  }
 };
 
 // A lap of a circle of radius 2 m at 0.5 m/s: odometry against ground truth all the way (within 2 % of the path),
@@ -215,7 +133,7 @@ void square(DriveSession& s, const std::vector<SquareLeg>& legs, double path, bo
         if (left < 0.002) break;
       }
       scale = std::max(scale, 0.1);
-      ASSERT_NO_FATAL_FAILURE(s.drive(leg.vx * scale, leg.vy * scale, leg.wz * scale, double(kChunk) / 100, {}, false));
+      ASSERT_NO_FATAL_FAILURE(s.drive(leg.vx * scale, leg.vy * scale, leg.wz * scale, s.twist_period(), {}, false));
     }
     ASSERT_NO_FATAL_FAILURE(s.drive(0, 0, 0, 0));
     ASSERT_NO_FATAL_FAILURE(s.idle(60));
