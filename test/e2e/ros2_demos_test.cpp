@@ -136,6 +136,18 @@ TEST(Ros2Demos, Example16DiffDriveChainedIntoWheelPidsBringsEachWheelToItsRefere
   ASSERT_NO_FATAL_FAILURE(s.drive(0, 0, 0, 0));
   ASSERT_NO_FATAL_FAILURE(s.idle(30));
   EXPECT_NEAR(s.velocity("left_wheel_joint"), 0.0, 0.01) << "stopped with the twist";
+  // The userdoc's own command, 0.7 m/s and 1 rad/s: references of 43 and 50 rad/s, each wheel held at its URDF
+  // velocity limit of 1 rad/s (the PID clamps its command there, as ros2_control's enforce_command_limits does);
+  // the odometry, open_loop, follows the command.
+  ASSERT_NO_FATAL_FAILURE(s.drive(0.7, 0, 1.0, 3, {}, false));
+  const odometry_t& odom = s.odometry_messages().back();
+  std::printf("example 16, the userdoc's command: odometry %.3f m/s, %.3f rad/s; wheels %.4f and %.4f rad/s\n",
+              odom.linear.x, odom.angular.z, s.velocity("left_wheel_joint"), s.velocity("right_wheel_joint"));
+  EXPECT_NEAR(odom.linear.x, 0.7, 1e-6);
+  EXPECT_NEAR(odom.angular.z, 1.0, 1e-6);
+  EXPECT_NEAR(s.velocity("left_wheel_joint"), 1.0, 1e-9);
+  EXPECT_NEAR(s.velocity("right_wheel_joint"), 1.0, 1e-9);
+  ASSERT_NO_FATAL_FAILURE(s.drive(0, 0, 0, 0));
 }
 
 // The gz variant of example 16 (ros2_control_demos PR #786) in Bullet: one pid_controller for both wheels on
