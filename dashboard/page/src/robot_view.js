@@ -80,9 +80,34 @@ export class RobotView {
     return false;
   }
 
-  // The camera looks at the robot from where it looks now: first far enough to see its bounding sphere, then closer
-  // until its box fills 90 % of the view's narrower side (a sphere around a tall thin arm leaves most of the view
-  // empty).
+  // Points on the robot's surface in the world: at most ~kPointsPerMesh vertices of each shape the box takes in, and
+  // the links' origins. What the camera frames, tighter than the box's corners, which stand off a bent arm.
+  surfacePoints() {
+    const kPointsPerMesh = 400;
+    this.box(); // decides this.leftOut
+    const out = [];
+    const left = new Set(this.leftOut);
+    const v = new THREE.Vector3();
+    for (const link of Object.values(this.robot.links || {})) {
+      out.push(link.getWorldPosition(new THREE.Vector3()));
+      if (left.has(link)) continue;
+      for (const c of link.children) {
+        if (c.isURDFJoint || c.isURDFLink) continue;
+        c.traverse((o) => {
+          const pos = o.isMesh && o.geometry?.attributes?.position;
+          if (!pos) return;
+          const stride = Math.max(1, Math.floor(pos.count / kPointsPerMesh));
+          for (let i = 0; i < pos.count; i += stride) out.push(v.fromBufferAttribute(pos, i).applyMatrix4(o.matrixWorld).clone());
+        });
+      }
+    }
+    return out;
+  }
+
+  // The camera looks at the robot from where it looks now: first far enough to see its bounding sphere, then, a few
+  // times over, turned onto the middle of the robot's silhouette and moved until the silhouette fills 90 % of the
+  // view's width or height, whichever it reaches first (a sphere, or the box's corners, around a tall thin arm leave
+  // most of the view empty).
   fit() {
     if (!this.renderer || !this.world) return;
     const sphere = this.box().getBoundingSphere(new THREE.Sphere());
@@ -100,23 +125,54 @@ export class RobotView {
       this.camera.updateMatrixWorld();
     };
     place();
-    let whole = distance; // the nearest distance seen that shows all of the box
-    for (let k = 0; k < 4; ++k) {
-      const r = this.projectedBox();
-      const fill = r ? Math.max((r.right - r.left) / r.width, (r.bottom - r.top) / r.height) : 0;
-      if (!r || !r.inside || !(fill > 0.05)) break;
-      whole = distance;
-      if (fill > 0.85) break;
+    const points = this.surfacePoints();
+    const silhouette = () => this.projectedRobot(points);
+    let whole = null; // the last framing that showed all of it
+    for (let k = 0; k < 12; ++k) {
+      const r = silhouette();
+      const fill = Math.max((r.right - r.left) / r.width, (r.bottom - r.top) / r.height);
+      if (!r.inside) {
+        if (!whole) break;
+        // Too close (a near corner grows faster than the rest): halfway back to the last framing that showed all.
+        distance = (distance + whole.distance) / 2;
+        this.controls.target.lerp(whole.target, 0.5);
+        sphere.center.copy(this.controls.target);
+        place();
+        continue;
+      }
+      if (!(fill > 0.02)) break;
+      whole = { distance, target: this.controls.target.clone() };
+      // The silhouette's middle, from the centre in NDC, moved to the centre at the target's depth.
+      const mx = (r.left + r.right) / r.width - 1, my = 1 - (r.top + r.bottom) / r.height;
+      const halfH = Math.tan((this.camera.fov * Math.PI) / 360) * distance, halfW = halfH * this.camera.aspect;
+      const right = new THREE.Vector3().setFromMatrixColumn(this.camera.matrixWorld, 0);
+      const up = new THREE.Vector3().setFromMatrixColumn(this.camera.matrixWorld, 1);
+      const centred = Math.abs(mx) < 0.02 && Math.abs(my) < 0.02;
+      if (centred && fill > 0.86 && fill < 0.92) break;
+      this.controls.target.addScaledVector(right, mx * halfW).addScaledVector(up, my * halfH);
+      sphere.center.copy(this.controls.target);
       distance *= fill / 0.9;
       place();
     }
-    if (distance !== whole && !this.projectedBox()?.inside) {
-      distance = whole;
+    if (whole && !silhouette().inside) {
+      distance = whole.distance;
+      this.controls.target.copy(whole.target);
+      sphere.center.copy(whole.target);
       place();
     }
     this.controls.update();
     this.moved = false;
     this.invalidate();
+  }
+
+  // Where the robot's surface (surfacePoints) falls on the canvas, in CSS pixels ({left, top, right, bottom, width,
+  // height, inside}): what fit() frames; null without a robot or WebGL. For the browser test, and for anyone asking
+  // from the console.
+  projectedRobot(points = null) {
+    if (!this.renderer || !this.world) return null;
+    const canvas = this.renderer.domElement;
+    return screenRect((points || this.surfacePoints()).map((p) => p.clone().project(this.camera)), canvas.clientWidth,
+      canvas.clientHeight);
   }
 
   // Where the robot's bounding box falls on the canvas, in CSS pixels ({left, top, right, bottom, width, height,
