@@ -15,6 +15,7 @@
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 #include "tools/lib/cm_client.hpp"
+#include "tools/lib/cm_views.hpp"
 #include "tools/lib/command_check.hpp"
 #include "tools/lib/goal_watch.hpp"
 #include "tools/lib/support.hpp"
@@ -125,8 +126,9 @@ int run(const Options& o, const BusFlags& bus_flags) {
   const std::vector<controller_info_t> listed = cm.list(o.timeout).controllers;
   const controller_info_t info = trajectory_controller(listed, controller, bus.channel(""));
   if (goal.joints.empty()) {
-    goal.joints = info.joints;
+    for (const std::string& j : info.joints) goal.joints.push_back(joint_behind(listed, j));
     goal.joints_where = fmt::format("the joints of '{}'", controller);
+    if (goal.joints != info.joints) goal.joints_where += " (the joints its command_joints chain to)";
     check_goal(goal);
   }
   if (o.relative) {

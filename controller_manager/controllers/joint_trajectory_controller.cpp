@@ -118,7 +118,18 @@ class JointTrajectoryController : public Controller {
     name_ = ctx.name();
     names_ = p.strings("joints");
     if (ros2_) read_ros2_interfaces(p, ctx.notes);
-    for (const auto& n : names_) joints_.push_back(ctx.claim(n, iface_));
+    // ROS 2's command_joints (chaining): what it commands, one per joint, e.g. the reference interfaces of a PID
+    // ("<pid>/<joint>"); the state stays that of `joints`.
+    const std::vector<std::string> commanded = ros2_ && p.has("command_joints") ? p.strings("command_joints")
+                                                                               : std::vector<std::string>{};
+    if (!commanded.empty() && commanded.size() != names_.size())
+      throw p.error("command_joints", fmt::format("{} name(s) for {} joint(s): give one per joint of `joints`, in "
+                                                  "its order",
+                                                  commanded.size(), names_.size()));
+    for (size_t k = 0; k < names_.size(); ++k) {
+      joints_.push_back(ctx.claim(commanded.empty() ? names_[k] : commanded[k], iface_));
+      states_.push_back(commanded.empty() ? joints_.back() : ctx.read(names_[k], "joints"));
+    }
     const size_t n = names_.size();
     read_constraints(p);
     u_min_.assign(n, -std::numeric_limits<double>::infinity());
@@ -203,7 +214,7 @@ class JointTrajectoryController : public Controller {
     // once the controller is made (the rules); the loop takes it whole between cycles.
     auto rules = std::make_shared<GoalRules>();
     rules->joints = names_;
-    for (const JointData* j : joints_) {
+    for (const JointData* j : states_) {
       rules->continuous.push_back(j->continuous);
       rules->limits.push_back(j->urdf && j->urdf->has_position_limits ? Limit{true, j->urdf->lower, j->urdf->upper}
                                                                       : Limit{});
@@ -251,7 +262,7 @@ class JointTrajectoryController : public Controller {
 
   void starting(const Time& now) override {
     if (goal_active_) finish(now, trajectory_status_t::PREEMPTED, "controller restarted");
-    for (size_t k = 0; k < joints_.size(); ++k) rest_from_[k] = {joints_[k]->position, joints_[k]->velocity, 0.0};
+    for (size_t k = 0; k < joints_.size(); ++k) rest_from_[k] = {states_[k]->position, states_[k]->velocity, 0.0};
     hold_.set_stop(now.seconds(), stop_duration_, rest_from_.data());
     current_ = &hold_;
     for (auto& pid : pids_) pid.reset();
@@ -270,12 +281,13 @@ class JointTrajectoryController : public Controller {
     double worst_excess = 0;
     for (size_t k = 0; k < joints_.size(); ++k) {
       JointData& j = *joints_[k];
+      const JointData& s = *states_[k];
       current_->sample(t, k, desired_[k]);
       const double e =
-          j.continuous ? shortest_angular_distance(j.position, desired_[k].pos) : desired_[k].pos - j.position;
-      const double e_dot = desired_[k].vel - j.velocity;
+          s.continuous ? shortest_angular_distance(s.position, desired_[k].pos) : desired_[k].pos - s.position;
+      const double e_dot = desired_[k].vel - s.velocity;
       status_.desired[k] = desired_[k].pos;
-      status_.actual[k] = j.position;
+      status_.actual[k] = s.position;
       status_.error[k] = e;
       state_.error_velocity[k] = e_dot;
       if (iface_ == Interface::Position) {
@@ -285,9 +297,9 @@ class JointTrajectoryController : public Controller {
       } else {
         double u = std::clamp(velocity_ff_[k] * desired_[k].vel + pids_[k].compute(e, e_dot, period), u_min_[k],
                               u_max_[k]);
-        const double limit = !j.urdf                          ? 0
-                             : iface_ == Interface::Effort   ? j.urdf->effort_limit
-                                                             : j.urdf->velocity_limit;
+        const double limit = !s.urdf                          ? 0
+                             : iface_ == Interface::Effort   ? s.urdf->effort_limit
+                                                             : s.urdf->velocity_limit;
         if (limit > 0) u = std::clamp(u, -limit, limit);
         j.command = u;
         if (iface_ == Interface::Effort) j.damping = pids_[k].applied_d();
@@ -301,7 +313,7 @@ class JointTrajectoryController : public Controller {
     publish_state(now);
     if (cmd_timeout_ > 0 && current_ == &active_ && t > current_->end_time() + cmd_timeout_) {
       if (goal_active_) finish(now, trajectory_status_t::ABORTED, "command timeout: cmd_timeout passed after the end");
-      for (size_t k = 0; k < joints_.size(); ++k) hold_pos_[k] = joints_[k]->position;
+      for (size_t k = 0; k < joints_.size(); ++k) hold_pos_[k] = states_[k]->position;
       hold_.set_hold(t, hold_pos_.data());
       current_ = &hold_;
       return;
@@ -313,7 +325,7 @@ class JointTrajectoryController : public Controller {
                     names_[worst].c_str(), status_.error[worst], path_tol_[worst], t - current_->start_time(),
                     current_->end_time() - current_->start_time());
       finish(now, trajectory_status_t::PATH_TOLERANCE_VIOLATED, text_);
-      for (size_t k = 0; k < joints_.size(); ++k) rest_from_[k] = {joints_[k]->position, joints_[k]->velocity, 0.0};
+      for (size_t k = 0; k < joints_.size(); ++k) rest_from_[k] = {states_[k]->position, states_[k]->velocity, 0.0};
       hold_.set_stop(t, stop_duration_, rest_from_.data());
       current_ = &hold_;
       return;
@@ -403,8 +415,8 @@ class JointTrajectoryController : public Controller {
       state_.desired_position[k] = desired_[k].pos;
       state_.desired_velocity[k] = desired_[k].vel;
       state_.desired_acceleration[k] = desired_[k].acc;
-      state_.actual_position[k] = joints_[k]->position;
-      state_.actual_velocity[k] = joints_[k]->velocity;
+      state_.actual_position[k] = states_[k]->position;
+      state_.actual_velocity[k] = states_[k]->velocity;
       state_.error_position[k] = status_.error[k];
     }
     state_pub_.publish(state_);
@@ -416,7 +428,7 @@ class JointTrajectoryController : public Controller {
     size_t bad = 0;
     for (size_t k = 0; k < joints_.size() && within; ++k) {
       const bool pos_ok = goal_tol_[k] <= 0 || std::abs(status_.error[k]) <= goal_tol_[k];
-      const bool vel_ok = stopped_vel_tol_ <= 0 || std::abs(joints_[k]->velocity) <= stopped_vel_tol_;
+      const bool vel_ok = stopped_vel_tol_ <= 0 || std::abs(states_[k]->velocity) <= stopped_vel_tol_;
       if (!pos_ok || !vel_ok) within = false, bad = k;
     }
     if (within) {
@@ -434,7 +446,7 @@ class JointTrajectoryController : public Controller {
       std::snprintf(text_, sizeof text_,
                     "goal tolerance violated on joint '%s': error %.6f (tolerance %.6f), velocity %.6f (stopped "
                     "tolerance %.6f), %.3f s after the trajectory end (goal_time %.3f)",
-                    names_[bad].c_str(), status_.error[bad], goal_tol_[bad], joints_[bad]->velocity, stopped_vel_tol_,
+                    names_[bad].c_str(), status_.error[bad], goal_tol_[bad], states_[bad]->velocity, stopped_vel_tol_,
                     t - current_->end_time(), goal_time_);
       finish(now, trajectory_status_t::GOAL_TOLERANCE_VIOLATED, text_);
     }
@@ -617,7 +629,8 @@ class JointTrajectoryController : public Controller {
   Interface iface_;
   std::string name_;
   std::vector<std::string> names_;
-  std::vector<JointData*> joints_;
+  std::vector<JointData*> joints_;        // what it commands: `joints`, or ROS 2's command_joints
+  std::vector<const JointData*> states_;  // the state it follows: `joints`'
   std::vector<double> path_tol_, goal_tol_, hold_pos_, max_path_err_, velocity_ff_;
   double goal_time_ = 0, stopped_vel_tol_ = 0.01, monitor_rate_ = 20, state_rate_ = 50, stop_duration_ = 0;
   double last_t_ = 0, last_feedback_ = 0, last_state_ = -1e9;
@@ -645,7 +658,7 @@ class JointTrajectoryController : public Controller {
 // ROS 2's keys not read here.
 std::vector<ParameterInfo> ros2_only_parameters() {
   std::vector<ParameterInfo> v;
-  for (const char* key : {"command_joints", "allow_integration_in_goal_trajectories",
+  for (const char* key : {"allow_integration_in_goal_trajectories",
                           "allow_nonzero_velocity_at_trajectory_end", "interpolate_from_desired_state",
                           "set_last_command_interface_value_as_state_on_activation", "speed_scaling_topic_name"})
     v.push_back({key, "", "", "", key, "not implemented", false});
@@ -700,6 +713,8 @@ ControllerType ros2_joint_trajectory_controller() {
   t.command = {"joint_trajectory_t", "command", 0, ""};
   t.parameters = {
       ros2_parameter("joints", "strings", "", "the joints a goal must name"),
+      ros2_parameter("command_joints", "strings", "",
+                     "what it commands instead, one per joint (chaining: a PID's reference interfaces \"<pid>/<joint>\")"),
       ros2_parameter("command_interfaces", "strings", "",
            "[position], [velocity], [effort]; [position, velocity(, acceleration)], [position, effort] command position"),
       ros2_parameter("state_interfaces", "strings", "[position, velocity]", "position(, velocity(, acceleration)), checked"),

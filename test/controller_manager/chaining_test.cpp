@@ -53,6 +53,27 @@ TEST(Chaining, AFollowerMustBeLoadedFirstAndCannotBeUnloadedUnderItsWriter) {
   EXPECT_TRUE(rig.cm->unload("pid_left").ok);
 }
 
+// ROS 2's JTC command_joints: it claims the references named there and follows the state of `joints`; a list that
+// does not match `joints` one to one is refused naming the key.
+TEST(Chaining, ATrajectoryControllersCommandJointsAreClaimedOnePerJoint) {
+  ChainRig rig;
+  rig.cycle();
+  for (const char* n : {"pid_left", "pid_right"}) ASSERT_TRUE(rig.load(n).ok) << n;
+  cm::Reply r = rig.load("short_trajectory");
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "short_trajectory/command_joints: 1 name(s) for 2 joint(s): give one per joint of "
+                             "`joints`, in its order"))
+      << r.message;
+  r = rig.load("wheel_trajectory");
+  ASSERT_TRUE(r.ok) << r.message;
+  EXPECT_TRUE(has(r.message, "claims VelocityJointInterface on pid_left/left_wheel, pid_right/right_wheel")) << r.message;
+  ASSERT_TRUE(rig.switch_({"wheel_trajectory", "pid_left", "pid_right"}, {}).ok);
+  EXPECT_TRUE(rig.controller("pid_left").chained_mode());
+  std::vector<std::string> order;
+  for (const cm::ControllerSlot* s : rig.cm->loop().order()) order.push_back(s->name);
+  EXPECT_EQ(order.front(), "wheel_trajectory") << "the writer first";
+}
+
 TEST(Chaining, AChainStartsWholeRunsInChainedModeAndStopsWhole) {
   ChainRig rig;
   rig.cycle();

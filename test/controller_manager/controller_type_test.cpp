@@ -167,7 +167,7 @@ TEST(ControllerTypes, BuiltinDeclarationsGiveTheRosParameterNames) {
   const V trajectory = {"joints", "gains", "velocity_ff", "constraints", "state_publish_rate", "action_monitor_rate",
                         "stop_trajectory_duration", "allow_partial_joints_goal", "hold_trajectory_duration",
                         "command_interfaces", "state_interfaces", "open_loop_control", "interpolation_method",
-                        "cmd_timeout", "interface_name", "command_joints", "allow_integration_in_goal_trajectories",
+                        "cmd_timeout", "interface_name", "allow_integration_in_goal_trajectories",
                         "allow_nonzero_velocity_at_trajectory_end", "interpolate_from_desired_state",
                         "set_last_command_interface_value_as_state_on_activation", "speed_scaling_topic_name"};
   for (const char* t : {"position_controllers/JointTrajectoryController",

@@ -111,6 +111,22 @@ const controller_info_t* exporter_of(const cm_response_t& list, const std::strin
     if (c.name == joint.substr(0, slash)) return &c;
   return nullptr;
 }
+}  // namespace
+
+std::string joint_behind(const std::vector<controller_info_t>& listed, const std::string& name) {
+  std::string at = name;
+  for (size_t hops = 0; hops <= listed.size(); ++hops) {
+    const size_t slash = at.find('/');
+    if (slash == std::string::npos) return at;
+    const auto exporter = std::find_if(listed.begin(), listed.end(),
+                                       [&](const controller_info_t& c) { return c.name == at.substr(0, slash); });
+    if (exporter == listed.end()) return at;
+    at = at.substr(slash + 1);
+  }
+  return at;
+}
+
+namespace {
 // "velocity" of "VelocityJointInterface".
 std::string quantity_in(const std::string& hardware_interface) {
   std::string q = hardware_interface.substr(0, hardware_interface.find("JointInterface"));

@@ -23,6 +23,9 @@ std::string wait_statistics(Bus& bus, double timeout_s);
 // From a LIST answer.
 std::string hardware_status_text(const cm_response_t& list);
 std::string controller_chains_text(const cm_response_t& list);
+// The joint a claimed name ends at: itself for a joint; for a reference interface "<controller>/<dof>" (ROS 2
+// chaining) that of its dof, through every listed link of the chain (a JTC's command_joints -> its PIDs' joints).
+std::string joint_behind(const std::vector<controller_info_t>& listed, const std::string& name);
 std::string controller_chains_dot(const cm_response_t& list);
 
 }  // namespace lcm_control::tools
