@@ -105,20 +105,34 @@ void ControllerManager::report_failed_controllers() {
           : !may_run(*o->controller, hw_.components()) ? "a hardware component it uses is not active"
                                                        : "a joint it claims is held by another running controller"));
     }
-    spdlog::error("controller '{}' failed at step {}: {}; deactivated it{}{}", s->name, s->failure_step,
-                  clip(s->failure), s->fallbacks.empty() ? "; it has no fallback_controllers"
-                                                         : fmt::format("; started its fallback controllers [{}]",
-                                                                       join(started)),
+    spdlog::error("controller '{}' failed at step {}: {}; deactivated it{}{}{}", s->name, s->failure_step,
+                  clip(s->failure), take_chain_stops(s.get()),
+                  s->fallbacks.empty() ? "; it has no fallback_controllers"
+                                       : fmt::format("; started its fallback controllers [{}]", join(started)),
                   not_started.empty() ? "" : fmt::format("; not started: {}", join(not_started, ", ")));
     s->failure = nullptr;
     changed();
   }
 }
 
+std::string ControllerManager::take_chain_stops(const ControllerSlot* cause) {
+  std::vector<std::string> names;
+  for (const auto& s : loop_.slots())
+    if (s->chain_stopped_by && (!cause || s->chain_stopped_by == cause)) {
+      names.push_back(s->name);
+      s->chain_stopped_by = nullptr;
+    }
+  if (names.empty()) return "";
+  return fmt::format("; and the controllers chained above it [{}] (they write its reference interfaces: a chain runs "
+                     "whole, as in ros2_control)",
+                     join(names));
+}
+
 void ControllerManager::report_component_errors(const hardware_state_t& st) {
   std::vector<std::string> stopped;
   for (const auto& s : loop_.slots())
     if (std::exchange(s->stopped_by_error, false)) stopped.push_back(s->name);
+  const std::string chained = take_chain_stops(nullptr);
   bool any = false;
   for (ComponentData& c : hw_.components()) {
     if (!std::exchange(c.error_fresh, false)) continue;
@@ -127,10 +141,10 @@ void ControllerManager::report_component_errors(const hardware_state_t& st) {
     for (int e = 0; e < st.num_component_errors; ++e)
       if (st.error_component[size_t(e)] == c.info.name && !st.error_reason[size_t(e)].empty())
         c.error = clip(st.error_reason[size_t(e)]);
-    spdlog::error("hardware component '{}' failed at step {}: {}; deactivated the controllers using it [{}]; it is "
-                  "now unconfigured: once the cause is fixed, cmctl set-hardware-component-state {} active, then "
+    spdlog::error("hardware component '{}' failed at step {}: {}; deactivated the controllers using it [{}]{}; it "
+                  "is now unconfigured: once the cause is fixed, cmctl set-hardware-component-state {} active, then "
                   "start the controllers again",
-                  c.info.name, c.error_step, c.error, join_some(stopped, 20), c.info.name);
+                  c.info.name, c.error_step, c.error, join_some(stopped, 20), chained, c.info.name);
   }
   if (any) changed();
 }

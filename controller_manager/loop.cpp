@@ -49,6 +49,7 @@ void Loop::fail_components(const hardware_state_t& st) {
       if (s->running && affected_by(*s->controller, k, Lifecycle::Unconfigured)) {
         stop(*s);
         s->stopped_by_error = true;
+        stop_writers_of(*s, *s);
       }
     chain_modes();
   }
@@ -66,6 +67,7 @@ void Loop::fail_controller(ControllerSlot& s) {
   s.failure = std::exchange(s.controller->failure_, nullptr);
   s.failure_step = step_;
   stop(s);
+  stop_writers_of(s, s);
   chain_modes();
   for (size_t f = 0; f < s.fallbacks.size(); ++f) {
     s.fallback_started[f] = 0;
@@ -75,6 +77,18 @@ void Loop::fail_controller(ControllerSlot& s) {
         start(*other);
         s.fallback_started[f] = 1;
       }
+  }
+}
+
+void Loop::stop_writers_of(const ControllerSlot& s, const ControllerSlot& cause) {
+  for (auto& w : slots_) {
+    if (!w->running) continue;
+    bool writes = false;
+    for (const JointData* j : w->claimed) writes = writes || j->exported_by == s.name;
+    if (!writes) continue;
+    stop(*w);
+    w->chain_stopped_by = &cause;
+    stop_writers_of(*w, cause);
   }
 }
 
@@ -251,7 +265,10 @@ void Loop::set_pending_component(int index, Lifecycle state) {
 
 void Loop::apply_switch() {
   for (ControllerSlot* s : pending_stop_)
-    if (s->running) stop(*s);
+    if (s->running) {
+      stop(*s);
+      if (pending_component_ >= 0) stop_writers_of(*s, *s);  // a component leaving active takes its chains with it
+    }
   if (pending_component_ >= 0) hw_.components()[size_t(pending_component_)].state = pending_component_state_;
   pending_component_ = -1;
   for (ControllerSlot* s : pending_start_) {

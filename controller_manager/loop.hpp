@@ -58,6 +58,9 @@ struct ControllerSlot {
   int64_t first_step = -1;         // the step of its first update since it started (-1: none yet)
   int64_t last_update_utime = -1;  // hardware time of its last update (-1: none since it started)
   bool stopped_by_error = false;  // stopped by the loop because a component it uses failed (the manager clears it)
+  // Stopped because a controller whose reference interfaces it writes (directly or down its chain) was stopped by a
+  // failure or its component leaving active: a chain runs whole (ros2_control). The manager reports it and clears it.
+  const ControllerSlot* chain_stopped_by = nullptr;
   bool start_refused = false;     // a pending start not made: a component it uses left the state it needs
   // ROS 2's fallback_controllers: started in the cycle it fails (Controller::fail), those loaded, stopped, allowed by
   // their components and whose claims are free then; fallback_started says which (for the manager's report).
@@ -124,6 +127,8 @@ class Loop {
   void stop(ControllerSlot& s);
   void fail_components(const hardware_state_t& st);
   void fail_controller(ControllerSlot& s);
+  // Stops every running controller that writes `s`'s reference interfaces, and theirs in turn, naming `cause`.
+  void stop_writers_of(const ControllerSlot& s, const ControllerSlot& cause);
   // Its update_rate: whether it is due in this cycle, and then the period since its last update.
   bool due(ControllerSlot& s, const hardware_state_t& st, double period, double* own_period);
   void update_async(ControllerSlot& s, bool due, double own_period, bool here);

@@ -496,6 +496,7 @@ void ControllerManager::complete_pending() {
   else if (in_cycle)
     msg = fmt::format("switched in one cycle at step {} (t={:.6f} s): {}", loop_.last_switch_step(),
                       loop_.now().seconds(), msg);
+  msg += take_chain_stops(nullptr);
   std::vector<std::string> refused;
   for (const auto& s : loop_.slots())
     if (std::exchange(s->start_refused, false)) refused.push_back(s->name);

@@ -166,6 +166,9 @@ class ControllerManager {
   std::vector<std::string> fallback_controllers(const std::string& name, const Params& params) const;
   // Logs each controller that failed in this cycle, once, with the fallbacks started (hardware_lifecycle.cpp).
   void report_failed_controllers();
+  // "; and the controllers chained above it [a, b] (they write its reference interfaces: a chain runs whole)" for
+  // those the loop stopped with `cause` (nullptr: any), clearing their mark; "" for none.
+  std::string take_chain_stops(const ControllerSlot* cause);
   // Logs each component error the loop took in this cycle, once, with the hardware's reason and what stopped.
   void report_component_errors(const hardware_state_t& st);
   void changed() {  // a controller or component changed state: activity is published at the next poll()

@@ -3,6 +3,8 @@
 // a chain whole (followers loaded, started and kept running while a controller writes them).
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include <string>
 #include <vector>
 
@@ -21,6 +23,17 @@ struct ChainRig : Rig {
   ChainRig()
       : Rig(cm::builtin_registry(), lcm_control::testing::data("ros2_bot.urdf"),
             lcm_control::testing::data("chain_bot.yaml")) {}
+  bool running(const std::string& name) {
+    for (const auto& s : cm->loop().slots())
+      if (s->name == name) return s->running;
+    return false;
+  }
+  cm::Reply set_state(const std::string& component, Lifecycle state) {
+    std::optional<cm::Reply> got;
+    cm->set_component_state(component, state, [&](const cm::Reply& r) { got = r; });
+    for (int k = 0; k < 5 && !got; ++k) cycle();
+    return got.value_or(cm::Reply{false, "no reply"});
+  }
   const cm::Controller& controller(const std::string& name) {
     for (const auto& s : cm->loop().slots())
       if (s->name == name) return *s->controller;
@@ -72,6 +85,33 @@ TEST(Chaining, ATrajectoryControllersCommandJointsAreClaimedOnePerJoint) {
   std::vector<std::string> order;
   for (const cm::ControllerSlot* s : rig.cm->loop().order()) order.push_back(s->name);
   EXPECT_EQ(order.front(), "wheel_trajectory") << "the writer first";
+}
+
+// A chain runs whole (ros2_control): when a member stops on a failure, or because its hardware component leaves
+// active, the controllers that write its references stop with it, and the reply or log names them and why.
+TEST(Chaining, AMemberStoppedByItsComponentTakesTheControllersAboveItAlong) {
+  for (const bool error : {false, true}) {
+    ChainRig rig;
+    rig.cycle();
+    for (const char* n : {"pid_left", "pid_right", "base"}) ASSERT_TRUE(rig.load(n).ok) << n;
+    ASSERT_TRUE(rig.switch_({"base", "pid_left", "pid_right"}, {}).ok);
+    rig.cycle(3);
+    if (error) {
+      rig.state.error_component = {"Ros2Bot"};
+      rig.state.error_reason = {"wheel driver fault"};
+      rig.state.num_component_errors = 1;
+      rig.cycle(1);
+    } else {
+      const cm::Reply r = rig.set_state("Ros2Bot", Lifecycle::Inactive);
+      ASSERT_TRUE(r.ok) << r.message;
+      EXPECT_TRUE(has(r.message, "and the controllers chained above it [base] (they write its reference "
+                                 "interfaces: a chain runs whole, as in ros2_control)"))
+          << r.message;
+    }
+    EXPECT_FALSE(rig.running("pid_left")) << "its component left active";
+    EXPECT_FALSE(rig.running("base")) << "it writes the stopped PIDs' references" << (error ? " (error)" : "");
+    EXPECT_FALSE(rig.controller("pid_left").chained_mode());
+  }
 }
 
 TEST(Chaining, AChainStartsWholeRunsInChainedModeAndStopsWhole) {

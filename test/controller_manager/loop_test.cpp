@@ -77,8 +77,10 @@ class BusyController : public Controller {
 class FailingController : public Controller {
  public:
   void init(ControllerContext& ctx) override {
-    joint_ = ctx.claim(ctx.params().string("joint"), Interface::Position);
+    const std::string joint = ctx.params().string("joint");
+    joint_ = ctx.claim(joint, Interface::Position);
     fail_after_ = int(ctx.params().number("fail_after"));
+    if (ctx.params().boolean("chainable", false)) ctx.export_reference(joint, {Interface::Position}, joint_);
   }
   void starting(const Time&) override { updates_ = 0; }
   void update(const Time&, double) override {
@@ -456,6 +458,31 @@ TEST(ControllerManagerLoop, AnAsyncControllerRunsOnItsOwnThreadAndNeverHoldsTheL
 // ROS 2's fallback_controllers: a controller that fails in its update is stopped in that cycle and its fallbacks
 // start in the same cycle, holding the joint and then commanding it; it cannot start while a fallback is not loaded;
 // a fallback that is no controller of the file is refused at load, naming the key.
+// A chain runs whole: the controller writing a failing controller's reference interface stops in the same cycle,
+// and the log says so.
+TEST(ControllerManagerLoop, AFailingChainMemberStopsTheControllersAboveIt) {
+  const std::string dir = lcm_control::testing::temp_dir("chain_failure");
+  const std::string yaml = dir + "/chain.yaml";
+  std::ofstream(yaml) << "controller_manager:\n  ros__parameters:\n    update_rate: 1000\n"
+                         "    tracker: {type: test/Failing}\n"
+                         "    above: {type: passthrough_controller/PassthroughController}\n"
+                         "tracker:\n  ros__parameters: {joint: tilt, fail_after: 5, chainable: true}\n"
+                         "above:\n  ros__parameters: {interfaces: [tracker/tilt/position]}\n";
+  Rig rig(test_registry(), data("test_bot.urdf"), yaml);
+  rig.cycle();
+  ASSERT_TRUE(rig.load("tracker").ok);
+  const cm::Reply loaded = rig.load("above");
+  ASSERT_TRUE(loaded.ok) << loaded.message;
+  ASSERT_TRUE(rig.switch_({"tracker", "above"}, {}).ok);
+  const cm::ControllerSlot* tracker = rig.cm->loop().slots()[0].get();
+  const cm::ControllerSlot* above = rig.cm->loop().slots()[1].get();
+  EXPECT_TRUE(tracker->controller->chained_mode());
+  rig.cycle(10);
+  EXPECT_FALSE(tracker->running);
+  EXPECT_FALSE(above->running) << "it writes the failed controller's reference";
+  EXPECT_EQ(above->chain_stopped_by, nullptr) << "reported and cleared by the manager";
+}
+
 TEST(ControllerManagerLoop, AFailingControllerIsStoppedAndItsFallbacksStartInThatCycle) {
   const std::string dir = lcm_control::testing::temp_dir("fallbacks");
   const std::string yaml = dir + "/fallbacks.yaml";
