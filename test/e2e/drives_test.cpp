@@ -102,6 +102,27 @@ TEST(Drives, ABicycleSteeredCarOnVirtualJointsDrivesATwoMetreCircleItsOdometryWi
   });
 }
 
+// The Ackermann car with its traction wheels behind a velocity pid_controller (chaining): the drive writes the PID's
+// references, the PID commands the wheels; a quarter of the 2 m circle, odometry against ground truth within 2 % of
+// the path.
+TEST(Drives, AnAckermannCarChainedIntoTractionPidsFollowsItsOdometry) {
+  MobileSession s(mobile("car.urdf.xacro"), mobile("car_ackermann_pids.yaml"),
+                  {"joint_state_broadcaster", "traction_pids", "ackermann_steering_controller"},
+                  "ackermann_steering_controller/reference", "ackermann_steering_controller/odometry");
+  ASSERT_NO_FATAL_FAILURE(s.start());
+  ASSERT_NO_FATAL_FAILURE(s.idle(50));
+  const Pose2 odom0 = s.odometry(), truth0 = s.truth();
+  const double v = 0.5, r = 2.0, quarter = M_PI * r / 2;
+  ASSERT_NO_FATAL_FAILURE(s.drive(v, 0, v / r, quarter / v));
+  ASSERT_NO_FATAL_FAILURE(s.idle(100));
+  const Pose2 t = relative(truth0, s.truth()), o = relative(odom0, s.odometry());
+  const double gap = std::hypot(t.x - o.x, t.y - o.y);
+  std::printf("chained car: odometry (%.4f, %.4f, %.4f rad), ground truth (%.4f, %.4f, %.4f rad): %.4f m apart\n",
+              o.x, o.y, o.yaw, t.x, t.y, t.yaw, gap);
+  EXPECT_NEAR(o.yaw, M_PI / 2, 0.05 * M_PI / 2) << s.output();
+  EXPECT_LT(gap, 0.02 * quarter) << "ground truth within 2 % of the path";
+}
+
 // A 1 m square steered by the drive's own odometry, as a navigation stack would: each leg at its speed, slowing
 // down in proportion to what its odometry says is left (the last 15 cm, or 0.3 rad), until it says the leg is done.
 // The ground truth's corners against the commanded square (within 3 % of the path).
