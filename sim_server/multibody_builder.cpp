@@ -459,6 +459,17 @@ void Multibody::size_solver_buffers() {
   set_state_refresh();
 }
 
+void Multibody::add_link_wrench(int link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque) {
+  const btVector3 f(force.x(), force.y(), force.z()), t(torque.x(), torque.y(), torque.z());
+  if (link < 0) {
+    body_->addBaseForce(f);
+    body_->addBaseTorque(t);
+  } else {
+    body_->addLinkForce(link, f);
+    body_->addLinkTorque(link, t);
+  }
+}
+
 int Multibody::joint_index(const std::string& name) const {
   for (int k = 0; k < int(joints_.size()); ++k)
     if (joints_[k].urdf->name == name) return k;

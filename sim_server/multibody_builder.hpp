@@ -84,6 +84,8 @@ class Multibody {
   double mimic_effort(int joint_index) const;
   double velocity(int link) const { return body_->getJointVel(link); }
   void add_torque(int link, double tau) { body_->addJointTorque(link, tau); }
+  // A force (N) at the Bullet link's centre of mass and a torque (N*m), world frame, for the next step (-1: the base).
+  void add_link_wrench(int link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque);
   // Sets a joint's position and velocity (tests, initial poses) and refreshes the cached kinematics.
   void set_state(int link, double q, double qd);
   // A joint motor on the link (impulse per step capped at max_impulse), owned and added to the world here.

@@ -93,6 +93,8 @@ SensorBank::SensorBank(const RobotModel& model, Multibody& multibody, uint64_t s
   contact_force_.assign(n, Eigen::Vector3d::Zero());
   contact_moment_.assign(n, Eigen::Vector3d::Zero());
   contact_normal_.assign(n, 0);
+  external_force_.assign(n, Eigen::Vector3d::Zero());
+  external_torque_.assign(n, Eigen::Vector3d::Zero());
   touching_.assign(n, 0);
   world_to_local_.resize(n);
   local_origin_.resize(n);
@@ -216,10 +218,11 @@ void SensorBank::measure_force_torque(const ForceTorque& s, double* out) const {
     const LinkState& before = last_links_[k];
     const Eigen::Vector3d weight = gravity_off_[k] ? Eigen::Vector3d::Zero() : Eigen::Vector3d(link_mass_[k] * gravity_);
     const Eigen::Vector3d net = (now.momentum - before.momentum) / dt_;
-    const Eigen::Vector3d f = net - weight - contact_force_[k];
+    const Eigen::Vector3d f = net - weight - contact_force_[k] - external_force_[k];
     force += f;
     moment += (now.angular_momentum - before.angular_momentum) / dt_ + (now.com - p).cross(net - weight) -
-              (contact_moment_[k] - p.cross(contact_force_[k]));
+              (contact_moment_[k] - p.cross(contact_force_[k])) - (now.com - p).cross(external_force_[k]) -
+              external_torque_[k];
   }
   force *= s.sign;
   moment *= s.sign;
@@ -234,6 +237,16 @@ void SensorBank::measure_force_torque(const ForceTorque& s, double* out) const {
   const Eigen::Vector3d f = world_from_frame.transpose() * force, t = world_from_frame.transpose() * moment;
   const double values[6] = {f.x(), f.y(), f.z(), t.x(), t.y(), t.z()};
   std::copy(values, values + 6, out);
+}
+
+void SensorBank::add_external_wrench(int link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque) {
+  external_force_[size_t(link + 1)] += force;
+  external_torque_[size_t(link + 1)] += torque;
+}
+
+void SensorBank::clear_external_wrenches() {
+  for (auto& f : external_force_) f.setZero();
+  for (auto& t : external_torque_) t.setZero();
 }
 
 void SensorBank::measure_contact(const Contact& s, double* out) const {

@@ -29,6 +29,10 @@ class SensorBank {
 
   // Measures every sensor after a physics step of the multibody's dt.
   void update();
+  // A force at the centre of mass of Bullet link `link` (-1: the base) and a torque, world frame, applied in the
+  // steps until the next clear (Simulation::apply_wrench): a force-torque sensor counts it as it counts contacts.
+  void add_external_wrench(int link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque);
+  void clear_external_wrenches();
 
   bool empty() const { return names_.empty(); }
   // "<sensor>/<interface>" per value, sensors in model order, each kind's interfaces in sensor_interfaces() order.
@@ -86,6 +90,7 @@ class SensorBank {
   // Contact forces on each link from the last step, per Bullet link + 1 (base at 0), world frame: total force [N],
   // its moment about the world origin [N*m], normal force [N], touching.
   std::vector<Eigen::Vector3d> contact_force_, contact_moment_;
+  std::vector<Eigen::Vector3d> external_force_, external_torque_;  // per Bullet link + 1
   std::vector<double> contact_normal_;
   std::vector<char> touching_;
   std::vector<btVector3> omega_scratch_, vel_scratch_;

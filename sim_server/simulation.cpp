@@ -80,7 +80,30 @@ std::vector<std::string> Simulation::reset(const InitialPositions& changes) {
   multibody_ = std::move(multibody);
   initial_ = std::move(initial);
   steps_ = 0;
+  wrenches_.clear();
   return multibody_->start_warnings();
+}
+
+std::string Simulation::apply_wrench(const std::string& link, const Eigen::Vector3d& force,
+                                     const Eigen::Vector3d& torque, double duration_s) {
+  if (mock_) return "mock hardware has no physics to push (run the robot in Bullet: sim_server --physics)";
+  if (!force.allFinite() || !torque.allFinite() || !std::isfinite(duration_s))
+    return "the force, torque and duration must be finite numbers";
+  int index = -1;
+  try {
+    index = multibody_->link_index(link);
+  } catch (const std::out_of_range&) {
+    std::string links;
+    for (const Link& l : model_.links) links += (links.empty() ? "" : ", ") + l.name;
+    return fmt::format("no link '{}' in {} (its links: {})", link, model_.urdf_path, links);
+  }
+  wrenches_.reserve(model_.links.size());
+  wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(), [&](const Wrench& w) { return w.link == link; }),
+                  wrenches_.end());
+  if (duration_s == 0) return "";
+  const int64_t until = duration_s < 0 ? -1 : steps_ + std::max<int64_t>(1, std::llround(duration_s * control_hz_));
+  wrenches_.push_back({link, index, force, torque, until});
+  return "";
 }
 
 const std::vector<std::string>& Simulation::start_warnings() const {
@@ -114,7 +137,15 @@ void Simulation::step() {
     return;
   }
   const double dt = multibody_->dt();
+  for (size_t w = 0; w < wrenches_.size();)  // erase keeps the capacity: no allocation
+    if (wrenches_[w].until_step >= 0 && steps_ >= wrenches_[w].until_step)
+      wrenches_.erase(wrenches_.begin() + std::ptrdiff_t(w));
+    else
+      ++w;
+  sensors_->clear_external_wrenches();
+  for (const Wrench& w : wrenches_) sensors_->add_external_wrench(w.index, w.force, w.torque);
   for (int s = 0; s < substeps_; ++s) {
+    for (const Wrench& w : wrenches_) multibody_->add_link_wrench(w.index, w.force, w.torque);
     actuators_->apply(dt);
     multibody_->step();
     actuators_->read(dt);

@@ -5,6 +5,8 @@
 // input.
 #pragma once
 
+#include <Eigen/Core>
+
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -80,6 +82,11 @@ class Simulation {
   // The <gpio> interfaces, either backend (a reset puts them back at their initial values).
   GpioBank& gpio() { return gpio_; }
   const GpioBank& gpio() const { return gpio_; }
+  // Gazebo's apply_body_wrench: `force` (N) at `link`'s centre of mass and `torque` (N*m), world frame, on every
+  // physics step for `duration_s` of sim time (< 0: until replaced or cleared; 0: clears the link's wrench). One
+  // wrench per link, replaced by the next; a reset clears them. Returns "" or why not (no such link, mock hardware).
+  std::string apply_wrench(const std::string& link, const Eigen::Vector3d& force, const Eigen::Vector3d& torque,
+                           double duration_s);
   // The hardware components' lifecycle as the controller manager sets it (kept across resets).
   ComponentStates& components() { return components_; }
   // Start positions clamped into the limits, one line each.
@@ -105,6 +112,13 @@ class Simulation {
   double control_hz_;
   int substeps_;
   int64_t steps_ = 0;
+  struct Wrench {
+    std::string link;
+    int index = -1;  // Bullet link
+    Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+    int64_t until_step = -1;  // the control step it ends at (-1: never)
+  };
+  std::vector<Wrench> wrenches_;
 };
 
 }  // namespace lcm_control::sim

@@ -337,9 +337,20 @@ void Stepper::serve(const sim_request_t& req) {
                                      "and its joints hold until the controller manager sets it not active",
                                      req.component, where(), req.reason.empty() ? "" : ": " + clip(req.reason)));
     }
+    case sim_request_t::APPLY_WRENCH: {
+      const Eigen::Vector3d f(req.force.x, req.force.y, req.force.z), t(req.torque.x, req.torque.y, req.torque.z);
+      if (const std::string why = sim_.apply_wrench(req.link, f, t, req.duration); !why.empty())
+        return reply(false, "cannot apply a wrench: " + why);
+      if (req.duration == 0) return reply(true, fmt::format("cleared the wrench on '{}' at {}", req.link, where()));
+      return reply(true, fmt::format("applying force ({:g}, {:g}, {:g}) N and torque ({:g}, {:g}, {:g}) N*m (world "
+                                     "frame) at the centre of mass of '{}' from {} {}",
+                                     f.x(), f.y(), f.z(), t.x(), t.y(), t.z(), req.link, where(),
+                                     req.duration < 0 ? std::string("until cleared")
+                                                      : fmt::format("for {:g} s of sim time", req.duration)));
+    }
     default:
       return reply(false, fmt::format("unknown op {} (sim_request_t: STATUS 0, PAUSE 1, RESUME 2, STEP 3, RESET 4, "
-                                      "FAIL_COMPONENT 5)",
+                                      "FAIL_COMPONENT 5, APPLY_WRENCH 6)",
                                       int(req.op)));
   }
 }

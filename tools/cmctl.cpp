@@ -64,6 +64,17 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"unconfigured", "inactive", "active", "finalized"}));
   fail_component->add_option("NAME", component_name, "hardware component (<ros2_control name=...>)")->required();
   fail_component->add_option("--reason", fail_reason, "why, as the controller manager will log it");
+  auto* wrench = app.add_subcommand(
+      "apply-body-wrench",
+      "Gazebo's apply_body_wrench: push LINK with a force (and torque), world frame, at its centre of mass, for "
+      "--duration s of sim time (a negative one: until cleared; 0 clears)");
+  std::string wrench_link;
+  std::array<double, 3> wrench_force{0, 0, 0}, wrench_torque{0, 0, 0};
+  double wrench_duration = -1;
+  wrench->add_option("LINK", wrench_link, "the URDF link to push")->required();
+  wrench->add_option("--force", wrench_force, "FX,FY,FZ in N, world frame")->delimiter(',');
+  wrench->add_option("--torque", wrench_torque, "TX,TY,TZ in N*m, world frame")->delimiter(',');
+  wrench->add_option("--duration", wrench_duration, "seconds of sim time (default -1: until cleared; 0: clear)");
   auto* stats = app.add_subcommand("statistics", "the controller manager's last statistics window: per controller its "
                                                  "updates' execution time and period (mean, p99, max), and sim_server's");
   auto* hw_status = app.add_subcommand("view-hardware-status",
@@ -118,10 +129,11 @@ int main(int argc, char** argv) {
   return run_program(app, argc, argv, [&] {
     install_stop_signals();
     Bus bus(bus_flags.lcm_url, bus_flags.ns);  // LCM's receive thread: a short-lived tool waiting for answers
-    for (auto* sc : {pause, resume, step_cmd, reset, sim_status, fail_component}) {
+    for (auto* sc : {pause, resume, step_cmd, reset, sim_status, fail_component, wrench}) {
       if (!sc->parsed()) continue;
       SimClient sim(bus, "cmctl");
       sim_response_t a;
+      if (wrench->parsed()) a = sim.apply_wrench(wrench_link, wrench_force, wrench_torque, wrench_duration, timeout);
       if (fail_component->parsed()) a = sim.fail_component(component_name, fail_reason, timeout);
       if (pause->parsed()) a = sim.pause(timeout);
       if (resume->parsed()) a = sim.resume(timeout);

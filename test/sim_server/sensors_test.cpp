@@ -83,6 +83,28 @@ TEST(sim_sensors, AHeldPendulumsJointCarriesMglSinTheta) {
   }
 }
 
+// Gazebo's apply_body_wrench: 10 N pushing the held bob along +x is carried by the joint (the sensor's force
+// gains it, its torque about y gains 10 N x 0.5 m), for its duration only; a link that is not there is named.
+TEST(sim_sensors, AWrenchAppliedToALinkIsFeltThroughItsJointForItsDuration) {
+  const RobotModel model = load_robot_model(data("ft_pendulum.urdf"), "");
+  Simulation sim(model, {});
+  auto hold = [&](int) { sim.actuators().set_command(0, kPos, 0.0); };
+  run(sim, 500, hold);
+  const Eigen::Vector3d f0 = vec(sim, "swing_ft/force"), t0 = vec(sim, "swing_ft/torque");
+  ASSERT_EQ(sim.apply_wrench("bob", Eigen::Vector3d(10, 0, 0), Eigen::Vector3d::Zero(), 0.5), "");
+  run(sim, 300, hold);
+  const Eigen::Vector3d f1 = vec(sim, "swing_ft/force"), t1 = vec(sim, "swing_ft/torque");
+  std::printf("pushed: force (%.4f, %.4f, %.4f) -> (%.4f, %.4f, %.4f) N, torque y %.4f -> %.4f N*m\n", f0.x(), f0.y(),
+              f0.z(), f1.x(), f1.y(), f1.z(), t0.y(), t1.y());
+  EXPECT_NEAR((f1 - f0).x(), -10.0, 0.1) << "the joint holds the push back";
+  EXPECT_NEAR(std::abs((t1 - t0).y()), 5.0, 0.05);
+  run(sim, 300, hold);  // past its 0.5 s
+  EXPECT_NEAR((vec(sim, "swing_ft/force") - f0).norm(), 0.0, 0.05) << "the push ended";
+  const std::string why = sim.apply_wrench("no_link", Eigen::Vector3d(1, 0, 0), Eigen::Vector3d::Zero(), -1);
+  EXPECT_NE(why.find("no link 'no_link'"), std::string::npos) << why;
+  EXPECT_NE(why.find("bob"), std::string::npos) << why;
+}
+
 TEST(sim_sensors, ABoxOnTheGroundTouchesItWithItsWeight) {
   Simulation sim(load_robot_model(data("contact_box.urdf"), ""), {}, {}, WorldOptions{true, true});
   run(sim, 500, {});

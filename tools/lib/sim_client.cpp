@@ -28,6 +28,7 @@ std::string sim_request_name(const sim_request_t& req) {
     case sim_request_t::STEP: return fmt::format("step {}", req.steps);
     case sim_request_t::RESET: return "reset";
     case sim_request_t::FAIL_COMPONENT: return fmt::format("fail-hardware-component {}", req.component);
+    case sim_request_t::APPLY_WRENCH: return fmt::format("apply-body-wrench {}", req.link);
   }
   return fmt::format("op {}", int(req.op));
 }
@@ -82,6 +83,16 @@ sim_response_t SimClient::fail_component(const std::string& component, const std
   sim_request_t r = request(sim_request_t::FAIL_COMPONENT);
   r.component = component;
   r.reason = reason;
+  return call(r, t);
+}
+
+sim_response_t SimClient::apply_wrench(const std::string& link, const std::array<double, 3>& force,
+                                       const std::array<double, 3>& torque, double duration_s, double t) {
+  sim_request_t r = request(sim_request_t::APPLY_WRENCH);
+  r.link = link;
+  r.force.x = force[0], r.force.y = force[1], r.force.z = force[2];
+  r.torque.x = torque[0], r.torque.y = torque[1], r.torque.z = torque[2];
+  r.duration = duration_s;
   return call(r, t);
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <array>
 #include <map>
 #include <string>
 
@@ -33,6 +34,9 @@ class SimClient {
   sim_response_t reset(const InitialPositions& start, double timeout_s);
   // The FAIL_COMPONENT test hook: `component` fails as a lost device would, with `reason`.
   sim_response_t fail_component(const std::string& component, const std::string& reason, double timeout_s);
+  // Gazebo's apply_body_wrench (sim_request_t::APPLY_WRENCH): force [N] and torque [N*m], world frame.
+  sim_response_t apply_wrench(const std::string& link, const std::array<double, 3>& force,
+                              const std::array<double, 3>& torque, double duration_s, double timeout_s);
 
  private:
   void on_response(const lcm::ReceiveBuffer*, const std::string&, const sim_response_t* m);
