@@ -42,6 +42,7 @@ void register_builtin(Registry& r) {
   r.add(omni_wheel_drive_controller());
   r.add(gpio_command_controller());
   r.add(passthrough_controller());
+  r.add(admittance_controller());
   r.add(gripper_action_controller(I::Position, false));
   r.add(gripper_action_controller(I::Effort, false));
   r.add(gripper_action_controller(I::Position, true));  // parallel_gripper_action_controller/GripperActionController

@@ -38,7 +38,7 @@ const std::map<std::string, std::string>& known_types() {
              "parallel_gripper_action_controller/GripperActionController",
              "imu_sensor_broadcaster/IMUSensorBroadcaster",
              "force_torque_sensor_broadcaster/ForceTorqueSensorBroadcaster",
-             "range_sensor_broadcaster/RangeSensorBroadcaster", "admittance_controller/AdmittanceController",
+             "range_sensor_broadcaster/RangeSensorBroadcaster",
              "pid_controller/PidController",
              "pose_broadcaster/PoseBroadcaster", "gps_sensor_broadcaster/GPSSensorBroadcaster",
              "magnetometer_broadcaster/MagnetometerBroadcaster", "battery_state_broadcaster/BatteryStateBroadcaster",

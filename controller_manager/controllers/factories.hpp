@@ -31,6 +31,7 @@ ControllerType tricycle_controller();
 ControllerType mecanum_drive_controller();
 ControllerType omni_wheel_drive_controller();
 ControllerType gpio_command_controller();  // gpio_controllers/GpioCommandController
+ControllerType admittance_controller();     // ROS 2's admittance_controller: a tool yielding to its FT sensor (KDL)
 ControllerType passthrough_controller();   // ros2_control_demos' chaining example: chainable forwarding
 // gripper_command_t goals on `joint`: position or effort (ROS 1 / gripper_controllers), or ROS 2's parallel gripper.
 ControllerType gripper_action_controller(Interface command, bool parallel);

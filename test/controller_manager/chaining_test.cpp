@@ -114,6 +114,35 @@ TEST(Chaining, AMemberStoppedByItsComponentTakesTheControllersAboveItAlong) {
   }
 }
 
+// The admittance controller's own checks, each naming its key: joints that are not the chain's, a tip not below
+// the base, a sensor that is not there, a mass of 0.
+TEST(Chaining, AnAdmittanceControllersBadParametersAreNamed) {
+  auto load = [](const std::string& key, const std::string& yaml) {
+    RobotModel m = load_robot_model(lcm_control::testing::source("test/robots/ft_arm.urdf"),
+                                    lcm_control::testing::source("test/robots/ft_arm.yaml"));
+    for (auto& c : m.controllers)
+      if (c.name == "admittance_controller") c.params[key] = YAML::Load(yaml);
+    Bus bus("memq://", "");
+    cm::ControllerManager manager(m, bus, cm::builtin_registry());
+    return manager.load("admittance_controller");
+  };
+  cm::Reply r = load("joints", "[joint1, joint3]");
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "admittance_controller/joints: [joint1, joint3]: the moving joints from 'base_link' to "
+                             "'tool' are [joint1, joint2, joint3], in that order"))
+      << r.message;
+  r = load("kinematics", "{base: tool, tip: link1}");
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "link 'link1' is not below 'tool'")) << r.message;
+  r = load("ft_sensor", "{name: elbow_ft}");
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "declares no sensor 'elbow_ft'") && has(r.message, "wrist_ft")) << r.message;
+  r = load("admittance", "{selected_axes: [1, 0, 0, 0, 0, 0], mass: [0, 1, 1, 1, 1, 1], damping_ratio: [1, 1, 1, 1, "
+                         "1, 1], stiffness: [100, 1, 1, 1, 1, 1]}");
+  EXPECT_FALSE(r.ok);
+  EXPECT_TRUE(has(r.message, "admittance/mass: axis 0: 0 kg: give a mass > 0")) << r.message;
+}
+
 TEST(Chaining, AChainStartsWholeRunsInChainedModeAndStopsWhole) {
   ChainRig rig;
   rig.cycle();

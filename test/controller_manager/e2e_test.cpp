@@ -156,7 +156,7 @@ TEST(ControllerManagerE2E, ServicesAnswerWithoutHardwareAndSwitchAtOnce) {
   ASSERT_TRUE(s.ready) << s.proc.output();
   auto r = s.call(cm_request_t::LIST_TYPES);
   EXPECT_TRUE(r.ok);
-  EXPECT_EQ(r.num_types, 36);
+  EXPECT_EQ(r.num_types, 37);
   r = s.call(cm_request_t::LOAD, {"slide_position", "joint_state_controller"});
   ASSERT_TRUE(r.ok) << r.message;
   r = s.call(cm_request_t::SWITCH, {}, {"slide_position", "joint_state_controller"});

@@ -6,7 +6,7 @@ using namespace lcm_control::cm;
 
 TEST(ControllerManagerRegistry, EveryBuiltinTypeCanBeCreated) {
   const auto& r = builtin_registry();
-  EXPECT_EQ(r.types().size(), 36u);
+  EXPECT_EQ(r.types().size(), 37u);
   for (const auto& t : r.types()) EXPECT_NE(r.create(t), nullptr) << t;
   EXPECT_EQ(r.create("nope/Nope"), nullptr);
 }

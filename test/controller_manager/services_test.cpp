@@ -51,7 +51,7 @@ TEST(ControllerManagerServices, ListTypesAndEmptyNames) {
   rig.publish("controller_manager/request", request(7, cm_request_t::LIST_TYPES));
   rig.publish("controller_manager/request", request(8, cm_request_t::SWITCH, {}, {""}));
   ASSERT_EQ(responses.messages.size(), 2u);
-  EXPECT_EQ(responses.messages[0].num_types, 36);
+  EXPECT_EQ(responses.messages[0].num_types, 37);
   EXPECT_FALSE(responses.messages[1].ok);
   EXPECT_EQ(responses.messages[1].message, "malformed request: start[0] is an empty name");
 }

@@ -1,16 +1,23 @@
-// ROS 2 chaining end to end on our own robot, in lockstep: a JointTrajectoryController whose command_joints are the
-// position references of a pid_controller that commands ur_like's joints in effort (test/robots/ur_like_chained.yaml).
+// ROS 2 chaining end to end on our own robots, in lockstep: a JointTrajectoryController whose command_joints are the
+// position references of a pid_controller that commands ur_like's joints in effort (test/robots/ur_like_chained.yaml):
 // send-trajectory names the joints the chain ends at; the goal SUCCEEDS within the YAML's tolerances, and the same
-// goal through the same JTC commanding effort with the same gains is compared.
+// goal through the same JTC commanding effort with the same gains is compared. And a JTC writing the references of
+// an admittance controller on ft_arm (test/robots/ft_arm.yaml): a 10 N push on the tool (cmctl apply-body-wrench)
+// moves it F/k along the push, and it comes back when the push ends.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <regex>
+#include <map>
 #include <string>
 
+#include "bus/bus.hpp"
+#include "lcm_control/joint_state_t.hpp"
 #include "test/e2e/session.hpp"
 #include "test/support/lcm_test.hpp"
+#include "tools/lib/kinematics.hpp"
+#include "tools/lib/sim_client.hpp"
 
 namespace lcm_control::testing {
 namespace {
@@ -48,6 +55,48 @@ TEST(Chaining, AJointTrajectoryControllerOnPidReferencesReachesItsGoalOnAnEffort
               chained.first, chained.second, direct.first, direct.second);
   EXPECT_LT(chained.first, 0.02) << "within the goal tolerance";
   EXPECT_LT(chained.second, 0.1) << "within the path tolerance";
+}
+
+// The tool's position in the world from the newest joint_states.
+Eigen::Vector3d tool_position(const RobotModel& model, const joint_state_t& s) {
+  std::map<std::string, double> q;
+  for (int k = 0; k < s.num_joints; ++k) q[s.name[size_t(k)]] = s.position[size_t(k)];
+  for (const tools::LinkPose& l : tools::forward_kinematics(model, q))
+    if (l.link == "tool") return l.pose.translation();
+  return Eigen::Vector3d::Constant(NAN);
+}
+
+TEST(Chaining, AnAdmittanceControllerUnderATrajectoryControllerYieldsToAPushAsItsSpring) {
+  RobotSession robot(source("test/robots/ft_arm.urdf"), source("test/robots/ft_arm.yaml"));
+  const RobotModel model = load_robot_model(source("test/robots/ft_arm.urdf"), source("test/robots/ft_arm.yaml"));
+  Bus bus(robot.url(), "");
+  Recorder<joint_state_t> states(bus.lcm(), "joint_states");
+  tools::SimClient sim(bus, "chaining_test");
+  robot.start_controller_manager();
+  ASSERT_NO_FATAL_FAILURE(robot.start_sim({"--mode", "lockstep", "--paused"}));
+  ASSERT_NO_FATAL_FAILURE(robot.spawn({"joint_state_broadcaster", "admittance_controller", "arm_trajectory"}));
+  auto step = [&](int64_t n) {
+    const sim_response_t r = sim.step(n, 60);
+    ASSERT_TRUE(r.ok) << r.message;
+    pump_until(bus.lcm(), [] { return false; }, 0.05);
+  };
+  ASSERT_NO_FATAL_FAILURE(step(200));
+  ASSERT_FALSE(states.messages.empty());
+  const Eigen::Vector3d p0 = tool_position(model, states.messages.back());
+  const double force = 10, stiffness = 200;
+  const sim_response_t pushed = sim.apply_wrench("tool", {force, 0, 0}, {0, 0, 0}, 3.0, 10);
+  ASSERT_TRUE(pushed.ok) << pushed.message;
+  ASSERT_NO_FATAL_FAILURE(step(2500));
+  const Eigen::Vector3d p1 = tool_position(model, states.messages.back());
+  ASSERT_NO_FATAL_FAILURE(step(2000));  // the push ended at 3 s
+  const Eigen::Vector3d p2 = tool_position(model, states.messages.back());
+  const Eigen::Vector3d d = p1 - p0, back = p2 - p0;
+  std::printf("10 N along x: the tool moved (%.5f, %.5f, %.5f) m (F/k = %.3f m); 1.5 s after the push (%.5f, %.5f, "
+              "%.5f) m from where it started\n",
+              d.x(), d.y(), d.z(), force / stiffness, back.x(), back.y(), back.z());
+  EXPECT_NEAR(d.x(), force / stiffness, 0.1 * force / stiffness) << robot.cm_output();
+  EXPECT_LT(std::hypot(d.y(), d.z()), 0.005) << "along the push";
+  EXPECT_LT(back.norm(), 0.002) << "back where it was";
 }
 
 }  // namespace
