@@ -9,8 +9,10 @@
 #include <cmath>
 #include <cstdio>
 #include <regex>
+#include <algorithm>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "bus/bus.hpp"
 #include "lcm_control/joint_state_t.hpp"
@@ -66,7 +68,15 @@ Eigen::Vector3d tool_position(const RobotModel& model, const joint_state_t& s) {
   return Eigen::Vector3d::Constant(NAN);
 }
 
-TEST(Chaining, AnAdmittanceControllerUnderATrajectoryControllerYieldsToAPushAsItsSpring) {
+// One run of the push: the joint positions of every joint_states message, the tool's start and its position during
+// and after the push.
+struct PushRun {
+  std::map<int64_t, std::vector<double>> positions;  // by the message's sim time
+  Eigen::Vector3d p0, p1, p2;
+  std::string output;
+};
+
+void push_run(PushRun& run) {
   RobotSession robot(source("test/robots/ft_arm.urdf"), source("test/robots/ft_arm.yaml"));
   const RobotModel model = load_robot_model(source("test/robots/ft_arm.urdf"), source("test/robots/ft_arm.yaml"));
   Bus bus(robot.url(), "");
@@ -82,21 +92,41 @@ TEST(Chaining, AnAdmittanceControllerUnderATrajectoryControllerYieldsToAPushAsIt
   };
   ASSERT_NO_FATAL_FAILURE(step(200));
   ASSERT_FALSE(states.messages.empty());
-  const Eigen::Vector3d p0 = tool_position(model, states.messages.back());
-  const double force = 10, stiffness = 200;
-  const sim_response_t pushed = sim.apply_wrench("tool", {force, 0, 0}, {0, 0, 0}, 3.0, 10);
+  run.p0 = tool_position(model, states.messages.back());
+  const sim_response_t pushed = sim.apply_wrench("tool", {10, 0, 0}, {0, 0, 0}, 3.0, 10);
   ASSERT_TRUE(pushed.ok) << pushed.message;
   ASSERT_NO_FATAL_FAILURE(step(2500));
-  const Eigen::Vector3d p1 = tool_position(model, states.messages.back());
+  run.p1 = tool_position(model, states.messages.back());
   ASSERT_NO_FATAL_FAILURE(step(2000));  // the push ended at 3 s
-  const Eigen::Vector3d p2 = tool_position(model, states.messages.back());
-  const Eigen::Vector3d d = p1 - p0, back = p2 - p0;
+  run.p2 = tool_position(model, states.messages.back());
+  for (const joint_state_t& m : states.messages) run.positions[m.utime] = m.position;
+  run.output = robot.cm_output();
+}
+
+// Twice: the second run's joint_states equal the first's bit for bit (lockstep, with a chain and a push).
+TEST(Chaining, AnAdmittanceControllerUnderATrajectoryControllerYieldsToAPushAsItsSpring) {
+  PushRun first, second;
+  ASSERT_NO_FATAL_FAILURE(push_run(first));
+  ASSERT_NO_FATAL_FAILURE(push_run(second));
+  const double force = 10, stiffness = 200;
+  const Eigen::Vector3d d = first.p1 - first.p0, back = first.p2 - first.p0;
   std::printf("10 N along x: the tool moved (%.5f, %.5f, %.5f) m (F/k = %.3f m); 1.5 s after the push (%.5f, %.5f, "
               "%.5f) m from where it started\n",
               d.x(), d.y(), d.z(), force / stiffness, back.x(), back.y(), back.z());
-  EXPECT_NEAR(d.x(), force / stiffness, 0.1 * force / stiffness) << robot.cm_output();
+  EXPECT_NEAR(d.x(), force / stiffness, 0.1 * force / stiffness) << first.output;
   EXPECT_LT(std::hypot(d.y(), d.z()), 0.005) << "along the push";
   EXPECT_LT(back.norm(), 0.002) << "back where it was";
+  // The messages of the same sim time (both recorders may have missed one at the ends).
+  size_t n = 0, differing = 0;
+  for (const auto& [utime, q] : first.positions) {
+    const auto other = second.positions.find(utime);
+    if (other == second.positions.end()) continue;
+    ++n;
+    differing += other->second != q;
+  }
+  ASSERT_GT(n, 4000u);
+  std::printf("two runs: %zu joint_states messages compared, %zu differ\n", n, differing);
+  EXPECT_EQ(differing, 0u) << "lockstep repeats a chained run bit for bit";
 }
 
 }  // namespace
