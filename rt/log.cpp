@@ -13,28 +13,6 @@
 
 namespace lcm_control {
 
-std::string escape_controls(std::string_view s, bool keep_newlines) {
-  std::string out;
-  out.reserve(s.size());
-  for (const char ch : s) {
-    const auto c = static_cast<unsigned char>(ch);
-    if (c == '\n' && keep_newlines) {
-      out += "\n  ";  // a continuation, never a line of its own
-    } else if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\r') {
-      out += "\\r";
-    } else if (c == '\t') {
-      out += "\\t";
-    } else if (c < 0x20 || c == 0x7f) {
-      out += fmt::format("\\x{:02x}", c);
-    } else {
-      out += ch;
-    }
-  }
-  return out;
-}
-
 std::string clip(const std::string& s, size_t max_chars) {
   if (s.size() <= max_chars) return escape_controls(s, false);
   return escape_controls(std::string_view(s).substr(0, max_chars), false) + "... (" + std::to_string(s.size()) +

@@ -8,14 +8,13 @@
 #include <string>
 #include <string_view>
 
+#include "rt/escape.hpp"  // every log line goes through escape_controls
+
 namespace lcm_control {
 
 // level: "debug", "info", "warn", "error" (default info, or LCM_CONTROL_LOG_LEVEL).
 void setup_logging(const std::string& program, const std::string& level = "");
 
-// `s` with its control characters written as escapes (\n, \r, \t, \xNN); keep_newlines: a newline stays, followed
-// by two spaces, so it continues the line before and never starts one of its own. Every log line goes through it.
-std::string escape_controls(std::string_view s, bool keep_newlines);
 // `s` escaped (no newline kept) if it has at most max_chars characters, else its start and "... (N bytes)": strings
 // from the bus or a file in log lines and answers.
 std::string clip(const std::string& s, size_t max_chars = 80);

@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "description/xacro/budget.hpp"
+#include "rt/escape.hpp"
 
 namespace lcm_control::xacro {
 
@@ -24,26 +25,8 @@ std::string str_repr(const std::string& s) {
   const bool has_single = s.find('\'') != std::string::npos;
   const bool has_double = s.find('"') != std::string::npos;
   const char quote = has_single && !has_double ? '"' : '\'';
-  std::string out(1, quote);
-  for (char c : s) {
-    const unsigned char u = static_cast<unsigned char>(c);
-    if (c == quote || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\r') {
-      out += "\\r";
-    } else if (c == '\t') {
-      out += "\\t";
-    } else if (u < 0x20 || u == 0x7f) {
-      out += fmt::format("\\x{:02x}", u);
-    } else {
-      out += c;
-    }
-  }
-  out += quote;
-  return out;
+  const char backslashed[] = {quote, '\\', '\0'};
+  return quote + escape_controls(s, false, backslashed) + quote;
 }
 
 bool numeric_equal(const Value& a, const Value& b) {

@@ -12,6 +12,7 @@
 
 #include "bus/bus.hpp"
 #include "lcm_control/visit.hpp"
+#include "rt/escape.hpp"
 
 namespace lcm_control::tools {
 namespace {
@@ -59,18 +60,7 @@ bool plain_yaml(const std::string& s) {
 
 std::string scalar_text(const std::string& s) {
   if (plain_yaml(s)) return s;
-  std::string out = "\"";
-  for (unsigned char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += char(c);
-    } else if (c < 0x20 || c == 0x7f) {
-      out += fmt::format("\\x{:02x}", c);
-    } else {
-      out += char(c);
-    }
-  }
-  return out + "\"";
+  return "\"" + escape_controls(s, false, "\"\\") + "\"";
 }
 std::string scalar_text(double v) { return fmt::format("{}", v); }
 [[maybe_unused]] std::string scalar_text(float v) { return fmt::format("{}", v); }
