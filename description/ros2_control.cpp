@@ -204,6 +204,8 @@ const Ros2Component* HardwareBlock::joint(const std::string& n) const {
   return nullptr;
 }
 
+bool demo_hardware(const std::string& plugin) { return plugin.rfind("ros2_control_demo_", 0) == 0; }
+
 std::optional<HardwareKind> hardware_kind(const std::string& plugin, std::string* rule) {
   const size_t slash = plugin.rfind("::") != std::string::npos ? plugin.rfind("::") + 1 : plugin.rfind('/');
   const std::string cls = slash == std::string::npos ? plugin : plugin.substr(slash + 1);
@@ -220,7 +222,7 @@ std::optional<HardwareKind> hardware_kind(const std::string& plugin, std::string
   if (cls == "GenericSystem") return said(HardwareKind::Mock, "mock hardware (class GenericSystem)");
   // ros2_control_demos' example hardware (ros2_control_demo_example_N/RRBotSystem...): stand-ins whose state follows
   // the command, played as mock hardware.
-  if (pkg.rfind("ros2_control_demo_", 0) == 0)
+  if (demo_hardware(plugin))
     return said(HardwareKind::Mock, fmt::format("ros2_control_demos' example hardware ({}), mock-like", pkg));
   return std::nullopt;
 }

@@ -89,6 +89,9 @@ struct Ros2ControlPlugin {
 // mock_components', fake_components'), or ros2_control_demos' mock-like example hardware; nullopt for one that drives
 // real hardware. `rule`, when given, receives which of these matched, for the note that says so.
 std::optional<HardwareKind> hardware_kind(const std::string& plugin, std::string* rule = nullptr);
+// ros2_control_demos' example hardware (ros2_control_demo_example_N/...): mock-like stand-ins that integrate their
+// velocity commands, played as mock hardware with calculate_dynamics.
+bool demo_hardware(const std::string& plugin);
 
 // The <gpio> interfaces of every block, named "<gpio>/<interface>" as the hardware loop carries them: the state
 // interfaces with their initial_value (0 when none; a bool's "true" 1), and the command interfaces.

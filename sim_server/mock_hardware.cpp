@@ -82,8 +82,7 @@ MockHardware::MockHardware(const RobotModel& model, const InitialPositions& init
     for (size_t k = 0; k < n_offered; ++k) a.offered[lcm_control::wire_mode(t.interfaces[k])] = true;
     a.wire_mode = lcm_control::wire_mode(t.interfaces.front());
     if (const HardwareBlock* b = block_of(model, t.joint)) {
-      // ros2_control_demos' hardware integrates a velocity command into the position, as calculate_dynamics does.
-      a.calculate_dynamics = b->plugin.rfind("ros2_control_demo_", 0) == 0;
+      a.calculate_dynamics = demo_hardware(b->plugin);
       if (const std::string* v = hardware_param(*b, "calculate_dynamics")) a.calculate_dynamics = parse_bool(*v);
       if (const std::string* v = hardware_param(*b, "position_state_following_offset"))
         if (!parse_double(*v, a.following_offset))

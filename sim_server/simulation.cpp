@@ -97,12 +97,12 @@ std::string Simulation::apply_wrench(const std::string& link, const Eigen::Vecto
     for (const Link& l : model_.links) links += (links.empty() ? "" : ", ") + l.name;
     return fmt::format("no link '{}' in {} (its links: {})", link, model_.urdf_path, links);
   }
-  wrenches_.reserve(model_.links.size());
-  wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(), [&](const Wrench& w) { return w.link == link; }),
+  wrenches_.reserve(model_.links.size());  // one per link at most: steps never grow it
+  wrenches_.erase(std::remove_if(wrenches_.begin(), wrenches_.end(), [&](const Wrench& w) { return w.index == index; }),
                   wrenches_.end());
   if (duration_s == 0) return "";
   const int64_t until = duration_s < 0 ? -1 : steps_ + std::max<int64_t>(1, std::llround(duration_s * control_hz_));
-  wrenches_.push_back({link, index, force, torque, until});
+  wrenches_.push_back({index, force, torque, until});
   return "";
 }
 

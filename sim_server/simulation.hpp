@@ -113,7 +113,6 @@ class Simulation {
   int substeps_;
   int64_t steps_ = 0;
   struct Wrench {
-    std::string link;
     int index = -1;  // Bullet link
     Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
     int64_t until_step = -1;  // the control step it ends at (-1: never)

@@ -44,7 +44,7 @@ Eigen::Matrix3d eig(const KDL::Rotation& r) {
 // joint turns about its axis at its origin); `moving` gets the moving joints' names, base to tip. Throws naming the
 // key and the links when `tip` is not below `base`.
 KDL::Chain chain_between(const RobotModel& m, const std::string& base, const std::string& tip, const Params& p,
-                         const std::string& key, std::vector<std::string>* moving) {
+                         const std::string& key, std::vector<std::string>& moving) {
   std::vector<const Joint*> up;
   for (std::string link = tip; link != base;) {
     const Link* l = m.link(link);
@@ -66,7 +66,7 @@ KDL::Chain chain_between(const RobotModel& m, const std::string& base, const std
       joint = KDL::Joint(j.name, origin.p, origin.M * kdl(j.axis), KDL::Joint::RotAxis);
     else if (j.type == JointType::Prismatic)
       joint = KDL::Joint(j.name, origin.p, origin.M * kdl(j.axis), KDL::Joint::TransAxis);
-    if (j.type != JointType::Fixed && moving) moving->push_back(j.name);
+    if (j.type != JointType::Fixed) moving.push_back(j.name);
     chain.addSegment(KDL::Segment(j.child_link, joint, origin));
   }
   return chain;
@@ -119,7 +119,7 @@ class AdmittanceController : public Controller {
                                       p.where(), kin["plugin_name"].as<std::string>()));
     lambda_ = kin["alpha"] ? kin["alpha"].as<double>() : 0.0005;
     std::vector<std::string> moving;
-    chain_ = chain_between(m, base, tip, p, "kinematics", &moving);
+    chain_ = chain_between(m, base, tip, p, "kinematics", moving);
     if (moving != names_)
       throw p.error("joints", fmt::format("[{}]: the moving joints from '{}' to '{}' are [{}], in that order",
                                           fmt::join(names_, ", "), base, tip, fmt::join(moving, ", ")));
@@ -134,7 +134,15 @@ class AdmittanceController : public Controller {
     if (!m.link(frame))
       throw p.error("ft_sensor", fmt::format("sensor '{}' reports in frame '{}', which is no link of {}",
                                              sensor_->name, frame, m.urdf_path));
-    sensor_chain_ = chain_between(m, base, frame, p, "ft_sensor", nullptr);
+    // The sensor sits on the tool's chain (a wrist sensor): its frame is the end of one of the chain's segments,
+    // so one forward kinematics serves both.
+    sensor_segment_ = frame == base ? 0 : -1;
+    for (unsigned k = 0; k < chain_.getNrOfSegments() && sensor_segment_ < 0; ++k)
+      if (chain_.getSegment(k).getName() == frame) sensor_segment_ = int(k) + 1;
+    if (sensor_segment_ < 0)
+      throw p.error("ft_sensor", fmt::format("sensor '{}' reports in frame '{}', which is not on the chain from '{}' "
+                                             "to '{}'",
+                                             sensor_->name, frame, base, tip));
     filter_ = ft["filter_coefficient"] ? ft["filter_coefficient"].as<double>() : 1.0;
     if (!(filter_ > 0 && filter_ <= 1)) throw p.error("ft_sensor", "filter_coefficient: give a value in (0, 1]");
     if (const YAML::Node g = p.node("gravity_compensation"); g && g["CoG"]) {
@@ -163,23 +171,11 @@ class AdmittanceController : public Controller {
     }
     const size_t n = names_.size();
     fk_ = std::make_unique<KDL::ChainFkSolverPos_recursive>(chain_);
-    sensor_fk_ = std::make_unique<KDL::ChainFkSolverPos_recursive>(sensor_chain_);
     jac_solver_ = std::make_unique<KDL::ChainJntToJacSolver>(chain_);
     q_ = KDL::JntArray(n);
-    q_sensor_ = KDL::JntArray(sensor_chain_.getNrOfJoints());
+    q_measured_ = KDL::JntArray(n);
     jac_ = KDL::Jacobian(n);
     j_.resize(6, Eigen::Index(n));
-    sensor_joint_.clear();
-    for (size_t s = 0; s < sensor_chain_.getNrOfSegments(); ++s) {
-      const KDL::Joint& j = sensor_chain_.getSegment(static_cast<unsigned>(s)).getJoint();
-      if (j.getType() == KDL::Joint::Fixed) continue;
-      const auto at = std::find(names_.begin(), names_.end(), j.getName());
-      if (at == names_.end())
-        throw p.error("ft_sensor", fmt::format("the sensor's frame '{}' moves with joint '{}', which is not one of "
-                                               "`joints`",
-                                               frame, j.getName()));
-      sensor_joint_.push_back(static_cast<size_t>(at - names_.begin()));
-    }
     reference_.assign(n, 0.0);
     // Not chained: joint position references on <name>/command (ROS 2's ~/joint_references), one per joint.
     ctx.take_commands(true, n, [this](const double* v) {
@@ -204,9 +200,9 @@ class AdmittanceController : public Controller {
     for (size_t k = 0; k < n; ++k)
       if (chained_mode() && std::isfinite(refs_[k]->command)) reference_[k] = refs_[k]->command;
     // The external wrench in the base frame, about the sensor's origin.
-    for (size_t k = 0; k < sensor_joint_.size(); ++k) q_sensor_(static_cast<unsigned>(k)) = joints_[sensor_joint_[k]]->position;
+    for (size_t k = 0; k < n; ++k) q_measured_(static_cast<unsigned>(k)) = joints_[k]->position;
     KDL::Frame sensor_pose;
-    sensor_fk_->JntToCart(q_sensor_, sensor_pose);
+    fk_->JntToCart(q_measured_, sensor_pose, sensor_segment_);
     const Eigen::Matrix3d r = eig(sensor_pose.M);
     Eigen::Matrix<double, 6, 1> w;
     if (!sensor_->present) return hold();
@@ -268,13 +264,13 @@ class AdmittanceController : public Controller {
   std::vector<JointData*> joints_, refs_;
   std::vector<double> reference_;
   const SensorData* sensor_ = nullptr;
-  KDL::Chain chain_, sensor_chain_;
-  std::unique_ptr<KDL::ChainFkSolverPos_recursive> fk_, sensor_fk_;
+  KDL::Chain chain_;
+  std::unique_ptr<KDL::ChainFkSolverPos_recursive> fk_;
   std::unique_ptr<KDL::ChainJntToJacSolver> jac_solver_;
-  KDL::JntArray q_, q_sensor_;
+  KDL::JntArray q_, q_measured_;
   KDL::Jacobian jac_;
   Eigen::Matrix<double, 6, Eigen::Dynamic> j_;  // jac_ with the free rotations' rows zeroed
-  std::vector<size_t> sensor_joint_;  // the sensor chain's moving joints, as indices into joints_
+  int sensor_segment_ = 0;  // the chain's segments up to the sensor's frame
   double lambda_ = 0.0005, filter_ = 1.0, weight_ = 0;
   Eigen::Vector3d cog_ = Eigen::Vector3d::Zero();
   std::array<bool, 6> selected_{};

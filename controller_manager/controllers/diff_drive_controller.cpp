@@ -194,14 +194,10 @@ class DiffDriveController : public DriveController {
   void stopping(const Time&) override { brake(); }
 
  private:
-  static double mean_position(const std::vector<JointData*>& js) {
+  // The mean of the wheels' `field` (JointData::position or ::velocity).
+  static double mean(const std::vector<JointData*>& js, double JointData::*field) {
     double s = 0;
-    for (const JointData* j : js) s += j->position;
-    return s / static_cast<double>(js.size());
-  }
-  static double mean_velocity(const std::vector<JointData*>& js) {
-    double s = 0;
-    for (const JointData* j : js) s += j->velocity;
+    for (const JointData* j : js) s += j->*field;
     return s / static_cast<double>(js.size());
   }
   void brake() {
@@ -209,8 +205,8 @@ class DiffDriveController : public DriveController {
     for (JointData* j : right_) j->command = 0;
   }
   void seed_wheels() {
-    left_prev_ = mean_position(left_);
-    right_prev_ = mean_position(right_);
+    left_prev_ = mean(left_, &JointData::position);
+    right_prev_ = mean(right_, &JointData::position);
     linear_mean_.clear();
     angular_mean_.clear();
   }
@@ -220,13 +216,13 @@ class DiffDriveController : public DriveController {
   void integrate(double v_cmd, double w_cmd, double period) {
     double ds = v_cmd * period, dth = w_cmd * period;
     if (!open_loop_) {
-      const double l = mean_position(left_), r = mean_position(right_);
+      const double l = mean(left_, &JointData::position), r = mean(right_, &JointData::position);
       double dl = (l - left_prev_) * left_radius_, dr = (r - right_prev_) * right_radius_;
       left_prev_ = l;
       right_prev_ = r;
       if (!position_feedback_) {
-        dl = mean_velocity(left_) * period * left_radius_;
-        dr = mean_velocity(right_) * period * right_radius_;
+        dl = mean(left_, &JointData::velocity) * period * left_radius_;
+        dr = mean(right_, &JointData::velocity) * period * right_radius_;
       }
       ds = (dl + dr) / 2;
       dth = (dr - dl) / separation_;

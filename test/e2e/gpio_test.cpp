@@ -93,8 +93,7 @@ namespace {
 // ros2_control_demos' example 10 (../shared/ros2_robots/demo_gpio) with its own xacro and YAML, as its launch file
 // runs it: its GPIO controller's command on an output reads back on the state interface.
 TEST(Gpio, Ros2ControlDemosExample10RunsItsGpioController) {
-  const std::string dir = ros2_robots_dir();
-  if (dir.empty()) GTEST_SKIP() << "no ../shared/ros2_robots (set LCM_CONTROL_ROS2_ROBOTS to the folder)";
+  NEED_ROS2_ROBOTS(dir);
   const std::string pkg = dir + "/demo_gpio/pkgs/ros2_control_demo_example_10";
   LockstepSession robot(pkg + "/urdf/rrbot.urdf.xacro", pkg + "/config/rrbot_controllers.yaml",
                         {"--package-path", dir + "/demo_gpio/pkgs"});

@@ -19,10 +19,6 @@
 namespace lcm_control::testing {
 namespace {
 
-#define NEED_ROS2_ROBOTS(dir)                \
-  const std::string dir = ros2_robots_dir(); \
-  if (dir.empty()) GTEST_SKIP() << "no ../shared/ros2_robots (set LCM_CONTROL_ROS2_ROBOTS to the folder)"
-
 // A demo's robot: its package's xacro and its config/ YAML, with its pkgs/ on the package path.
 MobileSession demo(const std::string& dir, const std::string& folder, const std::string& package,
                    const std::string& xacro, const std::string& yaml, std::vector<std::string> controllers,

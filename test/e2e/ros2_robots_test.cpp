@@ -23,10 +23,6 @@ using namespace lcm_control;
 
 namespace {
 
-#define NEED_ROS2_ROBOTS(dir)                                                                              \
-  const std::string dir = lt::ros2_robots_dir();                                                           \
-  if (dir.empty()) GTEST_SKIP() << "no ../shared/ros2_robots (set LCM_CONTROL_ROS2_ROBOTS to the folder)"
-
 double position_of(const joint_state_t& s, const std::string& joint) {
   for (int k = 0; k < s.num_joints; ++k)
     if (s.name[k] == joint) return s.position[k];

@@ -15,10 +15,6 @@ namespace {
 
 using namespace testing;
 
-#define NEED_ROS2_ROBOTS(dir)                  \
-  const std::string dir = lcm_control::testing::ros2_robots_dir(); \
-  if (dir.empty()) GTEST_SKIP() << "no ../shared/ros2_robots (set LCM_CONTROL_ROS2_ROBOTS to the folder)"
-
 struct Follower {
   std::string joint;
   double multiplier, offset;

@@ -72,6 +72,10 @@ std::string source(const std::string& relative);
 // The real ROS 2 robot packages (../shared/ros2_robots beside the checkout, or $LCM_CONTROL_ROS2_ROBOTS), canonical;
 // "" when absent (the tests that need them skip).
 std::string ros2_robots_dir();
+// In a test: `dir` is ros2_robots_dir(), and the test is skipped, saying why, when there is none.
+#define NEED_ROS2_ROBOTS(dir)                                      \
+  const std::string dir = ::lcm_control::testing::ros2_robots_dir(); \
+  if (dir.empty()) GTEST_SKIP() << "no ../shared/ros2_robots (set LCM_CONTROL_ROS2_ROBOTS to the folder)"
 // Resident memory of a process (VmRSS), kB; -1 when it is gone.
 long rss_kb(pid_t pid);
 // Its high-water mark since its last exec (VmHWM), kB; -1 when it is gone.

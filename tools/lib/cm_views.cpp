@@ -104,10 +104,10 @@ std::string hardware_status_text(const cm_response_t& list) {
 
 namespace {
 // The controller whose reference interface `joint` is ("<controller>/<dof>", ROS 2 chaining), or nullptr.
-const controller_info_t* exporter_of(const cm_response_t& list, const std::string& joint) {
+const controller_info_t* exporter_of(const std::vector<controller_info_t>& listed, const std::string& joint) {
   const size_t slash = joint.find('/');
   if (slash == std::string::npos) return nullptr;
-  for (const auto& c : list.controllers)
+  for (const auto& c : listed)
     if (c.name == joint.substr(0, slash)) return &c;
   return nullptr;
 }
@@ -116,12 +116,9 @@ const controller_info_t* exporter_of(const cm_response_t& list, const std::strin
 std::string joint_behind(const std::vector<controller_info_t>& listed, const std::string& name) {
   std::string at = name;
   for (size_t hops = 0; hops <= listed.size(); ++hops) {
-    const size_t slash = at.find('/');
-    if (slash == std::string::npos) return at;
-    const auto exporter = std::find_if(listed.begin(), listed.end(),
-                                       [&](const controller_info_t& c) { return c.name == at.substr(0, slash); });
-    if (exporter == listed.end()) return at;
-    at = at.substr(slash + 1);
+    const controller_info_t* exporter = exporter_of(listed, at);
+    if (!exporter) return at;
+    at = at.substr(exporter->name.size() + 1);
   }
   return at;
 }
@@ -142,7 +139,7 @@ std::string controller_chains_text(const cm_response_t& list) {
     out += fmt::format("{} ({}, {})\n", ctl.name, ctl.type, list.ros2 ? ros2_state(ctl.state) : ctl.state);
     std::set<std::string> components;
     for (const auto& j : ctl.joints)
-      if (const controller_info_t* to = exporter_of(list, j)) {
+      if (const controller_info_t* to = exporter_of(list.controllers, j)) {
         out += fmt::format("  writes {}/{} -> {} (its reference interface)\n", j, quantity_in(ctl.hardware_interface),
                            to->name);
         ++chained;
@@ -170,7 +167,7 @@ std::string controller_chains_dot(const cm_response_t& list) {
     out += fmt::format("  \"{}\" [label=\"{}\\n{}\"];\n", ctl.name, ctl.name,
                        list.ros2 ? ros2_state(ctl.state) : ctl.state);
     for (const auto& j : ctl.joints)
-      if (const controller_info_t* to = exporter_of(list, j))
+      if (const controller_info_t* to = exporter_of(list.controllers, j))
         out += fmt::format("  \"{}\" -> \"{}\" [label=\"{}/{}\"];\n", ctl.name, to->name, j,
                            quantity_in(ctl.hardware_interface));
     for (const auto& c : list.components) {

@@ -118,7 +118,7 @@ export class RobotView {
     let distance = fitDistance(radius, this.camera.fov, this.camera.aspect);
     this.controls.target.copy(sphere.center);
     const place = () => {
-      this.camera.position.copy(sphere.center).addScaledVector(direction, distance);
+      this.camera.position.copy(this.controls.target).addScaledVector(direction, distance);
       this.camera.near = distance / 100;
       this.camera.far = distance * 100;
       this.camera.updateProjectionMatrix();
@@ -136,7 +136,6 @@ export class RobotView {
         // Too close (a near corner grows faster than the rest): halfway back to the last framing that showed all.
         distance = (distance + whole.distance) / 2;
         this.controls.target.lerp(whole.target, 0.5);
-        sphere.center.copy(this.controls.target);
         place();
         continue;
       }
@@ -150,14 +149,12 @@ export class RobotView {
       const centred = Math.abs(mx) < 0.02 && Math.abs(my) < 0.02;
       if (centred && fill > 0.86 && fill < 0.92) break;
       this.controls.target.addScaledVector(right, mx * halfW).addScaledVector(up, my * halfH);
-      sphere.center.copy(this.controls.target);
       distance *= fill / 0.9;
       place();
     }
     if (whole && !silhouette().inside) {
       distance = whole.distance;
       this.controls.target.copy(whole.target);
-      sphere.center.copy(whole.target);
       place();
     }
     this.controls.update();
