@@ -22,8 +22,10 @@
 #include "bench/pingpong.hpp"
 #include "bus/bus.hpp"
 #include "controller_manager/manager.hpp"
-#include "controller_manager/registry.hpp"
+#include "controller_interface/registry.hpp"
 #include "description/robot_model.hpp"
+#include "description/load.hpp"
+#include "controllers/builtin.hpp"
 
 namespace {
 

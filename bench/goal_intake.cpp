@@ -25,13 +25,15 @@
 
 #include "bench/pingpong.hpp"
 #include "bus/bus.hpp"
-#include "controller_manager/controllers/trajectory.hpp"
+#include "controllers/trajectory.hpp"
 #include "controller_manager/manager.hpp"
-#include "controller_manager/registry.hpp"
+#include "controller_interface/registry.hpp"
 #include "description/robot_model.hpp"
+#include "description/load.hpp"
 #include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 #include "rt/clock.hpp"
+#include "controllers/builtin.hpp"
 
 namespace {
 

@@ -22,6 +22,7 @@
 #include "bus/hardware_wire.hpp"
 #include "bus/messages.hpp"
 #include "description/robot_model.hpp"
+#include "description/load.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "lcm_control/sim_clock_t.hpp"

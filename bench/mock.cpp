@@ -17,6 +17,7 @@
 #include "bench/pingpong.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "description/robot_model.hpp"
+#include "description/load.hpp"
 #include "sim_server/simulation.hpp"
 
 namespace {

@@ -25,6 +25,7 @@
 
 #include "bench/pingpong.hpp"
 #include "description/robot_model.hpp"
+#include "description/load.hpp"
 #include "sim_server/simulation.hpp"
 
 namespace {

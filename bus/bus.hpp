@@ -5,6 +5,7 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "bus/bus_error.hpp"
 #include "bus/lcm_socket.hpp"
 #include "bus/shm_link.hpp"
 #include "bus/wire_check.hpp"
@@ -41,11 +42,6 @@ inline constexpr const char* kBasePose = "sim_server/base_pose";
 // "<owner>/gains/set" and "<owner>/gains".
 std::string gains_set_channel(const std::string& owner);
 std::string gains_channel(const std::string& owner);
-
-class BusError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 // The URL of a robot's hardware loop (hardware/state, hardware/command) for `--hardware-url VALUE`:
 // "" or "shared" = the shared bus itself; "auto" = the shared udpm URL with its port moved to one the namespace picks

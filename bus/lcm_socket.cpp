@@ -19,7 +19,8 @@
 #include <cstring>
 #include <set>
 
-#include "bus/bus.hpp"
+#include "bus/bus_error.hpp"
+#include "rt/clock.hpp"
 #include "bus/wire_check.hpp"
 #include "rt/log.hpp"
 

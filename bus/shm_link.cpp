@@ -22,7 +22,7 @@
 #include <cstring>
 #include <ctime>
 
-#include "bus/bus.hpp"
+#include "bus/bus_error.hpp"
 #include "rt/clock.hpp"
 
 namespace lcm_control {

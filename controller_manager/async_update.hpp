@@ -12,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-#include "controller_manager/controller.hpp"
+#include "controller_interface/controller.hpp"
 #include "controller_manager/hardware.hpp"
 
 namespace lcm_control::cm {

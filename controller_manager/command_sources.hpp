@@ -21,7 +21,8 @@
 #include "bus/bus.hpp"
 #include "rt/log.hpp"
 #include "control/expression.hpp"
-#include "controller_manager/controller.hpp"
+#include "controller_interface/controller.hpp"
+#include "controller_manager/loop.hpp"
 #include "controller_manager/reply.hpp"
 #include "bus/endpoints.hpp"
 #include "lcm_control/cm_response_t.hpp"
@@ -32,9 +33,8 @@
 namespace lcm_control::cm {
 
 struct ControllerSlot;
-class Loop;
 
-class CommandSources {
+class CommandSources : public BeforeUpdate {
  public:
   CommandSources(Loop& loop, Bus& bus);
   ~CommandSources();
@@ -44,7 +44,7 @@ class CommandSources {
   Reply handle(const command_source_t& req);
 
   // Loop path: deliver the ticks due at `now` (after restarts, before updates).
-  void before_update(const Time& now);
+  void before_update(const Time& now) override;
   // After the cycle: publish the values delivered in it on `<controller>/command`.
   void after_cycle();
   // Between cycles: answer the requests of ended sources and log them.

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "bus/hardware_wire.hpp"
-#include "controller_manager/controller.hpp"
+#include "controller_interface/controller.hpp"
 
 namespace lcm_control::cm {
 
@@ -226,9 +226,9 @@ void Hardware::read(const hardware_state_t& s) {
     }
 }
 
-void Hardware::enforce_soft_limits(double dt) {
+void Hardware::enforce_soft_limits(double dt, const Controller* owner) {
   for (JointData& j : joints_) {
-    if (!j.owner || !j.urdf || !j.urdf->soft) continue;
+    if (!j.owner || !j.urdf || !j.urdf->soft || (owner && j.owner != owner)) continue;
     const JointLimits l = j.urdf->limits();
     const SoftLimits& s = *j.urdf->soft;
     switch (j.owned_as) {

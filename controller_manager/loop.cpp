@@ -4,7 +4,6 @@
 #include <utility>
 
 #include "bus/bus.hpp"
-#include "controller_manager/command_sources.hpp"
 
 namespace lcm_control::cm {
 
@@ -139,6 +138,15 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
     if (!pending_) return Outcome::Repeated;
     apply_switch();  // a paused hardware repeats its step: switching must not wait for an update
     last_switch_step_ = step_;
+    // The controllers it started answer this step too, as if started before it came (so the step a lockstep run
+    // starts its controllers at does not depend on whether the first state or the spawner came first).
+    const double nominal = st.period_us * 1e-6;
+    int64_t mark = -1;
+    for (ControllerSlot* s : order_)
+      if (s->running && s->last_update_utime < 0) {
+        update(*s, st, nominal, mark);
+        hw_.enforce_soft_limits(nominal, s->controller.get());
+      }
     hw_.write(st, cmd);
     return Outcome::Answered;
   } else if (st.step < step_ || st.utime < now_.utime) {
@@ -167,26 +175,9 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
       else if (s->running) s->controller->restart(now_);
     }
   }
-  if (sources_) sources_->before_update(now_);
+  if (before_update_) before_update_->before_update(now_);
   int64_t mark = -1;  // one clock read between two updates times both
-  for (ControllerSlot* s : order_) {
-    double own_period = period;
-    if (s->async) {
-      const bool is_due = s->running && due(*s, st, period, &own_period);
-      update_async(*s, is_due, own_period, st.lockstep);
-      continue;
-    }
-    if (!s->running || !due(*s, st, period, &own_period)) continue;
-    s->last_update_utime = now_.utime;
-    if (mark < 0) mark = monotonic_us();
-    if (s->last_update_mono >= 0) s->period.add(static_cast<double>(mark - s->last_update_mono));
-    s->last_update_mono = mark;
-    s->controller->update(now_, own_period);
-    if (s->controller->failure_) fail_controller(*s);
-    const int64_t done = monotonic_us();
-    s->exec.add(static_cast<double>(done - mark));
-    mark = done;
-  }
+  for (ControllerSlot* s : order_) update(*s, st, period, mark);
   if (pending_) {
     apply_switch();
     last_switch_step_ = step_;
@@ -198,6 +189,25 @@ Loop::Outcome Loop::cycle(const hardware_state_t& st, hardware_command_t& cmd) {
   const int64_t t1 = monotonic_us();
   stats_.add_cycle(t0, t1 - t0, st.period_us > 0 && t1 - t0 > st.period_us);
   return Outcome::Answered;
+}
+
+void Loop::update(ControllerSlot& s, const hardware_state_t& st, double period, int64_t& mark) {
+  double own_period = period;
+  if (s.async) {
+    const bool is_due = s.running && due(s, st, period, &own_period);
+    update_async(s, is_due, own_period, st.lockstep);
+    return;
+  }
+  if (!s.running || !due(s, st, period, &own_period)) return;
+  s.last_update_utime = now_.utime;
+  if (mark < 0) mark = monotonic_us();
+  if (s.last_update_mono >= 0) s.period.add(static_cast<double>(mark - s.last_update_mono));
+  s.last_update_mono = mark;
+  s.controller->update(now_, own_period);
+  if (s.controller->failure_) fail_controller(s);
+  const int64_t done = monotonic_us();
+  s.exec.add(static_cast<double>(done - mark));
+  mark = done;
 }
 
 bool Loop::due(ControllerSlot& s, const hardware_state_t& st, double period, double* own_period) {

@@ -6,7 +6,8 @@
 // A new session, time or step going backwards (a reset), an e-stop release or
 // a resume after silence restarts the running controllers from the current
 // state. The same step again (a lockstep republish, a paused hardware) updates
-// nothing, but a pending switch is applied on it and the command rewritten.
+// nothing, but a pending switch is applied on it, the controllers it started
+// are updated on it, and the command rewritten.
 // Command sources deliver their due ticks after restarts, before the updates.
 // A hardware component the state reports in error (hardware_state_t::error_component) that is inactive or active is
 // set unconfigured before the updates, and every running controller using it is stopped (stopped_by_error) in that
@@ -31,14 +32,20 @@
 #include <vector>
 
 #include "controller_manager/async_update.hpp"
-#include "controller_manager/controller.hpp"
+#include "controller_interface/controller.hpp"
 #include "controller_manager/hardware.hpp"
 #include "rt/loop_stats.hpp"
 #include "rt/outbox.hpp"
 
 namespace lcm_control::cm {
 
-class CommandSources;
+// What the loop runs in each cycle after restarts and before the updates, owned by whoever sets it (the command
+// sources deliver their due ticks there). Must not allocate, log or block.
+class BeforeUpdate {
+ public:
+  virtual ~BeforeUpdate() = default;
+  virtual void before_update(const Time& now) = 0;
+};
 
 struct ControllerSlot {
   std::string name, type;
@@ -112,7 +119,7 @@ class Loop {
   // After silence: the next cycle restarts the running controllers.
   void restart_next_cycle() { restart_ = true; }
   void stop_all();  // stopping() on every running controller, claims released
-  void set_command_sources(CommandSources* sources) { sources_ = sources; }
+  void set_before_update(BeforeUpdate* hook) { before_update_ = hook; }
 
   const Time& now() const { return now_; }
   int64_t step() const { return step_; }
@@ -129,6 +136,8 @@ class Loop {
   void fail_controller(ControllerSlot& s);
   // Stops every running controller that writes `s`'s reference interfaces, and theirs in turn, naming `cause`.
   void stop_writers_of(const ControllerSlot& s, const ControllerSlot& cause);
+  // Its update (when running and due) with the cycle's period; `mark`: the clock read that ended the last update.
+  void update(ControllerSlot& s, const hardware_state_t& st, double period, int64_t& mark);
   // Its update_rate: whether it is due in this cycle, and then the period since its last update.
   bool due(ControllerSlot& s, const hardware_state_t& st, double period, double* own_period);
   void update_async(ControllerSlot& s, bool due, double own_period, bool here);
@@ -141,7 +150,7 @@ class Loop {
   void chain_modes();
 
   Hardware& hw_;
-  CommandSources* sources_ = nullptr;
+  BeforeUpdate* before_update_ = nullptr;
   std::vector<std::unique_ptr<ControllerSlot>> slots_;
   std::vector<ControllerSlot*> order_;  // reorder()
   std::vector<ControllerSlot*> pending_stop_, pending_start_;

@@ -15,6 +15,8 @@
 #include "controller_manager/manager.hpp"
 #include "controller_manager/plugins.hpp"
 #include "controller_manager/services.hpp"
+#include "controllers/builtin.hpp"
+#include "description/load.hpp"
 
 int main(int argc, char** argv) {
   using namespace lcm_control;

@@ -14,7 +14,8 @@
 #include "description/control_config.hpp"
 #include "description/model_check.hpp"
 #include "rt/scheduling.hpp"
-#include "controller_manager/claims.hpp"
+#include "controller_interface/claims.hpp"
+#include "controller_manager/context.hpp"
 #include "controller_manager/gains.hpp"
 #include "controller_manager/ros_catalog.hpp"
 #include "controller_manager/switch_plan.hpp"
@@ -54,6 +55,11 @@ void describe_command(const ControllerTypeInfo* info, const Controller& controll
   }
   if (info) out.publishes = info->publishes;
   out.num_publishes = static_cast<int32_t>(out.publishes.size());
+  out.chainable = info && info->chainable;
+  out.chained_mode = controller.chained_mode();
+  for (const JointData* r : controller.exported())
+    for (const Interface x : r->offered) out.references.push_back(r->name + "/" + quantity_of(x));
+  out.num_references = static_cast<int32_t>(out.references.size());
 }
 }  // namespace
 
@@ -73,7 +79,7 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       command_pub_(hw_endpoints_.publisher<hardware_command_t>(bus.channel(channels::kHardwareCommand))),
       stats_pub_(endpoints_.publisher<loop_stats_t>(bus.channel(channels::kCmStatistics))),
       activity_pub_(endpoints_.publisher<activity_t>(bus.channel(channels::kCmActivity))) {
-  loop_.set_command_sources(&sources_);
+  loop_.set_before_update(&sources_);
   configured_ = index_of(model_.controllers);
   hw_endpoints_.subscribe<hardware_state_t>(
       bus.channel(channels::kHardwareState),
@@ -253,7 +259,7 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
   if (!controller) {
     c.outcome = registry_.misspelling(spec.type) ? ControllerCheck::Refused : ControllerCheck::NotImplemented;
     c.message = fmt::format("{}: {}/type: {}", model_.config_file_of(yaml_key(spec.name) + "/type"), yaml_key(spec.name),
-                            registry_.unknown_type_message(spec.type));
+                            unknown_type_message(registry_, spec.type));
     return c;
   }
   Params params(spec.params, fmt::format("{}: {}", spec.file, yaml_key(spec.name)));
@@ -268,7 +274,8 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
     }
     if (c.is_async) own = std::make_unique<Hardware>(model_);
   }
-  ControllerContext ctx(spec.name, spec.type, params, model_, own ? *own : hw_, bus_, endpoints);
+  HardwareContext ctx(spec.name, spec.type, params, model_, own ? *own : hw_, bus_, endpoints,
+                      registry_.info(spec.type));
   ctx.self() = controller.get();
   ctx.set_checking(checking);
   try {
@@ -281,6 +288,15 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
     c.outcome = ControllerCheck::Refused;
     c.message = e.what();
     return c;
+  }
+  if (const ControllerTypeInfo* info = registry_.info(spec.type)) {
+    if (const std::string why = undeclared_claim(*info, spec.params, controller->claim()); !why.empty()) {
+      c.outcome = ControllerCheck::Refused;
+      c.message = fmt::format("{}: type '{}' does not do what it declares: {} (its ControllerTypeInfo::claims is "
+                              "to say it)",
+                              params.where(), spec.type, why);
+      return c;
+    }
   }
   c.notes = std::move(ctx.notes);
   if (params.has("plugin")) params.node("plugin");  // the controller library, loaded before (plugins.hpp)
@@ -595,6 +611,12 @@ void ControllerManager::finish_reload(ReadConfig read) {
   changed();
   done({true, fmt::format("reloaded {}: {} controller(s) configured ({}); unloaded [{}]", model_.config_path,
                           model_.controllers.size(), names_configured(), join_some(reload_unloaded_, 20))});
+}
+
+std::string ControllerManager::type_doc(const std::string& type) const {
+  const ControllerTypeInfo* info = registry_.info(type);
+  if (!info || info->doc.empty()) return "";
+  return fmt::format("{}{}: {}", to_string(info->ros), info->chainable ? ", chainable" : "", info->doc);
 }
 
 std::vector<controller_info_t> ControllerManager::list() const {

@@ -22,7 +22,7 @@
 #include "controller_manager/hardware.hpp"
 #include "controller_manager/hardware_status.hpp"
 #include "controller_manager/loop.hpp"
-#include "controller_manager/registry.hpp"
+#include "controller_interface/registry.hpp"
 #include "controller_manager/reply.hpp"
 #include "lcm_control/activity_t.hpp"
 #include "lcm_control/controller_info_t.hpp"
@@ -30,6 +30,7 @@
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/joint_interfaces_t.hpp"
 #include "lcm_control/loop_stats_t.hpp"
+#include "controllers/builtin.hpp"
 
 namespace lcm_control::cm {
 
@@ -109,6 +110,8 @@ class ControllerManager {
   // Tries every configured controller without loading it (doctor, start-up).
   std::vector<ControllerCheck> check_configured();
   std::vector<std::string> types() const { return registry_.types(); }
+  // Its declaration in one line: "ROS 2, chainable: <doc>" ("" for a type that declares nothing).
+  std::string type_doc(const std::string& type) const;
   bool busy() const { return static_cast<bool>(pending_done_) || static_cast<bool>(reload_done_); }
   // Unloaded controllers poll() has still to destroy.
   bool has_work() const { return !retired_.empty(); }

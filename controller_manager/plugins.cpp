@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "controller_manager/plugin.hpp"
+#include "controller_interface/plugin.hpp"
 
 namespace lcm_control::cm {
 
@@ -62,7 +62,7 @@ std::vector<std::string> load_plugins(Registry& registry, const std::vector<std:
     if (!abi || !reg)
       throw ModelError(fmt::format("{}: not an lcm_control controller library (no lcm_control_plugin_abi / "
                                    "lcm_control_register_controllers): export its types with "
-                                   "LCM_CONTROL_CONTROLLER_PLUGIN (controller_manager/plugin.hpp)",
+                                   "LCM_CONTROL_CONTROLLER_PLUGIN (controller_interface/plugin.hpp)",
                                    path));
     const PluginAbi theirs = abi(), ours = this_plugin_abi();
     if (!(theirs == ours))

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "description/robot_model.hpp"
-#include "controller_manager/registry.hpp"
+#include "controller_interface/registry.hpp"
 
 namespace lcm_control::cm {
 

@@ -1,6 +1,10 @@
 #include "controller_manager/ros_catalog.hpp"
 
+#include <fmt/format.h>
+
 #include <map>
+
+#include "description/text.hpp"
 
 namespace lcm_control::cm {
 
@@ -9,41 +13,20 @@ namespace {
 const char* kRosControllers = "ros_controllers";
 const char* kRos2Controllers = "ros2_controllers";
 
-// Types by exact name.
+// Types by exact name, none of them built in here (registry_test checks it).
 const std::map<std::string, std::string>& known_types() {
   static const std::map<std::string, std::string> types = [] {
     std::map<std::string, std::string> t;
     for (const char* name : {
-             "joint_state_controller/JointStateController",
-             "position_controllers/JointPositionController", "position_controllers/JointGroupPositionController",
-             "position_controllers/JointTrajectoryController", "position_controllers/GripperActionController",
-             "velocity_controllers/JointVelocityController", "velocity_controllers/JointGroupVelocityController",
-             "velocity_controllers/JointPositionController", "velocity_controllers/JointTrajectoryController",
-             "effort_controllers/JointEffortController", "effort_controllers/JointGroupEffortController",
-             "effort_controllers/JointPositionController", "effort_controllers/JointVelocityController",
-             "effort_controllers/JointGroupPositionController", "effort_controllers/JointTrajectoryController",
-             "effort_controllers/GripperActionController",
-             "pos_vel_controllers/JointTrajectoryController", "pos_vel_acc_controllers/JointTrajectoryController",
-             "diff_drive_controller/DiffDriveController", "ackermann_steering_controller/AckermannSteeringController",
-             "four_wheel_steering_controller/FourWheelSteeringController",
-             "force_torque_sensor_controller/ForceTorqueSensorController",
-             "imu_sensor_controller/ImuSensorController"})
+            "pos_vel_controllers/JointTrajectoryController", "pos_vel_acc_controllers/JointTrajectoryController",
+            "four_wheel_steering_controller/FourWheelSteeringController"})
       t[name] = kRosControllers;
     for (const char* name : {
-             "joint_state_broadcaster/JointStateBroadcaster", "joint_trajectory_controller/JointTrajectoryController",
-             "forward_command_controller/ForwardCommandController",
-             "forward_command_controller/MultiInterfaceForwardCommandController",
-             "diff_drive_controller/DiffDriveController",
-             "gripper_controllers/GripperActionController",
-             "parallel_gripper_action_controller/GripperActionController",
-             "imu_sensor_broadcaster/IMUSensorBroadcaster",
-             "force_torque_sensor_broadcaster/ForceTorqueSensorBroadcaster",
-             "range_sensor_broadcaster/RangeSensorBroadcaster",
-             "pid_controller/PidController",
-             "pose_broadcaster/PoseBroadcaster", "gps_sensor_broadcaster/GPSSensorBroadcaster",
-             "magnetometer_broadcaster/MagnetometerBroadcaster", "battery_state_broadcaster/BatteryStateBroadcaster",
-             "state_interfaces_broadcaster/StateInterfacesBroadcaster",
-             "chained_filter_controller/ChainedFilterController"})
+            "gripper_controllers/GripperActionController", "range_sensor_broadcaster/RangeSensorBroadcaster",
+            "pose_broadcaster/PoseBroadcaster", "gps_sensor_broadcaster/GPSSensorBroadcaster",
+            "magnetometer_broadcaster/MagnetometerBroadcaster", "battery_state_broadcaster/BatteryStateBroadcaster",
+            "state_interfaces_broadcaster/StateInterfacesBroadcaster",
+            "chained_filter_controller/ChainedFilterController"})
       t.emplace(name, kRos2Controllers);
     return t;
   }();
@@ -83,6 +66,12 @@ std::string ros_origin_of_type(const std::string& type) {
   return p == known_packages().end() ? "" : p->second;
 }
 
+std::vector<std::string> ros_catalog_types() {
+  std::vector<std::string> names;
+  for (const auto& [name, origin] : known_types()) names.push_back(name);
+  return names;
+}
+
 std::string ros_alternative_to(const std::string& type) {
   static const std::map<std::string, std::string> alternatives = {
       {"pos_vel_controllers/JointTrajectoryController", "position_controllers/JointTrajectoryController"},
@@ -96,6 +85,28 @@ std::string ros_alternative_to(const std::string& type) {
   };
   const auto it = alternatives.find(type);
   return it == alternatives.end() ? "" : it->second;
+}
+
+std::string unknown_type_message(const Registry& registry, const std::string& type) {
+  const std::string origin = ros_origin_of_type(type);
+  if (registry.misspelling(type))
+    return fmt::format("controller type '{}' does not exist; did you mean '{}'? Valid types: {}", type, registry.closest(type),
+                       join(registry.types()));
+  if (!origin.empty()) {
+    const std::string instead = ros_alternative_to(type);
+    const bool vendor = origin != "ros_controllers" && origin != "ros2_controllers";
+    return fmt::format("controller type '{}' ({}{}) is not {} here{} (`cmctl list-types` lists the {} "
+                       "implemented types)",
+                       type, vendor ? "a vendor's controller, " : "", origin, vendor ? "available" : "implemented",
+                       instead.empty() ? "" : "; use " + instead, registry.types().size());
+  }
+  const std::string why = type.find('/') == std::string::npos
+                              ? "no controller of this project is named so"
+                              : fmt::format("package '{}' is not one whose controllers this project implements",
+                                            type.substr(0, type.find('/')));
+  return fmt::format("controller type '{}' is not available here: {} (`cmctl list-types` lists the {} implemented "
+                     "types; a controller of your own is a plugin: user guide section 15)",
+                     type, why, registry.types().size());
 }
 
 }  // namespace lcm_control::cm

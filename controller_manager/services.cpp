@@ -78,6 +78,7 @@ void Services::answer(const cm_request_t& req, const Reply& reply, bool with_typ
   m.message = reply.message.size() > kMaxAnswerMessage ? clip(reply.message, kMaxAnswerMessage) : reply.message;
   if (with_types) m.types = cm_.types();
   m.num_types = static_cast<int32_t>(m.types.size());
+  for (const std::string& t : m.types) m.type_docs.push_back(cm_.type_doc(t));
   const int64_t now = monotonic_us();
   m.hardware = with_hardware ? cm_.hardware_summary(now) : "";
   m.hardware_age_us = with_hardware ? cm_.hardware_age_us(now) : -1;

@@ -7,7 +7,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
-#include "controller_manager/claims.hpp"
+#include "controller_interface/claims.hpp"
 #include "description/text.hpp"
 #include "rt/log.hpp"
 #include "lcm_control/cm_request_t.hpp"
@@ -15,7 +15,7 @@
 namespace lcm_control::cm {
 
 namespace {
-std::string names(const std::vector<LoadedController>& loaded) {
+std::string names_of(const std::vector<LoadedController>& loaded) {
   if (loaded.empty()) return "none";
   std::vector<std::string> v;
   for (const auto& c : loaded) v.push_back(c.name);
@@ -26,7 +26,7 @@ std::string not_loaded_note(const char* verb, const std::vector<std::string>& un
                             const std::vector<LoadedController>& loaded) {
   std::vector<std::string> quoted;
   for (const auto& n : unknown) quoted.push_back("'" + clip(n, 60) + "'");
-  return fmt::format("ignored: cannot {} {}: not loaded (loaded: {})", verb, join_some(quoted, 5), names(loaded));
+  return fmt::format("ignored: cannot {} {}: not loaded (loaded: {})", verb, join_some(quoted, 5), names_of(loaded));
 }
 }  // namespace
 
@@ -59,46 +59,37 @@ SwitchPlan plan_switch(const std::vector<LoadedController>& loaded, const std::v
   };
   std::vector<bool> in_stop(loaded.size()), in_start(loaded.size());
 
-  std::vector<std::string> unknown;
-  for (const auto& n : stop) {
-    const int k = index_of(n);
-    std::string why;
-    if (k < 0 && !strict) {
-      unknown.push_back(n);
-      continue;
+  // The loaded controllers `names` asks to start (`starting`) or stop: an unknown one is noted (BEST_EFFORT) or
+  // refuses the switch (STRICT), as one already in the state asked for does. "" or the refusal.
+  auto pick = [&](const std::vector<std::string>& names, bool starting, std::vector<int>& picked,
+                  std::vector<bool>& in) -> std::string {
+    const char* verb = starting ? "start" : "stop";
+    std::vector<std::string> unknown;
+    for (const auto& n : names) {
+      const int k = index_of(n);
+      std::string why;
+      if (k < 0 && !strict) {
+        unknown.push_back(n);
+        continue;
+      }
+      if (k < 0)
+        why = fmt::format("cannot {} '{}': it is not loaded (loaded: {})", verb, clip(n), names_of(loaded));
+      else if (starting && loaded[k].state == "running")
+        why = fmt::format("cannot start '{}': it is already running", n);
+      else if (!starting && loaded[k].state != "running")
+        why = fmt::format("cannot stop '{}': it is not running (state: {})", n, loaded[k].state);
+      if (!why.empty()) {
+        if (strict) return why + " [STRICT]";
+        plan.notes.push_back("ignored: " + why);
+        continue;
+      }
+      if (!in[size_t(k)]) picked.push_back(k), in[size_t(k)] = true;
     }
-    if (k < 0)
-      why = fmt::format("cannot stop '{}': it is not loaded (loaded: {})", clip(n), names(loaded));
-    else if (loaded[k].state != "running")
-      why = fmt::format("cannot stop '{}': it is not running (state: {})", n, loaded[k].state);
-    if (!why.empty()) {
-      if (strict) return refuse(why + " [STRICT]");
-      plan.notes.push_back("ignored: " + why);
-      continue;
-    }
-    if (!in_stop[size_t(k)]) plan.stop.push_back(k), in_stop[size_t(k)] = true;
-  }
-  if (!unknown.empty()) plan.notes.push_back(not_loaded_note("stop", unknown, loaded));
-  unknown.clear();
-  for (const auto& n : start) {
-    const int k = index_of(n);
-    std::string why;
-    if (k < 0 && !strict) {
-      unknown.push_back(n);
-      continue;
-    }
-    if (k < 0)
-      why = fmt::format("cannot start '{}': it is not loaded (loaded: {})", clip(n), names(loaded));
-    else if (loaded[k].state == "running")
-      why = fmt::format("cannot start '{}': it is already running", n);
-    if (!why.empty()) {
-      if (strict) return refuse(why + " [STRICT]");
-      plan.notes.push_back("ignored: " + why);
-      continue;
-    }
-    if (!in_start[size_t(k)]) plan.start.push_back(k), in_start[size_t(k)] = true;
-  }
-  if (!unknown.empty()) plan.notes.push_back(not_loaded_note("start", unknown, loaded));
+    if (!unknown.empty()) plan.notes.push_back(not_loaded_note(verb, unknown, loaded));
+    return "";
+  };
+  if (const std::string why = pick(stop, false, plan.stop, in_stop); !why.empty()) return refuse(why);
+  if (const std::string why = pick(start, true, plan.start, in_start); !why.empty()) return refuse(why);
   std::sort(plan.stop.begin(), plan.stop.end());
   std::sort(plan.start.begin(), plan.start.end());
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "controller_manager/controller.hpp"
+#include "controller_interface/controller.hpp"
 
 namespace lcm_control::cm {
 

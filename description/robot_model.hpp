@@ -205,15 +205,6 @@ struct RobotModel {
   std::vector<std::string> actuated_joints() const;
 };
 
-// Loads and validates: the URDF (common/urdf_reader), the namespace, the YAML
-// (common/control_config), then the cross-checks (common/model_check).
-// Throws ModelError naming the file and culprit of every problem.
-RobotModel load_robot_model(const std::string& urdf_path, const std::vector<std::string>& config_paths,
-                            const LoadOptions& options = {});
-// One config file, or none for "".
-RobotModel load_robot_model(const std::string& urdf_path, const std::string& config_path,
-                            const LoadOptions& options = {});
-
 // A namespace as written in ROS ("/rrbot/", "rrbot") as our channel prefix ("rrbot"); "" for "/" or "".
 std::string normalize_namespace(const std::string& ns);
 // The robot's namespace: the one given (--namespace), else the gazebo_ros_control plugin's <robotNamespace>.

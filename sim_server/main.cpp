@@ -11,6 +11,7 @@
 #include "sim_server/sim_io.hpp"
 #include "sim_server/simulation.hpp"
 #include "sim_server/stepper.hpp"
+#include "description/load.hpp"
 
 int main(int argc, char** argv) {
   using namespace lcm_control;

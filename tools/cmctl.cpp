@@ -43,8 +43,10 @@ int main(int argc, char** argv) {
   auto* list = app.add_subcommand("list", "controllers with type, state, joints and interface")->alias("list-controllers");
   bool verbose = false;
   list->add_flag("--verbose", verbose, "every joint of each controller (by default more than three are shown as "
-                                          "first..last (count))");
+                                          "first..last (count)) and the reference interfaces chainable ones export");
   auto* types = app.add_subcommand("list-types", "controller types this manager can load")->alias("list-controller-types");
+  bool type_docs = false;
+  types->add_flag("--verbose", type_docs, "each type with what it declares: ROS 1 or ROS 2, chainable, a line of doc");
   auto* interfaces = app.add_subcommand("list-hardware-interfaces",
                                         "each joint's command interfaces (available, claimed by whom) and state ones");
   auto* components = app.add_subcommand("list-hardware-components",
@@ -212,7 +214,9 @@ int main(int argc, char** argv) {
     } else if (types->parsed()) {
       r = cm.list_types(timeout);
       if (r.ok)
-        for (const auto& t : r.types) fmt::print("{}\n", t);
+        for (size_t k = 0; k < r.types.size(); ++k)
+          fmt::print("{}{}\n", r.types[k],
+                     type_docs && k < r.type_docs.size() && !r.type_docs[k].empty() ? "  " + r.type_docs[k] : "");
     } else if (load->parsed()) {
       r = cm.load(names, timeout);
     } else if (unload->parsed()) {

@@ -12,8 +12,10 @@
 #include "tools/model_report.hpp"
 #include "description/model_check.hpp"
 #include "description/robot_model.hpp"
+#include "description/load.hpp"
 #include "controller_manager/manager.hpp"
 #include "controller_manager/plugins.hpp"
+#include "controllers/builtin.hpp"
 
 namespace {
 

@@ -8,6 +8,7 @@
 #include "lcm_control/link_poses_t.hpp"
 #include "tools/lib/kinematics.hpp"
 #include "tools/lib/support.hpp"
+#include "description/load.hpp"
 
 namespace lcm_control::tools {
 namespace {

@@ -9,8 +9,11 @@
 #include <vector>
 
 #include "lcm_control/float64_array_t.hpp"
+#include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/twist_t.hpp"
 #include "test/controller_manager/rig.hpp"
+#include "controllers/builtin.hpp"
+#include "description/load.hpp"
 
 using namespace lcm_control;
 using lcm_control::testing::Rig;
@@ -157,6 +160,16 @@ TEST(Chaining, AChainStartsWholeRunsInChainedModeAndStopsWhole) {
   EXPECT_TRUE(rig.controller("pid_left").chained_mode());
   EXPECT_TRUE(rig.controller("pid_right").chained_mode());
   EXPECT_FALSE(rig.controller("base").chained_mode());
+  // Listed as ros2_control lists them: chainable or not, in chained mode or not, the reference interfaces exported.
+  const std::vector<controller_info_t> listed = rig.cm->list();
+  ASSERT_EQ(listed.size(), 3u);
+  EXPECT_TRUE(listed[0].chainable);
+  EXPECT_TRUE(listed[0].chained_mode);
+  ASSERT_FALSE(listed[0].references.empty());
+  EXPECT_EQ(listed[0].references[0], "pid_left/left_wheel/velocity");
+  EXPECT_EQ(listed[0].num_references, static_cast<int32_t>(listed[0].references.size()));
+  EXPECT_FALSE(listed[2].chainable);
+  EXPECT_TRUE(listed[2].references.empty());
 
   // A twist on the diff drive turns the wheels through the PIDs: v = 0.5 m/s, w = 1 rad/s, radius 0.1 m,
   // separation 0.6 m: left (0.5 - 0.3) / 0.1 = 2 rad/s, right (0.5 + 0.3) / 0.1 = 8 rad/s.
@@ -201,4 +214,41 @@ TEST(Chaining, FollowersRunAloneOnTheirOwnInputAndConflictsNameBoth) {
   EXPECT_FALSE(r.ok);
   EXPECT_TRUE(has(r.message, "'pid_left'") && has(r.message, "'loose_base'") && has(r.message, "left_wheel"))
       << r.message;
+}
+
+// A chain adds no allocation to the cycle: a diff drive on two PIDs' references turning the wheels, and then a
+// trajectory controller on the same references running a goal (its feedback and result published), 500 cycles each
+// counted after warm-up.
+TEST(Chaining, ChainedCyclesDoNotAllocate) {
+  ChainRig rig;
+  rig.commands.reserve(4000);
+  rig.cycle();
+  for (const char* n : {"joint_state_broadcaster", "pid_left", "pid_right", "base", "wheel_trajectory"})
+    ASSERT_TRUE(rig.load(n).ok) << n;
+  ASSERT_TRUE(rig.switch_({"joint_state_broadcaster", "pid_left", "pid_right", "base"}, {}).ok);
+  twist_t t{};
+  t.linear.x = 0.5;
+  t.angular.z = 1.0;
+  rig.publish("base/cmd_vel", t);
+  rig.cycle(50);
+  EXPECT_EQ(rig.allocations_in_cycles(500, true, false), 0) << "diff drive -> PIDs";
+  EXPECT_TRUE(rig.controller("pid_left").chained_mode());
+
+  ASSERT_TRUE(rig.switch_({"wheel_trajectory"}, {"base"}).ok);
+  joint_trajectory_t g{};
+  g.goal_id = 1;
+  g.joint_names = {"left_wheel", "right_wheel"};
+  g.num_joints = 2;
+  for (double s : {0.2, 0.4, 0.6}) {
+    trajectory_point_t p{};
+    p.time_from_start = s;
+    p.positions = {s, -s};
+    p.num_positions = 2;
+    g.points.push_back(p);
+  }
+  g.num_points = 3;
+  rig.publish("wheel_trajectory/command", g);
+  rig.cycle(2);
+  EXPECT_EQ(rig.allocations_in_cycles(500, true, false), 0) << "trajectory -> PIDs, the goal running and ending";
+  EXPECT_TRUE(rig.controller("pid_left").chained_mode());
 }

@@ -1,9 +1,10 @@
-#include "controller_manager/claims.hpp"
+#include "controller_interface/claims.hpp"
 #include "controller_manager/hardware.hpp"
 
 #include <gtest/gtest.h>
 
 #include "test/controller_manager/rig.hpp"
+#include "description/load.hpp"
 
 using namespace lcm_control;
 using namespace lcm_control::cm;

@@ -11,8 +11,8 @@
 #include "lcm_control/cm_response_t.hpp"
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
-#include "test/controller_manager/alloc_counter.hpp"
 #include "test/controller_manager/rig.hpp"
+#include "controllers/builtin.hpp"
 
 using namespace lcm_control;
 using namespace lcm_control::cm;
@@ -197,16 +197,7 @@ TEST(CommandSources, OverLcmAndWithoutAllocationOnTheLoopPath) {
   EXPECT_TRUE(answers.messages[0].ok) << answers.messages[0].message;
   EXPECT_EQ(answers.messages[1].request_id, 8);
   rig.cycle(50);  // warm-up
-  lcm_control::testing::reset_allocations();
-  for (int k = 0; k < 500; ++k) {
-    fill_state(rig.state, rig.act, rig.step, rig.session, 1000, true);
-    lcm_control::testing::count_allocations(true);
-    rig.cm->on_hardware_state(rig.state);
-    lcm_control::testing::count_allocations(false);
-    ++rig.step;
-    rig.pump();
-  }
-  EXPECT_EQ(lcm_control::testing::allocations(), 0);
+  EXPECT_EQ(rig.allocations_in_cycles(500, false, true), 0);
   EXPECT_EQ(rig.cm->command_sources().ticks("pos_group"), 550);
 }
 

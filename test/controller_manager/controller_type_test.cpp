@@ -2,18 +2,21 @@
 // registration line, and doctor's checks, `cmctl list-types`, `cmctl list` (what the dashboard's command panel reads)
 // and send-trajectory's check see it from its declaration alone; the built-in types' declarations give the ROS
 // catalog's parameter names of before.
-#include "controller_manager/controller_type.hpp"
+#include "controller_interface/controller_type.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 
 #include "bus/messages.hpp"
-#include "controller_manager/registry.hpp"
+#include "controller_interface/registry.hpp"
 #include "controller_manager/services.hpp"
 #include "test/controller_manager/rig.hpp"
 #include "test/support/lcm_test.hpp"
 #include "tools/lib/trajectory_goal.hpp"
+#include "controllers/builtin.hpp"
+#include "controller_manager/plugins.hpp"
 
 using namespace lcm_control;
 using namespace lcm_control::cm;
@@ -132,6 +135,110 @@ TEST(ControllerTypes, ANewTypeIsListedWithWhatItTakes) {
     EXPECT_EQ(std::string(e.what()), "tiny takes float64_array_t on tiny/command; joint_trajectory_t was given: use "
                                      "turret-cmd tiny V1 V2");
   }
+}
+
+// What a controller claims in init() is held to its declaration: the joints its joint parameters name, on the
+// declared interface; the manager refuses a controller whose claims its type does not declare, naming the claim.
+TEST(ControllerTypes, ClaimsAreHeldToTheDeclaration) {
+  const ControllerTypeInfo info = tiny_effort_controller().info;
+  const YAML::Node params = YAML::Load("{joints: [arm, spin]}");
+  Claim fine;
+  fine.interface = Interface::Effort;
+  fine.joints = {"arm", "spin"};
+  fine.interfaces = {Interface::Effort, Interface::Effort};
+  EXPECT_EQ(undeclared_claim(info, params, fine), "");
+  Claim other_joint = fine;
+  other_joint.joints = {"arm", "tilt"};
+  EXPECT_EQ(undeclared_claim(info, params, other_joint),
+            "it claims 'tilt' on EffortJointInterface, which no parameter its declaration names for claims (joints) "
+            "gives");
+  Claim other_interface = fine;
+  other_interface.interfaces = {Interface::Effort, Interface::Velocity};
+  EXPECT_EQ(undeclared_claim(info, params, other_interface),
+            "it claims 'spin' on VelocityJointInterface, which its declaration says it claims on EffortJointInterface");
+  ControllerTypeInfo bare;
+  bare.name = "x/Bare";  // declares nothing: not checked
+  EXPECT_EQ(undeclared_claim(bare, params, other_joint), "");
+
+  // A type whose declaration says one interface and whose init() claims another is refused at load (and by doctor).
+  Registry registry = with_tiny();
+  ControllerType lying = tiny_effort_controller();
+  lying.info.claims.interface = Interface::Velocity;
+  registry.add(lying);
+  Rig rig(registry, lcm_control::testing::data("test_bot.urdf"), lcm_control::testing::data("tiny_bot.yaml"));
+  const Reply r = rig.load("tiny");
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(r.message.find("type 'test_controllers/TinyEffortController' does not do what it declares: it claims "
+                           "'arm' on EffortJointInterface, which its declaration says it claims on "
+                           "VelocityJointInterface"),
+            std::string::npos)
+      << r.message;
+}
+
+// Only a type that declares itself chainable may export reference interfaces (ros2_control's
+// ChainableControllerInterface); the refusal says what to declare.
+class Exporter : public Controller {
+ public:
+  void init(ControllerContext& ctx) override {
+    JointData* j = ctx.claim(ctx.params().string("joint"), Interface::Position);
+    ctx.export_reference(j->name, {Interface::Position}, j);
+  }
+  void starting(const Time&) override {}
+  void update(const Time&, double) override {}
+};
+
+TEST(ControllerTypes, OnlyATypeDeclaredChainableExportsReferenceInterfaces) {
+  const std::string yaml = lcm_control::testing::temp_dir("exporter") + "/exporter.yaml";
+  std::ofstream(yaml) << "exp: {type: test/Exporter, joint: tilt}\n";
+  for (const bool chainable : {false, true}) {
+    Registry registry;
+    register_builtin(registry);
+    ControllerType t;
+    t.info.name = "test/Exporter";
+    t.info.doc = "exports its joint";
+    t.info.claims = {Interface::Position, {"joint"}, "", {}};
+    t.info.chainable = chainable;
+    t.factory = [](const std::string&) { return std::make_unique<Exporter>(); };
+    registry.add(t);
+    Rig rig(registry, lcm_control::testing::data("test_bot.urdf"), yaml);
+    const Reply r = rig.load("exp");
+    EXPECT_EQ(r.ok, chainable) << r.message;
+    if (!chainable)
+      EXPECT_NE(r.message.find("controller 'exp': type 'test/Exporter' exports the reference interface 'exp/tilt' but "
+                               "does not declare itself chainable: set `chainable` (and `references`) in its "
+                               "ControllerTypeInfo"),
+                std::string::npos)
+          << r.message;
+  }
+}
+
+// A plugin's type declares itself as a built-in one does (docs/examples/my_controllers): its parameters name a
+// misspelt key, list-types gives its declaration, the listing what it claims.
+TEST(ControllerTypes, APluginTypeDeclaresItselfAsABuiltInOneDoes) {
+  Registry registry;
+  register_builtin(registry);
+  const std::vector<std::string> lines = load_plugins(registry, {SINE_PLUGIN});
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NE(lines[0].find(": my_controllers/SineController"), std::string::npos) << lines[0];
+  const ControllerTypeInfo* info = registry.info("my_controllers/SineController");
+  ASSERT_NE(info, nullptr);
+  EXPECT_EQ(parameter_names(*info), (std::vector<std::string>{"joint", "amplitude", "frequency", "center"}));
+  Rig rig(registry, lcm_control::testing::data("test_bot.urdf"), lcm_control::testing::data("sine_bot.yaml"));
+  const auto checks = rig.cm->check_configured();
+  ASSERT_EQ(checks.size(), 1u);
+  EXPECT_EQ(checks[0].outcome, ControllerCheck::Loads) << checks[0].message;
+  EXPECT_TRUE(has(checks[0].notes, "sine/frequncy: not a parameter of my_controllers/SineController; ignored (did you "
+                                   "mean 'frequency'?)"))
+      << ::testing::PrintToString(checks[0].notes);
+  EXPECT_EQ(rig.cm->type_doc("my_controllers/SineController"),
+            "ROS 2: moves one joint along center + amplitude * sin(2 pi frequency t)");
+  const Reply loaded = rig.load("sine");
+  ASSERT_TRUE(loaded.ok) << loaded.message;
+  const std::vector<controller_info_t> listed = rig.cm->list();
+  ASSERT_EQ(listed.size(), 1u);
+  EXPECT_EQ(listed[0].hardware_interface, "PositionJointInterface");
+  EXPECT_EQ(listed[0].joints, (std::vector<std::string>{"tilt"}));
+  EXPECT_FALSE(listed[0].chainable);
 }
 
 // The names each built-in type answers to as ROS parameters are the ROS catalog's lists of before the types

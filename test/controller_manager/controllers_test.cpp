@@ -16,6 +16,7 @@
 #include "rt/clock.hpp"
 #include "test/controller_manager/rig.hpp"
 #include "test/support/lcm_test.hpp"
+#include "controllers/builtin.hpp"
 
 using namespace lcm_control;
 using namespace lcm_control::cm;

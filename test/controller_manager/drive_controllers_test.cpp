@@ -11,6 +11,8 @@
 #include "lcm_control/twist_t.hpp"
 #include "test/controller_manager/rig.hpp"
 #include "test/support/lcm_test.hpp"
+#include "controllers/builtin.hpp"
+#include "description/load.hpp"
 
 using namespace lcm_control;
 using lcm_control::testing::data;

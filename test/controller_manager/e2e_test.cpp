@@ -29,6 +29,7 @@
 #include "test/controller_manager/fake_hardware.hpp"
 #include "test/support/lcm_test.hpp"
 #include "test/support/process.hpp"
+#include "description/load.hpp"
 
 using namespace lcm_control;
 using namespace lcm_control::testing;

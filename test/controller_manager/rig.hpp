@@ -11,10 +11,13 @@
 
 #include "bus/bus.hpp"
 #include "description/robot_model.hpp"
+#include "description/load.hpp"
 #include "controller_manager/manager.hpp"
 #include "lcm_control/joint_trajectory_t.hpp"
+#include "test/controller_manager/alloc_counter.hpp"
 #include "test/controller_manager/fake_hardware.hpp"
 #include "test/support/process.hpp"
+#include "controllers/builtin.hpp"
 
 namespace lcm_control::testing {
 
@@ -41,6 +44,22 @@ struct Rig {
       ++step;
       pump();
     }
+  }
+  // n cycles counting the heap allocations of the manager's handling of each state alone (alloc_counter.hpp): the
+  // actuators move with the commands (`simulated`) or stand still, and what was published is sent between cycles
+  // (`pumped`). Nothing is recorded in `commands`.
+  long allocations_in_cycles(int n, bool simulated, bool pumped) {
+    reset_allocations();
+    for (int k = 0; k < n; ++k) {
+      fill_state(state, act, step, session, period_us, lockstep);
+      count_allocations(true);
+      cm->on_hardware_state(state);
+      count_allocations(false);
+      if (simulated) simulate(act, &cm->last_command(), period_us * 1e-6);
+      ++step;
+      if (pumped) pump();
+    }
+    return allocations();
   }
   // Until quiet: what the controllers handed to the outbox is sent, and what that (or anything queued) makes them
   // publish too.

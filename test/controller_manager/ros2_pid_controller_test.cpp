@@ -7,6 +7,8 @@
 
 #include "lcm_control/float64_array_t.hpp"
 #include "test/controller_manager/rig.hpp"
+#include "controllers/builtin.hpp"
+#include "description/load.hpp"
 
 using namespace lcm_control;
 using lcm_control::testing::data;

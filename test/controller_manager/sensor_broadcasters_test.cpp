@@ -6,6 +6,7 @@
 #include "lcm_control/wrench_stamped_t.hpp"
 #include "test/controller_manager/rig.hpp"
 #include "test/support/lcm_test.hpp"
+#include "controllers/builtin.hpp"
 
 using namespace lcm_control;
 using lcm_control::testing::Recorder;

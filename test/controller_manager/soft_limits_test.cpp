@@ -7,6 +7,7 @@
 #include "lcm_control/float64_t.hpp"
 #include "test/controller_manager/rig.hpp"
 #include "test/tools/tool_test_util.hpp"
+#include "controllers/builtin.hpp"
 
 namespace lcm_control::testing {
 namespace {

@@ -13,6 +13,7 @@
 #include "lcm_control/trajectory_status_t.hpp"
 #include "test/controller_manager/rig.hpp"
 #include "test/support/lcm_test.hpp"
+#include "controllers/builtin.hpp"
 
 using namespace lcm_control;
 using lcm_control::testing::Recorder;

@@ -1,4 +1,4 @@
-#include "controller_manager/controllers/trajectory.hpp"
+#include "controllers/trajectory.hpp"
 
 #include <gtest/gtest.h>
 

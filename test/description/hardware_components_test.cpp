@@ -7,6 +7,7 @@
 
 #include "description/hardware_components.hpp"
 #include "test/support/process.hpp"
+#include "description/load.hpp"
 
 using namespace lcm_control;
 namespace lt = lcm_control::testing;

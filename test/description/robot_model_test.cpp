@@ -1,5 +1,6 @@
 // turret_bot as loaded from config/: every figure the tutorial gives.
 #include "description/robot_model.hpp"
+#include "description/load.hpp"
 #include "description/control_config.hpp"
 
 #include <gtest/gtest.h>

@@ -7,6 +7,7 @@
 #include <regex>
 
 #include "description/robot_model.hpp"
+#include "description/load.hpp"
 #include "test/support/process.hpp"
 
 using namespace lcm_control;

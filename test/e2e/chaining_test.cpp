@@ -4,6 +4,7 @@
 // goal through the same JTC commanding effort with the same gains is compared. And a JTC writing the references of
 // an admittance controller on ft_arm (test/robots/ft_arm.yaml): a 10 N push on the tool (cmctl apply-body-wrench)
 // moves it F/k along the push, and it comes back when the push ends.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,6 +21,7 @@
 #include "test/support/lcm_test.hpp"
 #include "tools/lib/kinematics.hpp"
 #include "tools/lib/sim_client.hpp"
+#include "description/load.hpp"
 
 namespace lcm_control::testing {
 namespace {
@@ -118,15 +120,21 @@ TEST(Chaining, AnAdmittanceControllerUnderATrajectoryControllerYieldsToAPushAsIt
   EXPECT_LT(back.norm(), 0.002) << "back where it was";
   // The messages of the same sim time (both recorders may have missed one at the ends).
   size_t n = 0, differing = 0;
+  std::string first_difference;
   for (const auto& [utime, q] : first.positions) {
     const auto other = second.positions.find(utime);
     if (other == second.positions.end()) continue;
     ++n;
     differing += other->second != q;
+    for (size_t j = 0; j < q.size() && first_difference.empty() && j < other->second.size(); ++j)
+      if (q[j] != other->second[j])
+        first_difference = fmt::format("first at t={} us, joint {}: {:.17g} then {:.17g}", utime, j, q[j],
+                                       other->second[j]);
   }
+  EXPECT_EQ(first.positions.begin()->first, second.positions.begin()->first) << "the first joint_states' time";
   ASSERT_GT(n, 4000u);
   std::printf("two runs: %zu joint_states messages compared, %zu differ\n", n, differing);
-  EXPECT_EQ(differing, 0u) << "lockstep repeats a chained run bit for bit";
+  EXPECT_EQ(differing, 0u) << "lockstep repeats a chained run bit for bit; " << first_difference;
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 
 #include "lcm_control/gripper_status_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
+#include "test/e2e/session.hpp"
 #include "test/support/lcm_test.hpp"
 #include "test/support/process.hpp"
 
@@ -25,24 +26,22 @@ double at(const joint_state_t& m, const std::string& joint) {
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 TEST(GripperAction, ClosesToAnOpeningAndStallsOnTheBoxAsAllowStallingSays) {
-  const std::string url = unique_lcm_url();
-  const std::map<std::string, std::string> env{{"LCM_DEFAULT_URL", url}};
-  const std::string urdf = source("test/robots/gripper.urdf"), yaml = source("test/robots/gripper_action.yaml");
-  lcm::LCM lc(url);
+  RobotSession robot(source("test/robots/gripper.urdf"), source("test/robots/gripper_action.yaml"));
+  lcm::LCM lc(robot.url());
   Recorder<joint_state_t> states(lc, "joint_states");
   Recorder<gripper_status_t> results(lc, "gripper_controller/result");
   Recorder<gripper_status_t> grasps(lc, "grasp_controller/result");
-  ChildProcess cm({bin("controller_manager"), "--urdf", urdf, "--config", yaml}, env);
-  ChildProcess sim({bin("sim_server"), "--urdf", urdf, "--config", yaml}, env);
-  ChildProcess spawner({bin("spawner"), "joint_state_controller", "gripper_controller"}, env);
-  ASSERT_TRUE(spawner.wait_for_output("spawner: ready", 30)) << spawner.output() << cm.output() << sim.output();
+  robot.start_controller_manager();
+  robot.start_sim();
+  ASSERT_NO_FATAL_FAILURE(robot.spawn({"joint_state_controller", "gripper_controller"}));
   // Goals once the hardware ticks (the first hardware session restarts the controllers, preempting a goal).
-  ASSERT_TRUE(pump_until(lc, [&] { return states.messages.size() > 5; }, 20)) << cm.output() << sim.output();
+  ASSERT_TRUE(pump_until(lc, [&] { return states.messages.size() > 5; }, 20)) << robot.cm_output() << robot.sim_output();
 
-  ChildProcess open({bin("gripper"), "gripper_controller", "--position", "0.02", "--timeout", "10"}, env);
-  ASSERT_EQ(open.wait(20), 0) << open.output() << cm.output();
-  EXPECT_TRUE(has(open.output(), "gripper_controller: SUCCEEDED: goal ")) << open.output();
-  EXPECT_TRUE(has(open.output(), "reached goal")) << open.output();
+  std::string open_out;
+  const int open_rc = robot.run({"gripper", "gripper_controller", "--position", "0.02", "--timeout", "10"}, &open_out, 20);
+  ASSERT_EQ(open_rc, 0) << open_out << robot.cm_output();
+  EXPECT_TRUE(has(open_out, "gripper_controller: SUCCEEDED: goal ")) << open_out;
+  EXPECT_TRUE(has(open_out, "reached goal")) << open_out;
   pump_until(lc, [&] { return results.messages.size() >= 1 && states.messages.size() > 10; }, 5);
   ASSERT_EQ(results.messages.size(), 1u);
   EXPECT_EQ(results.messages[0].status, gripper_status_t::SUCCEEDED) << results.messages[0].message;
@@ -54,10 +53,11 @@ TEST(GripperAction, ClosesToAnOpeningAndStallsOnTheBoxAsAllowStallingSays) {
   EXPECT_NEAR(at(states.messages.back(), "right_finger_joint"), 0.02, 0.002);  // the <mimic> finger
 
   // Past the box: the fingers stop at 0.035 and the goal, without allow_stalling, is aborted.
-  ChildProcess past({bin("gripper"), "gripper_controller", "--position", "0.05", "--timeout", "10"}, env);
-  EXPECT_EQ(past.wait(20), 1) << past.output();
-  EXPECT_TRUE(has(past.output(), "gripper: error: gripper_controller: ABORTED: stalled at 0.03")) << past.output();
-  EXPECT_TRUE(has(past.output(), "stalled)")) << past.output();
+  std::string past_out;
+  const int past_rc = robot.run({"gripper", "gripper_controller", "--position", "0.05", "--timeout", "10"}, &past_out, 20);
+  EXPECT_EQ(past_rc, 1) << past_out;
+  EXPECT_TRUE(has(past_out, "gripper: error: gripper_controller: ABORTED: stalled at 0.03")) << past_out;
+  EXPECT_TRUE(has(past_out, "stalled)")) << past_out;
   pump_until(lc, [&] { return results.messages.size() >= 2; }, 5);
   ASSERT_EQ(results.messages.size(), 2u);
   EXPECT_EQ(results.messages[1].status, gripper_status_t::ABORTED) << results.messages[1].message;
@@ -65,34 +65,40 @@ TEST(GripperAction, ClosesToAnOpeningAndStallsOnTheBoxAsAllowStallingSays) {
   EXPECT_NEAR(results.messages[1].position, 0.035, 0.002);
 
   // The same grasp with allow_stalling (ROS 2's parallel gripper) is a success.
-  ChildProcess load({bin("cmctl"), "load", "grasp_controller"}, env);
-  ASSERT_EQ(load.wait(20), 0) << load.output();
-  ChildProcess sw({bin("cmctl"), "switch", "--start", "grasp_controller", "--stop", "gripper_controller"}, env);
-  ASSERT_EQ(sw.wait(20), 0) << sw.output();
-  ChildProcess release({bin("gripper"), "grasp_controller", "--position", "0.0"}, env);
-  ASSERT_EQ(release.wait(20), 0) << release.output();
-  ChildProcess grasp({bin("gripper"), "grasp_controller", "--position", "0.05"}, env);
-  ASSERT_EQ(grasp.wait(20), 0) << grasp.output();
-  EXPECT_TRUE(has(grasp.output(), "grasp_controller: SUCCEEDED: stalled at 0.03")) << grasp.output();
-  EXPECT_TRUE(has(grasp.output(), "allow_stalling: succeeded")) << grasp.output();
+  std::string load_out;
+  const int load_rc = robot.run({"cmctl", "load", "grasp_controller"}, &load_out, 20);
+  ASSERT_EQ(load_rc, 0) << load_out;
+  std::string sw_out;
+  const int sw_rc = robot.run({"cmctl", "switch", "--start", "grasp_controller", "--stop", "gripper_controller"}, &sw_out, 20);
+  ASSERT_EQ(sw_rc, 0) << sw_out;
+  std::string release_out;
+  const int release_rc = robot.run({"gripper", "grasp_controller", "--position", "0.0"}, &release_out, 20);
+  ASSERT_EQ(release_rc, 0) << release_out;
+  std::string grasp_out;
+  const int grasp_rc = robot.run({"gripper", "grasp_controller", "--position", "0.05"}, &grasp_out, 20);
+  ASSERT_EQ(grasp_rc, 0) << grasp_out;
+  EXPECT_TRUE(has(grasp_out, "grasp_controller: SUCCEEDED: stalled at 0.03")) << grasp_out;
+  EXPECT_TRUE(has(grasp_out, "allow_stalling: succeeded")) << grasp_out;
   pump_until(lc, [&] { return grasps.messages.size() >= 2; }, 5);
   ASSERT_EQ(grasps.messages.size(), 2u);
   EXPECT_TRUE(grasps.messages[1].stalled);
   EXPECT_FALSE(grasps.messages[1].reached_goal);
 
   // A controller that takes no gripper goals is named with its type.
-  ChildProcess wrong({bin("gripper"), "joint_state_controller", "--position", "0.01"}, env);
-  EXPECT_EQ(wrong.wait(20), 1) << wrong.output();
-  EXPECT_TRUE(has(wrong.output(), "gripper: error: joint_state_controller "
+  std::string wrong_out;
+  const int wrong_rc = robot.run({"gripper", "joint_state_controller", "--position", "0.01"}, &wrong_out, 20);
+  EXPECT_EQ(wrong_rc, 1) << wrong_out;
+  EXPECT_TRUE(has(wrong_out, "gripper: error: joint_state_controller "
                                   "(joint_state_controller/JointStateController) takes no commands (it only reads the "
                                   "joints and publishes joint_states); gripper_command_t was given on "
                                   "joint_state_controller/command"))
-      << wrong.output();
-  ChildProcess stopped({bin("gripper"), "gripper_controller", "--position", "0.01"}, env);
-  EXPECT_EQ(stopped.wait(20), 1) << stopped.output();
-  EXPECT_TRUE(has(stopped.output(), "'gripper_controller' is loaded but stopped, not running: start it with `cmctl "
+      << wrong_out;
+  std::string stopped_out;
+  const int stopped_rc = robot.run({"gripper", "gripper_controller", "--position", "0.01"}, &stopped_out, 20);
+  EXPECT_EQ(stopped_rc, 1) << stopped_out;
+  EXPECT_TRUE(has(stopped_out, "'gripper_controller' is loaded but stopped, not running: start it with `cmctl "
                                     "start gripper_controller`"))
-      << stopped.output();
+      << stopped_out;
 }
 
 }  // namespace

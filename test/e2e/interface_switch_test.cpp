@@ -14,6 +14,7 @@
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
+#include "test/e2e/session.hpp"
 #include "test/support/lcm_test.hpp"
 #include "test/support/process.hpp"
 
@@ -44,24 +45,22 @@ double joint_state(const joint_state_t& m, const std::string& joint) {
 }
 
 TEST(InterfaceSwitch, VelocityControllerOnAPositionFirstJointThenSwitchBackToPosition) {
-  const std::string url = unique_lcm_url();
-  const std::map<std::string, std::string> env{{"LCM_DEFAULT_URL", url}};
-  const std::string urdf = source("test/robots/switch_arm.urdf"), yaml = source("test/robots/switch_arm.yaml");
-  lcm::LCM lc(url);
+  RobotSession robot(source("test/robots/switch_arm.urdf"), source("test/robots/switch_arm.yaml"));
+  lcm::LCM lc(robot.url());
   Latest<hardware_state_t> hw(lc, "hardware/state");
-  ChildProcess cm({bin("controller_manager"), "--urdf", urdf, "--config", yaml}, env);
-  ChildProcess sim({bin("sim_server"), "--urdf", urdf, "--config", yaml, "--duration", "60"}, env);
-  ChildProcess spawner({bin("spawner"), "velocity_controller"}, env);
-  ASSERT_TRUE(spawner.wait_for_output("spawner: ready", 30)) << spawner.output() << cm.output() << sim.output();
-  ASSERT_TRUE(pump_until(lc, [&] { return hw.count > 0; }, 10)) << sim.output();
+  robot.start_controller_manager();
+  robot.start_sim({"--duration", "60"});
+  ASSERT_NO_FATAL_FAILURE(robot.spawn({"velocity_controller"}));
+  ASSERT_TRUE(pump_until(lc, [&] { return hw.count > 0; }, 10)) << robot.sim_output();
   EXPECT_EQ(hw.last.mode[0], hardware_command_t::MODE_POSITION) << "before any command: the first interface";
 
-  ChildProcess go({bin("turret-cmd"), "velocity_controller", "0.5", "-0.25"}, env);
-  ASSERT_EQ(go.wait(20), 0) << go.output();
+  std::string go_out;
+  const int go_rc = robot.run({"turret-cmd", "velocity_controller", "0.5", "-0.25"}, &go_out, 20);
+  ASSERT_EQ(go_rc, 0) << go_out;
   ASSERT_TRUE(pump_until(
       lc, [&] { return hw.last.mode[0] == hardware_command_t::MODE_VELOCITY && std::abs(hw.last.velocity[0] - 0.5) < 1e-6; },
       10))
-      << "mode " << int(hw.last.mode[0]) << " velocity " << hw.last.velocity[0] << "\n" << cm.output() << sim.output();
+      << "mode " << int(hw.last.mode[0]) << " velocity " << hw.last.velocity[0] << "\n" << robot.cm_output() << robot.sim_output();
   EXPECT_EQ(hw.last.mode[1], hardware_command_t::MODE_VELOCITY);
   // The commanded speed, measured over a second of sim time.
   const hardware_state_t a = hw.last;
@@ -71,47 +70,49 @@ TEST(InterfaceSwitch, VelocityControllerOnAPositionFirstJointThenSwitchBackToPos
   EXPECT_NEAR((b.position[0] - a.position[0]) / dt, 0.5, 5e-3);
   EXPECT_NEAR((b.position[1] - a.position[1]) / dt, -0.25, 5e-3);
 
-  ChildProcess load({bin("cmctl"), "load", "position_controller"}, env);
-  ASSERT_EQ(load.wait(20), 0) << load.output();
-  ChildProcess sw({bin("cmctl"), "switch", "--start", "position_controller", "--stop", "velocity_controller"}, env);
-  ASSERT_EQ(sw.wait(20), 0) << sw.output() << cm.output();
+  std::string load_out;
+  const int load_rc = robot.run({"cmctl", "load", "position_controller"}, &load_out, 20);
+  ASSERT_EQ(load_rc, 0) << load_out;
+  std::string sw_out;
+  const int sw_rc = robot.run({"cmctl", "switch", "--start", "position_controller", "--stop", "velocity_controller"}, &sw_out, 20);
+  ASSERT_EQ(sw_rc, 0) << sw_out << robot.cm_output();
   // The position controller starts holding where the joints are: position mode, standing still.
   ASSERT_TRUE(pump_until(
       lc, [&] { return hw.last.mode[0] == hardware_command_t::MODE_POSITION && std::abs(hw.last.velocity[0]) < 1e-6; },
       10))
       << "mode " << int(hw.last.mode[0]) << " velocity " << hw.last.velocity[0];
-  ChildProcess to({bin("turret-cmd"), "position_controller", "0.2", "0.3"}, env);
-  ASSERT_EQ(to.wait(20), 0) << to.output();
+  std::string to_out;
+  const int to_rc = robot.run({"turret-cmd", "position_controller", "0.2", "0.3"}, &to_out, 20);
+  ASSERT_EQ(to_rc, 0) << to_out;
   const bool reached = pump_until(
       lc,
       [&] { return std::abs(hw.last.position[0] - 0.2) < 1e-4 && std::abs(hw.last.position[1] - 0.3) < 1e-4; }, 10);
   EXPECT_TRUE(reached) << hw.last.position[0] << " " << hw.last.position[1];
   EXPECT_EQ(hw.last.mode[0], hardware_command_t::MODE_POSITION);
   EXPECT_EQ(hw.last.mode[1], hardware_command_t::MODE_POSITION);
-  EXPECT_EQ(spawner.stop(10), 0) << spawner.output();
-  EXPECT_EQ(sim.stop(10), 0) << sim.output();
-  EXPECT_NE(sim.output().find("0 commands dropped"), std::string::npos) << sim.output();
-  EXPECT_EQ(cm.stop(10), 0) << cm.output();
+  EXPECT_EQ(robot.stop_spawner(), 0) << robot.spawner_output();
+  EXPECT_EQ(robot.stop_sim(), 0) << robot.sim_output();
+  EXPECT_NE(robot.sim_output().find("0 commands dropped"), std::string::npos) << robot.sim_output();
+  EXPECT_EQ(robot.stop_controller_manager(), 0) << robot.cm_output();
 }
 
 TEST(InterfaceSwitch, MockHardwareInLockstepFollowsCommandsExactlyWithTheMimicJoint) {
-  const std::string url = unique_lcm_url() + "&recv_buf_size=4194304";
-  const std::map<std::string, std::string> env{{"LCM_DEFAULT_URL", url}};
-  const std::string urdf = source("test/robots/mock_arm.urdf"), yaml = source("test/robots/switch_arm.yaml");
-  lcm::LCM lc(url);
+  RobotSession robot(source("test/robots/mock_arm.urdf"), source("test/robots/switch_arm.yaml"),
+                     unique_lcm_url() + "&recv_buf_size=4194304");
+  lcm::LCM lc(robot.url());
   Latest<hardware_state_t> hw(lc, "hardware/state");
   Latest<joint_state_t> js(lc, "joint_states");
-  ChildProcess cm({bin("controller_manager"), "--urdf", urdf, "--config", yaml}, env);
-  ChildProcess spawner({bin("spawner"), "joint_state_controller", "position_controller"}, env);
-  ASSERT_TRUE(spawner.wait_for_output("spawner: ready", 30)) << spawner.output() << cm.output();
-  ChildProcess sim({bin("sim_server"), "--urdf", urdf, "--config", yaml, "--mode", "lockstep"}, env);
-  ASSERT_TRUE(sim.wait_for_output("ready (lockstep, mock hardware", 20)) << sim.output();
-  ASSERT_TRUE(pump_until(lc, [&] { return js.count > 0; }, 10)) << sim.output() << cm.output();
+  robot.start_controller_manager();
+  ASSERT_NO_FATAL_FAILURE(robot.spawn({"joint_state_controller", "position_controller"}));
+  ASSERT_NO_FATAL_FAILURE(robot.start_sim({"--mode", "lockstep"}, 20));
+  ASSERT_NE(robot.sim_output().find("ready (lockstep, mock hardware"), std::string::npos) << robot.sim_output();
+  ASSERT_TRUE(pump_until(lc, [&] { return js.count > 0; }, 10)) << robot.sim_output() << robot.cm_output();
   EXPECT_EQ(hw.last.position[0], 0.5);  // initial_value, held by the position controller
   EXPECT_DOUBLE_EQ(joint_state(js.last, "j3"), 0.1);
 
-  ChildProcess to({bin("turret-cmd"), "position_controller", "0.3", "-0.4"}, env);
-  ASSERT_EQ(to.wait(20), 0) << to.output();
+  std::string to_out;
+  const int to_rc = robot.run({"turret-cmd", "position_controller", "0.3", "-0.4"}, &to_out, 20);
+  ASSERT_EQ(to_rc, 0) << to_out;
   ASSERT_TRUE(pump_until(lc, [&] { return hw.last.position[1] == -0.4 && joint_state(js.last, "j2") == -0.4; }, 10))
       << hw.last.position[1];
   // The step that reached the command carries the finite difference (-200 rad/s); the next stands still.
@@ -122,11 +123,12 @@ TEST(InterfaceSwitch, MockHardwareInLockstepFollowsCommandsExactlyWithTheMimicJo
   EXPECT_EQ(hw.last.mode[0], hardware_command_t::MODE_POSITION);
   EXPECT_DOUBLE_EQ(joint_state(js.last, "j3"), -2 * -0.4 + 0.1);
   const double rtf = hw.last.real_time_factor;
-  EXPECT_GT(rtf, 3.0) << "lockstep over LCM at 1 kHz; sim_server says: " << sim.output();
+  EXPECT_GT(rtf, 3.0) << "lockstep over LCM at 1 kHz; sim_server says: " << robot.sim_output();
 
   // Reset (sim_server/request) is the Bullet backend's: back to the start pose, which the restarted controller holds.
-  ChildProcess reset({bin("cmctl"), "reset"}, env);
-  ASSERT_EQ(reset.wait(20), 0) << reset.output() << sim.output();
+  std::string reset_out;
+  const int reset_rc = robot.run({"cmctl", "reset"}, &reset_out, 20);
+  ASSERT_EQ(reset_rc, 0) << reset_out << robot.sim_output();
   EXPECT_TRUE(pump_until(
       lc,
       [&] {
@@ -134,10 +136,10 @@ TEST(InterfaceSwitch, MockHardwareInLockstepFollowsCommandsExactlyWithTheMimicJo
       },
       10))
       << hw.last.position[0] << " " << hw.last.position[1] << " j3 " << joint_state(js.last, "j3") << "\n"
-      << sim.output();
-  EXPECT_EQ(sim.stop(10), 0) << sim.output();
-  EXPECT_EQ(spawner.stop(10), 0) << spawner.output();
-  EXPECT_EQ(cm.stop(10), 0) << cm.output();
+      << robot.sim_output();
+  EXPECT_EQ(robot.stop_sim(), 0) << robot.sim_output();
+  EXPECT_EQ(robot.stop_spawner(), 0) << robot.spawner_output();
+  EXPECT_EQ(robot.stop_controller_manager(), 0) << robot.cm_output();
   std::printf("mock hardware, lockstep over LCM at 1 kHz: %.1fx real time\n", rtf);
 }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -70,14 +71,16 @@ TEST(Ros2Demos, Example11CarlikeBotInBulletDrivesItsBicycleReferenceOnACircle) {
 
 // Example 12: the chain forward_position_controller -> position_controller -> joint{1,2}_position_controller ->
 // joint1/joint2, spawned in the order its launch files do; a command on the top reaches the joints.
-TEST(Ros2Demos, Example12ThreeLevelChainPassesTheForwardCommandToTheJoints) {
-  NEED_ROS2_ROBOTS(dir);
+// The whole chain in one spawner call, as the demo's launch file spawns it, or all or nothing (--activate-as-group).
+void example12(const std::string& dir, bool as_group) {
   const std::string root = dir + "/demo_chaining";
   LockstepSession robot(root + "/pkgs/ros2_control_demo_example_12/urdf/rrbot.urdf.xacro",
                         root + "/config/rrbot_chained_controllers.yaml", {"--package-path", root + "/pkgs"});
-  ASSERT_NO_FATAL_FAILURE(robot.start({"joint_state_broadcaster", "joint1_position_controller",
-                                       "joint2_position_controller", "position_controller",
-                                       "forward_position_controller"}));
+  std::vector<std::string> spawned = {"joint_state_broadcaster", "joint1_position_controller",
+                                      "joint2_position_controller", "position_controller",
+                                      "forward_position_controller"};
+  if (as_group) spawned.push_back("--activate-as-group");
+  ASSERT_NO_FATAL_FAILURE(robot.start(spawned));
   lcm::LCM lc(robot.url());
   Recorder<joint_state_t> states(lc, "joint_states");
   float64_array_t command{};
@@ -104,6 +107,21 @@ TEST(Ros2Demos, Example12ThreeLevelChainPassesTheForwardCommandToTheJoints) {
       << chains;
   EXPECT_NE(chains.find("writes joint2_position_controller/joint2/position -> joint2_position_controller"),
             std::string::npos);
+  std::string listed;
+  EXPECT_EQ(robot.run({"cmctl", "list-controllers", "--verbose"}, &listed), 0) << listed;
+  std::printf("%s", listed.c_str());
+  EXPECT_TRUE(std::regex_search(listed, std::regex(R"(\nposition_controller .* active .* yes +position_controller/)")))
+      << "chained mode and its reference interfaces: " << listed;
+}
+
+TEST(Ros2Demos, Example12ThreeLevelChainPassesTheForwardCommandToTheJoints) {
+  NEED_ROS2_ROBOTS(dir);
+  example12(dir, false);
+}
+
+TEST(Ros2Demos, Example12ChainActivatesAsAGroup) {
+  NEED_ROS2_ROBOTS(dir);
+  example12(dir, true);
 }
 
 // Example 16: `ros2 topic pub --rate 10 /cmd_vel` into the diff drive, whose wheel velocities are the references of

@@ -69,8 +69,14 @@ class RobotSession {
     return std::make_unique<ChildProcess>(argv, env());
   }
 
+  // Stops one of them (SIGINT, then SIGKILL after 10 s): its exit code (-1 when it was not started); its output stays.
+  int stop_spawner() { return spawner_ ? spawner_->stop(10) : -1; }
+  int stop_sim() { return sim_ ? sim_->stop(10) : -1; }
+  int stop_controller_manager() { return cm_ ? cm_->stop(10) : -1; }
+
   std::string sim_output() const { return sim_ ? sim_->output() : ""; }
   std::string cm_output() const { return cm_ ? cm_->output() : ""; }
+  std::string spawner_output() const { return spawner_ ? spawner_->output() : ""; }
   pid_t controller_manager_pid() const { return cm_ ? cm_->pid() : -1; }
 
  protected:

@@ -10,6 +10,7 @@
 #include "sim_server/collision_shapes.hpp"
 #include "sim_server/simulation.hpp"
 #include "test/sim_server/sim_test_support.hpp"
+#include "description/load.hpp"
 
 namespace lcm_control::sim {
 namespace {

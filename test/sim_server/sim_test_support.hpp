@@ -6,6 +6,7 @@
 #include <string>
 
 #include "description/robot_model.hpp"
+#include "description/load.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "sim_server/simulation.hpp"
 

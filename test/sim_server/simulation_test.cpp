@@ -11,6 +11,7 @@
 #include "sim_server/simulation.hpp"
 #include "test/sim_server/sim_test_support.hpp"
 #include "test/support/process.hpp"
+#include "description/load.hpp"
 
 namespace lcm_control::sim {
 namespace {

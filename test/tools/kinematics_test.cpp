@@ -9,6 +9,7 @@
 
 #include "test/support/process.hpp"
 #include "description/urdf_reader.hpp"
+#include "description/load.hpp"
 
 using namespace lcm_control;
 using namespace lcm_control::tools;

@@ -301,10 +301,17 @@ std::string joints_cell(const std::vector<std::string>& joints, bool verbose) {
 }  // namespace
 
 std::string controller_table(const std::vector<controller_info_t>& controllers, bool ros2, bool verbose) {
+  const bool chaining = std::any_of(controllers.begin(), controllers.end(), [](const auto& c) { return c.chainable; });
   std::vector<std::vector<std::string>> rows = {{"NAME", "TYPE", "STATE", "JOINTS", "INTERFACE"}};
-  for (const auto& c : controllers)
+  if (chaining) rows[0].push_back("CHAINED MODE");
+  if (chaining && verbose) rows[0].push_back("REFERENCE INTERFACES");
+  for (const auto& c : controllers) {
     rows.push_back({c.name, c.type, ros2 ? ros2_state(c.state) : c.state, joints_cell(c.joints, verbose),
                     c.hardware_interface.empty() ? "-" : c.hardware_interface});
+    if (chaining) rows.back().push_back(!c.chainable ? "-" : c.chained_mode ? "yes" : "no");
+    if (chaining && verbose)
+      rows.back().push_back(c.references.empty() ? "-" : fmt::format("{}", fmt::join(c.references, ",")));
+  }
   return table_text(rows);
 }
 

@@ -10,7 +10,8 @@
 
 #include "bus/messages.hpp"
 #include "controller_manager/plugins.hpp"
-#include "controller_manager/registry.hpp"
+#include "controller_manager/ros_catalog.hpp"
+#include "controller_interface/registry.hpp"
 #include "description/urdf_reader.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
@@ -19,6 +20,8 @@
 #include "tools/lib/launch_file.hpp"
 #include "tools/lib/supervisor.hpp"
 #include "tools/lib/support.hpp"
+#include "controllers/builtin.hpp"
+#include "description/load.hpp"
 
 namespace lcm_control::tools {
 namespace {
@@ -144,7 +147,7 @@ void model_defaults(LaunchPlan& plan, const std::vector<std::string>& path, cons
         plan.controllers.push_back(c.name);
         continue;
       }
-      launch_say(fmt::format("note: not starting '{}': {}", c.name, registry.unknown_type_message(c.type)));
+      launch_say(fmt::format("note: not starting '{}': {}", c.name, unknown_type_message(registry, c.type)));
     }
     return;
   }

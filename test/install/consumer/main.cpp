@@ -5,6 +5,7 @@
 
 #include "bus/bus.hpp"
 #include "description/robot_model.hpp"
+#include "description/load.hpp"
 #include "controller_manager/manager.hpp"
 #include "lcm_control/joint_state_t.hpp"
 

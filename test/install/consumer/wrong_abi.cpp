@@ -1,5 +1,5 @@
 // Exports the plugin entry points by hand with an ABI version from the future.
-#include "controller_manager/plugin.hpp"
+#include "controller_interface/plugin.hpp"
 
 extern "C" lcm_control::cm::PluginAbi lcm_control_plugin_abi() {
   lcm_control::cm::PluginAbi abi = lcm_control::cm::this_plugin_abi();

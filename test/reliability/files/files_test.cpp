@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "description/robot_model.hpp"
+#include "description/load.hpp"
 #include "controller_manager/manager.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "sim_server/simulation.hpp"

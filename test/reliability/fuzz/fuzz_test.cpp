@@ -26,6 +26,7 @@
 #include "tools/lib/fields.hpp"
 #include "tools/lib/message_text.hpp"
 #include "tools/lib/time_base.hpp"
+#include "description/load.hpp"
 
 namespace lt = lcm_control::testing;
 using namespace lcm_control;

@@ -19,6 +19,7 @@
 #include "test/controller_manager/fake_hardware.hpp"
 #include "test/support/lcm_test.hpp"
 #include "test/support/process.hpp"
+#include "description/load.hpp"
 
 namespace lt = lcm_control::testing;
 using namespace lcm_control;
