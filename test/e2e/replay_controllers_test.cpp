@@ -1,0 +1,141 @@
+// replay --controllers (open loop): the lockstep demo recorded with `bus record` replays bit for bit; a changed gain
+// diverges at the step where it first acts, naming the field and the actuator; a truncated log, a log with no
+// hardware in it, a missing configuration and another robot are refused with exit 2, naming what to pass.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+
+#include "test/e2e/session.hpp"
+
+namespace lcm_control::testing {
+namespace {
+
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// The lockstep demo (launch's command sources drive j1 and j2) for `seconds`, recorded whole by `bus record`.
+std::string record_demo(const std::string& dir, double seconds) {
+  RobotSession bus(source("config/turret_bot.urdf"), source("config/turret_bot.yaml"));
+  const std::string log = dir + "/demo.lcmlog";
+  auto recorder = bus.background({"bus", "record", log, "--force"});
+  EXPECT_TRUE(recorder->wait_for_output("bus record: recording", 10)) << recorder->output();
+  std::string out;
+  EXPECT_EQ(bus.run({"launch", source("config/turret_bot_demo.launch.yaml"), "--duration", std::to_string(seconds)},
+                    &out, 60),
+            0)
+      << out;
+  EXPECT_EQ(recorder->stop(10), 0) << recorder->output();
+  return log;
+}
+
+struct Replayed {
+  int rc = -1;
+  std::string out;
+};
+
+Replayed replay(const std::vector<std::string>& args) {
+  RobotSession any(source("config/turret_bot.urdf"), source("config/turret_bot.yaml"));
+  Replayed r;
+  std::vector<std::string> argv = {"replay"};
+  argv.insert(argv.end(), args.begin(), args.end());
+  r.rc = any.run(argv, &r.out, 120);
+  return r;
+}
+
+TEST(ReplayControllers, TheLockstepDemoReplaysBitForBit) {
+  const std::string dir = temp_dir("replay_demo");
+  const std::string log = record_demo(dir, 3);
+  const Replayed same =
+      replay({log, "--controllers", "--urdf", source("config/turret_bot.urdf"), "--config",
+              source("config/turret_bot.yaml")});
+  std::printf("%s", same.out.c_str());
+  EXPECT_EQ(same.rc, 0) << same.out;
+  EXPECT_TRUE(has(same.out, "identical: ")) << same.out;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(same.out, m, std::regex(R"((\d+) hardware states replayed)"))) << same.out;
+  EXPECT_GE(std::stoi(m[1]), 3000);
+  ASSERT_TRUE(std::regex_search(same.out, m, std::regex(R"(hardware/command: (\d+) compared, 0 differ)"))) << same.out;
+  EXPECT_GE(std::stoi(m[1]), 3000);
+  ASSERT_TRUE(std::regex_search(same.out, m, std::regex(R"(joint_states: (\d+) compared, 0 differ)"))) << same.out;
+  EXPECT_GE(std::stoi(m[1]), 170);  // the controller's 60 Hz over 3 s
+}
+
+// A chain in the controller manager (a JointTrajectoryController on the references of effort PIDs, ur_like) with a
+// goal sent while it runs: the replay is identical; with one PID gain changed it diverges, first at that joint's
+// effort command, and says at which step.
+TEST(ReplayControllers, AChangedGainDivergesAtTheStepItFirstActs) {
+  const std::string dir = temp_dir("replay_gain");
+  const std::string urdf = source("test/robots/ur_like.urdf"), yaml = source("test/robots/ur_like_chained.yaml");
+  const std::string log = dir + "/chain.lcmlog";
+  {
+    LockstepSession robot(urdf, yaml, {});
+    auto recorder = robot.background({"bus", "record", log, "--force"});
+    ASSERT_TRUE(recorder->wait_for_output("bus record: recording", 10)) << recorder->output();
+    ASSERT_NO_FATAL_FAILURE(robot.start({"joint_state_broadcaster", "arm_pids", "arm_trajectory"}));
+    std::string out;
+    ASSERT_EQ(robot.send({"arm_trajectory", "--point", "1:0.2,-0.3,0.4,0.2,0.2,0.2"}, out), 0) << out;
+    EXPECT_EQ(robot.stop_sim(), 0) << robot.sim_output();
+    EXPECT_EQ(recorder->stop(10), 0) << recorder->output();
+  }
+  const Replayed same = replay({log, "--controllers", "--urdf", urdf, "--config", yaml});
+  std::printf("%s", same.out.c_str());
+  EXPECT_EQ(same.rc, 0) << same.out;
+  EXPECT_TRUE(has(same.out, "identical: ")) << same.out;
+
+  std::string tuned = file_text(yaml);
+  const std::string from = "elbow_joint: {p: 2000.0,", to = "elbow_joint: {p: 2500.0,";
+  ASSERT_NE(tuned.find(from), std::string::npos);
+  tuned.replace(tuned.find(from), from.size(), to);
+  const std::string tuned_path = dir + "/ur_like_tuned.yaml";
+  std::ofstream(tuned_path) << tuned;
+  const Replayed changed = replay({log, "--controllers", "--urdf", urdf, "--config", tuned_path});
+  std::printf("%s", changed.out.c_str());
+  EXPECT_EQ(changed.rc, 1) << changed.out;
+  EXPECT_TRUE(std::regex_search(changed.out, std::regex(R"(diverged: first on hardware/command at step \d+ )"
+                                                         R"(t=[0-9.]+ s, command\[elbow\w*\]: recorded \S+, )"
+                                                         R"(replayed \S+)")))
+      << changed.out;
+}
+
+TEST(ReplayControllers, BadInputIsRefusedWithExitTwoNamingWhatToPass) {
+  const std::string dir = temp_dir("replay_bad_input");
+  const std::string log = record_demo(dir, 1);
+  const std::string urdf = source("config/turret_bot.urdf"), yaml = source("config/turret_bot.yaml");
+
+  const Replayed no_config = replay({log, "--controllers"});
+  EXPECT_EQ(no_config.rc, 2) << no_config.out;
+  EXPECT_TRUE(has(no_config.out, "this log carries no recorded configuration; give the run's robot and controllers "
+                                 "with --urdf FILE --config FILE"))
+      << no_config.out;
+
+  const std::string cut = dir + "/cut.lcmlog";
+  {
+    std::ifstream in(log, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(cut, std::ios::binary) << bytes.substr(0, bytes.size() / 2 + 7);
+  }
+  const Replayed truncated = replay({cut, "--controllers", "--urdf", urdf, "--config", yaml});
+  EXPECT_EQ(truncated.rc, 2) << truncated.out;
+  EXPECT_TRUE(has(truncated.out, "cut.lcmlog: truncated or corrupted after event ")) << truncated.out;
+
+  const Replayed other_robot =
+      replay({log, "--controllers", "--urdf", source("test/robots/gripper.urdf"), "--config",
+              source("test/robots/gripper_action.yaml")});
+  EXPECT_EQ(other_robot.rc, 2) << other_robot.out;
+  EXPECT_TRUE(has(other_robot.out, "the recorded robot is not ")) << other_robot.out;
+
+  const std::string empty = dir + "/no_hardware.lcmlog";
+  {
+    RobotSession quiet(urdf, yaml);
+    auto recorder = quiet.background({"bus", "record", empty, "--force", "--duration", "0.3"});
+    EXPECT_EQ(recorder->wait(10), 0) << recorder->output();
+  }
+  const Replayed nothing = replay({empty, "--controllers", "--urdf", urdf, "--config", yaml});
+  EXPECT_EQ(nothing.rc, 2) << nothing.out;
+  EXPECT_TRUE(has(nothing.out, "no hardware/state messages")) << nothing.out;
+}
+
+}  // namespace
+}  // namespace lcm_control::testing
