@@ -274,8 +274,8 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
     }
     if (c.is_async) own = std::make_unique<Hardware>(model_);
   }
-  HardwareContext ctx(spec.name, spec.type, params, model_, own ? *own : hw_, bus_, endpoints,
-                      registry_.info(spec.type));
+  const ControllerTypeInfo* info = registry_.info(spec.type);
+  HardwareContext ctx(spec.name, spec.type, params, model_, own ? *own : hw_, bus_, endpoints, info);
   ctx.self() = controller.get();
   ctx.set_checking(checking);
   try {
@@ -289,7 +289,7 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
     c.message = e.what();
     return c;
   }
-  if (const ControllerTypeInfo* info = registry_.info(spec.type)) {
+  if (info) {
     if (const std::string why = undeclared_claim(*info, spec.params, controller->claim()); !why.empty()) {
       c.outcome = ControllerCheck::Refused;
       c.message = fmt::format("{}: type '{}' does not do what it declares: {} (its ControllerTypeInfo::claims is "
@@ -326,7 +326,6 @@ ControllerCheck ControllerManager::instantiate(const ControllerSpec& spec, Endpo
       return c;
     }
   }
-  const ControllerTypeInfo* info = registry_.info(spec.type);
   const std::vector<std::string> known = info ? parameter_names(*info) : std::vector<std::string>{};
   for (const auto& k : params.unused()) {
     const std::string where =

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "lcm_control/float64_array_t.hpp"
-#include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/twist_t.hpp"
 #include "test/controller_manager/rig.hpp"
 #include "controllers/builtin.hpp"
@@ -235,19 +234,10 @@ TEST(Chaining, ChainedCyclesDoNotAllocate) {
   EXPECT_TRUE(rig.controller("pid_left").chained_mode());
 
   ASSERT_TRUE(rig.switch_({"wheel_trajectory"}, {"base"}).ok);
-  joint_trajectory_t g{};
-  g.goal_id = 1;
-  g.joint_names = {"left_wheel", "right_wheel"};
-  g.num_joints = 2;
-  for (double s : {0.2, 0.4, 0.6}) {
-    trajectory_point_t p{};
-    p.time_from_start = s;
-    p.positions = {s, -s};
-    p.num_positions = 2;
-    g.points.push_back(p);
-  }
-  g.num_points = 3;
-  rig.publish("wheel_trajectory/command", g);
+  rig.publish("wheel_trajectory/command", lcm_control::testing::trajectory_goal(1, {"left_wheel", "right_wheel"},
+                                                                               {{0.2, {0.2, -0.2}},
+                                                                                {0.4, {0.4, -0.4}},
+                                                                                {0.6, {0.6, -0.6}}}));
   rig.cycle(2);
   EXPECT_EQ(rig.allocations_in_cycles(500, true, false), 0) << "trajectory -> PIDs, the goal running and ending";
   EXPECT_TRUE(rig.controller("pid_left").chained_mode());

@@ -584,19 +584,8 @@ TEST(ControllerManagerLoop, NoAllocationOnTheLoopPath) {
       rig.switch_({"joint_state_controller", "trajectory", "vel_group", "arm_position", "spin_velocity"}, {}).ok);
   rig.commands.reserve(10000);
   rig.cycle(50);
-  joint_trajectory_t g{};
-  g.goal_id = 1;
-  g.joint_names = {"slide", "tilt"};
-  g.num_joints = 2;
-  for (double t : {0.1, 0.2, 0.3}) {
-    trajectory_point_t p{};
-    p.time_from_start = t;
-    p.positions = {t, -t};
-    p.num_positions = 2;
-    g.points.push_back(p);
-  }
-  g.num_points = 3;
-  rig.publish("trajectory/command", g);
+  rig.publish("trajectory/command", lcm_control::testing::trajectory_goal(
+                                        1, {"slide", "tilt"}, {{0.1, {0.1, -0.1}}, {0.2, {0.2, -0.2}}, {0.3, {0.3, -0.3}}}));
   float64_array_t v{};
   v.size = 2;
   v.data = {1.0, 2.0};

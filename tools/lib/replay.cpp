@@ -9,8 +9,6 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
-#include <map>
-#include <memory>
 #include <set>
 
 #include "bus/bus.hpp"
