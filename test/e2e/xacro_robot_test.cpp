@@ -135,14 +135,10 @@ TEST(XacroRobot, RealRos2RobotsGoToDoctorSimServerAndLaunchAsTheirXacros) {
       lt::ChildProcess doctor(with({lt::bin("doctor"), "--urdf", urdf}));
       const int doctor_exit = doctor.wait(30);
       const bool driver = doctor.output().find("is neither a simulator nor mock hardware") != std::string::npos;
-      // doctor checks the YAML the gz plugin names, as launch loads it: a chained demo's controllers need chaining.
-      const bool chained = doctor.output().find("chaining is not available here yet") != std::string::npos;
+      // doctor also checks the YAML the gz plugin names, as launch loads it (the chained demos' included).
       if (driver) {  // a real driver's block (Robotiq's launch file): refused, naming the plugin
         EXPECT_EQ(doctor_exit, 3) << doctor.output();
         ++refused;
-      } else if (chained) {
-        EXPECT_EQ(doctor_exit, 3) << doctor.output();
-        EXPECT_NE(doctor.output().find("ros2_control hardware"), std::string::npos) << doctor.output();
       } else {
         EXPECT_EQ(doctor_exit, 0) << doctor.output();
         EXPECT_NE(doctor.output().find("ros2_control hardware"), std::string::npos) << doctor.output();
