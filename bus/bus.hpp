@@ -25,6 +25,7 @@ inline constexpr const char* kJointStates = "joint_states";
 inline constexpr const char* kHardwareState = "hardware/state";
 inline constexpr const char* kHardwareCommand = "hardware/command";
 inline constexpr const char* kCmRequest = "controller_manager/request";
+inline constexpr const char* kCmConfig = "controller_manager/config";  // run_config_t: what the run was started with
 inline constexpr const char* kCmResponse = "controller_manager/response";
 inline constexpr const char* kCmStatistics = "controller_manager/statistics";
 inline constexpr const char* kCmCommandSource = "controller_manager/command_source";

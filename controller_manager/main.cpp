@@ -112,6 +112,7 @@ int main(int argc, char** argv) {
     }
 
     install_stop_signals();
+    if (const cm::Reply r = manager.publish_config(); !r.ok) spdlog::warn("{}", r.message);  // for a recorder already on
 
     spdlog::info("ready ({} controllers configured, {} actuated joints, lcm {}{}{}{}{})", configured, actuated,
                  bus.url(), hardware_note(bus),

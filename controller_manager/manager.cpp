@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <utility>
 
 #include "bus/hardware_wire.hpp"
@@ -16,6 +18,8 @@
 #include "rt/scheduling.hpp"
 #include "controller_interface/claims.hpp"
 #include "controller_manager/context.hpp"
+#include "description/robot_file.hpp"
+#include "lcm_control/run_config_t.hpp"
 #include "controller_manager/gains.hpp"
 #include "controller_manager/ros_catalog.hpp"
 #include "controller_manager/switch_plan.hpp"
@@ -610,6 +614,33 @@ void ControllerManager::finish_reload(ReadConfig read) {
   changed();
   done({true, fmt::format("reloaded {}: {} controller(s) configured ({}); unloaded [{}]", model_.config_path,
                           model_.controllers.size(), names_configured(), join_some(reload_unloaded_, 20))});
+}
+
+Reply ControllerManager::publish_config() {
+  run_config_t m;
+  m.utime = wall_us();
+  m.version = LCM_CONTROL_VERSION;
+  m.robot_namespace = model_.ns;
+  m.urdf_path = model_.urdf_path;
+  try {
+    m.urdf = read_robot_file(model_.urdf_path, model_.options);
+    for (const std::string& path : model_.config_paths) {
+      std::ifstream in(path, std::ios::binary);
+      std::ostringstream text;
+      text << in.rdbuf();
+      if (!in) return {false, fmt::format("cannot publish the run's configuration: {} cannot be read any more", path)};
+      m.config_paths.push_back(path);
+      m.configs.push_back(text.str());
+    }
+  } catch (const std::exception& e) {
+    return {false, fmt::format("cannot publish the run's configuration: {}", e.what())};
+  }
+  m.num_configs = static_cast<int32_t>(m.configs.size());
+  for (const auto& [name, value] : model_.options.args) m.args.push_back(name + "=" + value);
+  m.num_args = static_cast<int32_t>(m.args.size());
+  bus_.lcm().publish(bus_.channel(channels::kCmConfig), &m);
+  return {true, fmt::format("published the run's configuration on {} ({} and {} file(s), {} bytes)",
+                            bus_.channel(channels::kCmConfig), model_.urdf_path, m.num_configs, m.getEncodedSize())};
 }
 
 std::string ControllerManager::type_doc(const std::string& type) const {

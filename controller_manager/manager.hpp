@@ -110,6 +110,10 @@ class ControllerManager {
   // Tries every configured controller without loading it (doctor, start-up).
   std::vector<ControllerCheck> check_configured();
   std::vector<std::string> types() const { return registry_.types(); }
+  // What it was started with (run_config_t: the URDF as read, the YAML files' texts, the $(arg) values), published on
+  // controller_manager/config so that a recording of the run replays on its own. Reads the files again: not real
+  // time. The reply says what was published, or why not (a file gone since).
+  Reply publish_config();
   // Its declaration in one line: "ROS 2, chainable: <doc>" ("" for a type that declares nothing).
   std::string type_doc(const std::string& type) const;
   bool busy() const { return static_cast<bool>(pending_done_) || static_cast<bool>(reload_done_); }

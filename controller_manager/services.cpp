@@ -25,6 +25,8 @@ const char* op_name(int op) {
       return "reload";
     case cm_request_t::SET_COMPONENT_STATE:
       return "set-hardware-component-state";
+    case cm_request_t::CONFIG:
+      return "config";
     default:
       return "unknown";
   }
@@ -112,7 +114,8 @@ void Services::answer(const cm_request_t& req, const Reply& reply, bool with_typ
                                        req.client.empty() ? "" : " from " + clip(req.client), describe(req),
                                        reply.ok ? "ok" : "refused", reply.message);
   // A list changes nothing and dashboards ask for it every second: only --log-level debug shows it.
-  const bool query = req.op == cm_request_t::LIST || req.op == cm_request_t::LIST_TYPES;
+  const bool query =
+      req.op == cm_request_t::LIST || req.op == cm_request_t::LIST_TYPES || req.op == cm_request_t::CONFIG;
   if (query && reply.ok) log_.debug(line);
   else log_.info(line);
 }
@@ -212,10 +215,12 @@ void Services::start(const cm_request_t& r) {
                               });
       return;
     }
+    case cm_request_t::CONFIG:
+      return answer(r, cm_.publish_config());
     default:
       ++malformed_;
       answer(r, {false, fmt::format("malformed request: unknown op {}; valid ops are 1 LIST, 2 LIST_TYPES, 3 LOAD, "
-                                    "4 UNLOAD, 5 SWITCH, 6 RELOAD, 8 SET_COMPONENT_STATE",
+                                    "4 UNLOAD, 5 SWITCH, 6 RELOAD, 8 SET_COMPONENT_STATE, 9 CONFIG",
                                     static_cast<int>(r.op))});
   }
 }

@@ -5,14 +5,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <ctime>
 #include <deque>
 #include <filesystem>
 #include <limits>
 #include <map>
 #include <memory>
+#include <regex>
 #include <set>
+#include <vector>
 
+#include "bus/messages.hpp"
 #include "cli/cli.hpp"
 #include "description/text.hpp"
 #include "tools/lib/census.hpp"
@@ -381,6 +385,11 @@ class Recorder {
       throw std::runtime_error("cannot write the log '" + path + "': check the folder exists and is writable");
     bus.subscribe(regex, &Recorder::on, this, Bus::On::Shared, 1000000);
   }
+  // The next message on `channel` with exactly these bytes is not written: the recorder's own request.
+  void leave_out(const std::string& channel, std::vector<uint8_t> bytes) {
+    own_channel_ = channel;
+    own_bytes_ = std::move(bytes);
+  }
   int64_t events() const { return events_; }
   // Channels recorded, counted up to Census::kMaxChannels (anyone on the bus can invent names): the count, and
   // whether there were more.
@@ -391,6 +400,11 @@ class Recorder {
 
  private:
   void on(const lcm::ReceiveBuffer* rb, const std::string& channel) {
+    if (!own_bytes_.empty() && channel == own_channel_ && rb->data_size == own_bytes_.size() &&
+        std::memcmp(rb->data, own_bytes_.data(), own_bytes_.size()) == 0) {
+      own_bytes_.clear();
+      return;
+    }
     lcm::LogEvent e{};
     e.eventnum = events_;
     e.timestamp = rb->recv_utime;
@@ -413,12 +427,23 @@ class Recorder {
   int64_t events_ = 0, bytes_ = 0;
   std::map<std::string, int64_t> channels_;
   bool more_channels_ = false;
+  std::string own_channel_;
+  std::vector<uint8_t> own_bytes_;
 };
 
 int cmd_record(Bus& bus, const std::string& path, const std::string& regex, bool force, double duration) {
   if (!force && std::filesystem::exists(path))
     throw CLI::ValidationError("LOG", "'" + path + "' exists: give --force to overwrite it, or another file name");
   Recorder rec(bus, regex, path);
+  // The controller manager's configuration into the log (it publishes it at start too), so that it replays alone.
+  if (std::regex_match(bus.channel(channels::kCmConfig), std::regex(regex))) {
+    cm_request_t ask = cm_request(cm_request_t::CONFIG, {}, {}, {});
+    ask.client = "bus record";
+    std::vector<uint8_t> bytes(static_cast<size_t>(ask.getEncodedSize()));
+    ask.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+    rec.leave_out(bus.channel(channels::kCmRequest), bytes);
+    bus.lcm().publish(bus.channel(channels::kCmRequest), bytes.data(), static_cast<unsigned>(bytes.size()));
+  }
   fmt::print("bus record: recording '{}' on {} to {} until Ctrl-C{}\n", regex, bus.url(), path,
              duration > 0 ? fmt::format(" or {}", seconds_text(duration)) : "");
   std::fflush(stdout);

@@ -16,8 +16,8 @@ int main(int argc, char** argv) {
       "first divergence named: channel, step, field, joint, both values), 2 bad input.\n"
       "Examples:\n"
       "  bus record run.lcmlog & launch config/turret_bot_demo.launch.yaml --duration 5\n"
-      "  replay run.lcmlog --controllers --urdf config/turret_bot.urdf --config config/turret_bot.yaml\n"
-      "  replay run.lcmlog --controllers --urdf R.urdf --config tuned.yaml      # what a change of gains changes\n"
+      "  replay run.lcmlog --controllers                      # the configuration the run recorded in the log\n"
+      "  replay run.lcmlog --controllers --config tuned.yaml  # what a change of gains changes\n"
       "  replay real_robot.lcmlog --controllers --urdf R.urdf --config C.yaml --tolerance 1e-6",
       "replay"};
   ReplayOptions o;
@@ -27,8 +27,10 @@ int main(int argc, char** argv) {
   app.add_option("LOG", o.log, "the recorded run")->required();
   app.add_flag("--controllers", controllers, "open loop: re-drive the controller manager with the recorded hardware")
       ->required();
-  app.add_option("--urdf", o.urdf, "the robot the run loaded (.urdf or .xacro)");
-  add_config_flag(app, o.configs, "the controllers YAML the run loaded (repeatable, merged in order)");
+  app.add_option("--urdf", o.urdf,
+                 "the robot (.urdf or .xacro) instead of the one the run recorded (controller_manager/config)");
+  add_config_flag(app, o.configs,
+                  "controllers YAML instead of the recorded ones (repeatable, merged in order): to test a change");
   app.add_option("--namespace", bus_flags.ns, "the robot's namespace in the log (its channels are under it)");
   app.add_option("--tolerance", o.tolerance, "largest |recorded - replayed| taken as the same (default 0: bit for bit)")
       ->check(CLI::NonNegativeNumber);

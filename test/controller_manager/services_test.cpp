@@ -4,7 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+
 #include "bus/messages.hpp"
+#include "lcm_control/run_config_t.hpp"
 #include "test/controller_manager/rig.hpp"
 #include "test/support/lcm_test.hpp"
 #include "controllers/builtin.hpp"
@@ -55,6 +59,32 @@ TEST(ControllerManagerServices, ListTypesAndEmptyNames) {
   EXPECT_EQ(responses.messages[0].num_types, 37);
   EXPECT_FALSE(responses.messages[1].ok);
   EXPECT_EQ(responses.messages[1].message, "malformed request: start[0] is an empty name");
+}
+
+// CONFIG: the run's configuration on controller_manager/config, the files' texts as read, for a recording to replay.
+TEST(ControllerManagerServices, ConfigPublishesWhatTheRunWasStartedWith) {
+  Rig rig;
+  Services services(*rig.cm, rig.bus);
+  Recorder<cm_response_t> responses(rig.bus.lcm(), "controller_manager/response");
+  Recorder<run_config_t> configs(rig.bus.lcm(), "controller_manager/config");
+  rig.publish("controller_manager/request", request(9, cm_request_t::CONFIG));
+  ASSERT_EQ(responses.messages.size(), 1u);
+  EXPECT_TRUE(responses.messages[0].ok) << responses.messages[0].message;
+  EXPECT_NE(responses.messages[0].message.find("published the run's configuration on controller_manager/config"),
+            std::string::npos)
+      << responses.messages[0].message;
+  ASSERT_EQ(configs.messages.size(), 1u);
+  const run_config_t& c = configs.messages[0];
+  auto text = [](const std::string& path) {
+    std::ifstream in(path);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(c.urdf_path, lcm_control::testing::data("test_bot.urdf"));
+  EXPECT_EQ(c.urdf, text(c.urdf_path));
+  ASSERT_EQ(c.num_configs, 1);
+  EXPECT_EQ(c.config_paths[0], lcm_control::testing::data("test_bot.yaml"));
+  EXPECT_EQ(c.configs[0], text(c.config_paths[0]));
+  EXPECT_FALSE(c.version.empty());
 }
 
 // SIGINT while a switch is pending and another waits for it: every request gets a refusal, and nothing is left

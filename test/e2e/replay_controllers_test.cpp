@@ -47,12 +47,13 @@ Replayed replay(const std::vector<std::string>& args) {
 TEST(ReplayControllers, TheLockstepDemoReplaysBitForBit) {
   const std::string dir = temp_dir("replay_demo");
   const std::string log = record_demo(dir, 3);
-  const Replayed same =
-      replay({log, "--controllers", "--urdf", source("config/turret_bot.urdf"), "--config",
-              source("config/turret_bot.yaml")});
+  const Replayed same = replay({log, "--controllers"});  // the configuration the run recorded in the log
   std::printf("%s", same.out.c_str());
   EXPECT_EQ(same.rc, 0) << same.out;
   EXPECT_TRUE(has(same.out, "identical: ")) << same.out;
+  EXPECT_TRUE(has(same.out, "note: the configuration recorded in the log: " + source("config/turret_bot.urdf") + ", " +
+                                source("config/turret_bot.yaml")))
+      << same.out;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(same.out, m, std::regex(R"((\d+) hardware states replayed)"))) << same.out;
   EXPECT_GE(std::stoi(m[1]), 3000);
@@ -90,7 +91,7 @@ TEST(ReplayControllers, AChangedGainDivergesAtTheStepItFirstActs) {
   tuned.replace(tuned.find(from), from.size(), to);
   const std::string tuned_path = dir + "/ur_like_tuned.yaml";
   std::ofstream(tuned_path) << tuned;
-  const Replayed changed = replay({log, "--controllers", "--urdf", urdf, "--config", tuned_path});
+  const Replayed changed = replay({log, "--controllers", "--config", tuned_path});  // the recorded robot, new gains
   std::printf("%s", changed.out.c_str());
   EXPECT_EQ(changed.rc, 1) << changed.out;
   EXPECT_TRUE(std::regex_search(changed.out, std::regex(R"(diverged: first on hardware/command at step \d+ )"
@@ -104,11 +105,25 @@ TEST(ReplayControllers, BadInputIsRefusedWithExitTwoNamingWhatToPass) {
   const std::string log = record_demo(dir, 1);
   const std::string urdf = source("config/turret_bot.urdf"), yaml = source("config/turret_bot.yaml");
 
-  const Replayed no_config = replay({log, "--controllers"});
+  // Recorded with every input but without the controller manager's configuration: refused, saying what to pass.
+  const std::string bare = dir + "/bare.lcmlog";
+  {
+    RobotSession robot(urdf, yaml);
+    auto recorder = robot.background({"bus", "record", bare, "--force", "-c",
+                                      "hardware/.*|joint_states|controller_manager/(request|command_source)|j[12]_controller/.*"});
+    EXPECT_TRUE(recorder->wait_for_output("bus record: recording", 10)) << recorder->output();
+    std::string out;
+    EXPECT_EQ(robot.run({"launch", source("config/turret_bot_demo.launch.yaml"), "--duration", "0.5"}, &out, 60), 0)
+        << out;
+    EXPECT_EQ(recorder->stop(10), 0) << recorder->output();
+  }
+  const Replayed no_config = replay({bare, "--controllers"});
   EXPECT_EQ(no_config.rc, 2) << no_config.out;
-  EXPECT_TRUE(has(no_config.out, "this log carries no recorded configuration; give the run's robot and controllers "
-                                 "with --urdf FILE --config FILE"))
+  EXPECT_TRUE(has(no_config.out, "bare.lcmlog: this log carries no recorded configuration (no "
+                                 "controller_manager/config message: recorded without that channel, or by a version "
+                                 "before it); give the run's robot and controllers with --urdf FILE --config FILE"))
       << no_config.out;
+  EXPECT_EQ(replay({bare, "--controllers", "--urdf", urdf, "--config", yaml}).rc, 0) << "given, it replays";
 
   const std::string cut = dir + "/cut.lcmlog";
   {

@@ -1,6 +1,8 @@
 #include "tools/lib/replay.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
+#include <stdlib.h>
 #include <lcm/lcm-cpp.hpp>
 
 #include <algorithm>
@@ -9,7 +11,9 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
+#include <fstream>
 #include <set>
+#include <sstream>
 
 #include "bus/bus.hpp"
 #include "bus/messages.hpp"
@@ -18,6 +22,8 @@
 #include "controller_manager/plugins.hpp"
 #include "controller_manager/services.hpp"
 #include "description/load.hpp"
+#include "description/robot_file.hpp"
+#include "lcm_control/run_config_t.hpp"
 #include "lcm_control/command_source_t.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
@@ -31,6 +37,26 @@ namespace {
 struct Published {
   std::deque<joint_state_t> joint_states;
   void on(const lcm::ReceiveBuffer*, const std::string&, const joint_state_t* m) { joint_states.push_back(*m); }
+};
+
+// A folder of its own under the system's temporary directory, removed with what is in it.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern = (std::filesystem::temp_directory_path() / "lcm_control_replay_XXXXXX").string();
+    if (mkdtemp(pattern.data())) path_ = pattern;
+  }
+  ~TempDir() {
+    std::error_code ec;
+    if (!path_.empty()) std::filesystem::remove_all(path_, ec);
+  }
+  const std::string& path() const {
+    if (path_.empty()) throw ReplayInputError("cannot make a temporary folder for the recorded configuration");
+    return path_;
+  }
+
+ private:
+  std::string path_;
 };
 
 class Comparison {
@@ -140,16 +166,81 @@ T decoded(const ReplayOptions& o, const lcm::LogEvent& e) {
   return m;
 }
 
+
+std::string file_text_or_empty(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "";
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// The run's configuration recorded in the log (run_config_t on `channel`), the first one; nullopt when there is none.
+std::optional<run_config_t> recorded_config(const ReplayOptions& o, const std::string& channel) {
+  lcm::LogFile log(o.log, "r");
+  for (const lcm::LogEvent* e = log.readNextEvent(); e; e = log.readNextEvent())
+    if (e->channel == channel) return decoded<run_config_t>(o, *e);
+  return std::nullopt;
+}
+
+// Where the recorded files are read from: each one's own path when it still holds the recorded text (relative
+// references in it keep working), else a copy in `dir`.
+struct Materialized {
+  std::string urdf;
+  std::vector<std::string> configs;
+};
+Materialized materialize(const run_config_t& c, const LoadOptions& options, const std::string& dir) {
+  namespace fs = std::filesystem;
+  Materialized m;
+  auto write = [&](const std::string& name, const std::string& text) {
+    const std::string path = (fs::path(dir) / name).string();
+    std::ofstream(path, std::ios::binary) << text;
+    return path;
+  };
+  std::string same;
+  try {
+    same = fs::is_regular_file(c.urdf_path) ? read_robot_file(c.urdf_path, options) : "";
+  } catch (const std::exception&) {
+    same.clear();  // it no longer expands: the recorded expansion is used
+  }
+  m.urdf = same == c.urdf ? c.urdf_path : write("recorded.urdf", c.urdf);
+  for (size_t k = 0; k < c.configs.size() && k < c.config_paths.size(); ++k)
+    m.configs.push_back(file_text_or_empty(c.config_paths[k]) == c.configs[k]
+                            ? c.config_paths[k]
+                            : write(fmt::format("recorded_{}_{}", k, fs::path(c.config_paths[k]).filename().string()),
+                                    c.configs[k]));
+  return m;
+}
 }  // namespace
 
 ReplayReport replay_controllers(const ReplayOptions& o) {
   lcm::LogFile log(o.log, "r");
   if (!log.good()) throw ReplayInputError(fmt::format("{}: cannot open the log: {}", o.log, std::strerror(errno)));
-  if (o.urdf.empty())
-    throw ReplayInputError(fmt::format("{}: this log carries no recorded configuration; give the run's robot and "
-                                       "controllers with --urdf FILE --config FILE",
-                                       o.log));
-  RobotModel model = load_robot_model(o.urdf, o.configs, o.load);
+  ReplayReport report;
+  std::string urdf = o.urdf;
+  std::vector<std::string> configs = o.configs;
+  LoadOptions load = o.load;
+  TempDir scratch;
+  if (urdf.empty()) {  // the configuration the run recorded (controller_manager/config)
+    const std::string channel = (load.ns.empty() ? "" : normalize_namespace(load.ns) + "/") + channels::kCmConfig;
+    const std::optional<run_config_t> recorded = recorded_config(o, channel);
+    if (!recorded)
+      throw ReplayInputError(fmt::format("{}: this log carries no recorded configuration (no {} message: recorded "
+                                         "without that channel, or by a version before it); give the run's robot and "
+                                         "controllers with --urdf FILE --config FILE",
+                                         o.log, channel));
+    if (load.ns.empty()) load.ns = recorded->robot_namespace;
+    for (const std::string& a : recorded->args)
+      load.args.emplace_back(a.substr(0, a.find('=')), a.find('=') == std::string::npos ? "" : a.substr(a.find('=') + 1));
+    const Materialized m = materialize(*recorded, load, scratch.path());
+    urdf = m.urdf;
+    if (configs.empty()) configs = m.configs;
+    report.notes.push_back(fmt::format("the configuration recorded in the log: {}{}", recorded->urdf_path,
+                                       recorded->config_paths.empty()
+                                           ? ""
+                                           : fmt::format(", {}", fmt::join(recorded->config_paths, ", "))));
+  }
+  RobotModel model = load_robot_model(urdf, configs, load);
   Bus bus("memq://", model.ns);
   cm::Registry registry = cm::builtin_registry();
   cm::load_plugins(registry, cm::plugin_libraries(model));
@@ -173,7 +264,6 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
     }
   };
 
-  ReplayReport report;
   Comparison cmp(o.tolerance);
   std::set<std::string> sourced;  // `<controller>/command` channels a command source in the manager publishes itself
   std::optional<hardware_command_t> answer;  // the replayed answer to the last recorded state
@@ -199,7 +289,7 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
         cm::Hardware hw(model);
         hardware_command_t scratch;
         if (const std::string why = hw.bind(s, scratch); !why.empty())
-          throw ReplayInputError(fmt::format("{}: the recorded robot is not {}'s: {}", o.log, o.urdf, why));
+          throw ReplayInputError(fmt::format("{}: the recorded robot is not {}'s: {}", o.log, urdf, why));
         bound_checked = true;
       }
       pump();
@@ -251,6 +341,7 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
 
 std::string replay_report_text(const ReplayReport& r, double tolerance) {
   std::string out;
+  for (const std::string& n : r.notes) out += "note: " + n + "\n";
   if (r.first) {
     const Divergence& d = *r.first;
     out += fmt::format("diverged: first on {} at {}{}, {}{}: recorded {:.17g}, replayed {:.17g}\n", d.channel,

@@ -24,7 +24,9 @@ class ReplayInputError : public std::runtime_error {
 
 struct ReplayOptions {
   std::string log;                   // an LCM log (bus record or lcm-logger)
-  std::string urdf;                  // the robot and its controllers, as the recorded run loaded them
+  // The robot and its controllers; "" and none: the configuration the run recorded in the log (run_config_t); a
+  // --config given with the recorded robot replaces the recorded files (to test a change).
+  std::string urdf;
   std::vector<std::string> configs;
   LoadOptions load;                  // package path, xacro arguments, namespace (the log's channels are under it)
   double tolerance = 0;              // |recorded - replayed| allowed per value; 0: bit for bit
@@ -48,6 +50,7 @@ struct ChannelSummary {
 
 struct ReplayReport {
   int64_t events = 0, states = 0, fed = 0;  // log events read; hardware states replayed; inputs handed over
+  std::vector<std::string> notes;           // where the configuration came from
   std::vector<ChannelSummary> channels;
   std::optional<Divergence> first;
   bool within_tolerance() const { return !first.has_value(); }
