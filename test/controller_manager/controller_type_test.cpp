@@ -203,12 +203,13 @@ TEST(ControllerTypes, OnlyATypeDeclaredChainableExportsReferenceInterfaces) {
     Rig rig(registry, lcm_control::testing::data("test_bot.urdf"), yaml);
     const Reply r = rig.load("exp");
     EXPECT_EQ(r.ok, chainable) << r.message;
-    if (!chainable)
+    if (!chainable) {
       EXPECT_NE(r.message.find("controller 'exp': type 'test/Exporter' exports the reference interface 'exp/tilt' but "
                                "does not declare itself chainable: set `chainable` (and `references`) in its "
                                "ControllerTypeInfo"),
                 std::string::npos)
           << r.message;
+    }
   }
 }
 

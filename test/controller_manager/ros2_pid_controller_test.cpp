@@ -117,7 +117,9 @@ TEST(Ros2PidController, BadInterfacesAreRefusedNamingTheKeyAndTheValidValues) {
         ", gains: {twist: {p: 1}}}");
     EXPECT_TRUE(has(bad, "refused: ")) << bad;
     EXPECT_TRUE(has(bad, "twist_pid/reference_and_state_interfaces: ")) << bad;
-    if (own_words) EXPECT_TRUE(has(bad, "give one or two different ones of position, velocity and effort")) << bad;
+    if (own_words) {
+      EXPECT_TRUE(has(bad, "give one or two different ones of position, velocity and effort")) << bad;
+    }
   }
   const std::string external = load_message(
       "{dof_names: [twist], command_interface: effort, reference_and_state_interfaces: [position], "

@@ -8,11 +8,11 @@ using lcm_control::Interface;
 namespace {
 struct Fixture {
   Claim j1{Interface::Position, {"j1"}, {}, {}}, j2{Interface::Position, {"j2"}, {}, {}}, none{std::nullopt, {"j1", "j2"}, {}, {}};
-  std::vector<LoadedController> loaded{{"a", "running", &j1},
-                                       {"b", "initialized", &j1},
-                                       {"c", "initialized", &j2},
-                                       {"d", "stopped", &j2},
-                                       {"jsc", "running", &none}};
+  std::vector<LoadedController> loaded{{"a", "running", &j1, {}},
+                                       {"b", "initialized", &j1, {}},
+                                       {"c", "initialized", &j2, {}},
+                                       {"d", "stopped", &j2, {}},
+                                       {"jsc", "running", &none, {}}};
 };
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 }  // namespace

@@ -172,7 +172,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--bin-dir", required=True)
     ap.add_argument("--source-dir", required=True)
-    ap.add_argument("--robot", choices=["turret_bot", "tall_arm", "bumper_bot", "ur5e"], default="turret_bot")
+    ap.add_argument("--robot", choices=["turret_bot", "tall_arm", "bumper_bot", "ur5e", "robotiq"], default="turret_bot")
     ap.add_argument("--screenshot", help="where to save the page (default: the test's temporary folder)")
     a = ap.parse_args()
 
@@ -217,6 +217,18 @@ def main():
                 view_flags += ["--xacro-arg", arg]
             robot = ["--urdf", urdf, "--config", config, *view_flags,
                      "--controllers", "joint_state_broadcaster,forward_position_controller"]
+        elif a.robot == "robotiq":
+            # Robotiq's 2F-85 (the gripper a Kinova Gen3 carries) from its own ROS 2 package: package:// meshes,
+            # Collada visuals, five mimic joints behind one knuckle, a parallel gripper action controller.
+            robots = os.environ.get("LCM_CONTROL_ROS2_ROBOTS") or os.path.join(a.source_dir, "../shared/ros2_robots")
+            root = os.path.join(os.path.realpath(robots), "robotiq_2f85")
+            if not os.path.isdir(root):
+                print(f"SKIPPED: no Robotiq package at {root} (LCM_CONTROL_ROS2_ROBOTS)")
+                return SKIP
+            urdf = os.path.join(root, "derived/robotiq_2f_85_sim_gazebo.urdf.xacro")
+            view_flags = ["--package-path", os.path.join(root, "pkgs")]
+            robot = ["--urdf", urdf, "--config", os.path.join(root, "config/robotiq_controllers.yaml"), *view_flags,
+                     "--controllers", "joint_state_broadcaster,robotiq_gripper_controller"]
         elif a.robot == "bumper_bot":
             files = os.path.join(a.source_dir, "test/robots/mobile")
             urdf = os.path.join(files, "bumper_bot.urdf.xacro")
@@ -260,6 +272,11 @@ def main():
             print("a mesh outside:", note)
             assert "/file/etc/hostname.stl" in note and "--package-path" in note, note
             print("dashboard_browser ur5e: ok")
+            return 0
+        if a.robot == "robotiq":
+            robotiq(wd, a, url)
+            wd.screenshot(a.screenshot or os.path.join(work, "dashboard.png"))
+            print("dashboard_browser robotiq: ok")
             return 0
         if a.robot == "bumper_bot":
             bumper_bot(wd)
@@ -520,6 +537,41 @@ def ur5e(wd):
     error = wd.js("return document.getElementById('gains-message').classList.contains('error')")
     print("gains:", gains, "(error)" if error else "")
     assert not error, gains
+
+
+def robotiq(wd, a, url):
+    """Robotiq's 2F-85 as its ROS 2 package ships it: its name in the header, every mesh shown, framed to a real share
+    of the view, and a gripper goal sent from a terminal closing the fingers in the view, the mimic joints with it."""
+    name = wait_for("the robot's name in the header", lambda: wd.js(
+        "return window.dashboard.view.robot && document.getElementById('robot-name').textContent"), 30)
+    print("header:", name)
+    assert name.split(" · ")[0] == "robotiq_gripper", name
+    meshes = wait_for("the gripper's meshes", lambda: wd.js(
+        "const v = window.dashboard.view; let n = 0; v.robot.traverse(o => { if (o.isMesh) n++; });"
+        "return n >= 9 && n"), 30)
+    time.sleep(1.0)  # the loading manager frames the robot once every mesh is in
+    note = wd.js("return document.getElementById('view-note').textContent")
+    print(f"{meshes} meshes; view note: {note}")
+    assert "not shown" not in note, note
+    box = whole_robot_in_view(wd, "robotiq open")
+    share = wd.js("return window.dashboard.view.coverage()")
+    print(f"open, the gripper covers {100 * share:.1f} % of the 3D view's pixels")
+    assert share >= 0.10, f"the gripper is a speck: {100 * share:.1f} % of the view"
+    assert (box["bottom"] - box["top"]) / box["height"] >= 0.5 or (box["right"] - box["left"]) / box["width"] >= 0.5, box
+    goal = 0.5
+    cmd = subprocess.run([os.path.join(a.bin_dir, "gripper"), "robotiq_gripper_controller", "--position", str(goal),
+                          "--lcm-url", url], capture_output=True, text=True, timeout=30)
+    print("gripper:", (cmd.stdout + cmd.stderr).strip().splitlines()[-1:])
+    assert cmd.returncode == 0, (cmd.stdout, cmd.stderr)
+    angles = wait_for("the closed fingers in the view", lambda: (lambda j: abs(j[0] - goal) < 0.03 and j)(wd.js(
+        "const j = window.dashboard.view.robot.joints; return ['robotiq_85_left_knuckle_joint', "
+        "'robotiq_85_right_knuckle_joint', 'robotiq_85_left_inner_knuckle_joint', 'robotiq_85_left_finger_tip_joint']"
+        ".map(n => j[n].angle)")), 20)
+    print("in the view: left knuckle %.4f, right knuckle %.4f, left inner knuckle %.4f, left finger tip %.4f rad" %
+          tuple(angles))
+    # The URDF's mimic multipliers: right knuckle -1, inner knuckle +1, finger tip -1.
+    assert abs(angles[1] + angles[0]) < 1e-3 and abs(angles[2] - angles[0]) < 1e-3 and abs(angles[3] + angles[0]) < 1e-3, \
+        angles
 
 
 def tall_arm(wd, a, url, ns, page, chromium, work):
