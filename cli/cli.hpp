@@ -1,5 +1,6 @@
 // What every program's main() shares: the --lcm-url/--namespace/--package-path/--config
-// flags, and one clear line (no exception trace) plus a non-zero exit on failure.
+// flags (the robot processes' whole common block), and one clear line (no exception trace) plus a non-zero exit on
+// failure.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -15,6 +16,7 @@
 #include "description/robot_model.hpp"
 #include "description/substitution.hpp"
 #include "description/text.hpp"
+#include "rt/scheduling.hpp"
 
 namespace lcm_control {
 
@@ -134,6 +136,47 @@ inline LoadOptions load_options(const std::vector<std::string>& package_path, co
   for (const auto& a : xacro_arg_assignments) o.xacro_args.push_back(parse_arg(a));
   o.simulate_hardware = simulate_hardware;
   return o;
+}
+
+// The robot's files and how they are read (--urdf, --config, --package-path, --arg, --xacro-arg,
+// --simulate-hardware): every program that loads a robot takes them alike.
+struct RobotFileFlags {
+  std::string urdf;
+  std::vector<std::string> config, package_path, args, xacro_args, simulate_hardware;
+};
+
+inline void add_robot_file_flags(CLI::App& app, RobotFileFlags& f, const std::string& urdf_help,
+                                 const std::string& config_help) {
+  app.add_option("--urdf", f.urdf, urdf_help)->required();
+  add_config_flag(app, f.config, config_help);
+  add_package_path_flag(app, f.package_path);
+  add_arg_flag(app, f.args);
+  add_xacro_arg_flag(app, f.xacro_args);
+  add_simulate_hardware_flag(app, f.simulate_hardware);
+}
+
+inline LoadOptions load_options(const RobotFileFlags& f, const BusFlags& bus) {
+  return load_options(f.package_path, bus, f.args, f.xacro_args, f.simulate_hardware);
+}
+
+// The two robot processes' (sim_server, controller_manager) common block: the robot's files, the bus and the hardware
+// loop, scheduling, the log level.
+struct RobotProcessFlags {
+  RobotFileFlags files;
+  BusFlags bus;
+  SchedulingFlags sched;
+  std::string log_level;
+};
+
+inline void add_robot_process_flags(CLI::App& app, RobotProcessFlags& f, const std::string& urdf_help,
+                                    const std::string& config_help) {
+  add_robot_file_flags(app, f.files, urdf_help, config_help);
+  add_bus_flags(app, f.bus);
+  add_hardware_url_flag(app, f.bus);
+  add_hardware_reader_flag(app, f.bus);
+  add_hardware_mirror_flag(app, f.bus);
+  add_scheduling_flags(app, f.sched);
+  app.add_option("--log-level", f.log_level, "debug, info, warn or error");
 }
 
 enum ExitCode { kExitOk = 0, kExitFailure = 1, kExitUsage = 2, kExitBadInput = 3, kExitBus = 4 };

@@ -1,22 +1,7 @@
-// controller_manager: flags and wiring only. Loads the URDF and YAML, runs the
-// loop on hardware/state, serves requests between cycles a slice at a time,
-// stops and unloads everything on SIGINT/SIGTERM. Exit codes: 0 clean stop,
-// 2 usage, 3 bad URDF/YAML, 4 LCM.
-#include <sched.h>
-
-#include <algorithm>
-#include <future>
-#include <limits>
-
-#include "cli/cli.hpp"
-#include "rt/log.hpp"
-#include "rt/scheduling.hpp"
-#include "rt/stop_signal.hpp"
-#include "controller_manager/manager.hpp"
-#include "controller_manager/plugins.hpp"
-#include "controller_manager/services.hpp"
-#include "controllers/builtin.hpp"
-#include "description/load.hpp"
+// controller_manager: flags, then one call (controller_manager/program.hpp). Loads the URDF and YAML, runs the loop
+// on hardware/state, serves requests between cycles a slice at a time, stops and unloads everything on
+// SIGINT/SIGTERM. Exit codes: 0 clean stop, 2 usage, 3 bad URDF/YAML, 4 LCM.
+#include "controller_manager/program.hpp"
 
 int main(int argc, char** argv) {
   using namespace lcm_control;
@@ -27,118 +12,7 @@ int main(int argc, char** argv) {
       "  controller_manager --urdf config/turret_bot.urdf --config config/turret_bot.yaml\n"
       "  controller_manager --urdf robot.urdf --config robot.yaml --namespace r1 --cpu 1 --rt-priority 80",
       "controller_manager"};
-  std::string urdf;
-  std::vector<std::string> config;
-  BusFlags bus_flags;
-  SchedulingFlags sched;
-  std::vector<std::string> package_path;
-  double silence_s = 0.25;
-  std::string log_level;
-  app.add_option("--urdf", urdf, "robot URDF (or .urdf.xacro: --xacro-arg gives its arguments) with <transmission> tags")->required();
-  add_config_flag(app, config,
-                  "ros_control YAML (controllers as top-level keys) or ROS 2 parameter file; none: the URDF's "
-                  "gz_ros2_control plugin <parameters>");
-  add_bus_flags(app, bus_flags);
-  add_hardware_url_flag(app, bus_flags);
-  add_hardware_reader_flag(app, bus_flags);
-  add_hardware_mirror_flag(app, bus_flags);
-  add_package_path_flag(app, package_path);
-  std::vector<std::string> args;
-  add_arg_flag(app, args);
-  std::vector<std::string> xacro_args;
-  add_xacro_arg_flag(app, xacro_args);
-  std::vector<std::string> simulate_hardware;
-  add_simulate_hardware_flag(app, simulate_hardware);
-  add_scheduling_flags(app, sched);
-  app.add_option("--silence-timeout", silence_s,
-                 "seconds without hardware/state after which controllers are not updated and switches apply at once")
-      ->check(CLI::PositiveNumber);
-  int64_t spin_us = 0;
-  app.add_option("--spin-us", spin_us,
-                 "real time: sleep to this long before each expected hardware/state, then poll without sleeping up "
-                 "to this long after it, so that the state is taken as it arrives instead of a wake-up later (costs "
-                 "about this much CPU per period; sim_server has the same flag for its deadlines). The poll yields the "
-                 "CPU to anything else ready on it: on a loaded machine use it with --rt-priority")
-      ->check(CLI::Range(int64_t{0}, int64_t{100000}));
-  app.add_option("--log-level", log_level, "debug, info, warn, error");
-  bool quiet_model = false;
-  app.add_flag("--quiet-model", quiet_model,
-               "do not print the robot model's notes and warnings: launch gives it when it starts sim_server on the "
-               "same files, which prints the same ones (each warning once per cause, not once per process)");
-
-  return run_program(app, argc, argv, [&]() -> int {
-    std::string scheduling = apply_scheduling(sched);
-    if (spin_us > 0) {
-      set_timer_slack(1000);  // the sleep before each spin must not end late by the default 50 us
-      scheduling += fmt::format("{}spinning {} us around each real-time state", scheduling.empty() ? "" : ", ", spin_us);
-    }
-    setup_logging("controller_manager", log_level);
-    LoadOptions load = load_options(package_path, bus_flags, args, xacro_args, simulate_hardware);
-    load.config_from_plugin = true;
-    // Read on a thread of its own, so that the configuration lives in another allocator arena than the loop's: a
-    // reload frees it on a worker thread, which takes that arena's lock for milliseconds at a time; on the main
-    // arena, loading a controller after a reload of 10,000 waited 8-15 ms for it (now 2-3 ms, as much as the
-    // machine's own scheduling gaps).
-    RobotModel model = std::async(std::launch::async, [&] { return load_robot_model(urdf, config, load); }).get();
-    if (!quiet_model) {
-      for (const auto& n : model.notes) spdlog::info("{}", n);
-      for (const auto& w : model.warnings) spdlog::warn("{}", w);
-    }
-    if (model.config_path.empty())
-      throw ModelError(fmt::format("--config is required: the controllers YAML (a URDF's gz_ros2_control plugin may "
-                                   "name it in <parameters>; {}'s does not)",
-                                   urdf));
-    Bus bus(bus_flags.lcm_url, model.ns, bus_flags.hardware_lcm_url, hardware_reader_named(bus_flags.hardware_reader));
-    bus.mirror_hardware(bus_flags.hardware_mirror_hz);
-    // Between two cycles, a request's work (Services), the destruction of unloaded controllers (poll) and the reading
-    // of the shared bus (a 4 MiB goal's fragments) take at most this long each before the next hardware state is
-    // looked for.
-    constexpr int64_t kSliceUs = 250;
-    constexpr int64_t kLongestWaitUs = 20000;  // housekeeping (silence, statistics) runs at least this often
-    bus.set_pass_budget_us(kSliceUs);
-    cm::ManagerOptions options;
-    options.silence_us = static_cast<int64_t>(silence_s * 1e6);
-    options.slice_us = kSliceUs;
-    options.intake_thread = true;
-    const size_t configured = model.controllers.size();
-    const size_t actuated = model.transmissions.size();
-    cm::Registry registry = cm::builtin_registry();
-    for (const auto& line : cm::load_plugins(registry, cm::plugin_libraries(model))) spdlog::info("{}", line);
-    cm::ControllerManager manager(std::move(model), bus, registry, options);
-    cm::Services services(manager, bus, kSliceUs);
-    for (const auto& c : manager.check_configured()) {
-      if (c.outcome != cm::ControllerCheck::Loads) spdlog::warn("configured controller will not load: {}", c.message);
-      for (const auto& n : c.notes) spdlog::warn("{}", n);
-    }
-
-    install_stop_signals();
-    if (const cm::Reply r = manager.publish_config(); !r.ok) spdlog::warn("{}", r.message);  // for a recorder already on
-
-    spdlog::info("ready ({} controllers configured, {} actuated joints, lcm {}{}{}{}{})", configured, actuated,
-                 bus.url(), hardware_note(bus),
-                 bus.ns().empty() ? "" : ", namespace ", bus.ns(), scheduling.empty() ? "" : ", " + scheduling);
-    int errors = 0;
-    while (!stop_requested()) {
-      // What is queued, the hardware loop first and at most 1,000 messages each, then the housekeeping: silence
-      // is measured after the backlog, so other traffic cannot mask a dead hardware.
-      // (Without --spin-us there is no window to wake for: no clock read.)
-      int64_t wait_us =
-          spin_us > 0 ? manager.state_arrivals().sleep_us(monotonic_us(), spin_us, kLongestWaitUs) : kLongestWaitUs;
-      if (services.has_work() || manager.has_work()) wait_us = 0;
-      else if (manager.reading_config() || manager.taking_in()) wait_us = std::min<int64_t>(wait_us, 1000);
-      if (wait_us == 0) sched_yield();  // spinning: the simulator, woken to its deadline on this CPU, runs first
-      if (!bus.handle_us(wait_us, 1000) && !stop_requested()) {
-        if (++errors > 100) throw std::runtime_error("LCM keeps failing to receive; giving up");
-        continue;
-      }
-      errors = 0;
-      const int64_t now = monotonic_us();
-      manager.poll(now);
-      services.serve(now + kSliceUs);
-    }
-    const std::string summary = manager.shutdown();
-    services.serve(std::numeric_limits<int64_t>::max());  // what is still queued is refused: shutting down
-    spdlog::info("shutting down: {}", summary);
-    return kExitOk;
-  });
+  cm::ProgramFlags flags;
+  cm::add_program_flags(app, flags);
+  return run_program(app, argc, argv, [&] { return cm::run_controller_manager(flags); });
 }
