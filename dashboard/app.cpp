@@ -27,10 +27,11 @@
 #include "rt/scheduling.hpp"
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
-#include "tools/lib/message_json.hpp"
-#include "tools/lib/message_text.hpp"
-#include "tools/lib/support.hpp"
-#include "tools/lib/time_base.hpp"
+#include "tools/lib/messages/message_json.hpp"
+#include "tools/lib/messages/message_text.hpp"
+#include "tools/lib/clients/wait.hpp"
+#include "tools/lib/messages/names.hpp"
+#include "tools/lib/clients/time_base.hpp"
 
 namespace lcm_control::dashboard {
 namespace {

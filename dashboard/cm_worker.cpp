@@ -4,7 +4,7 @@
 #include <optional>
 
 #include "rt/clock.hpp"
-#include "tools/lib/cm_client.hpp"
+#include "tools/lib/clients/cm_client.hpp"
 
 namespace lcm_control::dashboard {
 

@@ -9,6 +9,7 @@
 #include <ctime>
 #include <deque>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <memory>
@@ -19,14 +20,16 @@
 #include "bus/messages.hpp"
 #include "cli/cli.hpp"
 #include "description/text.hpp"
-#include "tools/lib/census.hpp"
-#include "tools/lib/command_check.hpp"
-#include "tools/lib/csv.hpp"
-#include "tools/lib/fields.hpp"
-#include "tools/lib/message_text.hpp"
-#include "tools/lib/netcheck.hpp"
-#include "tools/lib/support.hpp"
-#include "tools/lib/time_base.hpp"
+#include "tools/lib/clients/census.hpp"
+#include "tools/lib/clients/command_check.hpp"
+#include "tools/lib/messages/csv.hpp"
+#include "tools/lib/messages/fields.hpp"
+#include "tools/lib/messages/message_text.hpp"
+#include "tools/lib/clients/netcheck.hpp"
+#include "tools/lib/clients/wait.hpp"
+#include "tools/lib/messages/names.hpp"
+#include "tools/lib/logs/log_file.hpp"
+#include "tools/lib/clients/time_base.hpp"
 
 namespace lcm_control::tools {
 namespace {
@@ -431,6 +434,18 @@ class Recorder {
   std::vector<uint8_t> own_bytes_;
 };
 
+// A udpm URL with the receive buffer a recorder wants: the kernel's largest (net.core.rmem_max), up to 8 MiB, unless
+// the URL names one. A recorder starved of the CPU for a moment then loses nothing of a lockstep run's burst.
+std::string recording_url(const std::string& url) {
+  if (url.rfind("udpm://", 0) != 0 || url.find("recv_buf_size=") != std::string::npos) return url;
+  long most = 8 << 20;
+  if (std::ifstream in("/proc/sys/net/core/rmem_max"); in) {
+    long cap = 0;
+    if (in >> cap && cap > 0) most = std::min(most, cap);
+  }
+  return url + (url.find('?') == std::string::npos ? "?" : "&") + "recv_buf_size=" + std::to_string(most);
+}
+
 int cmd_record(Bus& bus, const std::string& path, const std::string& regex, bool force, double duration) {
   if (!force && std::filesystem::exists(path))
     throw CLI::ValidationError("LOG", "'" + path + "' exists: give --force to overwrite it, or another file name");
@@ -639,7 +654,7 @@ int main(int argc, char** argv) {
                                 ? bus_flags.lcm_url
                                 : hardware_url_for(bus_flags.hardware_lcm_url, effective_url(bus_flags.lcm_url),
                                                    bus_flags.ns);
-    Bus bus(url, bus_flags.ns, "", HardwareReader::Direct);
+    Bus bus(record->parsed() ? recording_url(effective_url(url)) : url, bus_flags.ns, "", HardwareReader::Direct);
     if (list->parsed()) return cmd_list(bus, list_duration);
     if (record->parsed()) return cmd_record(bus, log_path, record_regex, force, duration);
     if (play->parsed()) return cmd_play(bus, log_path, speed, loop, duration);

@@ -4,7 +4,7 @@
 // resume, step, reset, sim-status) over sim_server/request and /response. The verbs: tools/lib/cmctl_verbs.hpp.
 #include "cli/cli.hpp"
 #include "rt/stop_signal.hpp"
-#include "tools/lib/cmctl_verbs.hpp"
+#include "tools/lib/clients/cmctl_verbs.hpp"
 
 int main(int argc, char** argv) {
   using namespace lcm_control;

@@ -9,9 +9,10 @@
 
 #include "cli/cli.hpp"
 #include "description/text.hpp"
-#include "tools/lib/csv.hpp"
-#include "tools/lib/fields.hpp"
-#include "tools/lib/support.hpp"
+#include "tools/lib/messages/csv.hpp"
+#include "tools/lib/messages/fields.hpp"
+#include "tools/lib/messages/names.hpp"
+#include "tools/lib/logs/log_file.hpp"
 
 int main(int argc, char** argv) {
   using namespace lcm_control;

@@ -12,10 +12,12 @@
 #include <set>
 
 #include "cli/cli.hpp"
-#include "tools/lib/fields.hpp"
-#include "tools/lib/process.hpp"
-#include "tools/lib/support.hpp"
-#include "tools/lib/time_base.hpp"
+#include "tools/lib/messages/fields.hpp"
+#include "tools/lib/process/process.hpp"
+#include "tools/lib/clients/wait.hpp"
+#include "tools/lib/messages/names.hpp"
+#include "tools/lib/logs/log_file.hpp"
+#include "tools/lib/clients/time_base.hpp"
 
 namespace lcm_control::tools {
 namespace {

@@ -3,7 +3,7 @@
 // with the recorded inputs handed over in the log's order; its hardware/command and joint_states are compared with
 // the recorded ones. Exit 0 identical (or within --tolerance), 1 diverged, 2 bad input.
 #include "cli/cli.hpp"
-#include "tools/lib/replay.hpp"
+#include "tools/lib/logs/replay.hpp"
 
 int main(int argc, char** argv) {
   using namespace lcm_control;

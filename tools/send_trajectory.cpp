@@ -14,12 +14,13 @@
 #include "bus/messages.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
-#include "tools/lib/cm_client.hpp"
-#include "tools/lib/cm_views.hpp"
-#include "tools/lib/command_check.hpp"
-#include "tools/lib/goal_watch.hpp"
-#include "tools/lib/support.hpp"
-#include "tools/lib/trajectory_goal.hpp"
+#include "tools/lib/clients/cm_client.hpp"
+#include "tools/lib/clients/cm_views.hpp"
+#include "tools/lib/clients/command_check.hpp"
+#include "tools/lib/clients/goal_watch.hpp"
+#include "tools/lib/clients/wait.hpp"
+#include "tools/lib/messages/names.hpp"
+#include "tools/lib/clients/trajectory_goal.hpp"
 
 namespace lcm_control::tools {
 namespace {

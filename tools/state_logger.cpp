@@ -6,10 +6,11 @@
 #include <memory>
 
 #include "cli/cli.hpp"
-#include "tools/lib/census.hpp"
-#include "tools/lib/csv.hpp"
-#include "tools/lib/fields.hpp"
-#include "tools/lib/support.hpp"
+#include "tools/lib/clients/census.hpp"
+#include "tools/lib/messages/csv.hpp"
+#include "tools/lib/messages/fields.hpp"
+#include "tools/lib/clients/wait.hpp"
+#include "tools/lib/messages/names.hpp"
 
 namespace lcm_control::tools {
 namespace {

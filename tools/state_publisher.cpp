@@ -6,8 +6,8 @@
 #include "bus/messages.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/link_poses_t.hpp"
-#include "tools/lib/kinematics.hpp"
-#include "tools/lib/support.hpp"
+#include "description/kinematics.hpp"
+#include "tools/lib/clients/wait.hpp"
 #include "description/load.hpp"
 
 namespace lcm_control::tools {

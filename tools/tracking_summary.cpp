@@ -10,8 +10,9 @@
 #include "cli/cli.hpp"
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
-#include "tools/lib/support.hpp"
-#include "tools/lib/time_base.hpp"
+#include "tools/lib/messages/names.hpp"
+#include "tools/lib/logs/log_file.hpp"
+#include "tools/lib/clients/time_base.hpp"
 
 namespace {
 

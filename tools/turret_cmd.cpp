@@ -14,10 +14,11 @@
 #include "lcm_control/float64_array_t.hpp"
 #include "lcm_control/float64_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
-#include "tools/lib/cm_client.hpp"
-#include "tools/lib/command_check.hpp"
-#include "tools/lib/support.hpp"
-#include "tools/lib/time_base.hpp"
+#include "tools/lib/clients/cm_client.hpp"
+#include "tools/lib/clients/command_check.hpp"
+#include "tools/lib/clients/wait.hpp"
+#include "tools/lib/messages/names.hpp"
+#include "tools/lib/clients/time_base.hpp"
 
 namespace lcm_control::tools {
 namespace {

@@ -14,7 +14,7 @@
 #include "controller_manager/services.hpp"
 #include "test/controller_manager/rig.hpp"
 #include "test/support/lcm_test.hpp"
-#include "tools/lib/trajectory_goal.hpp"
+#include "tools/lib/clients/trajectory_goal.hpp"
 #include "controllers/builtin.hpp"
 #include "controller_manager/plugins.hpp"
 

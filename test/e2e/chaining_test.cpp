@@ -19,8 +19,8 @@
 #include "lcm_control/joint_state_t.hpp"
 #include "test/e2e/session.hpp"
 #include "test/support/lcm_test.hpp"
-#include "tools/lib/kinematics.hpp"
-#include "tools/lib/sim_client.hpp"
+#include "description/kinematics.hpp"
+#include "tools/lib/clients/sim_client.hpp"
 #include "description/load.hpp"
 
 namespace lcm_control::testing {
@@ -65,7 +65,7 @@ TEST(Chaining, AJointTrajectoryControllerOnPidReferencesReachesItsGoalOnAnEffort
 Eigen::Vector3d tool_position(const RobotModel& model, const joint_state_t& s) {
   std::map<std::string, double> q;
   for (int k = 0; k < s.num_joints; ++k) q[s.name[size_t(k)]] = s.position[size_t(k)];
-  for (const tools::LinkPose& l : tools::forward_kinematics(model, q))
+  for (const LinkPose& l : forward_kinematics(model, q))
     if (l.link == "tool") return l.pose.translation();
   return Eigen::Vector3d::Constant(NAN);
 }

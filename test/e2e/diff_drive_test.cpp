@@ -14,7 +14,7 @@
 #include "lcm_control/twist_t.hpp"
 #include "test/e2e/session.hpp"
 #include "test/support/lcm_test.hpp"
-#include "tools/lib/sim_client.hpp"
+#include "tools/lib/clients/sim_client.hpp"
 
 namespace lcm_control::testing {
 namespace {

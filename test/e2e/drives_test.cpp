@@ -19,7 +19,7 @@
 #include "test/e2e/mobile_session.hpp"
 #include "test/e2e/session.hpp"
 #include "test/support/lcm_test.hpp"
-#include "tools/lib/sim_client.hpp"
+#include "tools/lib/clients/sim_client.hpp"
 
 namespace lcm_control::testing {
 namespace {

@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "tools/lib/process.hpp"
+#include "tools/lib/process/process.hpp"
 
 namespace lcm_control::testing {
 

@@ -16,8 +16,8 @@
 #include "test/support/lcm_test.hpp"
 #include "test/support/process.hpp"
 #include "test/tools/tool_test_util.hpp"
-#include "tools/lib/fields.hpp"
-#include "tools/lib/message_text.hpp"
+#include "tools/lib/messages/fields.hpp"
+#include "tools/lib/messages/message_text.hpp"
 
 namespace lt = lcm_control::testing;
 using namespace lcm_control;

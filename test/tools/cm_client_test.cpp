@@ -3,8 +3,8 @@
 
 #include <algorithm>
 
-#include "tools/lib/cm_client.hpp"
-#include "tools/lib/cm_views.hpp"
+#include "tools/lib/clients/cm_client.hpp"
+#include "tools/lib/clients/cm_views.hpp"
 
 namespace lcm_control::tools {
 namespace {

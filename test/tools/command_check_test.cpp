@@ -1,6 +1,6 @@
 // The check every publishing tool makes before it commands a controller: the type its command channel takes, the
 // width of a group controller's command, what to use instead, and the hardware's cause of a failed goal.
-#include "tools/lib/command_check.hpp"
+#include "tools/lib/clients/command_check.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // CSV cells: RFC 4180 quoting of text, and the reader getting back exactly
 // what CsvWriter wrote (commas, quotes and line breaks inside a message).
-#include "tools/lib/csv.hpp"
+#include "tools/lib/messages/csv.hpp"
 
 #include <gtest/gtest.h>
 

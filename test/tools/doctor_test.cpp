@@ -129,3 +129,57 @@ TEST(Doctor, TheYamlOfTheGzPluginsParametersIsCheckedAsLaunchLoadsIt) {
                            "did you mean 'joints'?"))
       << bad.out;
 }
+
+// doctor FILE checks what `launch FILE` would start, as launch resolves it: the launch file's robot, its YAML files
+// merged, its controllers, its <arg>s with NAME:=VALUE over them. A broken key fails here, not after launch started.
+TEST(Doctor, ALaunchFileIsCheckedAsLaunchWouldStartIt) {
+  const std::string dir = lt::temp_dir("doctor_launch_file");
+  std::ifstream yaml_in(lt::source("config/turret_bot.yaml"));
+  std::stringstream yaml;
+  yaml << yaml_in.rdbuf();
+  std::ofstream(dir + "/bot.yaml") << yaml.str();
+  std::ofstream(dir + "/bot.launch.yaml") << "urdf: " << lt::source("config/turret_bot.urdf")
+                                          << "\nconfig: bot.yaml\ncontrollers: [joint_state_controller, j2_controller]\n";
+  const DoctorRun ok = doctor({dir + "/bot.launch.yaml"});
+  EXPECT_EQ(ok.rc, 0) << ok.out;
+  EXPECT_TRUE(has(ok.out, "controllers joint_state_controller, j2_controller")) << ok.out;
+  EXPECT_TRUE(has(ok.out, "OK: ")) << ok.out;
+
+  std::string broken = yaml.str();
+  const size_t at = broken.find("joint: j2");
+  ASSERT_NE(at, std::string::npos) << broken;
+  broken.replace(at, 9, "jont: j2");
+  std::ofstream(dir + "/bot.yaml") << broken;
+  const DoctorRun bad = doctor({dir + "/bot.launch.yaml"});
+  EXPECT_EQ(bad.rc, 3) << bad.out;
+  EXPECT_TRUE(has(bad.out, "j2_controller/joint: missing (required); the file has 'jont': did you mean 'joint'?"))
+      << bad.out;
+
+  // A controller the launch file starts that its YAML does not configure is named with the file that starts it.
+  std::ofstream(dir + "/bot.yaml") << yaml.str();
+  std::ofstream(dir + "/bot.launch.yaml") << "urdf: " << lt::source("config/turret_bot.urdf")
+                                          << "\nconfig: bot.yaml\ncontrollers: [joint_state_controller, j3_controller]\n";
+  const DoctorRun missing = doctor({dir + "/bot.launch.yaml"});
+  EXPECT_EQ(missing.rc, 3) << missing.out;
+  EXPECT_TRUE(has(missing.out, "bot.launch.yaml j3_controller: ")) << missing.out;
+  EXPECT_TRUE(has(missing.out, "configures no controller 'j3_controller'")) << missing.out;
+
+  // Both ways at once is a usage error.
+  EXPECT_EQ(doctor({dir + "/bot.launch.yaml", "--urdf", lt::source("config/turret_bot.urdf")}).rc, 2);
+}
+
+// A ROS launch file with its <arg>s: NAME:=VALUE after the file replaces a default, as roslaunch's command line does.
+TEST(Doctor, ARosLaunchFilesArgumentsReachTheFilesItChecks) {
+  const std::string pkgs = lt::source("test");  // package `robots` is test/robots
+  const DoctorRun ok = doctor({robot("industrial_arm.launch"), "--package-path", pkgs});
+  EXPECT_EQ(ok.rc, 0) << ok.out;
+  EXPECT_TRUE(has(ok.out, "controllers joint_state_controller, arm_controller")) << ok.out;
+
+  const std::string dir = lt::temp_dir("doctor_ros_launch");
+  std::ofstream(dir + "/overrides.yaml") << "arm_controller:\n  type: position_controllers/JointTrajectoryControler\n";
+  const DoctorRun bad = doctor({robot("industrial_arm.launch"), "overrides:=" + dir + "/overrides.yaml",
+                                "--package-path", pkgs});
+  EXPECT_EQ(bad.rc, 3) << bad.out;
+  EXPECT_TRUE(has(bad.out, "JointTrajectoryControler")) << bad.out;
+  EXPECT_TRUE(has(bad.out, "position_controllers/JointTrajectoryController")) << bad.out;  // the one meant
+}

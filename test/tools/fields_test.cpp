@@ -1,6 +1,6 @@
 // Field paths: decoding by fingerprint and the flattened (path, value) pairs,
 // numbers first, then strings.
-#include "tools/lib/fields.hpp"
+#include "tools/lib/messages/fields.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // Forward kinematics against hand-computed poses: turret_bot at three joint
 // configurations, and a chain with offsets that checks the composition order.
-#include "tools/lib/kinematics.hpp"
+#include "description/kinematics.hpp"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,6 @@
 #include "description/load.hpp"
 
 using namespace lcm_control;
-using namespace lcm_control::tools;
 
 namespace {
 Eigen::Isometry3d pose_of(const std::vector<LinkPose>& poses, const std::string& link) {

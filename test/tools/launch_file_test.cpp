@@ -1,6 +1,6 @@
 // Launch files read into plans: our YAML, the tutorial's ROS launch XML (as a
 // user writes it, and as copied with the web page's stray </pre>), and errors.
-#include "tools/lib/launch_file.hpp"
+#include "tools/lib/launch/launch_file.hpp"
 
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>

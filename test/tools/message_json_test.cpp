@@ -1,4 +1,4 @@
-#include "tools/lib/message_json.hpp"
+#include "tools/lib/messages/message_json.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // tools/lib/process: how every child process here is started, signalled and
 // reaped (launch's Supervisor, the tests' ChildProcess, run_and_wait).
-#include "tools/lib/process.hpp"
-#include "tools/lib/process_c.h"
+#include "tools/lib/process/process.hpp"
+#include "tools/lib/process/process_c.h"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>

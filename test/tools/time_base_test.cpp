@@ -12,7 +12,7 @@
 #include "test/support/lcm_test.hpp"
 #include "test/support/process.hpp"
 #include "test/tools/tool_test_util.hpp"
-#include "tools/lib/time_base.hpp"
+#include "tools/lib/clients/time_base.hpp"
 
 using namespace lcm_control;
 using namespace lcm_control::testing;

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "tools/lib/csv.hpp"
+#include "tools/lib/messages/csv.hpp"
 
 namespace lcm_control::testing {
 

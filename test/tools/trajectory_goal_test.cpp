@@ -1,7 +1,7 @@
 // send-trajectory's waypoint readers (--point, YAML, CSV), the checks before a
 // goal is sent, the message built, and the controller check: good input and
 // the exact words of each error.
-#include "tools/lib/trajectory_goal.hpp"
+#include "tools/lib/clients/trajectory_goal.hpp"
 
 #include <gtest/gtest.h>
 

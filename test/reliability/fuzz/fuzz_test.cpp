@@ -23,9 +23,9 @@
 #include "test/controller_manager/rig.hpp"
 #include "test/reliability/fuzz/payloads.hpp"
 #include "test/support/lcm_test.hpp"
-#include "tools/lib/fields.hpp"
-#include "tools/lib/message_text.hpp"
-#include "tools/lib/time_base.hpp"
+#include "tools/lib/messages/fields.hpp"
+#include "tools/lib/messages/message_text.hpp"
+#include "tools/lib/clients/time_base.hpp"
 #include "description/load.hpp"
 
 namespace lt = lcm_control::testing;

@@ -1,0 +1,27 @@
+// Launch files for the launch program: our YAML format (config/turret_bot.launch.yaml, launch_yaml.cpp) and ROS
+// launch XML such as the tutorial's gazebo_ros_control.launch (launch_ros_xml.cpp), both read into one LaunchPlan.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tools/lib/launch/launch_plan.hpp"
+
+namespace lcm_control::tools {
+
+// Reads either format (XML if the file starts with '<' after blanks, else YAML). `args`: NAME:=VALUE from the
+// command line, which a ROS launch file's <arg default=> take as roslaunch does (its <include>s followed, each with
+// its own <arg>s). Throws ModelError naming the file, line or key at fault.
+LaunchPlan read_launch_file(const std::string& path, const std::vector<std::string>& package_path,
+                            const std::vector<std::pair<std::string, std::string>>& args = {});
+LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::string>& package_path);
+LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::string>& package_path,
+                           const std::vector<std::pair<std::string, std::string>>& args = {});
+
+// What both readers share: the file's text (ModelError if it is not a file), a path made absolute from the launch
+// file's folder, and the fix named for an $(arg) without a value.
+std::string read_launch_text(const std::string& path);
+std::string absolute_from(const std::string& p, const std::string& base_dir);
+inline constexpr const char* kLaunchArgFix = "add <arg name=\"{0}\" default=\"...\"/> or pass {0}:=VALUE";
+
+}  // namespace lcm_control::tools
