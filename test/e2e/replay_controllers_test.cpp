@@ -1,7 +1,9 @@
 // replay --controllers (open loop): the lockstep demo recorded with `bus record` replays bit for bit; a changed gain
 // diverges at the step where it first acts, naming the field and the actuator; a truncated log, a log with no
-// hardware in it, a missing configuration and another robot are refused with exit 2, naming what to pass.
+// hardware in it, a missing configuration, a recording that lost a state and another robot are refused with exit 2,
+// naming what to pass.
 #include <gtest/gtest.h>
+#include <lcm/lcm-cpp.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -28,6 +30,19 @@ std::string record_demo(const std::string& dir, double seconds) {
       << out;
   EXPECT_EQ(recorder->stop(10), 0) << recorder->output();
   return log;
+}
+
+// `log` copied to `out` without the `nth` event on `channel` (0 from the start): a recorder that lost that message.
+void copy_without(const std::string& log, const std::string& out, const std::string& channel, int nth) {
+  lcm::LogFile in(log, "r"), copy(out, "w");
+  ASSERT_TRUE(in.good() && copy.good());
+  int seen = 0;
+  for (const lcm::LogEvent* e = in.readNextEvent(); e; e = in.readNextEvent()) {
+    if (e->channel == channel && seen++ == nth) continue;
+    lcm::LogEvent kept = *e;
+    ASSERT_EQ(copy.writeEvent(&kept), 0);
+  }
+  ASSERT_GT(seen, nth) << "fewer than " << nth + 1 << " events on " << channel;
 }
 
 struct Replayed {
@@ -134,6 +149,21 @@ TEST(ReplayControllers, BadInputIsRefusedWithExitTwoNamingWhatToPass) {
   const Replayed truncated = replay({cut, "--controllers", "--urdf", urdf, "--config", yaml});
   EXPECT_EQ(truncated.rc, 2) << truncated.out;
   EXPECT_TRUE(has(truncated.out, "cut.lcmlog: truncated or corrupted after event ")) << truncated.out;
+
+  // A recorder that lost a state lost an input: refused, naming the step. One that lost a command lost only what is
+  // compared: the rest is compared and the loss counted.
+  const std::string lost_state = dir + "/lost_state.lcmlog", lost_command = dir + "/lost_command.lcmlog";
+  copy_without(log, lost_state, "hardware/state", 500);
+  const Replayed no_state = replay({lost_state, "--controllers"});
+  EXPECT_EQ(no_state.rc, 2) << no_state.out;
+  EXPECT_TRUE(std::regex_search(no_state.out, std::regex(R"(lost_state.lcmlog: the recording lost the hardware/state )"
+                                                          R"(of step \d+ \(event \d+ is the controller manager's )"
+                                                          R"(answer to it)")))
+      << no_state.out;
+  copy_without(log, lost_command, "hardware/command", 500);
+  const Replayed no_command = replay({lost_command, "--controllers"});
+  EXPECT_EQ(no_command.rc, 0) << no_command.out;
+  EXPECT_TRUE(has(no_command.out, "1 answer(s) to recorded states have no hardware/command in the log")) << no_command.out;
 
   const Replayed other_robot =
       replay({log, "--controllers", "--urdf", source("test/robots/gripper.urdf"), "--config",
