@@ -9,7 +9,7 @@
 
 #include "description/input_file.hpp"
 #include "description/packages.hpp"
-#include "description/xacro/xacro.hpp"
+#include "xacro/xacro.hpp"
 
 namespace fs = std::filesystem;
 

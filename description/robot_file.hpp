@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "description/robot_model.hpp"
-#include "description/xacro/budget.hpp"
+#include "xacro/budget.hpp"
 
 namespace lcm_control {
 

@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include <cstdlib>
 #include <filesystem>
 #include <map>
 #include <stdexcept>
@@ -11,8 +10,8 @@
 #include "description/packages.hpp"
 #include "description/robot_model.hpp"
 #include "description/text.hpp"
-#include "description/xacro/process_error.hpp"
-#include "description/xacro/substitution_args.hpp"
+#include "xacro/process_error.hpp"
+#include "xacro/substitution_args.hpp"
 
 namespace fs = std::filesystem;
 
@@ -40,13 +39,15 @@ size_t closing_paren(const std::string& text, size_t open) {
   return std::string::npos;
 }
 
-// roslaunch's $(eval EXPR): a Python expression over the args (by name, or arg('NAME')) and find(), env(),
-// optenv(), evaluated by xacro's evaluator (description/xacro), as roslaunch and xacro share it.
-std::string evaluate(const std::string& expression, const Substitutions& subs, const std::string& where) {
+// The engine (xacro/substitution_args) in roslaunch's dialect, its refusals worded for a launch file's or a YAML's
+// user: what to pass, where the packages were looked for.
+std::string resolve(const std::string& inner, const Substitutions& subs, const std::string& where) {
   std::map<std::string, std::string> args;
-  for (const auto& [k, v] : subs.args) args[k] = v;
+  for (const auto& [k, v] : subs.args) args[k] = v;  // later entries win
   const auto path = subs.package_path.empty() ? default_package_path() : subs.package_path;
+  const std::string searched = path.empty() ? "empty" : fmt::format("{}", fmt::join(path, ":"));
   xacro::SubstitutionContext context;
+  context.dialect = xacro::Dialect::RosParam;
   context.args = &args;
   context.find_package = [&path](const std::string& name) {
     const std::string dir = find_package_dir(name, path);
@@ -54,15 +55,32 @@ std::string evaluate(const std::string& expression, const Substitutions& subs, c
   };
   context.package_search_note = fmt::format(
       "the package path is {}; give the folder that holds it with --package-path DIR or LCM_CONTROL_PACKAGE_PATH",
-      path.empty() ? "empty" : fmt::format("{}", fmt::join(path, ":")));
+      searched);
+  context.messages.missing_arg = [&subs](const std::string& command, const std::string& name) {
+    return fmt::format("$({} {}) has no value; {}", command, name, fmt::format(fmt::runtime(subs.missing_arg_fix), name));
+  };
+  context.messages.missing_package = [&searched](const std::string& name) {
+    return fmt::format("$(find {}): package '{}' is not on the package path ({}); give the folder that holds it with "
+                       "--package-path DIR or LCM_CONTROL_PACKAGE_PATH",
+                       name, name, searched);
+  };
+  context.messages.missing_env = [](const std::string& variable) {
+    return fmt::format("$(env {}): the environment variable is not set", variable);
+  };
+  context.messages.unsupported = [](const std::string& whole) {
+    return fmt::format("'{}' is not supported (supported: $(find PKG), $(arg NAME), $(var NAME), $(env VAR), "
+                       "$(optenv VAR [default]), $(eval EXPR))",
+                       whole);
+  };
   try {
-    return xacro::resolve_substitution("eval " + expression, context);
+    return xacro::resolve_substitution(inner, context);
   } catch (const xacro::ProcessError& e) {
     std::string why = e.what();
+    const bool eval = inner.rfind("eval ", 0) == 0;
     why = why.substr(0, why.find("\nwhen evaluating"));
     for (char& c : why)
       if (c == '\n') c = ' ';
-    throw ModelError(fmt::format("{}: $(eval {}): {}", where, expression, why));
+    throw ModelError(eval ? fmt::format("{}: $({}): {}", where, inner, why) : fmt::format("{}: {}", where, why));
   }
 }
 
@@ -79,41 +97,14 @@ std::string substitute(const std::string& text, const Substitutions& subs, const
     if (end == std::string::npos)
       throw ModelError(fmt::format("{}: unclosed '$(' in '{}'", where, trim(text)));
     out += text.substr(pos, start - pos);
-    const auto words = split_words(text.substr(start + 2, end - start - 2));
-    const std::string kind = words.empty() ? "" : words[0];
-    if (eval) {
-      out += evaluate(text.substr(start + 7, end - start - 7), subs, where);
-    } else if (kind == "find" && words.size() == 2) {
-      const auto path = subs.package_path.empty() ? default_package_path() : subs.package_path;
-      const std::string dir = find_package_dir(words[1], path);
-      if (dir.empty())
-        throw ModelError(fmt::format(
-            "{}: $(find {}): package '{}' is not on the package path ({}); give the folder that holds it with "
-            "--package-path DIR or LCM_CONTROL_PACKAGE_PATH",
-            where, words[1], words[1], path.empty() ? "empty" : fmt::format("{}", fmt::join(path, ":"))));
-      out += fs::absolute(dir).string();
-    } else if ((kind == "arg" || kind == "var") && words.size() == 2) {  // $(var): ROS 2 launch's name for it
-      const std::string* value = nullptr;
-      for (const auto& [k, v] : subs.args)
-        if (k == words[1]) value = &v;
-      if (!value)
-        throw ModelError(fmt::format("{}: $({} {}) has no value; {}", where, kind, words[1],
-                                     fmt::format(fmt::runtime(subs.missing_arg_fix), words[1])));
-      out += *value;
-    } else if ((kind == "env" && words.size() == 2) || (kind == "optenv" && words.size() >= 2)) {
-      const char* v = std::getenv(words[1].c_str());
-      if (v)
-        out += v;
-      else if (kind == "optenv")
-        for (size_t k = 2; k < words.size(); ++k) out += (k > 2 ? " " : "") + words[k];
-      else
-        throw ModelError(fmt::format("{}: $(env {}): the environment variable is not set", where, words[1]));
-    } else {
-      const size_t whole = closing_paren(text, start + 1);  // the whole of `$(cmd f(x))`, for the message
+    const std::string inner = text.substr(start + 2, end - start - 2);
+    if (!eval && (text.find('(', start + 2) < end || split_words(inner).empty())) {
+      const size_t whole = closing_paren(text, start + 1);  // `$(cmd f(x))` as written, or `$()`
       throw ModelError(fmt::format("{}: '{}' is not supported (supported: $(find PKG), $(arg NAME), $(var NAME), "
                                    "$(env VAR), $(optenv VAR [default]), $(eval EXPR))",
                                    where, text.substr(start, (whole == std::string::npos ? end : whole) - start + 1)));
     }
+    out += resolve(inner, subs, where);
     pos = end + 1;
   }
   return out + text.substr(pos);

@@ -47,3 +47,24 @@ TEST(Substitution, ErrorsQuoteTheWholeExpression) {
   const std::string u = error_of("$(evil f(x) + 1)", subs);
   EXPECT_NE(u.find("'$(evil f(x) + 1)' is not supported"), std::string::npos) << u;
 }
+
+// One engine (xacro/substitution_args) reads both dialects: a YAML's $(...) has roslaunch's commands and ROS 2's
+// $(var), not xacro's own $(dirname), $(anon) and $(cwd), and its refusals are worded for the YAML's user.
+TEST(Substitution, TheYamlDialectIsTheXacroEnginesWithRoslaunchsCommands) {
+  Substitutions subs{{lt::source("test")}, {{"prefix", "left_"}}};
+  subs.missing_arg_fix = "give its value with --arg {0}=VALUE";
+  EXPECT_EQ(substitute("$(var prefix)wheel $(arg prefix)arm", subs, "w"), "left_wheel left_arm");
+  EXPECT_EQ(substitute("$(find robots)", subs, "w"), lt::source("test/robots"));
+  for (const std::string xacro_only : {"$(dirname)", "$(anon node)", "$(cwd)"})
+    EXPECT_EQ(error_of(xacro_only, subs),
+              "f.launch:1: '" + xacro_only + "' is not supported (supported: $(find PKG), $(arg NAME), $(var NAME), "
+                                             "$(env VAR), $(optenv VAR [default]), $(eval EXPR))");
+  EXPECT_EQ(error_of("$(arg side)", subs), "f.launch:1: $(arg side) has no value; give its value with --arg side=VALUE");
+  EXPECT_EQ(error_of("$(find no_such_package)", subs).rfind("f.launch:1: $(find no_such_package): package "
+                                                             "'no_such_package' is not on the package path (",
+                                                             0),
+            0u);
+  unsetenv("LCM_CONTROL_NO_SUCH_VAR");
+  EXPECT_EQ(error_of("$(env LCM_CONTROL_NO_SUCH_VAR)", subs),
+            "f.launch:1: $(env LCM_CONTROL_NO_SUCH_VAR): the environment variable is not set");
+}

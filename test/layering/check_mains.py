@@ -5,19 +5,13 @@ at the top of tools/lib/ (its code lives in folders by concern).
   check_mains.py --source-dir DIR [--limit 60]
 
 Reads every .cpp outside test/, bench/ and build folders that defines `int main(`, counts the lines from `int main(`
-to its closing brace, and exits 1 naming each main over the limit with its count. STILL_FAT lists the mains issue 52
-has not thinned yet: one of those over the limit is reported but not failed, and one that is no longer over it fails
-until it is taken off the list, so the list only shrinks.
+to its closing brace, and exits 1 naming each main over the limit with its count.
 """
 import argparse
 import os
 import re
 import sys
 
-STILL_FAT = {
-    "tools/plotter.cpp", "tools/bus.cpp", "tools/log2csv.cpp", "tools/tracking_summary.cpp",
-    "tools/state_logger.cpp", "tools/turret_cmd.cpp",
-}
 SKIP = ("test/", "bench/", "build", ".git/", "third_party/")
 
 
@@ -54,13 +48,9 @@ def main():
             if n is None:
                 continue
             counted += 1
-            if n > a.limit and rel not in STILL_FAT:
+            if n > a.limit:
                 failures.append(f"{rel}: main() is {n} lines (over {a.limit}): move its policy into its library and "
                                 f"call one function")
-            elif n > a.limit:
-                print(f"{rel}: main() is {n} lines (still to thin, issue 52)")
-            elif rel in STILL_FAT:
-                failures.append(f"{rel}: main() is {n} lines, within {a.limit}: take it off check_mains.py's STILL_FAT")
     print(f"check_mains: {counted} programs' main() counted")
     for line in failures:
         print(line)

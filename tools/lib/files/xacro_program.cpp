@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "description/robot_file.hpp"
-#include "description/xacro/xacro.hpp"
+#include "xacro/xacro.hpp"
 
 namespace lcm_control::tools {
 
