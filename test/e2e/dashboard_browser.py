@@ -491,21 +491,26 @@ def bumper_bot(wd):
     whole_robot_in_view(wd, "bumper_bot")
 
 
-def ur5e(wd):
-    """The UR5e as a ROS 2 user brings it: its name in the header, all its meshes (file:// URIs) shown, the arm
-    framed rather than its 5 x 5 m ground plane (at home at least 10 % of the 3D view's pixels), six distinct slider labels,
-    and a gains panel that says there are no PID gains instead of an error."""
+def named_with_its_meshes(wd, robot, at_least):
+    """A robot from its own package: its name in the header, at least `at_least` meshes in the view, none refused."""
     name = wait_for("the robot's name in the header", lambda: wd.js(
         "return window.dashboard.view.robot && document.getElementById('robot-name').textContent"), 30)
     print("header:", name)
-    assert name.split(" · ")[0] == "ur", name
-    meshes = wait_for("the arm's meshes", lambda: wd.js(
+    assert name.split(" · ")[0] == robot, name
+    meshes = wait_for(f"{robot}'s meshes", lambda: wd.js(
         "const v = window.dashboard.view; let n = 0; v.robot.traverse(o => { if (o.isMesh) n++; });"
-        "return n >= 7 && n"), 30)
+        "return n >= arguments[0] && n", at_least), 30)
     time.sleep(1.0)  # the loading manager frames the robot once every mesh is in
     note = wd.js("return document.getElementById('view-note').textContent")
     print(f"{meshes} meshes; view note: {note}")
     assert "not shown" not in note, note
+
+
+def ur5e(wd):
+    """The UR5e as a ROS 2 user brings it: its name in the header, all its meshes (file:// URIs) shown, the arm
+    framed rather than its 5 x 5 m ground plane (at home at least 10 % of the 3D view's pixels), six distinct slider labels,
+    and a gains panel that says there are no PID gains instead of an error."""
+    named_with_its_meshes(wd, "ur", 7)
     spans = [whole_robot_in_view(wd, "ur5e")]
     upright = wd.js("return window.dashboard.view.coverage()")
     print(f"standing straight up (all joints 0), the arm covers {100 * upright:.1f} % of the 3D view's pixels")
@@ -542,17 +547,7 @@ def ur5e(wd):
 def robotiq(wd, a, url):
     """Robotiq's 2F-85 as its ROS 2 package ships it: its name in the header, every mesh shown, framed to a real share
     of the view, and a gripper goal sent from a terminal closing the fingers in the view, the mimic joints with it."""
-    name = wait_for("the robot's name in the header", lambda: wd.js(
-        "return window.dashboard.view.robot && document.getElementById('robot-name').textContent"), 30)
-    print("header:", name)
-    assert name.split(" · ")[0] == "robotiq_gripper", name
-    meshes = wait_for("the gripper's meshes", lambda: wd.js(
-        "const v = window.dashboard.view; let n = 0; v.robot.traverse(o => { if (o.isMesh) n++; });"
-        "return n >= 9 && n"), 30)
-    time.sleep(1.0)  # the loading manager frames the robot once every mesh is in
-    note = wd.js("return document.getElementById('view-note').textContent")
-    print(f"{meshes} meshes; view note: {note}")
-    assert "not shown" not in note, note
+    named_with_its_meshes(wd, "robotiq_gripper", 9)
     box = whole_robot_in_view(wd, "robotiq open")
     share = wd.js("return window.dashboard.view.coverage()")
     print(f"open, the gripper covers {100 * share:.1f} % of the 3D view's pixels")
