@@ -19,7 +19,6 @@
 #include "controller_interface/claims.hpp"
 #include "controller_manager/context.hpp"
 #include "description/robot_file.hpp"
-#include "lcm_control/run_config_t.hpp"
 #include "controller_manager/gains.hpp"
 #include "controller_manager/ros_catalog.hpp"
 #include "controller_manager/switch_plan.hpp"
@@ -585,6 +584,7 @@ void ControllerManager::reload(bool force, Done done) {
 }
 
 void ControllerManager::finish_reload(ReadConfig read) {
+  run_config_.reset();  // the next publish_config reads what the reload read
   Done done = std::move(reload_done_);
   reload_done_ = nullptr;
   if (!read.error.empty()) {
@@ -617,8 +617,19 @@ void ControllerManager::finish_reload(ReadConfig read) {
 }
 
 Reply ControllerManager::publish_config() {
-  run_config_t m;
+  if (!run_config_) {
+    const std::string why = read_run_config();
+    if (!why.empty()) return {false, "cannot publish the run's configuration: " + why};
+  }
+  run_config_t& m = *run_config_;
   m.utime = wall_us();
+  bus_.lcm().publish(bus_.channel(channels::kCmConfig), &m);
+  return {true, fmt::format("published the run's configuration on {} ({} and {} file(s), {} bytes)",
+                            bus_.channel(channels::kCmConfig), model_.urdf_path, m.num_configs, m.getEncodedSize())};
+}
+
+std::string ControllerManager::read_run_config() {
+  run_config_t m;
   m.version = LCM_CONTROL_VERSION;
   m.robot_namespace = model_.ns;
   m.urdf_path = model_.urdf_path;
@@ -628,19 +639,18 @@ Reply ControllerManager::publish_config() {
       std::ifstream in(path, std::ios::binary);
       std::ostringstream text;
       text << in.rdbuf();
-      if (!in) return {false, fmt::format("cannot publish the run's configuration: {} cannot be read any more", path)};
+      if (!in) return fmt::format("{} cannot be read any more", path);
       m.config_paths.push_back(path);
       m.configs.push_back(text.str());
     }
   } catch (const std::exception& e) {
-    return {false, fmt::format("cannot publish the run's configuration: {}", e.what())};
+    return e.what();
   }
   m.num_configs = static_cast<int32_t>(m.configs.size());
   for (const auto& [name, value] : model_.options.args) m.args.push_back(name + "=" + value);
   m.num_args = static_cast<int32_t>(m.args.size());
-  bus_.lcm().publish(bus_.channel(channels::kCmConfig), &m);
-  return {true, fmt::format("published the run's configuration on {} ({} and {} file(s), {} bytes)",
-                            bus_.channel(channels::kCmConfig), model_.urdf_path, m.num_configs, m.getEncodedSize())};
+  run_config_ = std::move(m);
+  return "";
 }
 
 std::string ControllerManager::type_doc(const std::string& type) const {

@@ -9,6 +9,7 @@
 #include <future>
 #include <unordered_map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,7 @@
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/joint_interfaces_t.hpp"
 #include "lcm_control/loop_stats_t.hpp"
+#include "lcm_control/run_config_t.hpp"
 #include "controllers/builtin.hpp"
 
 namespace lcm_control::cm {
@@ -111,8 +113,9 @@ class ControllerManager {
   std::vector<ControllerCheck> check_configured();
   std::vector<std::string> types() const { return registry_.types(); }
   // What it was started with (run_config_t: the URDF as read, the YAML files' texts, the $(arg) values), published on
-  // controller_manager/config so that a recording of the run replays on its own. Reads the files again: not real
-  // time. The reply says what was published, or why not (a file gone since).
+  // controller_manager/config so that a recording of the run replays on its own. The files are read (the xacro
+  // expanded) at the first call, which the program makes at start, and again only after a reload; later calls
+  // republish what was read. The reply says what was published, or why not (a file gone since).
   Reply publish_config();
   // Its declaration in one line: "ROS 2, chainable: <doc>" ("" for a type that declares nothing).
   std::string type_doc(const std::string& type) const;
@@ -157,6 +160,9 @@ class ControllerManager {
   std::string shutdown();
 
  private:
+  // The run's configuration as publish_config read it; "" or why it could not be read.
+  std::string read_run_config();
+  std::optional<run_config_t> run_config_;  // read once, again after a reload
   ControllerSlot* find(const std::string& name) const;
   // Creates and initialises a controller of `spec` on `port`; on success moves it to *out (if given).
   // With `out`, the controller made; an is_async one is initialised on a Hardware of its own, given in `shadow`.
