@@ -5,9 +5,14 @@
 // off the loop (the intake's thread, as the program does), in the loop (as before), and without goals. Also the
 // cost of one goal's decode and plan on one thread.
 //   bench_goal_intake [--seconds S] [--smoke]
-// Prints per kind (none, off_loop, in_loop)
-//   goal_intake KIND PERIODS P50_US P99_US MAX_US OVER_1MS GOALS_SENT GOALS_TAKEN
+// Prints per kind (none, off_loop, in_loop; none_fifo and off_loop_fifo with the loop's thread on SCHED_FIFO, as the
+// program runs with --rt-priority, when permitted)
+//   goal_intake KIND PERIODS P50_US P99_US MAX_US OVER_1MS GOALS_SENT GOALS_TAKEN cpu CPU_P99_US CPU_MAX_US CPU_OVER_1MS
+// where the first figures are wall time busy and the cpu ones the loop thread's own CPU time in those periods (the
+// difference: time it waited for a CPU)
 // and `goal_cost POINTS BYTES DECODE_MS PLAN_MS`.
+#include <pthread.h>
+#include <sched.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -59,9 +64,23 @@ joint_trajectory_t goal_of(int points) {
 }
 
 struct Figures {
-  std::vector<double> busy_us;
+  std::vector<double> busy_us, cpu_us;  // per period: wall time busy on the loop's thread, and its CPU time in it
   int sent = 0, taken = 0;
+  bool fifo = false;                    // the loop's thread ran SCHED_FIFO (the program's --rt-priority)
 };
+
+double thread_cpu_us() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) * 1e6 + double(t.tv_nsec) * 1e-3;
+}
+
+// The calling thread on SCHED_FIFO at `priority` (0: back to the normal scheduler); false when not permitted.
+bool set_fifo(int priority) {
+  sched_param p{};
+  p.sched_priority = priority;
+  return pthread_setschedparam(pthread_self(), priority > 0 ? SCHED_FIFO : SCHED_OTHER, &p) == 0;
+}
 
 Figures run(const std::string& kind, double seconds, const std::string& dir, const std::string& url) {
   const std::string yaml = dir + "/bench_goal_intake.yaml";
@@ -69,6 +88,10 @@ Figures run(const std::string& kind, double seconds, const std::string& dir, con
                          "publish_rate: 50}\n"
                          "trajectory_controller:\n  type: position_controllers/JointTrajectoryController\n"
                          "  joints: [j1, j2]\n";
+  Figures f;
+  const bool fifo = kind.size() > 5 && kind.compare(kind.size() - 5, 5, "_fifo") == 0;
+  if (fifo && !set_fifo(50)) return f;  // not permitted here: no figures
+  f.fifo = fifo;
   Registry registry;
   register_builtin(registry);
   Bus bus(url, "", "", HardwareReader::Direct);
@@ -77,18 +100,18 @@ Figures run(const std::string& kind, double seconds, const std::string& dir, con
   hardware_state_t st = resting_state(model, 7, false);
   ManagerOptions options;
   options.slice_us = 250;
-  options.intake_thread = kind == "off_loop";
+  options.intake_thread = kind.rfind("off_loop", 0) == 0;
   ControllerManager cm(std::move(model), bus, registry, options);
   for (const char* n : {"joint_state_controller", "trajectory_controller"})
     if (!cm.load(n).ok) throw std::runtime_error(std::string("cannot load ") + n);
   cm.switch_controllers({"joint_state_controller", "trajectory_controller"}, {}, 2, [](const Reply&) {});
 
-  Figures f;
-  std::atomic<bool> done{false};
+  std::atomic<bool> done{false}, sending{true};
   std::atomic<int> sent{0}, taken{0};
   std::thread sender;
-  if (kind != "none") {
+  if (kind.rfind("none", 0) != 0) {
     sender = std::thread([&] {
+      set_fifo(0);  // a peer process's sender: the normal scheduler
       lcm::LCM lc(url);
       struct Feedback {  // each goal taken is followed on <name>/feedback under its id
         std::atomic<int>* taken;
@@ -104,13 +127,12 @@ Figures run(const std::string& kind, double seconds, const std::string& dir, con
       int64_t next = monotonic_us() + 200000;
       while (!done) {
         lc.handleTimeout(10);
-        if (monotonic_us() < next) continue;
+        if (!sending || monotonic_us() < next) continue;
         next += 250000;
         g.goal_id = sent + 1;
         g.encode(bytes.data(), 0, int(bytes.size()));
         if (lc.publish("trajectory_controller/command", bytes.data(), unsigned(bytes.size())) == 0) ++sent;
       }
-      for (int k = 0; k < 50; ++k) lc.handleTimeout(10);  // the last results
     });
   }
   const int64_t periods = int64_t(seconds * 1000);
@@ -127,19 +149,31 @@ Figures run(const std::string& kind, double seconds, const std::string& dir, con
     st.step = k;
     st.utime = k * 1000;
     const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = thread_cpu_us();
     cm.on_hardware_state(st);
     bus.handle_us(0, 1000);
     cm.poll(monotonic_us());
+    const double c1 = thread_cpu_us();
     const auto t1 = std::chrono::steady_clock::now();
-    if (k >= 100) f.busy_us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+    if (k >= 100) {
+      f.busy_us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
+      f.cpu_us.push_back(c1 - c0);
+    }
   }
-  for (int k = 0; k < 200 && cm.taking_in(); ++k) {  // what is still being taken in
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  sending = false;
+  // Unmeasured cycles until the last goal sent is taken and its feedback (published by the controller's update) is
+  // back, for at most 1 s.
+  for (int64_t k = periods; k < periods + 1000 && (cm.taking_in() || taken < sent); ++k) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    st.step = k;
+    st.utime = k * 1000;
+    cm.on_hardware_state(st);
     bus.handle_us(0, 1000);
     cm.poll(monotonic_us());
   }
   done = true;
   if (sender.joinable()) sender.join();
+  if (fifo) set_fifo(0);
   f.sent = sent;
   f.taken = taken;
   return f;
@@ -185,13 +219,19 @@ int main(int argc, char** argv) {
       "udpm://239.255.76.67:" + std::to_string(20000 + getpid() % 20000) + "?ttl=0&recv_buf_size=16777216";
   try {
     goal_cost();
-    for (const char* kind : {"none", "off_loop", "in_loop"}) {
+    for (const char* kind : {"none", "off_loop", "in_loop", "none_fifo", "off_loop_fifo"}) {
       const Figures f = run(kind, seconds, dir, url);
-      const auto over = std::count_if(f.busy_us.begin(), f.busy_us.end(), [](double us) { return us > 1000; });
-      std::printf("goal_intake %s %zu %.1f %.1f %.1f %ld %d %d\n", kind, f.busy_us.size(), percentile(f.busy_us, 0.5),
-                  percentile(f.busy_us, 0.99),
-                  f.busy_us.empty() ? 0.0 : *std::max_element(f.busy_us.begin(), f.busy_us.end()), long(over), f.sent,
-                  f.taken);
+      if (f.busy_us.empty()) {
+        std::printf("goal_intake %s skipped: SCHED_FIFO not permitted here (run as root, or with rtprio)\n", kind);
+        continue;
+      }
+      auto over = [](const std::vector<double>& v) {
+        return long(std::count_if(v.begin(), v.end(), [](double us) { return us > 1000; }));
+      };
+      std::printf("goal_intake %s %zu %.1f %.1f %.1f %ld %d %d cpu %.1f %.1f %ld\n", kind, f.busy_us.size(),
+                  percentile(f.busy_us, 0.5), percentile(f.busy_us, 0.99),
+                  *std::max_element(f.busy_us.begin(), f.busy_us.end()), over(f.busy_us), f.sent, f.taken,
+                  percentile(f.cpu_us, 0.99), *std::max_element(f.cpu_us.begin(), f.cpu_us.end()), over(f.cpu_us));
       std::fflush(stdout);
     }
   } catch (const std::exception& e) {

@@ -28,6 +28,7 @@ inline constexpr const char* kCmRequest = "controller_manager/request";
 inline constexpr const char* kCmConfig = "controller_manager/config";  // run_config_t: what the run was started with
 inline constexpr const char* kCmResponse = "controller_manager/response";
 inline constexpr const char* kCmStatistics = "controller_manager/statistics";
+inline constexpr const char* kCmInputs = "controller_manager/inputs";  // cm_inputs_t: what each cycle took in
 inline constexpr const char* kCmCommandSource = "controller_manager/command_source";
 inline constexpr const char* kCmActivity = "controller_manager/activity";
 inline constexpr const char* kSimStatistics = "sim_server/statistics";

@@ -342,6 +342,10 @@ bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* chann
     return false;
   }
   if (p->wanted) {  // appended, not resized and overwritten: no zero-fill of what arrives
+    // Past kKeptBytes arrived, the whole message's room at once: growing by doubling copied up to 2 MiB into fresh
+    // pages in one fragment's read (4.5 ms seen for a 3.6 MB goal); reserved, each fragment touches only its pages.
+    // Before, a message holds only what arrived (a sender of first fragments alone costs no memory).
+    if (p->filled >= kKeptBytes && p->data.capacity() < p->total) p->data.reserve(p->total);
     p->data.resize(p->filled);
     p->data.insert(p->data.end(), chunk, chunk + chunk_size);
   }
@@ -429,11 +433,15 @@ int LcmSocket::handle_queued(int max, int64_t until_us) {
     if (n < 0) return errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR ? read : -1;
     if (!complete) continue;
     const lcm::ReceiveBuffer rb{const_cast<uint8_t*>(payload), uint32_t(size), arrived_us_ >= 0 ? arrived_us_ : wall_us()};
-    if (delivering_) {  // a put-together message may be taken by its one receiver (take_delivered)
+    if (delivering_ || tap_) {  // a put-together message may be taken by its one receiver (take_delivered)
       size_t receivers = 0;
       for (const Entry& e : subscribers_) receivers += e.channel == channel;
       if (!patterns_.empty()) receivers += matching(channel).size();
-      if (receivers != 1 || delivering_->data.capacity() <= kKeptBytes) delivering_ = nullptr;
+      if (delivering_ && (receivers != 1 || delivering_->data.capacity() <= kKeptBytes)) delivering_ = nullptr;
+      if (tap_ && receivers > 0) {
+        name_.assign(channel);
+        tap_(rb, name_);
+      }
     }
     for (const Entry& e : subscribers_)
       if (e.channel == channel) e.handler(rb);

@@ -94,6 +94,10 @@ class LcmSocket {
   int subscribe_pattern(const std::string& pattern, ChannelHandler handler);
   static constexpr size_t kMatchedChannels = 1024;
 
+  // Every message delivered to at least one subscription is first shown to `tap` (one call per message, before its
+  // handlers; an empty function: none). The controller manager stamps what it takes in with it (cm_inputs_t).
+  void set_tap(ChannelHandler tap) { tap_ = std::move(tap); }
+
   // Handles the datagrams already queued, without blocking, at most `max` and none after the monotonic time
   // `until_us` (the first is always read): how many were read, or -1 on a socket error. No allocation once
   // subscribed.
@@ -162,6 +166,7 @@ class LcmSocket {
   std::string url_;
   int fd_ = -1;
   std::vector<Entry> subscribers_;
+  ChannelHandler tap_;
   struct LostEntry {
     int id;
     std::string channel;

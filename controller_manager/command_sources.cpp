@@ -9,15 +9,11 @@
 #include <functional>
 #include <string_view>
 
+#include "bus/digest.hpp"
 #include "controller_manager/loop.hpp"
 
 namespace lcm_control::cm {
 
-namespace {
-size_t hash_of(const void* data, size_t size) {
-  return std::hash<std::string_view>{}(std::string_view(static_cast<const char*>(data), size));
-}
-}  // namespace
 
 // The ticks published on the channel and not yet received back from the bus, by the hash of their bytes (a tick
 // is published once; the oldest are forgotten when more than kSize wait, as when their echoes were lost).
@@ -261,7 +257,7 @@ void CommandSources::after_cycle() {
     const int n = s.array ? s.many.encode(s.bytes.data(), 0, static_cast<int>(s.bytes.size()))
                           : s.one.encode(s.bytes.data(), 0, static_cast<int>(s.bytes.size()));
     if (n <= 0) continue;
-    s.echoes.sent(hash_of(s.bytes.data(), static_cast<size_t>(n)));
+    s.echoes.sent(message_digest(s.bytes.data(), static_cast<size_t>(n)));
     endpoints_.lcm().publish(s.channel, s.bytes.data(), static_cast<unsigned>(n));
   }
 }
@@ -295,7 +291,7 @@ void CommandSources::poll() {
 }
 
 void CommandSources::from_bus(Source& s, const lcm::ReceiveBuffer& rb) {
-  if (s.echoes.received(hash_of(rb.data, rb.data_size))) return;
+  if (s.echoes.received(message_digest(rb.data, rb.data_size))) return;
   if (s.ignored++ == 0)
     log_.warn(fmt::format("'{}': a message from the bus was ignored: the command source of '{}' ({}) owns this "
                           "channel until it ends; further ones are counted in its end (turret-cmd's Ctrl-C removes it)",

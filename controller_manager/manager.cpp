@@ -81,7 +81,8 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       sources_(loop_, bus),
       command_pub_(hw_endpoints_.publisher<hardware_command_t>(bus.channel(channels::kHardwareCommand))),
       stats_pub_(endpoints_.publisher<loop_stats_t>(bus.channel(channels::kCmStatistics))),
-      activity_pub_(endpoints_.publisher<activity_t>(bus.channel(channels::kCmActivity))) {
+      activity_pub_(endpoints_.publisher<activity_t>(bus.channel(channels::kCmActivity))),
+      inputs_(bus, Publisher<cm_inputs_t>(&bus.lcm(), bus.channel(channels::kCmInputs), &outbox_)) {
   loop_.set_before_update(&sources_);
   configured_ = index_of(model_.controllers);
   hw_endpoints_.subscribe<hardware_state_t>(
@@ -774,6 +775,7 @@ void ControllerManager::on_hardware_state(const hardware_state_t& st) {
                                    "the measured state",
                                    loop_.step(), st.step));
   arrivals_.arrived(now, st.lockstep ? 0 : st.period_us);
+  inputs_.stamp(st.session, st.step);
   loop_.cycle(st, command_);
   if (st.num_component_errors > 0) report_component_errors(st);
   report_failed_controllers();

@@ -20,6 +20,7 @@
 #include "rt/log.hpp"
 #include "description/robot_model.hpp"
 #include "controller_manager/command_sources.hpp"
+#include "controller_manager/input_stamps.hpp"
 #include "controller_manager/hardware.hpp"
 #include "controller_manager/hardware_status.hpp"
 #include "controller_manager/loop.hpp"
@@ -222,6 +223,7 @@ class ControllerManager {
   Publisher<hardware_command_t> command_pub_;
   Publisher<loop_stats_t> stats_pub_;
   Publisher<activity_t> activity_pub_;
+  InputStamps inputs_;  // what each cycle took in from the shared bus, for replay
   int64_t activity_seq_ = 0, activity_step_ = -1, last_activity_us_ = 0;
   bool activity_due_ = true;
   bool pending_component_ = false;  // the pending switch is a component's state change

@@ -482,3 +482,25 @@ TEST(HardwareReader, DirectReadsEveryUdpmUrlOnItsOwnSocketAndSubscribeWorksEithe
     EXPECT_EQ(got.size(), expected.size());
   }
 }
+
+// The tap sees each message some subscription takes, once, before its handlers: never one nobody takes.
+TEST(LcmSocket, ItsTapSeesEachMessageASubscriptionTakesOnceBeforeItsHandlers) {
+  const std::string url = lt::unique_lcm_url();
+  LcmSocket socket(url);
+  lcm::LCM lc(url);
+  ASSERT_TRUE(lc.good());
+  std::vector<std::string> seen;
+  socket.set_tap([&](const lcm::ReceiveBuffer& rb, const std::string& channel) {
+    seen.push_back(fmt::format("tap {} {}", channel, rb.data_size));
+  });
+  socket.subscribe("a/command", [&](const lcm::ReceiveBuffer&) { seen.push_back("exact"); });
+  socket.subscribe_pattern("a/.*", [&](const lcm::ReceiveBuffer&, const std::string& c) { seen.push_back("pattern " + c); });
+  const uint8_t bytes[4] = {1, 2, 3, 4};
+  lc.publish("b/command", bytes, 4u);  // nobody takes it
+  lc.publish("a/command", bytes, 4u);
+  lc.publish("a/goal", bytes, 3u);
+  ASSERT_TRUE(pump(socket, [&] { return seen.size() >= 5; }));
+  pump(socket, [] { return false; }, 0.1);
+  EXPECT_EQ(seen, (std::vector<std::string>{"tap a/command 4", "exact", "pattern a/command", "tap a/goal 3",
+                                            "pattern a/goal"}));
+}

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <regex>
 #include <string>
 
@@ -32,17 +33,43 @@ std::string record_demo(const std::string& dir, double seconds) {
   return log;
 }
 
-// `log` copied to `out` without the `nth` event on `channel` (0 from the start): a recorder that lost that message.
+// `log` copied to `out` without the `nth` event on `channel` (0 from the start; -1: every one): a recorder that lost
+// that message.
 void copy_without(const std::string& log, const std::string& out, const std::string& channel, int nth) {
   lcm::LogFile in(log, "r"), copy(out, "w");
   ASSERT_TRUE(in.good() && copy.good());
   int seen = 0;
   for (const lcm::LogEvent* e = in.readNextEvent(); e; e = in.readNextEvent()) {
-    if (e->channel == channel && seen++ == nth) continue;
+    if (e->channel == channel && (nth < 0 || seen++ == nth)) continue;
     lcm::LogEvent kept = *e;
     ASSERT_EQ(copy.writeEvent(&kept), 0);
   }
   ASSERT_GT(seen, nth) << "fewer than " << nth + 1 << " events on " << channel;
+}
+
+// `log` copied to `out` with the first event on `channel` written `later_by` events later: a recorder that saw it late.
+void copy_moving(const std::string& log, const std::string& out, const std::string& channel, int later_by) {
+  lcm::LogFile in(log, "r"), copy(out, "w");
+  ASSERT_TRUE(in.good() && copy.good());
+  std::optional<lcm::LogEvent> moved;
+  std::vector<uint8_t> moved_bytes;
+  int after = -1;
+  for (const lcm::LogEvent* e = in.readNextEvent(); e; e = in.readNextEvent()) {
+    if (!moved && after < 0 && e->channel == channel) {
+      moved = *e;
+      moved_bytes.assign(static_cast<const uint8_t*>(e->data), static_cast<const uint8_t*>(e->data) + e->datalen);
+      moved->data = moved_bytes.data();
+      after = 0;
+      continue;
+    }
+    lcm::LogEvent kept = *e;
+    ASSERT_EQ(copy.writeEvent(&kept), 0);
+    if (moved && ++after == later_by) {
+      ASSERT_EQ(copy.writeEvent(&*moved), 0);
+      moved.reset();
+    }
+  }
+  ASSERT_GE(after, later_by) << "fewer than " << later_by << " events after the first on " << channel;
 }
 
 struct Replayed {
@@ -99,6 +126,20 @@ TEST(ReplayControllers, AChangedGainDivergesAtTheStepItFirstActs) {
   std::printf("%s", same.out.c_str());
   EXPECT_EQ(same.rc, 0) << same.out;
   EXPECT_TRUE(has(same.out, "identical: ")) << same.out;
+  EXPECT_TRUE(has(same.out, "note: inputs fed at the cycle the controller manager took them in at")) << same.out;
+
+  // The goal's step is the one the manager stamped (controller_manager/inputs), not the log's order: moved 300 events
+  // later (about 150 steps), it still lands where it did; without the stamps, it lands late and the replay diverges.
+  const std::string late = dir + "/late_goal.lcmlog", late_unstamped = dir + "/late_goal_unstamped.lcmlog";
+  ASSERT_NO_FATAL_FAILURE(copy_moving(log, late, "arm_trajectory/command", 300));
+  const Replayed moved = replay({late, "--controllers", "--urdf", urdf, "--config", yaml});
+  EXPECT_EQ(moved.rc, 0) << moved.out;
+  EXPECT_TRUE(has(moved.out, "identical: ")) << moved.out;
+  ASSERT_NO_FATAL_FAILURE(copy_without(late, late_unstamped, "controller_manager/inputs", -1));
+  const Replayed unstamped = replay({late_unstamped, "--controllers", "--urdf", urdf, "--config", yaml});
+  std::printf("%s", unstamped.out.c_str());
+  EXPECT_EQ(unstamped.rc, 1) << unstamped.out;
+  EXPECT_TRUE(has(unstamped.out, "note: inputs fed in the log's order (no controller_manager/inputs in it")) << unstamped.out;
 
   std::string tuned = file_text(yaml);
   const std::string from = "elbow_joint: {p: 2000.0,", to = "elbow_joint: {p: 2500.0,";

@@ -12,18 +12,24 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <tuple>
+#include <unordered_map>
 #include <set>
 #include <sstream>
 
 #include "bus/bus.hpp"
 #include "bus/messages.hpp"
+#include "bus/digest.hpp"
 #include "controller_manager/hardware.hpp"
+#include "controller_manager/input_stamps.hpp"
 #include "controller_manager/manager.hpp"
 #include "controller_manager/plugins.hpp"
 #include "controller_manager/services.hpp"
 #include "description/load.hpp"
 #include "description/robot_file.hpp"
 #include "lcm_control/run_config_t.hpp"
+#include "lcm_control/cm_inputs_t.hpp"
 #include "lcm_control/command_source_t.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
@@ -155,6 +161,51 @@ void compare_states(Comparison& cmp, const std::string& channel, const joint_sta
   if (!same) ++c.differing;
 }
 
+// A log's events in the order they arrived: by their receive time, within a window of kWindow events. A recorder's
+// socket can queue two datagrams that came from two processes on two CPUs a few microseconds apart in the other
+// order (seen: a hardware/command ahead of the state it answers); the kernel's receive time, which the recorder
+// keeps, has them right. Stable: events of one receive time keep the log's order.
+class ArrivalOrderedLog {
+ public:
+  static constexpr size_t kWindow = 256;
+  explicit ArrivalOrderedLog(const std::string& path) : log_(path, "r") {}
+  bool good() { return log_.good(); }
+  // The next event, or nullptr at the end of what could be read whole; valid until the next call.
+  const lcm::LogEvent* next() {
+    while (!ended_ && window_.size() < kWindow) {
+      const lcm::LogEvent* e = log_.readNextEvent();
+      if (!e) {
+        ended_ = true;
+        break;
+      }
+      end_of_whole_ = std::ftell(log_.getFilePtr());
+      Owned o{*e, std::vector<uint8_t>(static_cast<const uint8_t*>(e->data),
+                                       static_cast<const uint8_t*>(e->data) + e->datalen)};
+      auto at = window_.end();  // after every event not later than it
+      while (at != window_.begin() && std::prev(at)->event.timestamp > o.event.timestamp) --at;
+      window_.insert(at, std::move(o));
+    }
+    if (window_.empty()) return nullptr;
+    current_ = std::move(window_.front());
+    window_.pop_front();
+    current_.event.data = current_.bytes.data();
+    return &current_.event;
+  }
+  // The byte after the last event read whole from the file.
+  long end_of_whole() const { return end_of_whole_; }
+
+ private:
+  struct Owned {
+    lcm::LogEvent event;
+    std::vector<uint8_t> bytes;
+  };
+  lcm::LogFile log_;
+  std::deque<Owned> window_;
+  Owned current_;
+  bool ended_ = false;
+  long end_of_whole_ = 0;
+};
+
 // Decodes a recorded message of type T; throws naming the log, the event and the channel when it is not one.
 template <class T>
 T decoded(const ReplayOptions& o, const lcm::LogEvent& e) {
@@ -211,10 +262,59 @@ Materialized materialize(const run_config_t& c, const LoadOptions& options, cons
                                     c.configs[k]));
   return m;
 }
+// When each recorded input acted: the controller manager's stamps (cm_inputs_t) matched to the log's messages by
+// channel, digest and size, each message to the earliest stamp of its kind not yet matched.
+struct InputSchedule {
+  using Cycle = std::pair<int64_t, int64_t>;  // (session, step)
+  bool stamped = false;                       // the log holds stamps: its inputs are fed at their cycles
+  std::map<Cycle, std::vector<int64_t>> at;   // the events (their index in the log) to feed before each cycle
+  std::unordered_map<int64_t, Cycle> cycle_of;
+  int64_t unrecorded = 0;  // inputs a stamp lists that the log does not hold (lost by the recorder)
+  int64_t unstamped = 0;   // messages on a stamped channel no stamp lists (the manager did not take them in)
+};
+
+InputSchedule schedule_inputs(const ReplayOptions& o, const Bus& bus, const std::set<std::string>& not_inputs) {
+  using Key = std::tuple<std::string, int64_t, int32_t>;  // channel, digest, size
+  InputSchedule plan;
+  std::map<Key, std::deque<InputSchedule::Cycle>> stamps;
+  std::set<std::string> stamped_channels;
+  std::vector<std::pair<int64_t, Key>> candidates;
+  const std::string inputs_channel = bus.channel(channels::kCmInputs);
+  const cm::InputFilter is_input(bus);
+  ArrivalOrderedLog log(o.log);
+  int64_t index = 0;
+  for (const lcm::LogEvent* e = log.next(); e; e = log.next(), ++index) {
+    if (e->channel == inputs_channel) {
+      cm_inputs_t m;
+      if (!decode_guarded(m, e->data, static_cast<size_t>(e->datalen))) continue;  // the main pass names it
+      plan.stamped = true;
+      for (int32_t k = 0; k < m.num_inputs; ++k) {
+        stamps[{m.channel[k], m.digest[k], m.size[k]}].push_back({m.session, m.step});
+        stamped_channels.insert(m.channel[k]);
+      }
+    } else if (!not_inputs.count(e->channel) &&
+               is_input(e->channel, e->data, static_cast<size_t>(e->datalen))) {
+      candidates.push_back({index, {e->channel, static_cast<int64_t>(message_digest(e->data, e->datalen)),
+                                    static_cast<int32_t>(e->datalen)}});
+    }
+  }
+  for (const auto& [event, key] : candidates) {
+    auto it = stamps.find(key);
+    if (it == stamps.end() || it->second.empty()) {
+      plan.unstamped += stamped_channels.count(std::get<0>(key)) ? 1 : 0;
+      continue;
+    }
+    plan.at[it->second.front()].push_back(event);
+    plan.cycle_of[event] = it->second.front();
+    it->second.pop_front();
+  }
+  for (const auto& [key, left] : stamps) plan.unrecorded += static_cast<int64_t>(left.size());
+  return plan;
+}
 }  // namespace
 
 ReplayReport replay_controllers(const ReplayOptions& o) {
-  lcm::LogFile log(o.log, "r");
+  ArrivalOrderedLog log(o.log);
   if (!log.good()) throw ReplayInputError(fmt::format("{}: cannot open the log: {}", o.log, std::strerror(errno)));
   ReplayReport report;
   std::string urdf = o.urdf;
@@ -277,11 +377,61 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
       published.joint_states.pop_front();
     }
   };
+  // An input handed to the manager (a command source's channel is its own: it publishes there itself).
+  auto feed = [&](const std::string& ch, const void* data, size_t size) {
+    if (sourced.count(ch)) return;
+    if (ch == source_channel) {
+      command_source_t r;
+      if (!decode_guarded(r, data, size)) return;
+      const std::string target = bus.channel(r.controller + "/command");
+      if (r.remove) sourced.erase(target);
+      else sourced.insert(target);
+    }
+    bus.lcm().publish(ch, data, static_cast<unsigned>(size));
+    ++report.fed;
+    pump();
+  };
+  const std::string inputs_channel = bus.channel(channels::kCmInputs);
+  const std::string config_channel = bus.channel(channels::kCmConfig);
+  const InputSchedule plan =
+      schedule_inputs(o, bus, {state_channel, command_channel, js_channel, inputs_channel, config_channel});
+  // Stamped inputs read but not fed yet, by event index: by the main pass before their cycle, or by `ahead` when
+  // their cycle comes first (the recorder saw them after the state the manager took them before).
+  std::map<int64_t, std::pair<std::string, std::vector<uint8_t>>> held;
+  std::set<int64_t> fed_early;
+  ArrivalOrderedLog ahead_log(o.log);
+  int64_t ahead_index = -1, index = -1;
+  auto keep = [&](int64_t i, const lcm::LogEvent& e) {
+    held.emplace(i, std::make_pair(e.channel, std::vector<uint8_t>(static_cast<const uint8_t*>(e.data),
+                                                                  static_cast<const uint8_t*>(e.data) + e.datalen)));
+  };
+  auto feed_cycle = [&](int64_t session, int64_t step) {
+    const auto due = plan.at.find({session, step});
+    if (due == plan.at.end()) return;
+    for (const int64_t i : due->second) {
+      if (!held.count(i)) {
+        for (const lcm::LogEvent* e = nullptr; ahead_index < i && (e = ahead_log.next());) {
+          ++ahead_index;
+          if (ahead_index > index && plan.cycle_of.count(ahead_index) && !held.count(ahead_index)) keep(ahead_index, *e);
+        }
+        if (!held.count(i)) continue;  // past the log's readable end
+        fed_early.insert(i);
+      }
+      const auto& [ch, bytes] = held.at(i);
+      feed(ch, bytes.data(), bytes.size());
+      held.erase(i);
+    }
+  };
   long last_end = 0;  // the byte after the last event read whole
-  for (const lcm::LogEvent* e = log.readNextEvent(); e; e = log.readNextEvent()) {
+  for (const lcm::LogEvent* e = log.next(); e; e = log.next()) {
     ++report.events;
-    last_end = std::ftell(log.getFilePtr());
+    ++index;
+    last_end = log.end_of_whole();
     const std::string& ch = e->channel;
+    if (plan.stamped && plan.cycle_of.count(index)) {  // fed before the cycle the manager took it in at
+      if (!fed_early.erase(index) && !held.count(index)) keep(index, *e);
+      continue;
+    }
     if (ch == state_channel) {
       const hardware_state_t s = decoded<hardware_state_t>(o, *e);
       if (const std::string why = check(s); !why.empty())
@@ -294,6 +444,7 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
         bound_checked = true;
       }
       pump();
+      if (plan.stamped) feed_cycle(s.session, s.step);
       manager.on_hardware_state(s);
       pump();
       answers.push_back(manager.last_command());
@@ -326,18 +477,14 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
       compare_published();
     } else if (ch.rfind(bus.channel("hardware/"), 0) == 0 || ch.rfind(bus.channel("sim_server/"), 0) == 0) {
       continue;  // the hardware's side of the loop and the simulator's services: not the manager's inputs
-    } else if (sourced.count(ch)) {
-      continue;  // the manager's command source publishes it again itself
+    } else if (ch == inputs_channel || ch == config_channel) {
+      if (ch == inputs_channel) decoded<cm_inputs_t>(o, *e);  // a corrupted stamp is named
+      continue;
+    } else if (plan.stamped) {
+      continue;  // the manager did not take it in (no stamp lists it)
     } else {
-      if (ch == source_channel) {
-        const command_source_t r = decoded<command_source_t>(o, *e);
-        const std::string target = bus.channel(r.controller + "/command");
-        if (r.remove) sourced.erase(target);
-        else sourced.insert(target);
-      }
-      bus.lcm().publish(ch, e->data, static_cast<unsigned>(e->datalen));
-      ++report.fed;
-      pump();
+      if (ch == source_channel) decoded<command_source_t>(o, *e);
+      feed(ch, e->data, static_cast<size_t>(e->datalen));
     }
   }
   {  // the reader stops at an event it cannot read whole: say where
@@ -354,6 +501,24 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
                                        "record on the robot's bus; a hardware loop on its own URL, --hardware-url, "
                                        "is not on it)",
                                        o.log, state_channel, report.events));
+  if (plan.stamped) {
+    const size_t never = held.size();  // stamped for a cycle the log does not hold
+    report.notes.push_back(fmt::format("inputs fed at the cycle the controller manager took them in at ({})", inputs_channel));
+    if (plan.unrecorded > 0)
+      report.notes.push_back(fmt::format("{} input(s) the controller manager took in are not in the log (lost by the "
+                                         "recorder): not fed",
+                                         plan.unrecorded));
+    if (plan.unstamped > 0)
+      report.notes.push_back(fmt::format("{} message(s) on input channels that the controller manager did not take "
+                                         "in (lost on its way to it): not fed",
+                                         plan.unstamped));
+    if (never > 0)
+      report.notes.push_back(fmt::format("{} input(s) stamped for cycles after the log's last state: not fed", never));
+  } else {
+    report.notes.push_back(fmt::format("inputs fed in the log's order (no {} in it: recorded by a controller "
+                                       "manager that reads the bus through LCM, or a version before it)",
+                                       inputs_channel));
+  }
   unrecorded_answers += std::max<int64_t>(0, static_cast<int64_t>(answers.size()) - 1);  // the last: after the end
   if (unrecorded_answers > 0)
     report.notes.push_back(fmt::format("{} answer(s) to recorded states have no hardware/command in the log (lost by "
