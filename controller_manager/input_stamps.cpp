@@ -33,14 +33,38 @@ bool InputFilter::operator()(const std::string& channel, const void* data, size_
 }
 
 void InputStamps::taken(const std::string& channel, const void* data, size_t size) {
+  just_taken_ = false;
   if (!is_input_(channel, data, size)) return;
+  just_taken_ = add({channel, static_cast<int64_t>(message_digest(data, size)), static_cast<int32_t>(size)});
+}
+
+bool InputStamps::add(Input input) {
   if (pending_.channel.size() >= kListed) {
     ++pending_.untaken;
+    return false;
+  }
+  pending_.channel.push_back(std::move(input.channel));
+  pending_.digest.push_back(input.digest);
+  pending_.size.push_back(input.size);
+  return true;
+}
+
+void InputStamps::submitted_off_loop() {
+  if (!just_taken_) {
+    deferred_.emplace_back();
     return;
   }
-  pending_.channel.push_back(channel);
-  pending_.digest.push_back(static_cast<int64_t>(message_digest(data, size)));
-  pending_.size.push_back(static_cast<int32_t>(size));
+  just_taken_ = false;
+  deferred_.push_back(Input{std::move(pending_.channel.back()), pending_.digest.back(), pending_.size.back()});
+  pending_.channel.pop_back();
+  pending_.digest.pop_back();
+  pending_.size.pop_back();
+}
+
+void InputStamps::result_taken() {
+  if (deferred_.empty()) return;
+  if (deferred_.front()) add(std::move(*deferred_.front()));
+  deferred_.pop_front();
 }
 
 void InputStamps::stamp(int64_t session, int64_t step) {
@@ -54,6 +78,7 @@ void InputStamps::stamp(int64_t session, int64_t step) {
   pending_.digest.clear();
   pending_.size.clear();
   pending_.untaken = 0;
+  just_taken_ = false;
 }
 
 }  // namespace lcm_control::cm

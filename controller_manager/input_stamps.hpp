@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +41,10 @@ class InputStamps {
 
   // A message the manager's subscriptions received.
   void taken(const std::string& channel, const void* data, size_t size);
+  // The message just taken waits for work off the loop (a trajectory goal on the intake's thread, rt/intake.hpp): it
+  // is stamped at the cycle after result_taken() says its result ran, in the order submitted.
+  void submitted_off_loop();
+  void result_taken();
   // Before the cycle of (session, step): publishes what was taken since the last one, if anything.
   void stamp(int64_t session, int64_t step);
 
@@ -47,6 +53,14 @@ class InputStamps {
   InputFilter is_input_;
   Publisher<cm_inputs_t> publisher_;
   cm_inputs_t pending_{};
+  struct Input {
+    std::string channel;
+    int64_t digest = 0;
+    int32_t size = 0;
+  };
+  bool add(Input input);  // false: over kListed, counted
+  bool just_taken_ = false;                    // the last message of pending_ is the one being delivered
+  std::deque<std::optional<Input>> deferred_;  // submitted off the loop, oldest first (none: one that was not taken)
 };
 
 }  // namespace lcm_control::cm

@@ -84,6 +84,7 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       activity_pub_(endpoints_.publisher<activity_t>(bus.channel(channels::kCmActivity))),
       inputs_(bus, Publisher<cm_inputs_t>(&bus.lcm(), bus.channel(channels::kCmInputs), &outbox_)) {
   loop_.set_before_update(&sources_);
+  if (intake_) intake_->set_hooks([this] { inputs_.submitted_off_loop(); }, [this] { inputs_.result_taken(); });
   configured_ = index_of(model_.controllers);
   hw_endpoints_.subscribe<hardware_state_t>(
       bus.channel(channels::kHardwareState),
@@ -108,7 +109,10 @@ ControllerManager::ControllerManager(RobotModel model, Bus& bus, const Registry&
       });
 }
 
-ControllerManager::~ControllerManager() { shutdown(); }
+ControllerManager::~ControllerManager() {
+  shutdown();
+  if (intake_) intake_->set_hooks({}, {});
+}
 
 std::unordered_map<std::string, size_t> ControllerManager::index_of(const std::vector<ControllerSpec>& controllers) {
   std::unordered_map<std::string, size_t> index;

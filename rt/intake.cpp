@@ -25,7 +25,16 @@ void Intake::enqueue(Job job) {
 }
 
 void Intake::submit(Job job) {
-  if (!in_place()) return enqueue(std::move(job));
+  if (!in_place()) {
+    if (submitted_) submitted_();
+    if (!taken_) return enqueue(std::move(job));
+    return enqueue([this, job = std::move(job)]() -> Result {
+      return [this, r = job()]() {
+        if (r) r();
+        if (taken_) taken_();
+      };
+    });
+  }
   {  // what was submitted before takes effect first
     std::unique_lock<std::mutex> lock(mutex_);
     idle_.wait(lock, [&] { return jobs_.empty() && running_ == 0; });

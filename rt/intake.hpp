@@ -34,6 +34,13 @@ class Intake {
   bool in_place() const { return in_place_.load(std::memory_order_relaxed); }
 
   void submit(Job job);
+  // What the loop's thread hears of the jobs it submits off the loop (not in place): `submitted` in submit(), and
+  // `taken` in the drain() that runs the job's result (or would: a job with none), in the same order. The controller
+  // manager stamps an input at the cycle after it was taken (controller_manager/input_stamps.hpp).
+  void set_hooks(std::function<void()> submitted, std::function<void()> taken) {
+    submitted_ = std::move(submitted);
+    taken_ = std::move(taken);
+  }
   // The results of the jobs done, in their order; how many ran. Loop thread only.
   size_t drain();
   // Jobs waiting, running, or whose results wait for drain().
@@ -59,6 +66,7 @@ class Intake {
   size_t running_ = 0;
   bool stop_ = false;
   std::atomic<bool> in_place_{false};
+  std::function<void()> submitted_, taken_;  // set_hooks(): the loop's thread only
   std::atomic<int64_t> done_{0};
   std::thread thread_;
 };

@@ -156,6 +156,33 @@ TEST(ReplayControllers, AChangedGainDivergesAtTheStepItFirstActs) {
       << changed.out;
 }
 
+// A real-time run (sim_server paced by the wall clock, the goal taken in on the intake's thread) replays open loop
+// within the tolerance the guide states; bit for bit is not promised there.
+TEST(ReplayControllers, ARealTimeRecordingReplaysWithinItsTolerance) {
+  const std::string dir = temp_dir("replay_real_time");
+  const std::string urdf = source("test/robots/ur_like.urdf"), yaml = source("test/robots/ur_like_chained.yaml");
+  const std::string log = dir + "/real_time.lcmlog";
+  {
+    RobotSession robot(urdf, yaml);
+    auto recorder = robot.background({"bus", "record", log, "--force"});
+    ASSERT_TRUE(recorder->wait_for_output("bus record: recording", 10)) << recorder->output();
+    robot.start_controller_manager();
+    ASSERT_NO_FATAL_FAILURE(robot.spawn({"joint_state_broadcaster", "arm_pids", "arm_trajectory"}));
+    ASSERT_NO_FATAL_FAILURE(robot.start_sim({}, 30));
+    std::string out;
+    ASSERT_EQ(robot.run({"send-trajectory", "arm_trajectory", "--point", "0.5:0.2,-0.3,0.4,0.2,0.2,0.2"}, &out, 30), 0)
+        << out;
+    EXPECT_EQ(recorder->stop(10), 0) << recorder->output();
+  }
+  const Replayed r = replay({log, "--controllers", "--tolerance", "1e-6"});
+  std::printf("%s", r.out.c_str());
+  EXPECT_EQ(r.rc, 0) << r.out;
+  EXPECT_TRUE(has(r.out, "within tolerance 1e-06: ")) << r.out;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.out, m, std::regex(R"(hardware/command: (\d+) compared)"))) << r.out;
+  EXPECT_GE(std::stoi(m[1]), 250);  // the 0.5 s goal at 500 Hz
+}
+
 TEST(ReplayControllers, BadInputIsRefusedWithExitTwoNamingWhatToPass) {
   const std::string dir = temp_dir("replay_bad_input");
   const std::string log = record_demo(dir, 1);

@@ -96,7 +96,7 @@ TEST(MessageText, ErrorsNameTheTypeTheFieldAndTheFields) {
   EXPECT_NE(build_error("joint_trajectory_t", {"points[0].nope=1"}).find("no field 'nope' in trajectory_point_t"),
             std::string::npos);
   EXPECT_NE(build_error("link_poses_t", {"position[0]=[1,2]"}).find("rows have 3"), std::string::npos);
-  EXPECT_NE(build_error("nosuch_t", {}).find("unknown message type 'nosuch_t'; the types are: ackermann_drive_t, activity_t, cm_request_t"),
+  EXPECT_NE(build_error("nosuch_t", {}).find("unknown message type 'nosuch_t'; the types are: ackermann_drive_t, activity_t, cm_inputs_t"),
             std::string::npos);
 }
 
