@@ -127,6 +127,9 @@ TEST(ReplayControllers, AChangedGainDivergesAtTheStepItFirstActs) {
   EXPECT_EQ(same.rc, 0) << same.out;
   EXPECT_TRUE(has(same.out, "identical: ")) << same.out;
   EXPECT_TRUE(has(same.out, "note: inputs fed at the cycle the controller manager took them in at")) << same.out;
+  EXPECT_TRUE(std::regex_search(same.out, std::regex(R"(arm_trajectory/feedback: [1-9]\d* compared, 0 differ)")))
+      << same.out;  // the controllers' outputs too
+  EXPECT_TRUE(has(same.out, "arm_trajectory/result: 1 compared, 0 differ")) << same.out;
 
   // The goal's step is the one the manager stamped (controller_manager/inputs), not the log's order: moved 300 events
   // later (about 150 steps), it still lands where it did; without the stamps, it lands late and the replay diverges.
@@ -154,6 +157,21 @@ TEST(ReplayControllers, AChangedGainDivergesAtTheStepItFirstActs) {
                                                          R"(t=[0-9.]+ s, command\[elbow\w*\]: recorded \S+, )"
                                                          R"(replayed \S+)")))
       << changed.out;
+
+  // A controller's own output: with an elbow goal tolerance it cannot meet, the replayed trajectory controller keeps
+  // the goal running where the run reported it done.
+  std::string strict = file_text(yaml);
+  const std::string tolerance = "elbow_joint: {trajectory: 0.1, goal: 0.02}";
+  ASSERT_NE(strict.find(tolerance), std::string::npos);
+  strict.replace(strict.find(tolerance), tolerance.size(), "elbow_joint: {trajectory: 0.1, goal: 1.0e-9}");
+  const std::string strict_path = dir + "/ur_like_strict.yaml";
+  std::ofstream(strict_path) << strict;
+  const Replayed outputs = replay({log, "--controllers", "--config", strict_path});
+  std::printf("%s", outputs.out.c_str());
+  EXPECT_EQ(outputs.rc, 1) << outputs.out;
+  EXPECT_TRUE(std::regex_search(outputs.out, std::regex(R"(diverged: first on arm_trajectory/(feedback|result) at )"
+                                                         R"(t=[0-9.]+ s, \(a message the (run|replay) published)")))
+      << outputs.out;
 }
 
 // A real-time run (sim_server paced by the wall clock, the goal taken in on the intake's thread) replays open loop

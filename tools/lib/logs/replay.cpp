@@ -28,6 +28,7 @@
 #include "controller_manager/services.hpp"
 #include "description/load.hpp"
 #include "description/robot_file.hpp"
+#include "tools/lib/messages/fields.hpp"
 #include "lcm_control/run_config_t.hpp"
 #include "lcm_control/cm_inputs_t.hpp"
 #include "lcm_control/command_source_t.hpp"
@@ -206,6 +207,120 @@ class ArrivalOrderedLog {
   long end_of_whole_ = 0;
 };
 
+// A controller's output (any of our types): the same bytes, else field by field (decode_fields), the first
+// difference named by the field's label (`position[j1]`).
+void compare_output(Comparison& cmp, const std::string& channel, const std::vector<uint8_t>& recorded,
+                    const std::vector<uint8_t>& replayed) {
+  ChannelSummary& c = cmp.channel(channel);
+  ++c.compared;
+  if (recorded == replayed) return;
+  const Decoded a = decode_fields(recorded.data(), recorded.size());
+  const Decoded b = decode_fields(replayed.data(), replayed.size());
+  Divergence at{channel, -1, 0, "", "", 0, 0};
+  for (const Field& f : a.fields)
+    if (f.path == "utime") at.utime = f.exact;
+  if (!a.ok() || !b.ok() || a.type != b.type || a.fields.size() != b.fields.size()) {
+    at.field = !a.ok() || !b.ok() ? "(not one of lcm_control's types)" : a.type != b.type ? "(type)" : "(number of fields)";
+    at.recorded = double(a.fields.size());
+    at.replayed = double(b.fields.size());
+    cmp.mismatch(c, at);
+    return;
+  }
+  bool same = true;
+  for (size_t k = 0; k < a.fields.size(); ++k) {
+    const Field& x = a.fields[k];
+    const Field& y = b.fields[k];
+    at.field = x.name();
+    if (x.is_text || y.is_text || x.path != y.path) {
+      if (x.str != y.str || x.path != y.path) {
+        if (same) cmp.mismatch(c, at), --c.differing;
+        same = false;
+      }
+      continue;
+    }
+    same = cmp.value(c, at, x.integer ? double(x.exact) : x.value, y.integer ? double(y.exact) : y.value) && same;
+  }
+  if (!same) ++c.differing;
+}
+
+// The controllers' outputs (channels under a configured controller's name that the live manager did not take
+// messages on): what the replayed manager publishes and what the log holds, per channel, paired in order and
+// compared as both arrive. A pair published at different hardware times (their utime), or a message one side has and
+// the other has not by the end (kEndUs before the last state replayed, for what was published as the recording
+// stopped), is a divergence.
+struct Outputs {
+  static constexpr int64_t kEndUs = 20000;
+  struct Message {
+    int64_t utime = -1;  // -1: its type has none
+    std::vector<uint8_t> bytes;
+  };
+  std::vector<std::string> prefixes;  // "<controller>/"
+  std::set<std::string> fed;          // channels replay hands to the manager: inputs, not outputs
+  const std::set<std::string>* inputs = nullptr;  // the channels the live manager took messages on
+  std::map<std::string, std::pair<std::deque<Message>, std::deque<Message>>> queues;  // recorded, replayed
+
+  bool is_output(const std::string& channel) const {
+    if (fed.count(channel) || (inputs && inputs->count(channel))) return false;
+    for (const std::string& p : prefixes)
+      if (channel.compare(0, p.size(), p) == 0) return true;
+    return false;
+  }
+  static Message message(const void* data, size_t size) {
+    Message m;
+    const auto* b = static_cast<const uint8_t*>(data);
+    m.bytes.assign(b, b + size);
+    for (const Field& f : decode_fields(data, size).fields)
+      if (f.path == "utime") m.utime = f.exact;
+    return m;
+  }
+  void on(const lcm::ReceiveBuffer* rb, const std::string& channel) {
+    if (is_output(channel)) queues[channel].second.push_back(message(rb->data, rb->data_size));
+  }
+  void recorded(const std::string& channel, const void* data, size_t size) {
+    queues[channel].first.push_back(message(data, size));
+  }
+  void compare(Comparison& cmp) {
+    for (auto& [channel, q] : queues) {
+      if (fed.count(channel)) {  // fed after it was taken for an output: an input after all
+        q.first.clear();
+        q.second.clear();
+        continue;
+      }
+      for (; !q.first.empty() && !q.second.empty(); q.first.pop_front(), q.second.pop_front()) {
+        const Message& a = q.first.front();
+        const Message& b = q.second.front();
+        if (a.utime != b.utime) {
+          ChannelSummary& c = cmp.channel(channel);
+          ++c.compared;
+          cmp.mismatch(c, {channel, -1, a.utime, "utime (published at another time)", "", double(a.utime),
+                           double(b.utime)});
+          continue;
+        }
+        compare_output(cmp, channel, a.bytes, b.bytes);
+      }
+    }
+  }
+  // After the last state (its utime): what one side has and the other has not, but the last kEndUs, is a divergence
+  // (a message the replay did not publish, or published and the run did not); returns the messages left unpaired.
+  int64_t finish(Comparison& cmp, int64_t last_utime) {
+    compare(cmp);
+    int64_t left = 0;
+    for (auto& [channel, q] : queues) {
+      left += int64_t(q.first.size() + q.second.size());
+      for (const auto* side : {&q.first, &q.second})
+        if (!side->empty() && side->front().utime >= 0 && side->front().utime < last_utime - kEndUs) {
+          ChannelSummary& c = cmp.channel(channel);
+          const bool recorded_only = side == &q.first;
+          cmp.mismatch(c, {channel, -1, side->front().utime,
+                           recorded_only ? "(a message the run published and the replay did not)"
+                                         : "(a message the replay published and the run did not)",
+                           "", recorded_only ? 1.0 : 0.0, recorded_only ? 0.0 : 1.0});
+        }
+    }
+    return left;
+  }
+};
+
 // Decodes a recorded message of type T; throws naming the log, the event and the channel when it is not one.
 template <class T>
 T decoded(const ReplayOptions& o, const lcm::LogEvent& e) {
@@ -270,7 +385,8 @@ struct InputSchedule {
   std::map<Cycle, std::vector<int64_t>> at;   // the events (their index in the log) to feed before each cycle
   std::unordered_map<int64_t, Cycle> cycle_of;
   int64_t unrecorded = 0;  // inputs a stamp lists that the log does not hold (lost by the recorder)
-  int64_t unstamped = 0;   // messages on a stamped channel no stamp lists (the manager did not take them in)
+  std::map<std::string, int64_t> unstamped;  // messages on a stamped channel no stamp lists (not taken in), by channel
+  std::set<std::string> stamped_channels;  // channels the manager took messages on: inputs
 };
 
 InputSchedule schedule_inputs(const ReplayOptions& o, const Bus& bus, const std::set<std::string>& not_inputs) {
@@ -301,7 +417,7 @@ InputSchedule schedule_inputs(const ReplayOptions& o, const Bus& bus, const std:
   for (const auto& [event, key] : candidates) {
     auto it = stamps.find(key);
     if (it == stamps.end() || it->second.empty()) {
-      plan.unstamped += stamped_channels.count(std::get<0>(key)) ? 1 : 0;
+      if (stamped_channels.count(std::get<0>(key))) ++plan.unstamped[std::get<0>(key)];
       continue;
     }
     plan.at[it->second.front()].push_back(event);
@@ -309,6 +425,7 @@ InputSchedule schedule_inputs(const ReplayOptions& o, const Bus& bus, const std:
     it->second.pop_front();
   }
   for (const auto& [key, left] : stamps) plan.unrecorded += static_cast<int64_t>(left.size());
+  plan.stamped_channels = std::move(stamped_channels);
   return plan;
 }
 }  // namespace
@@ -353,6 +470,8 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
   Published published;
   const std::string js_channel = bus.channel(channels::kJointStates);
   bus.lcm().subscribe(js_channel, &Published::on, &published);
+  Outputs outputs;  // compared where the log says which channels are inputs (its stamps)
+  bus.lcm().subscribe(".*", &Outputs::on, &outputs);
   const std::string state_channel = bus.channel(channels::kHardwareState);
   const std::string command_channel = bus.channel(channels::kHardwareCommand);
   const std::string source_channel = bus.channel("controller_manager/command_source");
@@ -387,6 +506,7 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
       if (r.remove) sourced.erase(target);
       else sourced.insert(target);
     }
+    outputs.fed.insert(ch);
     bus.lcm().publish(ch, data, static_cast<unsigned>(size));
     ++report.fed;
     pump();
@@ -395,6 +515,9 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
   const std::string config_channel = bus.channel(channels::kCmConfig);
   const InputSchedule plan =
       schedule_inputs(o, bus, {state_channel, command_channel, js_channel, inputs_channel, config_channel});
+  outputs.inputs = &plan.stamped_channels;
+  if (plan.stamped)
+    for (const ControllerSpec& c : model.controllers) outputs.prefixes.push_back(bus.channel(c.name + "/"));
   // Stamped inputs read but not fed yet, by event index: by the main pass before their cycle, or by `ahead` when
   // their cycle comes first (the recorder saw them after the state the manager took them before).
   std::map<int64_t, std::pair<std::string, std::vector<uint8_t>>> held;
@@ -423,6 +546,7 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
     }
   };
   long last_end = 0;  // the byte after the last event read whole
+  int64_t last_state_utime = 0;
   for (const lcm::LogEvent* e = log.next(); e; e = log.next()) {
     ++report.events;
     ++index;
@@ -446,6 +570,7 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
       pump();
       if (plan.stamped) feed_cycle(s.session, s.step);
       manager.on_hardware_state(s);
+      last_state_utime = s.utime;
       pump();
       answers.push_back(manager.last_command());
       if (answers.size() > 1000) {  // a log without the commands (recorded without that channel) keeps none of them
@@ -454,6 +579,7 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
       }
       ++report.states;
       compare_published();
+      outputs.compare(cmp);
     } else if (ch == command_channel) {
       const hardware_command_t recorded = decoded<hardware_command_t>(o, *e);
       if (report.states == 0) continue;  // the answer to a state from before the recording began
@@ -480,6 +606,9 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
     } else if (ch == inputs_channel || ch == config_channel) {
       if (ch == inputs_channel) decoded<cm_inputs_t>(o, *e);  // a corrupted stamp is named
       continue;
+    } else if (plan.stamped && outputs.is_output(ch)) {
+      outputs.recorded(ch, e->data, static_cast<size_t>(e->datalen));
+      outputs.compare(cmp);
     } else if (plan.stamped) {
       continue;  // the manager did not take it in (no stamp lists it)
     } else {
@@ -501,6 +630,10 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
                                        "record on the robot's bus; a hardware loop on its own URL, --hardware-url, "
                                        "is not on it)",
                                        o.log, state_channel, report.events));
+  if (const int64_t n = outputs.finish(cmp, last_state_utime); n > 0)
+    report.notes.push_back(fmt::format("{} controller output message(s) at the end have no counterpart (published as "
+                                       "the recording stopped): not compared",
+                                       n));
   if (plan.stamped) {
     const size_t never = held.size();  // stamped for a cycle the log does not hold
     report.notes.push_back(fmt::format("inputs fed at the cycle the controller manager took them in at ({})", inputs_channel));
@@ -508,10 +641,13 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
       report.notes.push_back(fmt::format("{} input(s) the controller manager took in are not in the log (lost by the "
                                          "recorder): not fed",
                                          plan.unrecorded));
-    if (plan.unstamped > 0)
-      report.notes.push_back(fmt::format("{} message(s) on input channels that the controller manager did not take "
-                                         "in (lost on its way to it): not fed",
-                                         plan.unstamped));
+    if (!plan.unstamped.empty()) {
+      std::vector<std::string> where;
+      for (const auto& [channel, n] : plan.unstamped) where.push_back(fmt::format("{} on {}", n, channel));
+      report.notes.push_back(fmt::format("message(s) on input channels that the controller manager did not take in "
+                                         "(lost on their way to it, or sent before it listened): {}; not fed",
+                                         fmt::join(where, ", ")));
+    }
     if (never > 0)
       report.notes.push_back(fmt::format("{} input(s) stamped for cycles after the log's last state: not fed", never));
   } else {
