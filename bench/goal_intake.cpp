@@ -9,10 +9,12 @@
 // program runs with --rt-priority, when permitted)
 //   goal_intake KIND PERIODS P50_US P99_US MAX_US OVER_1MS GOALS_SENT GOALS_TAKEN cpu CPU_P99_US CPU_MAX_US CPU_OVER_1MS
 // where the first figures are wall time busy and the cpu ones the loop thread's own CPU time in those periods (the
-// difference: time it waited for a CPU)
+// difference: time it waited for a CPU or a lock). With GOAL_INTAKE_WHY set, each period over 1 ms is explained on
+// stderr: its CPU time, page faults and voluntary (blocked) and involuntary (preempted) context switches.
 // and `goal_cost POINTS BYTES DECODE_MS PLAN_MS`.
 #include <pthread.h>
 #include <sched.h>
+#include <sys/resource.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -150,10 +152,18 @@ Figures run(const std::string& kind, double seconds, const std::string& dir, con
     st.utime = k * 1000;
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = thread_cpu_us();
+    rusage r0{};
+    getrusage(RUSAGE_THREAD, &r0);
     cm.on_hardware_state(st);
     bus.handle_us(0, 1000);
     cm.poll(monotonic_us());
     const double c1 = thread_cpu_us();
+    rusage r1{};
+    getrusage(RUSAGE_THREAD, &r1);
+    if (getenv("GOAL_INTAKE_WHY") && std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() > 1000)
+      std::fprintf(stderr, "over 1 ms: cpu %.0f us, minor faults %ld, major %ld, voluntary switches %ld, involuntary %ld\n",
+                   c1 - c0, r1.ru_minflt - r0.ru_minflt, r1.ru_majflt - r0.ru_majflt, r1.ru_nvcsw - r0.ru_nvcsw,
+                   r1.ru_nivcsw - r0.ru_nivcsw);
     const auto t1 = std::chrono::steady_clock::now();
     if (k >= 100) {
       f.busy_us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());

@@ -17,11 +17,18 @@ Intake::~Intake() {
 }
 
 void Intake::enqueue(Job job) {
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    jobs_.push_back(std::move(job));
-  }
+  outgoing_.push_back(std::move(job));
+  std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+  if (lock) hand_over(lock);
+}
+
+void Intake::hand_over(std::unique_lock<std::mutex>& lock) {
+  if (outgoing_.empty()) return;
+  for (Job& j : outgoing_) jobs_.push_back(std::move(j));
+  outgoing_.clear();
+  lock.unlock();
   wake_.notify_one();
+  lock.lock();
 }
 
 void Intake::submit(Job job) {
@@ -37,6 +44,7 @@ void Intake::submit(Job job) {
   }
   {  // what was submitted before takes effect first
     std::unique_lock<std::mutex> lock(mutex_);
+    hand_over(lock);
     idle_.wait(lock, [&] { return jobs_.empty() && running_ == 0; });
   }
   drain();
@@ -46,7 +54,9 @@ void Intake::submit(Job job) {
 size_t Intake::drain() {
   std::deque<Result> ready;
   {
-    std::lock_guard<std::mutex> lock(mutex_);
+    std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+    if (!lock) return 0;  // the thread holds it: taken at the next drain, never waited for
+    hand_over(lock);
     if (results_.empty()) return 0;
     ready.swap(results_);
   }
@@ -60,8 +70,9 @@ size_t Intake::drain() {
 }
 
 bool Intake::busy() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return !jobs_.empty() || running_ > 0 || !results_.empty();
+  if (!outgoing_.empty()) return true;
+  std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+  return !lock || !jobs_.empty() || running_ > 0 || !results_.empty();
 }
 
 void Intake::work() {

@@ -1,7 +1,8 @@
 // Work a message needs before a loop can take it (decoding, checking, planning), done on a thread of its own, so
 // that a large message (a 100,000-point trajectory goal) never stalls a cycle: submit() hands the job over, and the
 // loop's thread runs each job's result (what the job returns) at its next drain(), between cycles, in the order the
-// jobs were submitted, all of one job's work taken whole. In place (lockstep, or without a thread), a job and its
+// jobs were submitted, all of one job's work taken whole. The loop's thread never waits for the intake's (but in
+// place). In place (lockstep, or without a thread), a job and its
 // result run at once in submit(), so that runs repeat bit for bit. dispose() lets the thread free what the loop no
 // longer needs (a replaced trajectory).
 #pragma once
@@ -58,7 +59,11 @@ class Intake {
 
  private:
   void work();
+  // From the loop's thread: never waits for the intake's thread (a nice-19 thread holding the lock while it waits
+  // for a CPU would hold the loop too). A job goes to outgoing_ and is handed over whenever the lock is free.
   void enqueue(Job job);
+  void hand_over(std::unique_lock<std::mutex>& lock);  // outgoing_ into jobs_, the lock held
+  std::deque<Job> outgoing_;                            // the loop's thread only
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_;
   std::deque<Job> jobs_;

@@ -256,6 +256,7 @@ TEST(ReplayControllers, BadInputIsRefusedWithExitTwoNamingWhatToPass) {
               source("test/robots/gripper_action.yaml")});
   EXPECT_EQ(other_robot.rc, 2) << other_robot.out;
   EXPECT_TRUE(has(other_robot.out, "the recorded robot is not ")) << other_robot.out;
+  EXPECT_TRUE(has(other_robot.out, "actuator 'finger_motor' (joint 'left_finger_joint') is missing")) << other_robot.out;
 
   const std::string empty = dir + "/no_hardware.lcmlog";
   {
