@@ -40,6 +40,7 @@
 #include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
 #include "rt/clock.hpp"
+#include "rt/scheduling.hpp"
 #include "controllers/builtin.hpp"
 
 namespace {
@@ -218,6 +219,7 @@ void goal_cost() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  map_large_allocations_apart();  // as the controller manager program does
   double seconds = 5;
   for (int k = 1; k < argc; ++k) {
     if (!std::strcmp(argv[k], "--smoke")) seconds = 1.0;

@@ -37,6 +37,7 @@ void add_program_flags(CLI::App& app, ProgramFlags& f) {
 
 int run_controller_manager(const ProgramFlags& f) {
   std::string scheduling = apply_scheduling(f.robot.sched);
+  map_large_allocations_apart();
   if (f.spin_us > 0) {
     set_timer_slack(1000);  // the sleep before each spin must not end late by the default 50 us
     scheduling += fmt::format("{}spinning {} us around each real-time state", scheduling.empty() ? "" : ", ", f.spin_us);

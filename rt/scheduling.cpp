@@ -1,5 +1,7 @@
 #include "rt/scheduling.hpp"
 
+#include <malloc.h>
+
 #include <fmt/format.h>
 #include <pthread.h>
 #include <sched.h>
@@ -127,6 +129,8 @@ void become_background_thread(const char* name) {
   (void)!setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), 19);  // Linux: a thread's own nice value
   pthread_setname_np(pthread_self(), name);
 }
+
+void map_large_allocations_apart() { mallopt(M_MMAP_THRESHOLD, 256 * 1024); }
 
 void set_timer_slack(long ns) {
   if (ns < 1 || prctl(PR_SET_TIMERSLACK, static_cast<unsigned long>(ns), 0, 0, 0) != 0)

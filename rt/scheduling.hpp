@@ -34,6 +34,13 @@ void become_background_thread(const char* name);
 // nanoseconds (>= 1); Linux gives normal threads 50,000 ns, SCHED_FIFO ones none. Throws naming the value.
 void set_timer_slack(long ns);
 
+// Allocations over 256 KiB (a trajectory goal's bytes, its plan) mapped on their own and unmapped when freed, by
+// whatever thread frees them. glibc raises that threshold after the first such free, and such chunks then come from
+// the heap of the thread that made them: a worker freeing one there holds that heap's lock while the loop's thread
+// waits for it (bench_goal_intake, GOAL_INTAKE_WHY: a SCHED_FIFO loop blocked in __lll_lock_wait_private for ~2 ms).
+// For the loop processes, at start.
+void map_large_allocations_apart();
+
 // The CPU, among those this process may use, with the most idle time over `sample_ms`; -1 if it cannot tell.
 int least_busy_cpu(int sample_ms = 100);
 
