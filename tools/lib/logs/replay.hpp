@@ -1,8 +1,10 @@
 // Open-loop replay (the front command's `replay --controllers`): a recorded run's hardware/state messages re-drive a
-// fresh controller manager in-process, one cycle per recorded state, as fast as the machine goes; the recorded
-// external inputs (controller_manager requests, controllers' commands and goals, gains, e-stops) are handed to it in
-// the order the log holds them, and what it commands (hardware/command) and publishes (joint_states) is compared
-// with what was recorded. A lockstep recording with unchanged code and configuration replays bit for bit.
+// fresh controller manager in-process, one cycle per recorded state (in the order they arrived), as fast as the
+// machine goes; the recorded external inputs (controller_manager requests, controllers' commands and goals, gains,
+// e-stops) are handed to it before the cycle the live manager took each in at (its stamps, cm_inputs_t; a log
+// without them: in the log's order), and what it commands (hardware/command) and publishes (joint_states, each
+// controller's own channels) is compared with what was recorded. A lockstep recording with unchanged code and
+// configuration replays bit for bit.
 #pragma once
 
 #include <cstdint>
