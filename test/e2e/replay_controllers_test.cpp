@@ -235,6 +235,18 @@ TEST(ReplayControllers, BadInputIsRefusedWithExitTwoNamingWhatToPass) {
   const Replayed truncated = replay({cut, "--controllers", "--urdf", urdf, "--config", yaml});
   EXPECT_EQ(truncated.rc, 2) << truncated.out;
   EXPECT_TRUE(has(truncated.out, "cut.lcmlog: truncated or corrupted after event ")) << truncated.out;
+  const std::string garbled = dir + "/garbled.lcmlog";  // 100 bytes overwritten in the middle
+  {
+    std::ifstream in(log, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    bytes.replace(bytes.size() / 2, 100, std::string(100, 'Z'));
+    std::ofstream(garbled, std::ios::binary) << bytes;
+  }
+  const Replayed corrupted = replay({garbled, "--controllers", "--urdf", urdf, "--config", yaml});
+  EXPECT_EQ(corrupted.rc, 2) << corrupted.out;
+  EXPECT_TRUE(std::regex_search(corrupted.out, std::regex(R"(garbled.lcmlog: (truncated or corrupted after event \d+ )"
+                                                           R"(\(byte \d+ of \d+\)|event \d+ on '[^']+' does not decode))")))
+      << corrupted.out;
 
   // A recorder that lost a state lost an input: refused, naming the step. One that lost a command lost only what is
   // compared: the rest is compared and the loss counted.
