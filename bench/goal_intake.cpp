@@ -139,6 +139,7 @@ Figures run(const std::string& kind, double seconds, const std::string& dir, con
     });
   }
   const int64_t periods = int64_t(seconds * 1000);
+  const bool explain = getenv("GOAL_INTAKE_WHY") != nullptr;  // why a period took over 1 ms, on stderr
   f.busy_us.reserve(size_t(periods));
   timespec next{};
   clock_gettime(CLOCK_MONOTONIC, &next);
@@ -151,21 +152,21 @@ Figures run(const std::string& kind, double seconds, const std::string& dir, con
     clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &next, nullptr);
     st.step = k;
     st.utime = k * 1000;
+    rusage r0{}, r1{};
+    if (explain) getrusage(RUSAGE_THREAD, &r0);
     const auto t0 = std::chrono::steady_clock::now();
     const double c0 = thread_cpu_us();
-    rusage r0{};
-    getrusage(RUSAGE_THREAD, &r0);
     cm.on_hardware_state(st);
     bus.handle_us(0, 1000);
     cm.poll(monotonic_us());
     const double c1 = thread_cpu_us();
-    rusage r1{};
-    getrusage(RUSAGE_THREAD, &r1);
-    if (getenv("GOAL_INTAKE_WHY") && std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - t0).count() > 1000)
+    const auto t1 = std::chrono::steady_clock::now();
+    if (explain && std::chrono::duration<double, std::micro>(t1 - t0).count() > 1000) {
+      getrusage(RUSAGE_THREAD, &r1);
       std::fprintf(stderr, "over 1 ms: cpu %.0f us, minor faults %ld, major %ld, voluntary switches %ld, involuntary %ld\n",
                    c1 - c0, r1.ru_minflt - r0.ru_minflt, r1.ru_majflt - r0.ru_majflt, r1.ru_nvcsw - r0.ru_nvcsw,
                    r1.ru_nivcsw - r0.ru_nivcsw);
-    const auto t1 = std::chrono::steady_clock::now();
+    }
     if (k >= 100) {
       f.busy_us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
       f.cpu_us.push_back(c1 - c0);

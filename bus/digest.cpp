@@ -21,6 +21,7 @@ uint64_t mix(uint64_t h, const uint8_t* p, size_t size) {
 }  // namespace
 
 uint64_t message_digest(const void* data, size_t size) {
+  using namespace digest;
   const auto* p = static_cast<const uint8_t*>(data);
   const uint64_t n = size;
   uint64_t h = mix(0xcbf29ce484222325ull, reinterpret_cast<const uint8_t*>(&n), sizeof n);

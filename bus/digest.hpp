@@ -9,7 +9,10 @@
 
 namespace lcm_control {
 
+// How much of a message the digest reads.
+namespace digest {
 inline constexpr size_t kWholeBytes = 64u << 10, kEndBytes = 8u << 10, kStride = 4096, kSampleBytes = 64;
+}
 
 uint64_t message_digest(const void* data, size_t size);
 

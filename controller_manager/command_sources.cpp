@@ -6,14 +6,11 @@
 
 #include <array>
 #include <cmath>
-#include <functional>
-#include <string_view>
 
 #include "bus/digest.hpp"
 #include "controller_manager/loop.hpp"
 
 namespace lcm_control::cm {
-
 
 // The ticks published on the channel and not yet received back from the bus, by the hash of their bytes (a tick
 // is published once; the oldest are forgotten when more than kSize wait, as when their echoes were lost).

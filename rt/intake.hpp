@@ -1,10 +1,9 @@
 // Work a message needs before a loop can take it (decoding, checking, planning), done on a thread of its own, so
 // that a large message (a 100,000-point trajectory goal) never stalls a cycle: submit() hands the job over, and the
 // loop's thread runs each job's result (what the job returns) at its next drain(), between cycles, in the order the
-// jobs were submitted, all of one job's work taken whole. The loop's thread never waits for the intake's (but in
-// place). In place (lockstep, or without a thread), a job and its
-// result run at once in submit(), so that runs repeat bit for bit. dispose() lets the thread free what the loop no
-// longer needs (a replaced trajectory).
+// jobs were submitted, all of one job's work taken whole; off the loop, the loop's thread never waits for the intake's.
+// In place (lockstep, or without a thread), a job and its result run at once in submit(), so that runs repeat bit
+// for bit. dispose() lets the thread free what the loop no longer needs (a replaced trajectory).
 #pragma once
 
 #include <atomic>
@@ -42,7 +41,8 @@ class Intake {
     submitted_ = std::move(submitted);
     taken_ = std::move(taken);
   }
-  // The results of the jobs done, in their order; how many ran. Loop thread only.
+  // The results of the jobs done, in their order; how many ran (with hooks set, one per job, with a result or not).
+  // Loop thread only.
   size_t drain();
   // Jobs waiting, running, or whose results wait for drain().
   bool busy() const;

@@ -6,6 +6,7 @@
 #include "bus/digest.hpp"
 
 using namespace lcm_control;
+using namespace lcm_control::digest;
 
 TEST(MessageDigest, EveryByteOfASmallMessageCountsAndItsSize) {
   std::vector<uint8_t> m(1000, 7);

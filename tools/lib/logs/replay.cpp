@@ -95,6 +95,10 @@ class Comparison {
   void mismatch(ChannelSummary& c, const Divergence& where) {
     ++c.differing;
     c.max_abs = INFINITY;
+    differs(where);
+  }
+  // A field that is not a number (a text) differs: the divergence, if it is the first.
+  void differs(const Divergence& where) {
     if (!first_) first_ = where;
   }
 
@@ -233,7 +237,7 @@ void compare_output(Comparison& cmp, const std::string& channel, const std::vect
     at.field = x.name();
     if (x.is_text || y.is_text || x.path != y.path) {
       if (x.str != y.str || x.path != y.path) {
-        if (same) cmp.mismatch(c, at), --c.differing;
+        cmp.differs(at);
         same = false;
       }
       continue;
