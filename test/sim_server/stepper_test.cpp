@@ -188,7 +188,9 @@ TEST(sim_realtime, AStallIsCaughtUpInABurstOrSkippedAsAskedAndSimTimeKeepsUp) {
       EXPECT_EQ(jump, 0);
       EXPECT_GE(burst, 60);
       if (v.answer_wait_us == "0") {
-        EXPECT_GE(missed, 20);  // the burst ran on old commands (38-83 seen)
+        // The burst ran on old commands: 38-83 of its 80 steps missed on an idle machine, 16 in a CI run whose
+        // controller kept up with a slowed burst. Fewer than 8 would mean the burst waited for the answers.
+        EXPECT_GE(missed, 8);
       }
     }
   }
