@@ -27,7 +27,7 @@ uint64_t message_digest(const void* data, size_t size) {
   uint64_t h = mix(0xcbf29ce484222325ull, reinterpret_cast<const uint8_t*>(&n), sizeof n);
   if (size <= kWholeBytes) return mix(h, p, size);
   h = mix(h, p, kEndBytes);
-  for (size_t at = kEndBytes; at + kSampleBytes <= size - kEndBytes; at += kStride) h = mix(h, p + at, kSampleBytes);
+  for (size_t k = 0; k < kSamples; ++k) h = mix(h, p + sample_at(size, k), kSampleBytes);
   return mix(h, p + size - kEndBytes, kEndBytes);
 }
 
