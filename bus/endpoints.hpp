@@ -117,7 +117,8 @@ class Endpoints {
   }
 
   // For messages too large to take in between two cycles (trajectory goals): the bytes are kept (moved out of the
-  // socket's buffer when it put them together: LcmSocket::take_delivered), decoded into a new Msg and given to
+  // socket's buffer when it put them together: LcmSocket::take_delivered, and given back to its pool once decoded),
+  // decoded into a new Msg and given to
   // `prepare` on the intake's thread (set_intake); what prepare returns runs on the loop's thread at the intake's
   // next drain, held as the handlers are while busy() (hold_while). Without an intake, or with one in place,
   // everything runs in the handler. on_bad: as subscribe(), on the loop's thread. prepare must not touch what the
@@ -132,7 +133,9 @@ class Endpoints {
                   : std::vector<uint8_t>(static_cast<const uint8_t*>(rb.data),
                                          static_cast<const uint8_t*>(rb.data) + rb.data_size);
       std::weak_ptr<char> life = life_;
-      Intake::Job job = [this, life, bytes = std::move(bytes), prepare, on_bad, channel]() -> Intake::Result {
+      std::shared_ptr<BytePool> pool = socket_ ? socket_->pool() : nullptr;
+      Intake::Job job = [this, life, pool, bytes = std::move(bytes), prepare, on_bad,
+                         channel]() mutable -> Intake::Result {
         Intake::Result result;
         {
           Msg msg;
@@ -143,6 +146,7 @@ class Endpoints {
                                     "' as " + Msg::getTypeName()] { on_bad(why); };
           }
         }  // the message is freed here, on the intake's thread
+        if (pool) pool->give_back(std::move(bytes));  // the next large message is put together in their room
         if (!result) return {};
         return [this, life, result = std::move(result)]() mutable {
           if (life.lock()) deliver_result(std::move(result));

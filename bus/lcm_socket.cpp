@@ -342,10 +342,18 @@ bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* chann
     return false;
   }
   if (p->wanted) {  // appended, not resized and overwritten: no zero-fill of what arrives
-    // Past kKeptBytes arrived, the whole message's room at once: growing by doubling copied up to 2 MiB into fresh
-    // pages in one fragment's read (4.5 ms seen for a 3.6 MB goal); reserved, each fragment touches only its pages.
-    // Before, a message holds only what arrived (a sender of first fragments alone costs no memory).
-    if (p->filled >= kKeptBytes && p->data.capacity() < p->total) p->data.reserve(p->total);
+    // A message over kKeptBytes has its whole room reserved at its first fragment, so that no read copies what
+    // arrived before: growing by doubling copied up to 2 MiB in one fragment's read (4.5 ms for a 3.6 MB goal), and
+    // reserving at 256 KiB copied 256 KiB into fresh pages (~1 ms: a first touch costs ~10 us on a virtual machine).
+    // The room is a buffer given back to the pool (its pages touched already), or else is mapped apart and touched
+    // only as fragments fill it: a sender of first fragments alone costs their pages, not the room.
+    if (p->total > kKeptBytes && p->data.capacity() < p->total) {
+      if (p->data.capacity() > kKeptBytes) release_room(*p);
+      if (p->kept.capacity() == 0) p->kept.swap(p->data);
+      std::vector<uint8_t> room = pool_->take(p->total);
+      if (room.capacity() >= p->total) p->data.swap(room);
+      else p->data.reserve(p->total);
+    }
     p->data.resize(p->filled);
     p->data.insert(p->data.end(), chunk, chunk + chunk_size);
   }
@@ -372,7 +380,12 @@ void LcmSocket::drop(Partial& p) {
   }
   p.wanted = false;
   p.dropped = true;
-  if (p.data.capacity() > kKeptBytes) std::vector<uint8_t>().swap(p.data);
+  release_room(p);
+}
+
+void LcmSocket::release_room(Partial& p) {
+  if (p.data.capacity() > kKeptBytes && !pool_->offer(p.data)) std::vector<uint8_t>().swap(p.data);
+  if (p.data.capacity() == 0) p.data.swap(p.kept);
 }
 
 void LcmSocket::tell_lost(const Lost& lost) {
@@ -386,13 +399,13 @@ void LcmSocket::expire(int64_t now_us) {
       drop(p);
       p.active = false;
     }
-    if (!p.active && p.data.capacity() > kKeptBytes) std::vector<uint8_t>().swap(p.data);
+    if (!p.active) release_room(p);
   }
 }
 
 size_t LcmSocket::reassembly_bytes() const {
   size_t bytes = 0;
-  for (const Partial& p : partials_) bytes += p.data.capacity();
+  for (const Partial& p : partials_) bytes += p.data.capacity() > kKeptBytes ? p.data.size() : p.data.capacity();
   return bytes;
 }
 
@@ -457,6 +470,7 @@ std::vector<uint8_t> LcmSocket::take_delivered(const lcm::ReceiveBuffer& rb) {
   if (delivering_ && delivering_->data.data() == rb.data) {
     bytes.swap(delivering_->data);
     bytes.resize(rb.data_size);
+    delivering_->data.swap(delivering_->kept);
     delivering_ = nullptr;
   } else {
     bytes.assign(static_cast<const uint8_t*>(rb.data), static_cast<const uint8_t*>(rb.data) + rb.data_size);

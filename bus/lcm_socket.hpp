@@ -28,6 +28,8 @@
 #include <unordered_map>
 #include <vector>
 
+#include "rt/byte_pool.hpp"
+
 namespace lcm_control {
 
 // udpm://GROUP:PORT?ttl=N&recv_buf_size=N taken apart as LCM reads it (defaults 239.255.76.67, 7667, ttl 0).
@@ -107,6 +109,9 @@ class LcmSocket {
   // a buffer over kKeptBytes, which has one receiver here, is moved out (its buffer would be given back anyway):
   // taking a 4 MiB goal costs no copy. Any other is copied.
   std::vector<uint8_t> take_delivered(const lcm::ReceiveBuffer& rb);
+  // Where a taken message's bytes go back once read (BytePool::give_back, from any thread): the next large message
+  // is put together in their room, touching no fresh page on the reading thread.
+  const std::shared_ptr<BytePool>& pool() const { return pool_; }
 
   // Waits up to timeout_ms for a message on `channel`, skipping (not handling) every other datagram: its payload,
   // or nullptr on timeout. For start-up checks and benchmarks, not for a socket with subscribers (its filter admits only theirs).
@@ -118,7 +123,8 @@ class LcmSocket {
   int64_t reassembled() const { return reassembled_; }  // fragmented messages put together and delivered
   int64_t incomplete() const { return incomplete_; }    // fragmented messages given up (a fragment lost or late)
   int64_t too_large() const { return too_large_; }      // fragmented messages refused for their size
-  // Bytes held for messages in progress and kept buffers (what fragments cost in memory).
+  // Bytes held for messages in progress and kept buffers (what fragments cost in memory): a large message's room
+  // counts what arrived in it, the pages touched.
   size_t reassembly_bytes() const;
   // Datagrams on the port that are not LCM's (under a filter, a broken whole message naming no channel here is dropped
   // by the kernel, uncounted).
@@ -150,10 +156,13 @@ class LcmSocket {
     bool dropped = false;  // given up (counted, told); its remaining fragments are skipped
     std::string channel;
     std::vector<uint8_t> data;  // kept between messages up to kKeptBytes: no allocation once grown
+    std::vector<uint8_t> kept;  // that buffer, set aside while `data` is a large message's room
     int64_t heard_us = 0;
   };
   // Gives up the message in progress of `p`, telling its channel's lost handlers.
   void drop(Partial& p);
+  // A large message's room in `p` to the pool (freed here when the pool is busy), and its kept buffer back.
+  void release_room(Partial& p);
   void tell_lost(const Lost& lost);
   // Drops the messages in progress unheard for kFragmentTimeoutUs, and gives back idle buffers over kKeptBytes.
   void expire(int64_t now_us);
@@ -187,6 +196,7 @@ class LcmSocket {
   std::vector<std::string> filter_names_;
   int64_t arrived_us_ = -1;  // the kernel's arrival stamp of the datagram receive() read last, -1 without one
   Partial* delivering_ = nullptr;  // the put-together message being delivered, while its one receiver may take it
+  std::shared_ptr<BytePool> pool_ = std::make_shared<BytePool>();
 };
 
 // One line for a lost message: its channel, size and why, with what to do.
