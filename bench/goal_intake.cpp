@@ -6,7 +6,8 @@
 // cost of one goal's decode and plan on one thread.
 //   bench_goal_intake [--seconds S] [--smoke]
 // Prints per kind (none, off_loop, in_loop; none_fifo and off_loop_fifo with the loop's thread on SCHED_FIFO, as the
-// program runs with --rt-priority, when permitted)
+// program runs with --rt-priority, when permitted; none_fifo_own_cpu and off_loop_fifo_own_cpu with it on a CPU of
+// its own, as the program runs with --cpu, the sender on the others)
 //   goal_intake KIND PERIODS P50_US P99_US MAX_US OVER_1MS GOALS_SENT GOALS_TAKEN cpu CPU_P99_US CPU_MAX_US CPU_OVER_1MS
 // where the first figures are wall time busy and the cpu ones the loop thread's own CPU time in those periods (the
 // difference: time it waited for a CPU or a lock). With GOAL_INTAKE_WHY set, each period over 1 ms is explained on
@@ -26,6 +27,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -92,9 +94,22 @@ Figures run(const std::string& kind, double seconds, const std::string& dir, con
                          "trajectory_controller:\n  type: position_controllers/JointTrajectoryController\n"
                          "  joints: [j1, j2]\n";
   Figures f;
-  const bool fifo = kind.size() > 5 && kind.compare(kind.size() - 5, 5, "_fifo") == 0;
+  // `_own_cpu`: the loop's thread (and the manager's threads, which inherit it) on the last CPU, the sender on the
+  // others, as a robot computer keeps the loop's core to itself: the kernel's delivery of a goal's fragments then
+  // runs where they were sent, not in the loop's thread.
+  const bool own_cpu = kind.size() > 8 && kind.compare(kind.size() - 8, 8, "_own_cpu") == 0;
+  const bool fifo = kind.find("_fifo") != std::string::npos;
+  const int cpus = int(std::thread::hardware_concurrency());
+  if (own_cpu && cpus < 2) return f;
   if (fifo && !set_fifo(50)) return f;  // not permitted here: no figures
   f.fifo = fifo;
+  cpu_set_t loop_cpu, other_cpus, all_cpus;
+  CPU_ZERO(&loop_cpu);
+  CPU_ZERO(&other_cpus);
+  pthread_getaffinity_np(pthread_self(), sizeof all_cpus, &all_cpus);
+  CPU_SET(cpus - 1, &loop_cpu);
+  for (int c = 0; c < cpus - 1; ++c) CPU_SET(c, &other_cpus);
+  if (own_cpu) pthread_setaffinity_np(pthread_self(), sizeof loop_cpu, &loop_cpu);
   Registry registry;
   register_builtin(registry);
   Bus bus(url, "", "", HardwareReader::Direct);
@@ -115,16 +130,19 @@ Figures run(const std::string& kind, double seconds, const std::string& dir, con
   if (kind.rfind("none", 0) != 0) {
     sender = std::thread([&] {
       set_fifo(0);  // a peer process's sender: the normal scheduler
+      pthread_setaffinity_np(pthread_self(), sizeof(cpu_set_t), own_cpu ? &other_cpus : &all_cpus);
       lcm::LCM lc(url);
-      struct Feedback {  // each goal taken is followed on <name>/feedback under its id
+      // Each goal taken is followed on <name>/feedback under its id, and each one replaced is answered on
+      // <name>/result: ids heard on either (the sender's own 3.6 MB goals crowd its socket, so one channel may miss).
+      struct Heard {
         std::atomic<int>* taken;
-        int64_t last = 0;
+        std::set<int64_t> ids;
         void on(const lcm::ReceiveBuffer*, const std::string&, const trajectory_status_t* r) {
-          if (r->goal_id != last) ++*taken;
-          last = r->goal_id;
+          if (r->goal_id > 0 && ids.insert(r->goal_id).second) ++*taken;
         }
-      } feedback{&taken};
-      lc.subscribe("trajectory_controller/feedback", &Feedback::on, &feedback);
+      } heard{&taken, {}};
+      lc.subscribe("trajectory_controller/feedback", &Heard::on, &heard);
+      lc.subscribe("trajectory_controller/result", &Heard::on, &heard);
       joint_trajectory_t g = goal_of(kPoints);
       std::vector<uint8_t> bytes(size_t(g.getEncodedSize()));
       int64_t next = monotonic_us() + 200000;
@@ -154,18 +172,25 @@ Figures run(const std::string& kind, double seconds, const std::string& dir, con
     st.utime = k * 1000;
     rusage r0{}, r1{};
     if (explain) getrusage(RUSAGE_THREAD, &r0);
+    const double c0 = thread_cpu_us();  // outside the timed window: reading a thread's CPU clock takes its run queue's lock
     const auto t0 = std::chrono::steady_clock::now();
-    const double c0 = thread_cpu_us();
     cm.on_hardware_state(st);
+    const auto ta = std::chrono::steady_clock::now();
     bus.handle_us(0, 1000);
+    const auto tb = std::chrono::steady_clock::now();
     cm.poll(monotonic_us());
-    const double c1 = thread_cpu_us();
     const auto t1 = std::chrono::steady_clock::now();
+    const double c1 = thread_cpu_us();
     if (explain && std::chrono::duration<double, std::micro>(t1 - t0).count() > 1000) {
       getrusage(RUSAGE_THREAD, &r1);
-      std::fprintf(stderr, "over 1 ms: cpu %.0f us, minor faults %ld, major %ld, voluntary switches %ld, involuntary %ld\n",
-                   c1 - c0, r1.ru_minflt - r0.ru_minflt, r1.ru_majflt - r0.ru_majflt, r1.ru_nvcsw - r0.ru_nvcsw,
-                   r1.ru_nivcsw - r0.ru_nivcsw);
+      auto us = [](auto d) { return std::chrono::duration<double, std::micro>(d).count(); };
+      auto tv = [](const timeval& a, const timeval& b) { return double(b.tv_sec - a.tv_sec) * 1e6 + double(b.tv_usec - a.tv_usec); };
+      std::fprintf(stderr,
+                   "over 1 ms at %.6f s: state %.0f us, bus %.0f us, poll %.0f us; cpu %.0f us (user %.0f, system %.0f), "
+                   "minor faults %ld, major %ld, voluntary switches %ld, involuntary %ld\n",
+                   std::chrono::duration<double>(t0.time_since_epoch()).count(), us(ta - t0), us(tb - ta), us(t1 - tb), c1 - c0, tv(r0.ru_utime, r1.ru_utime),
+                   tv(r0.ru_stime, r1.ru_stime), r1.ru_minflt - r0.ru_minflt, r1.ru_majflt - r0.ru_majflt,
+                   r1.ru_nvcsw - r0.ru_nvcsw, r1.ru_nivcsw - r0.ru_nivcsw);
     }
     if (k >= 100) {
       f.busy_us.push_back(std::chrono::duration<double, std::micro>(t1 - t0).count());
@@ -186,6 +211,7 @@ Figures run(const std::string& kind, double seconds, const std::string& dir, con
   done = true;
   if (sender.joinable()) sender.join();
   if (fifo) set_fifo(0);
+  if (own_cpu) pthread_setaffinity_np(pthread_self(), sizeof all_cpus, &all_cpus);
   f.sent = sent;
   f.taken = taken;
   return f;
@@ -232,16 +258,20 @@ int main(int argc, char** argv) {
       "udpm://239.255.76.67:" + std::to_string(20000 + getpid() % 20000) + "?ttl=0&recv_buf_size=16777216";
   try {
     goal_cost();
-    for (const char* kind : {"none", "off_loop", "in_loop", "none_fifo", "off_loop_fifo"}) {
+    std::vector<std::string> kinds{"none",          "off_loop",          "in_loop", "none_fifo",
+                                   "off_loop_fifo", "none_fifo_own_cpu", "off_loop_fifo_own_cpu"};
+    if (const char* only = getenv("GOAL_INTAKE_KIND")) kinds = {only};  // one kind, e.g. to repeat it
+    for (const std::string& kind : kinds) {
       const Figures f = run(kind, seconds, dir, url);
       if (f.busy_us.empty()) {
-        std::printf("goal_intake %s skipped: SCHED_FIFO not permitted here (run as root, or with rtprio)\n", kind);
+        std::printf("goal_intake %s skipped: SCHED_FIFO not permitted here (run as root, or with rtprio), or one CPU\n",
+                    kind.c_str());
         continue;
       }
       auto over = [](const std::vector<double>& v) {
         return long(std::count_if(v.begin(), v.end(), [](double us) { return us > 1000; }));
       };
-      std::printf("goal_intake %s %zu %.1f %.1f %.1f %ld %d %d cpu %.1f %.1f %ld\n", kind, f.busy_us.size(),
+      std::printf("goal_intake %s %zu %.1f %.1f %.1f %ld %d %d cpu %.1f %.1f %ld\n", kind.c_str(), f.busy_us.size(),
                   percentile(f.busy_us, 0.5), percentile(f.busy_us, 0.99),
                   *std::max_element(f.busy_us.begin(), f.busy_us.end()), over(f.busy_us), f.sent, f.taken,
                   percentile(f.cpu_us, 0.99), *std::max_element(f.cpu_us.begin(), f.cpu_us.end()), over(f.cpu_us));

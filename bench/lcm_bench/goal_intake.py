@@ -2,7 +2,7 @@
 controller at 1 kHz real time, taken in off the loop (the intake's thread, as the controller manager program does)
 against in the loop (as before), and without goals; the loop thread's busy time per period and its CPU time in it;
 also without goals and off the loop with the loop's thread on SCHED_FIFO (the program's --rt-priority) where
-permitted."""
+permitted, and on a CPU of its own (--cpu)."""
 from .processes import run as run_process
 
 
