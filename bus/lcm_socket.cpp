@@ -348,7 +348,7 @@ bool LcmSocket::fragment(int n, const sockaddr_in& from, std::string_view* chann
     // The room is a buffer given back to the pool (its pages touched already), or else is mapped apart and touched
     // only as fragments fill it: a sender of first fragments alone costs their pages, not the room.
     if (p->total > kKeptBytes && p->data.capacity() < p->total) {
-      if (p->data.capacity() > kKeptBytes) release_room(*p);
+      if (p->data.capacity() > kKeptBytes) release_room(*p, true);  // a message's, copied to its receivers
       if (p->kept.capacity() == 0) p->kept.swap(p->data);
       std::vector<uint8_t> room = pool_->take(p->total);
       if (room.capacity() >= p->total) p->data.swap(room);
@@ -380,11 +380,11 @@ void LcmSocket::drop(Partial& p) {
   }
   p.wanted = false;
   p.dropped = true;
-  release_room(p);
+  release_room(p, false);  // an unfinished message's room is not kept: a forged sender would fill the pool
 }
 
-void LcmSocket::release_room(Partial& p) {
-  if (p.data.capacity() > kKeptBytes && !pool_->offer(p.data)) std::vector<uint8_t>().swap(p.data);
+void LcmSocket::release_room(Partial& p, bool keep) {
+  if (p.data.capacity() > kKeptBytes && !(keep && pool_->offer(p.data))) std::vector<uint8_t>().swap(p.data);
   if (p.data.capacity() == 0) p.data.swap(p.kept);
 }
 
@@ -399,7 +399,7 @@ void LcmSocket::expire(int64_t now_us) {
       drop(p);
       p.active = false;
     }
-    if (!p.active) release_room(p);
+    if (!p.active) release_room(p, true);  // a delivered message's (a dropped one's went at its drop)
   }
 }
 

@@ -161,8 +161,9 @@ class LcmSocket {
   };
   // Gives up the message in progress of `p`, telling its channel's lost handlers.
   void drop(Partial& p);
-  // A large message's room in `p` to the pool (freed here when the pool is busy), and its kept buffer back.
-  void release_room(Partial& p);
+  // A large message's room in `p` to the pool with `keep` (freed here when the pool is busy), else freed; and its
+  // kept buffer back.
+  void release_room(Partial& p, bool keep);
   void tell_lost(const Lost& lost);
   // Drops the messages in progress unheard for kFragmentTimeoutUs, and gives back idle buffers over kKeptBytes.
   void expire(int64_t now_us);
