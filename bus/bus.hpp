@@ -34,6 +34,7 @@ inline constexpr const char* kCmActivity = "controller_manager/activity";
 inline constexpr const char* kSimStatistics = "sim_server/statistics";
 inline constexpr const char* kSimGainsOwner = "sim_server";
 inline constexpr const char* kSimRequest = "sim_server/request";
+inline constexpr const char* kSimConfig = "sim_server/config";  // run_config_t: what sim_server was started with
 inline constexpr const char* kSimResponse = "sim_server/response";
 inline constexpr const char* kEStop = "e_stop";
 inline constexpr const char* kClock = "clock";

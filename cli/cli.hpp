@@ -208,10 +208,19 @@ inline std::string unknown_subcommand(const CLI::App& app, int argc, char** argv
   return "";
 }
 
+// The command line the program was started with, as run_program() kept it (empty before): what a run records of itself
+// (run_config_t::argv) so that it can be run again as it was.
+inline std::vector<std::string>& command_line_kept() {
+  static std::vector<std::string> kept;
+  return kept;
+}
+inline const std::vector<std::string>& command_line() { return command_line_kept(); }
+
 // Parses flags and runs body(); every error becomes "<program>: error: ..." lines on stderr.
 template <class Body>
 int run_program(CLI::App& app, int argc, char** argv, Body&& body) {
   const std::string program = app.get_name();
+  command_line_kept().assign(argv, argv + argc);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -5,20 +5,18 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <limits>
-#include <sstream>
 #include <utility>
 
 #include "bus/hardware_wire.hpp"
 #include "bus/messages.hpp"
+#include "bus/run_config.hpp"
 #include "description/text.hpp"
 #include "description/control_config.hpp"
 #include "description/model_check.hpp"
 #include "rt/scheduling.hpp"
 #include "controller_interface/claims.hpp"
 #include "controller_manager/context.hpp"
-#include "description/robot_file.hpp"
 #include "controller_manager/gains.hpp"
 #include "controller_manager/ros_catalog.hpp"
 #include "controller_manager/switch_plan.hpp"
@@ -635,27 +633,9 @@ Reply ControllerManager::publish_config() {
 
 std::string ControllerManager::read_run_config() {
   run_config_t m;
-  m.version = LCM_CONTROL_VERSION;
-  m.robot_namespace = model_.ns;
-  m.urdf_path = model_.urdf_path;
-  try {
-    m.urdf = read_robot_file(model_.urdf_path, model_.options);
-    for (const std::string& path : model_.config_paths) {
-      std::ifstream in(path, std::ios::binary);
-      std::ostringstream text;
-      text << in.rdbuf();
-      if (!in) return fmt::format("{} cannot be read any more", path);
-      m.config_paths.push_back(path);
-      m.configs.push_back(text.str());
-    }
-  } catch (const std::exception& e) {
-    return e.what();
-  }
-  m.num_configs = static_cast<int32_t>(m.configs.size());
-  for (const auto& [name, value] : model_.options.args) m.args.push_back(name + "=" + value);
-  m.num_args = static_cast<int32_t>(m.args.size());
-  run_config_ = std::move(m);
-  return "";
+  const std::string why = lcm_control::read_run_config(model_, "controller_manager", options_.command_line, &m);
+  if (why.empty()) run_config_ = std::move(m);
+  return why;
 }
 
 std::string ControllerManager::type_doc(const std::string& type) const {

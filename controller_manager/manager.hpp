@@ -62,6 +62,7 @@ struct ManagerOptions {
   // Trajectory goals and other large messages decoded and planned on a thread of its own (rt/intake.hpp), except in
   // lockstep (the program). false: in the handler (tests).
   bool intake_thread = false;
+  std::vector<std::string> command_line;  // the program's, for run_config_t
 };
 
 // A LOAD or UNLOAD of many names, served a few names at a time between cycles (step()); `reply` is final when

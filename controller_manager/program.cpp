@@ -73,6 +73,7 @@ int run_controller_manager(const ProgramFlags& f) {
   options.silence_us = static_cast<int64_t>(f.silence_s * 1e6);
   options.slice_us = kSliceUs;
   options.intake_thread = true;
+  options.command_line = command_line();
   const size_t configured = model.controllers.size();
   const size_t actuated = model.transmissions.size();
   Registry registry = builtin_registry();

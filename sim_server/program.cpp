@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bus/run_config.hpp"
 #include "description/initial_positions.hpp"
 #include "description/load.hpp"
+#include "rt/clock.hpp"
 #include "rt/log.hpp"
 #include "rt/stop_signal.hpp"
 #include "sim_server/mock_hardware.hpp"
@@ -186,6 +188,21 @@ int run_sim_server(ProgramFlags f) {
   SimIo io(bus, sim, opt.lockstep, plan.clock_every);
   io.set_max_command_age(std::max<int64_t>(1, std::llround(opt.watchdog_s * plan.rates.control_hz)));
   Stepper stepper(sim, io, opt);
+  // What it was started with, on sim_server/config now and on a CONFIG request, so that a recording replays alone.
+  run_config_t config;
+  const std::string unreadable = read_run_config(model, "sim_server", command_line(), &config);
+  stepper.set_config_publisher([&]() -> std::pair<bool, std::string> {
+    if (!unreadable.empty()) return {false, "cannot publish the run's configuration: " + unreadable};
+    config.utime = wall_us();
+    bus.lcm().publish(bus.channel(channels::kSimConfig), &config);
+    return {true, fmt::format("published the run's configuration on {} ({}, {} file(s), {} bytes)",
+                              bus.channel(channels::kSimConfig), model.urdf_path, config.num_configs,
+                              config.getEncodedSize())};
+  });
+  if (unreadable.empty()) {
+    config.utime = wall_us();
+    bus.lcm().publish(bus.channel(channels::kSimConfig), &config);
+  }
   install_stop_signals(true);
   const WorldOptions& world = plan.world;
   spdlog::info("ready ({}{}{}{}, {} actuators, {}control {:g} Hz, clock {:g} Hz, lcm {}{}{}, session {}{})",

@@ -337,6 +337,11 @@ void Stepper::serve(const sim_request_t& req) {
                                      "and its joints hold until the controller manager sets it not active",
                                      req.component, where(), req.reason.empty() ? "" : ": " + clip(req.reason)));
     }
+    case sim_request_t::CONFIG: {
+      if (!publish_config_) return reply(false, "this sim_server does not publish its configuration");
+      auto [ok, message] = publish_config_();
+      return reply(ok, std::move(message));
+    }
     case sim_request_t::APPLY_WRENCH: {
       const Eigen::Vector3d f(req.force.x, req.force.y, req.force.z), t(req.torque.x, req.torque.y, req.torque.z);
       if (const std::string why = sim_.apply_wrench(req.link, f, t, req.duration); !why.empty())
@@ -350,7 +355,7 @@ void Stepper::serve(const sim_request_t& req) {
     }
     default:
       return reply(false, fmt::format("unknown op {} (sim_request_t: STATUS 0, PAUSE 1, RESUME 2, STEP 3, RESET 4, "
-                                      "FAIL_COMPONENT 5, APPLY_WRENCH 6)",
+                                      "FAIL_COMPONENT 5, APPLY_WRENCH 6, CONFIG 7)",
                                       int(req.op)));
   }
 }

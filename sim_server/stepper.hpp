@@ -10,6 +10,9 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "rt/clock.hpp"
@@ -57,8 +60,13 @@ class Stepper {
   };
   Summary summary() const { return {real_time_factor(), run_step_exec_.mean_us()}; }
 
+  // What a CONFIG request does: publishes the run's configuration, and says so (or why not).
+  using ConfigPublisher = std::function<std::pair<bool, std::string>()>;
+  void set_config_publisher(ConfigPublisher publish) { publish_config_ = std::move(publish); }
+
  private:
   BusLog request_log_;  // the requests served: anyone may send many, so clipped and rate-limited
+  ConfigPublisher publish_config_;
   bool run_lockstep(const std::atomic<bool>& stop);
   bool run_real_time(const std::atomic<bool>& stop);
   // Paused with no steps to take: the state is republished, requests are served.

@@ -85,6 +85,8 @@ TEST(ControllerManagerServices, ConfigPublishesWhatTheRunWasStartedWith) {
   EXPECT_EQ(c.config_paths[0], lcm_control::testing::data("test_bot.yaml"));
   EXPECT_EQ(c.configs[0], text(c.config_paths[0]));
   EXPECT_FALSE(c.version.empty());
+  EXPECT_EQ(c.process, "controller_manager");
+  EXPECT_EQ(c.num_argv, 0) << "the rig was given no command line";
 }
 
 // SIGINT while a switch is pending and another waits for it: every request gets a refusal, and nothing is left

@@ -7,10 +7,13 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <map>
 #include <optional>
 #include <regex>
 #include <string>
 
+#include "lcm_control/run_config_t.hpp"
 #include "test/e2e/session.hpp"
 
 namespace lcm_control::testing {
@@ -106,6 +109,54 @@ TEST(ReplayControllers, TheLockstepDemoReplaysBitForBit) {
   EXPECT_GE(std::stoi(m[1]), 3000);
   ASSERT_TRUE(std::regex_search(same.out, m, std::regex(R"(joint_states: (\d+) compared, 0 differ)"))) << same.out;
   EXPECT_GE(std::stoi(m[1]), 170);  // the controller's 60 Hz over 3 s
+}
+
+// Both robot processes record what they were started with (run_config_t): a recorder started once they run asks
+// each for it (CONFIG), so the log holds the URDF as read, the YAML's text and each command line, sim_server's with
+// its mode, for a closed-loop replay.
+TEST(ReplayControllers, ARecordingStartedLateAsksBothProgramsForWhatTheyWereStartedWith) {
+  const std::string dir = temp_dir("replay_configs");
+  const std::string urdf = source("config/turret_bot.urdf"), yaml = source("config/turret_bot.yaml");
+  const std::string log = dir + "/late.lcmlog";
+  {
+    LockstepSession robot(urdf, yaml, {});
+    ASSERT_NO_FATAL_FAILURE(robot.start({"joint_state_controller", "j1_controller", "j2_controller"}));
+    auto recorder = robot.background({"bus", "record", log, "--force", "--duration", "1"});
+    EXPECT_EQ(recorder->wait(15), 0) << recorder->output();
+    EXPECT_EQ(robot.stop_sim(), 0) << robot.sim_output();
+  }
+  std::map<std::string, run_config_t> configs;
+  lcm::LogFile in(log, "r");
+  ASSERT_TRUE(in.good());
+  for (const lcm::LogEvent* e = in.readNextEvent(); e; e = in.readNextEvent()) {
+    if (e->channel != "controller_manager/config" && e->channel != "sim_server/config") continue;
+    run_config_t c;
+    ASSERT_EQ(c.decode(e->data, 0, int(e->datalen)), int(e->datalen)) << e->channel;
+    configs[e->channel] = c;
+  }
+  ASSERT_EQ(configs.count("sim_server/config"), 1u) << "sim_server's configuration not in the log";
+  ASSERT_EQ(configs.count("controller_manager/config"), 1u);
+  const run_config_t& sim = configs["sim_server/config"];
+  const run_config_t& cm = configs["controller_manager/config"];
+  EXPECT_EQ(sim.process, "sim_server");
+  EXPECT_EQ(cm.process, "controller_manager");
+  std::ifstream file(urdf);
+  const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(sim.urdf, text);
+  EXPECT_EQ(cm.urdf, text);
+  ASSERT_EQ(sim.num_configs, 1);
+  EXPECT_EQ(sim.config_paths[0], yaml);
+  auto has_flag = [](const run_config_t& c, const std::string& flag, const std::string& value) {
+    for (size_t k = 0; k + 1 < c.argv.size(); ++k)
+      if (c.argv[k] == flag && c.argv[k + 1] == value) return true;
+    return false;
+  };
+  ASSERT_GT(sim.num_argv, 0);
+  EXPECT_TRUE(has(sim.argv[0], "sim_server")) << sim.argv[0];
+  EXPECT_TRUE(has_flag(sim, "--mode", "lockstep"));
+  EXPECT_TRUE(has_flag(sim, "--urdf", urdf));
+  EXPECT_TRUE(has_flag(cm, "--urdf", urdf));
+  EXPECT_TRUE(has(cm.argv[0], "controller_manager")) << cm.argv[0];
 }
 
 // A chain in the controller manager (a JointTrajectoryController on the references of effort PIDs, ur_like) with a

@@ -13,9 +13,12 @@
 #include <memory>
 #include <regex>
 #include <set>
+#include <utility>
 #include <vector>
 
 #include "bus/messages.hpp"
+#include "lcm_control/sim_request_t.hpp"
+#include "rt/clock.hpp"
 #include "description/text.hpp"
 #include "tools/lib/clients/census.hpp"
 #include "tools/lib/clients/command_check.hpp"
@@ -386,11 +389,8 @@ class Recorder {
       throw std::runtime_error("cannot write the log '" + path + "': check the folder exists and is writable");
     bus.subscribe(regex, &Recorder::on, this, Bus::On::Shared, 1000000);
   }
-  // The next message on `channel` with exactly these bytes is not written: the recorder's own request.
-  void leave_out(const std::string& channel, std::vector<uint8_t> bytes) {
-    own_channel_ = channel;
-    own_bytes_ = std::move(bytes);
-  }
+  // The next message on `channel` with exactly these bytes is not written: one of the recorder's own requests.
+  void leave_out(const std::string& channel, std::vector<uint8_t> bytes) { own_.emplace_back(channel, std::move(bytes)); }
   int64_t events() const { return events_; }
   // Channels recorded, counted up to Census::kMaxChannels (anyone on the bus can invent names): the count, and
   // whether there were more.
@@ -401,10 +401,12 @@ class Recorder {
 
  private:
   void on(const lcm::ReceiveBuffer* rb, const std::string& channel) {
-    if (!own_bytes_.empty() && channel == own_channel_ && rb->data_size == own_bytes_.size() &&
-        std::memcmp(rb->data, own_bytes_.data(), own_bytes_.size()) == 0) {
-      own_bytes_.clear();
-      return;
+    for (auto own = own_.begin(); own != own_.end(); ++own) {
+      if (channel == own->first && rb->data_size == own->second.size() &&
+          std::memcmp(rb->data, own->second.data(), own->second.size()) == 0) {
+        own_.erase(own);
+        return;
+      }
     }
     lcm::LogEvent e{};
     e.eventnum = events_;
@@ -428,8 +430,7 @@ class Recorder {
   int64_t events_ = 0, bytes_ = 0;
   std::map<std::string, int64_t> channels_;
   bool more_channels_ = false;
-  std::string own_channel_;
-  std::vector<uint8_t> own_bytes_;
+  std::vector<std::pair<std::string, std::vector<uint8_t>>> own_;  // leave_out()'s, each left out once
 };
 
 // A udpm URL with the receive buffer a recorder wants: the kernel's largest (net.core.rmem_max), up to 8 MiB, unless
@@ -448,15 +449,24 @@ int cmd_record(Bus& bus, const std::string& path, const std::string& regex, bool
   if (!force && std::filesystem::exists(path))
     throw CLI::ValidationError("LOG", "'" + path + "' exists: give --force to overwrite it, or another file name");
   Recorder rec(bus, regex, path);
-  // The controller manager's configuration into the log (it publishes it at start too), so that it replays alone.
-  if (std::regex_match(bus.channel(channels::kCmConfig), std::regex(regex))) {
-    cm_request_t ask = cm_request(cm_request_t::CONFIG, {}, {}, {});
-    ask.client = "bus record";
+  // The controller manager's and sim_server's configurations into the log (each publishes its own at start too), so
+  // that the run replays alone; the requests themselves are left out of it.
+  auto ask_for = [&](const char* config, const char* request_channel, const auto& ask) {
+    if (!std::regex_match(bus.channel(config), std::regex(regex))) return;
     std::vector<uint8_t> bytes(static_cast<size_t>(ask.getEncodedSize()));
     ask.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-    rec.leave_out(bus.channel(channels::kCmRequest), bytes);
-    bus.lcm().publish(bus.channel(channels::kCmRequest), bytes.data(), static_cast<unsigned>(bytes.size()));
-  }
+    rec.leave_out(bus.channel(request_channel), bytes);
+    bus.lcm().publish(bus.channel(request_channel), bytes.data(), static_cast<unsigned>(bytes.size()));
+  };
+  cm_request_t cm_ask = cm_request(cm_request_t::CONFIG, {}, {}, {});
+  cm_ask.client = "bus record";
+  ask_for(channels::kCmConfig, channels::kCmRequest, cm_ask);
+  sim_request_t sim_ask{};
+  sim_ask.utime = wall_us();
+  sim_ask.request_id = wall_us();
+  sim_ask.client = "bus record";
+  sim_ask.op = sim_request_t::CONFIG;
+  ask_for(channels::kSimConfig, channels::kSimRequest, sim_ask);
   fmt::print("bus record: recording '{}' on {} to {} until Ctrl-C{}\n", regex, bus.url(), path,
              duration > 0 ? fmt::format(" or {}", seconds_text(duration)) : "");
   std::fflush(stdout);
