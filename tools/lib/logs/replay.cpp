@@ -28,6 +28,9 @@
 #include "controller_manager/services.hpp"
 #include "description/load.hpp"
 #include "description/robot_file.hpp"
+#include "sim_server/program.hpp"
+#include "sim_server/sim_io.hpp"
+#include "rt/clock.hpp"
 #include "tools/lib/messages/fields.hpp"
 #include "lcm_control/run_config_t.hpp"
 #include "lcm_control/cm_inputs_t.hpp"
@@ -362,6 +365,7 @@ struct Materialized {
 Materialized materialize(const run_config_t& c, const LoadOptions& options, const std::string& dir) {
   namespace fs = std::filesystem;
   Materialized m;
+  fs::create_directories(dir);
   auto write = [&](const std::string& name, const std::string& text) {
     const std::string path = (fs::path(dir) / name).string();
     std::ofstream(path, std::ios::binary) << text;
@@ -664,6 +668,151 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
     report.notes.push_back(fmt::format("{} answer(s) to recorded states have no hardware/command in the log (lost by "
                                        "the recorder): not compared",
                                        unrecorded_answers));
+  report.channels = cmp.channels_;
+  report.first = cmp.first_;
+  return report;
+}
+
+ReplayReport replay_closed_loop(const ReplayOptions& o) {
+  ArrivalOrderedLog log(o.log);
+  if (!log.good()) throw ReplayInputError(fmt::format("{}: cannot open the log: {}", o.log, std::strerror(errno)));
+  ReplayReport report;
+  LoadOptions load = o.load;
+  TempDir scratch;
+  const std::string prefix = load.ns.empty() ? "" : normalize_namespace(load.ns) + "/";
+  const std::optional<run_config_t> cm_config = recorded_config(o, prefix + channels::kCmConfig);
+  const std::optional<run_config_t> sim_config = recorded_config(o, prefix + channels::kSimConfig);
+  if (!cm_config || !sim_config)
+    throw ReplayInputError(fmt::format("{}: a closed-loop replay needs both programs' recorded configurations ({} and "
+                                       "{}); record with bus record from this version on",
+                                       o.log, prefix + channels::kCmConfig, prefix + channels::kSimConfig));
+  if (load.ns.empty()) load.ns = cm_config->robot_namespace;
+  for (const std::string& a : cm_config->args)
+    load.args.emplace_back(a.substr(0, a.find('=')), a.find('=') == std::string::npos ? "" : a.substr(a.find('=') + 1));
+  const Materialized cm_files = materialize(*cm_config, load, scratch.path() + "/cm");
+  const Materialized sim_files = materialize(*sim_config, load, scratch.path() + "/sim");
+  report.notes.push_back(fmt::format("closed loop: sim_server as recorded ({})", fmt::join(sim_config->argv, " ")));
+
+  // sim_server's flags as it was started, its files replaced by the recorded texts.
+  sim::ProgramFlags flags;
+  try {
+    CLI::App app;
+    sim::add_program_flags(app, flags);
+    std::vector<std::string> args(sim_config->argv.begin() + (sim_config->argv.empty() ? 0 : 1), sim_config->argv.end());
+    std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+    app.parse(args);
+  } catch (const CLI::ParseError& e) {
+    throw ReplayInputError(fmt::format("{}: sim_server's recorded command line ({}) is not this version's: {}", o.log,
+                                       fmt::join(sim_config->argv, " "), e.what()));
+  }
+  // A --urdf or --config given replaces the recorded files on both sides (one robot, one controllers YAML).
+  const std::string urdf = o.urdf.empty() ? cm_files.urdf : o.urdf;
+  const std::vector<std::string> cm_configs = o.configs.empty() ? cm_files.configs : o.configs;
+  const std::vector<std::string> sim_configs = o.configs.empty() ? sim_files.configs : o.configs;
+  flags.robot.files.urdf = o.urdf.empty() ? sim_files.urdf : o.urdf;
+  flags.robot.files.config = sim_configs;
+  LoadOptions sim_load = load;
+  sim_load.config_from_plugin = true;
+  const RobotModel sim_model = load_robot_model(flags.robot.files.urdf, sim_configs, sim_load);
+  const sim::RunPlan plan = sim::plan_run(flags, sim_model);
+  sim::Simulation simulation(sim_model, plan.rates, plan.start, plan.world,
+                             plan.mock ? sim::Backend::Mock : sim::Backend::Bullet);
+  if (!plan.mock) simulation.actuators().set_brakes(plan.brakes);
+
+  RobotModel model = load_robot_model(urdf, cm_configs, load);
+  Bus bus("memq://", model.ns);
+  sim::SimIo io(bus, simulation, true, plan.clock_every);
+  cm::Registry registry = cm::builtin_registry();
+  cm::load_plugins(registry, cm::plugin_libraries(model));
+  cm::ControllerManager manager(model, bus, registry);
+  cm::Services services(manager, bus);
+  struct Shutdown {
+    cm::ControllerManager& m;
+    ~Shutdown() { m.shutdown(); }
+  } shutdown{manager};
+  Published published;
+  const std::string js_channel = bus.channel(channels::kJointStates);
+  bus.lcm().subscribe(js_channel, &Published::on, &published);
+  auto pump = [&] {
+    for (bool more = true; more;) {
+      manager.flush_published();
+      more = false;
+      while (bus.lcm().handleTimeout(0) > 0) more = true;
+    }
+  };
+  const std::string state_channel = bus.channel(channels::kHardwareState);
+  const std::string command_channel = bus.channel(channels::kHardwareCommand);
+  const std::string inputs_channel = bus.channel(channels::kCmInputs);
+  const InputSchedule schedule = schedule_inputs(o, bus, {state_channel, command_channel, js_channel, inputs_channel,
+                                                          bus.channel(channels::kCmConfig),
+                                                          bus.channel(channels::kSimConfig)});
+  if (!schedule.stamped)
+    throw ReplayInputError(fmt::format("{}: no {} in the log: a closed loop needs the cycles the inputs were taken at",
+                                       o.log, inputs_channel));
+  // The recorded inputs by cycle, the recorded commands by step, the recorded joint_states in order; the recorded
+  // session (the first) is the replayed one.
+  std::map<InputSchedule::Cycle, std::vector<std::pair<std::string, std::vector<uint8_t>>>> inputs_at;
+  std::map<int64_t, hardware_command_t> recorded_commands;
+  std::deque<joint_state_t> recorded_states;
+  int64_t session = -1, last_step = -1, index = -1;
+  for (const lcm::LogEvent* e = log.next(); e; e = log.next()) {
+    ++index;
+    ++report.events;
+    if (e->channel == state_channel) {
+      const hardware_state_t st = decoded<hardware_state_t>(o, *e);
+      if (session < 0) session = st.session;
+      if (st.session == session) last_step = std::max(last_step, st.step);
+    } else if (e->channel == command_channel) {
+      const hardware_command_t c = decoded<hardware_command_t>(o, *e);
+      recorded_commands[c.step] = c;
+    } else if (e->channel == js_channel) {
+      recorded_states.push_back(decoded<joint_state_t>(o, *e));
+    }
+    const auto cycle = schedule.cycle_of.find(index);
+    if (cycle != schedule.cycle_of.end())
+      inputs_at[cycle->second].emplace_back(
+          e->channel, std::vector<uint8_t>(static_cast<const uint8_t*>(e->data),
+                                           static_cast<const uint8_t*>(e->data) + e->datalen));
+  }
+  if (last_step < 0) throw ReplayInputError(fmt::format("{}: no {} messages", o.log, state_channel));
+  Comparison cmp(o.tolerance);
+  const std::string source_channel = bus.channel("controller_manager/command_source");
+  std::set<std::string> sourced;
+  while (simulation.step_count() <= last_step) {
+    const int64_t step = simulation.step_count();
+    io.expect_step(step);
+    if (const auto due = inputs_at.find({session, step}); due != inputs_at.end())
+      for (const auto& [ch, bytes] : due->second) {
+        if (sourced.count(ch)) continue;  // a command source in the manager publishes there itself
+        if (ch == source_channel) {
+          command_source_t r;
+          if (decode_guarded(r, bytes.data(), bytes.size())) {
+            const std::string target = bus.channel(r.controller + "/command");
+            if (r.remove) sourced.erase(target);
+            else sourced.insert(target);
+          }
+        }
+        bus.lcm().publish(ch, bytes.data(), static_cast<unsigned>(bytes.size()));
+        ++report.fed;
+      }
+    io.publish_state(1.0);
+    pump();
+    ++report.states;
+    hardware_command_t answer = manager.last_command();
+    if (const auto rec = recorded_commands.find(step); rec != recorded_commands.end()) {
+      answer.session = rec->second.session;
+      compare_commands(cmp, command_channel, rec->second, answer);
+    }
+    while (!recorded_states.empty() && !published.joint_states.empty()) {
+      compare_states(cmp, js_channel, recorded_states.front(), published.joint_states.front());
+      recorded_states.pop_front();
+      published.joint_states.pop_front();
+    }
+    if (step == last_step) break;
+    if (!io.poll_until(monotonic_us(), true, false, step) || !io.take_command())
+      throw std::runtime_error(fmt::format("closed loop: no command for step {}", step));
+    simulation.step();
+  }
   report.channels = cmp.channels_;
   report.first = cmp.first_;
   return report;

@@ -4,7 +4,8 @@
 // e-stops) are handed to it before the cycle the live manager took each in at (its stamps, cm_inputs_t; a log
 // without them: in the log's order), and what it commands (hardware/command) and publishes (joint_states, each
 // controller's own channels) is compared with what was recorded. A lockstep recording with unchanged code and
-// configuration replays bit for bit.
+// configuration replays bit for bit. Closed loop (replay_closed_loop): the simulation re-runs too, from sim_server's
+// recorded configuration.
 #pragma once
 
 #include <cstdint>
@@ -60,6 +61,11 @@ struct ReplayReport {
 
 // Throws ReplayInputError (or ModelError for the configuration) when the replay cannot be made.
 ReplayReport replay_controllers(const ReplayOptions& options);
+
+// Closed loop (`--sim`): sim_server's simulation and a controller manager, both in this process and built from the
+// configurations the run recorded, stepped in lockstep with the recorded inputs fed at their cycles; the joint_states
+// and hardware/command they make are compared with the log's.
+ReplayReport replay_closed_loop(const ReplayOptions& options);
 
 // "identical: ..." or "diverged: first at ...", then a line per channel.
 std::string replay_report_text(const ReplayReport& report, double tolerance);
