@@ -1,7 +1,8 @@
 // replay --controllers (open loop): the lockstep demo recorded with `bus record` replays bit for bit; a changed gain
 // diverges at the step where it first acts, naming the field and the actuator; a truncated log, a log with no
 // hardware in it, a missing configuration, a recording that lost a state and another robot are refused with exit 2,
-// naming what to pass.
+// naming what to pass. replay --sim (closed loop) re-runs the demo bit for bit, a stiffer simulated PID diverges on
+// joint_states, and a log without sim_server's configuration is refused.
 #include <gtest/gtest.h>
 #include <lcm/lcm-cpp.hpp>
 
@@ -22,16 +23,16 @@ namespace {
 bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 // The lockstep demo (launch's command sources drive j1 and j2) for `seconds`, recorded whole by `bus record`.
-std::string record_demo(const std::string& dir, double seconds) {
+std::string record_demo(const std::string& dir, double seconds, const std::vector<std::string>& launch_flags = {}) {
   RobotSession bus(source("config/turret_bot.urdf"), source("config/turret_bot.yaml"));
   const std::string log = dir + "/demo.lcmlog";
   auto recorder = bus.background({"bus", "record", log, "--force"});
   EXPECT_TRUE(recorder->wait_for_output("bus record: recording", 10)) << recorder->output();
   std::string out;
-  EXPECT_EQ(bus.run({"launch", source("config/turret_bot_demo.launch.yaml"), "--duration", std::to_string(seconds)},
-                    &out, 60),
-            0)
-      << out;
+  std::vector<std::string> launch = {"launch", source("config/turret_bot_demo.launch.yaml"), "--duration",
+                                     std::to_string(seconds)};
+  launch.insert(launch.end(), launch_flags.begin(), launch_flags.end());
+  EXPECT_EQ(bus.run(launch, &out, 60), 0) << out;
   EXPECT_EQ(recorder->stop(10), 0) << recorder->output();
   return log;
 }
@@ -333,6 +334,66 @@ TEST(ReplayControllers, BadInputIsRefusedWithExitTwoNamingWhatToPass) {
   const Replayed nothing = replay({empty, "--controllers", "--urdf", urdf, "--config", yaml});
   EXPECT_EQ(nothing.rc, 2) << nothing.out;
   EXPECT_TRUE(has(nothing.out, "no hardware/state messages")) << nothing.out;
+}
+
+// replay --sim (closed loop): the simulation re-runs too, from sim_server's recorded configuration.
+TEST(ReplaySim, TheLockstepDemoReRunsBitForBitAndAChangedGainDiverges) {
+  const std::string dir = temp_dir("replay_sim");
+  const std::string log = record_demo(dir, 3);
+  const Replayed same = replay({log, "--sim"});
+  std::printf("%s", same.out.c_str());
+  EXPECT_EQ(same.rc, 0) << same.out;
+  EXPECT_TRUE(has(same.out, "identical: ")) << same.out;
+  EXPECT_TRUE(has(same.out, "note: closed loop: sim_server as recorded")) << same.out;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(same.out, m, std::regex(R"(hardware/command: (\d+) compared, 0 differ)"))) << same.out;
+  EXPECT_GE(std::stoi(m[1]), 3000);
+  ASSERT_TRUE(std::regex_search(same.out, m, std::regex(R"(joint_states: (\d+) compared, 0 differ)"))) << same.out;
+  EXPECT_GE(std::stoi(m[1]), 170);
+
+  // j2's simulated PID a little stiffer: the commands (expressions of time) stay, the robot moves otherwise.
+  std::ifstream in(source("config/turret_bot.yaml"));
+  std::string tuned((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string from = "    j2:\n      p: 1\n", to = "    j2:\n      p: 1.5\n";
+  ASSERT_NE(tuned.find(from), std::string::npos);
+  tuned.replace(tuned.find(from), from.size(), to);
+  const std::string yaml = dir + "/tuned.yaml";
+  std::ofstream(yaml) << tuned;
+  const Replayed changed = replay({log, "--sim", "--config", yaml});
+  std::printf("%s", changed.out.c_str());
+  EXPECT_EQ(changed.rc, 1) << changed.out;
+  // j2 rides on j1's slider: the first joint_states after j2 moves differ, j1's position first (by 3e-7 m).
+  EXPECT_TRUE(std::regex_search(changed.out,
+                                std::regex(R"(diverged: first on joint_states at t=0\.0\d+ s, position\[j[12]\])")))
+      << changed.out;
+  EXPECT_TRUE(has(changed.out, "hardware/command: ") && std::regex_search(changed.out, std::regex(
+                                                             R"(hardware/command: \d+ compared, 0 differ)")))
+      << changed.out;
+}
+
+TEST(ReplaySim, ALogWithoutSimServersConfigurationOrInRealTimeIsRefusedSayingWhy) {
+  const std::string dir = temp_dir("replay_sim_bad");
+  const std::string log = record_demo(dir, 1);
+  const std::string cut = dir + "/no_sim_config.lcmlog";
+  {
+    lcm::LogFile in(log, "r"), out(cut, "w");
+    ASSERT_TRUE(in.good() && out.good());
+    for (const lcm::LogEvent* e = in.readNextEvent(); e; e = in.readNextEvent()) {
+      if (e->channel == "sim_server/config") continue;
+      lcm::LogEvent kept = *e;
+      ASSERT_EQ(out.writeEvent(&kept), 0);
+    }
+  }
+  const Replayed r = replay({cut, "--sim"});
+  EXPECT_EQ(r.rc, 2) << r.out;
+  EXPECT_TRUE(has(r.out, "sim_server/config")) << r.out;
+  EXPECT_TRUE(has(r.out, "record with bus record")) << r.out;
+  // A real-time recording: its cycles followed the wall clock; open loop is what replays it.
+  const std::string real_time = record_demo(temp_dir("replay_sim_real_time"), 1, {"--mode", "realtime"});
+  const Replayed rt = replay({real_time, "--sim"});
+  EXPECT_EQ(rt.rc, 2) << rt.out;
+  EXPECT_TRUE(has(rt.out, "recorded in real time (sim_server --mode realtime)")) << rt.out;
+  EXPECT_TRUE(has(rt.out, "--controllers")) << rt.out;
 }
 
 }  // namespace

@@ -49,6 +49,35 @@ struct Published {
   void on(const lcm::ReceiveBuffer*, const std::string&, const joint_state_t* m) { joint_states.push_back(*m); }
 };
 
+cm::Registry registry_for(const RobotModel& model) {
+  cm::Registry registry = cm::builtin_registry();
+  cm::load_plugins(registry, cm::plugin_libraries(model));
+  return registry;
+}
+
+// A fresh controller manager on an in-process bus with its services, and the joint_states it publishes: what both
+// replays re-drive.
+struct ReplayedManager {
+  ReplayedManager(const RobotModel& model, Bus& b)
+      : bus(b), registry(registry_for(model)), manager(model, bus, registry), services(manager, bus) {
+    bus.lcm().subscribe(bus.channel(channels::kJointStates), &Published::on, &published);
+  }
+  ~ReplayedManager() { manager.shutdown(); }  // it answers what is pending while the services that answer are there
+  // Delivers what is queued on the bus, and what handling it publishes, until nothing is left.
+  void pump() {
+    for (bool more = true; more;) {
+      manager.flush_published();
+      more = false;
+      while (bus.lcm().handleTimeout(0) > 0) more = true;
+    }
+  }
+  Bus& bus;
+  cm::Registry registry;
+  cm::ControllerManager manager;
+  cm::Services services;
+  Published published;
+};
+
 // A folder of its own under the system's temporary directory, removed with what is in it.
 class TempDir {
  public:
@@ -467,29 +496,16 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
   }
   RobotModel model = load_robot_model(urdf, configs, load);
   Bus bus("memq://", model.ns);
-  cm::Registry registry = cm::builtin_registry();
-  cm::load_plugins(registry, cm::plugin_libraries(model));
-  cm::ControllerManager manager(model, bus, registry);
-  cm::Services services(manager, bus);
-  struct Shutdown {  // the manager answers what is pending while the services that answer are still there
-    cm::ControllerManager& m;
-    ~Shutdown() { m.shutdown(); }
-  } shutdown{manager};
-  Published published;
+  ReplayedManager replayed(model, bus);
+  cm::ControllerManager& manager = replayed.manager;
+  Published& published = replayed.published;
   const std::string js_channel = bus.channel(channels::kJointStates);
-  bus.lcm().subscribe(js_channel, &Published::on, &published);
   Outputs outputs;  // compared where the log says which channels are inputs (its stamps)
   bus.lcm().subscribe(".*", &Outputs::on, &outputs);
   const std::string state_channel = bus.channel(channels::kHardwareState);
   const std::string command_channel = bus.channel(channels::kHardwareCommand);
   const std::string source_channel = bus.channel("controller_manager/command_source");
-  auto pump = [&] {
-    for (bool more = true; more;) {
-      manager.flush_published();
-      more = false;
-      while (bus.lcm().handleTimeout(0) > 0) more = true;
-    }
-  };
+  auto pump = [&] { replayed.pump(); };
 
   Comparison cmp(o.tolerance);
   std::set<std::string> sourced;  // `<controller>/command` channels a command source in the manager publishes itself
@@ -705,6 +721,11 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
     throw ReplayInputError(fmt::format("{}: sim_server's recorded command line ({}) is not this version's: {}", o.log,
                                        fmt::join(sim_config->argv, " "), e.what()));
   }
+  if (flags.mode != "lockstep")
+    throw ReplayInputError(fmt::format("{}: recorded in real time (sim_server --mode {}): its cycles followed the wall "
+                                       "clock, which a closed loop cannot repeat; replay it open loop: --controllers "
+                                       "(with --tolerance)",
+                                       o.log, flags.mode));
   // A --urdf or --config given replaces the recorded files on both sides (one robot, one controllers YAML).
   const std::string urdf = o.urdf.empty() ? cm_files.urdf : o.urdf;
   const std::vector<std::string> cm_configs = o.configs.empty() ? cm_files.configs : o.configs;
@@ -719,27 +740,12 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
                              plan.mock ? sim::Backend::Mock : sim::Backend::Bullet);
   if (!plan.mock) simulation.actuators().set_brakes(plan.brakes);
 
-  RobotModel model = load_robot_model(urdf, cm_configs, load);
+  const RobotModel model = load_robot_model(urdf, cm_configs, load);
   Bus bus("memq://", model.ns);
   sim::SimIo io(bus, simulation, true, plan.clock_every);
-  cm::Registry registry = cm::builtin_registry();
-  cm::load_plugins(registry, cm::plugin_libraries(model));
-  cm::ControllerManager manager(model, bus, registry);
-  cm::Services services(manager, bus);
-  struct Shutdown {
-    cm::ControllerManager& m;
-    ~Shutdown() { m.shutdown(); }
-  } shutdown{manager};
-  Published published;
+  ReplayedManager replayed(model, bus);
+  Published& published = replayed.published;
   const std::string js_channel = bus.channel(channels::kJointStates);
-  bus.lcm().subscribe(js_channel, &Published::on, &published);
-  auto pump = [&] {
-    for (bool more = true; more;) {
-      manager.flush_published();
-      more = false;
-      while (bus.lcm().handleTimeout(0) > 0) more = true;
-    }
-  };
   const std::string state_channel = bus.channel(channels::kHardwareState);
   const std::string command_channel = bus.channel(channels::kHardwareCommand);
   const std::string inputs_channel = bus.channel(channels::kCmInputs);
@@ -796,9 +802,9 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
         ++report.fed;
       }
     io.publish_state(1.0);
-    pump();
+    replayed.pump();
     ++report.states;
-    hardware_command_t answer = manager.last_command();
+    hardware_command_t answer = replayed.manager.last_command();
     if (const auto rec = recorded_commands.find(step); rec != recorded_commands.end()) {
       answer.session = rec->second.session;
       compare_commands(cmp, command_channel, rec->second, answer);
