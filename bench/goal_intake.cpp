@@ -95,8 +95,8 @@ Figures run(const std::string& kind, double seconds, const std::string& dir, con
                          "  joints: [j1, j2]\n";
   Figures f;
   // `_own_cpu`: the loop's thread (and the manager's threads, which inherit it) on the last CPU, the sender on the
-  // others, as a robot computer keeps the loop's core to itself: the kernel's delivery of a goal's fragments then
-  // runs where they were sent, not in the loop's thread.
+  // others, as a robot computer keeps the loop's core to itself: the sender's work, and the kernel's on what it
+  // sends, is then not on the loop's CPU.
   const bool own_cpu = kind.size() > 8 && kind.compare(kind.size() - 8, 8, "_own_cpu") == 0;
   const bool fifo = kind.find("_fifo") != std::string::npos;
   const int cpus = int(std::thread::hardware_concurrency());

@@ -18,7 +18,7 @@ inline constexpr size_t kWholeBytes = 64u << 10, kEndBytes = 8u << 10, kSamples 
 inline size_t sample_at(size_t size, size_t k) {
   return kEndBytes + k * ((size - 2 * kEndBytes - kSampleBytes) / (kSamples - 1));
 }
-}
+}  // namespace digest
 
 uint64_t message_digest(const void* data, size_t size);
 

@@ -118,9 +118,8 @@ class Endpoints {
 
   // For messages too large to take in between two cycles (trajectory goals): the bytes are kept (moved out of the
   // socket's buffer when it put them together: LcmSocket::take_delivered, and given back to its pool once decoded),
-  // decoded into a new Msg and given to
-  // `prepare` on the intake's thread (set_intake); what prepare returns runs on the loop's thread at the intake's
-  // next drain, held as the handlers are while busy() (hold_while). Without an intake, or with one in place,
+  // decoded into a new Msg and given to `prepare` on the intake's thread (set_intake); what prepare returns runs on
+  // the loop's thread at the intake's next drain, held as the handlers are while busy() (hold_while). Without an intake, or with one in place,
   // everything runs in the handler. on_bad: as subscribe(), on the loop's thread. prepare must not touch what the
   // loop uses (capture copies, or what is never changed).
   template <class Msg>

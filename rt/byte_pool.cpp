@@ -41,7 +41,7 @@ std::vector<uint8_t> BytePool::take(size_t size) {
   if (!lock.owns_lock()) return got;
   std::vector<uint8_t>* best = nullptr;  // the smallest that holds `size`
   for (auto& k : kept_)
-    if (k.capacity() >= size && k.capacity() > 0 && (!best || k.capacity() < best->capacity())) best = &k;
+    if (k.capacity() >= size && (!best || k.capacity() < best->capacity())) best = &k;
   if (best) got.swap(*best);
   return got;
 }

@@ -191,18 +191,16 @@ int run_sim_server(ProgramFlags f) {
   // What it was started with, on sim_server/config now and on a CONFIG request, so that a recording replays alone.
   run_config_t config;
   const std::string unreadable = read_run_config(model, "sim_server", command_line(), &config);
-  stepper.set_config_publisher([&]() -> std::pair<bool, std::string> {
+  auto publish_config = [&]() -> std::pair<bool, std::string> {
     if (!unreadable.empty()) return {false, "cannot publish the run's configuration: " + unreadable};
     config.utime = wall_us();
     bus.lcm().publish(bus.channel(channels::kSimConfig), &config);
     return {true, fmt::format("published the run's configuration on {} ({}, {} file(s), {} bytes)",
                               bus.channel(channels::kSimConfig), model.urdf_path, config.num_configs,
                               config.getEncodedSize())};
-  });
-  if (unreadable.empty()) {
-    config.utime = wall_us();
-    bus.lcm().publish(bus.channel(channels::kSimConfig), &config);
-  }
+  };
+  stepper.set_config_publisher(publish_config);
+  publish_config();
   install_stop_signals(true);
   const WorldOptions& world = plan.world;
   spdlog::info("ready ({}{}{}{}, {} actuators, {}control {:g} Hz, clock {:g} Hz, lcm {}{}{}, session {}{})",

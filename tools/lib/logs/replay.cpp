@@ -78,6 +78,36 @@ struct ReplayedManager {
   Published published;
 };
 
+// The `<controller>/command` channels a command source in the manager publishes on itself, from the command_source_t
+// requests handed over: a recorded message there is the source's, not an input.
+class SourcedChannels {
+ public:
+  explicit SourcedChannels(const Bus& bus) : bus_(bus), requests_(bus.channel(channels::kCmCommandSource)) {}
+  // Whether a recorded input is handed to the manager: not on a sourced channel, nor a request that does not decode.
+  bool hand_over(const std::string& channel, const void* data, size_t size) {
+    if (sourced_.count(channel)) return false;
+    if (channel != requests_) return true;
+    command_source_t r;
+    if (!decode_guarded(r, data, size)) return false;
+    const std::string target = bus_.channel(r.controller + "/command");
+    if (r.remove) sourced_.erase(target);
+    else sourced_.insert(target);
+    return true;
+  }
+
+ private:
+  const Bus& bus_;
+  std::string requests_;
+  std::set<std::string> sourced_;
+};
+
+// The recorded namespace (unless one was given) and $(arg) values, for reading the recorded files as the run did.
+void read_as_recorded(const run_config_t& c, LoadOptions& load) {
+  if (load.ns.empty()) load.ns = c.robot_namespace;
+  for (const std::string& a : c.args)
+    load.args.emplace_back(a.substr(0, a.find('=')), a.find('=') == std::string::npos ? "" : a.substr(a.find('=') + 1));
+}
+
 // A folder of its own under the system's temporary directory, removed with what is in it.
 class TempDir {
  public:
@@ -483,9 +513,7 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
                                          "without that channel, or by a version before it); give the run's robot and "
                                          "controllers with --urdf FILE --config FILE",
                                          o.log, channel));
-    if (load.ns.empty()) load.ns = recorded->robot_namespace;
-    for (const std::string& a : recorded->args)
-      load.args.emplace_back(a.substr(0, a.find('=')), a.find('=') == std::string::npos ? "" : a.substr(a.find('=') + 1));
+    read_as_recorded(*recorded, load);
     const Materialized m = materialize(*recorded, load, scratch.path());
     urdf = m.urdf;
     if (configs.empty()) configs = m.configs;
@@ -504,11 +532,11 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
   bus.lcm().subscribe(".*", &Outputs::on, &outputs);
   const std::string state_channel = bus.channel(channels::kHardwareState);
   const std::string command_channel = bus.channel(channels::kHardwareCommand);
-  const std::string source_channel = bus.channel("controller_manager/command_source");
+  const std::string source_channel = bus.channel(channels::kCmCommandSource);
   auto pump = [&] { replayed.pump(); };
 
   Comparison cmp(o.tolerance);
-  std::set<std::string> sourced;  // `<controller>/command` channels a command source in the manager publishes itself
+  SourcedChannels sourced(bus);
   std::deque<hardware_command_t> answers;  // the replayed answers to the recorded states, not yet paired
   int64_t unrecorded_answers = 0;          // answers whose recorded hardware/command the log does not hold
   std::deque<joint_state_t> recorded_states;
@@ -522,14 +550,7 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
   };
   // An input handed to the manager (a command source's channel is its own: it publishes there itself).
   auto feed = [&](const std::string& ch, const void* data, size_t size) {
-    if (sourced.count(ch)) return;
-    if (ch == source_channel) {
-      command_source_t r;
-      if (!decode_guarded(r, data, size)) return;
-      const std::string target = bus.channel(r.controller + "/command");
-      if (r.remove) sourced.erase(target);
-      else sourced.insert(target);
-    }
+    if (!sourced.hand_over(ch, data, size)) return;
     outputs.fed.insert(ch);
     bus.lcm().publish(ch, data, static_cast<unsigned>(size));
     ++report.fed;
@@ -702,9 +723,7 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
     throw ReplayInputError(fmt::format("{}: a closed-loop replay needs both programs' recorded configurations ({} and "
                                        "{}); record with bus record from this version on",
                                        o.log, prefix + channels::kCmConfig, prefix + channels::kSimConfig));
-  if (load.ns.empty()) load.ns = cm_config->robot_namespace;
-  for (const std::string& a : cm_config->args)
-    load.args.emplace_back(a.substr(0, a.find('=')), a.find('=') == std::string::npos ? "" : a.substr(a.find('=') + 1));
+  read_as_recorded(*cm_config, load);
   const Materialized cm_files = materialize(*cm_config, load, scratch.path() + "/cm");
   const Materialized sim_files = materialize(*sim_config, load, scratch.path() + "/sim");
   report.notes.push_back(fmt::format("closed loop: sim_server as recorded ({})", fmt::join(sim_config->argv, " ")));
@@ -782,22 +801,13 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
   }
   if (last_step < 0) throw ReplayInputError(fmt::format("{}: no {} messages", o.log, state_channel));
   Comparison cmp(o.tolerance);
-  const std::string source_channel = bus.channel("controller_manager/command_source");
-  std::set<std::string> sourced;
+  SourcedChannels sourced(bus);
   while (simulation.step_count() <= last_step) {
     const int64_t step = simulation.step_count();
     io.expect_step(step);
     if (const auto due = inputs_at.find({session, step}); due != inputs_at.end())
       for (const auto& [ch, bytes] : due->second) {
-        if (sourced.count(ch)) continue;  // a command source in the manager publishes there itself
-        if (ch == source_channel) {
-          command_source_t r;
-          if (decode_guarded(r, bytes.data(), bytes.size())) {
-            const std::string target = bus.channel(r.controller + "/command");
-            if (r.remove) sourced.erase(target);
-            else sourced.insert(target);
-          }
-        }
+        if (!sourced.hand_over(ch, bytes.data(), bytes.size())) continue;
         bus.lcm().publish(ch, bytes.data(), static_cast<unsigned>(bytes.size()));
         ++report.fed;
       }
@@ -806,7 +816,7 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
     ++report.states;
     hardware_command_t answer = replayed.manager.last_command();
     if (const auto rec = recorded_commands.find(step); rec != recorded_commands.end()) {
-      answer.session = rec->second.session;
+      answer.session = rec->second.session;  // the replayed simulator's session is a new one
       compare_commands(cmp, command_channel, rec->second, answer);
     }
     while (!recorded_states.empty() && !published.joint_states.empty()) {
