@@ -42,11 +42,12 @@ std::string check_cpu(const std::string& cpu) {
 }
 
 LaunchPlan read_launch_file(const std::string& path, const std::vector<std::string>& package_path,
-                            const std::vector<std::pair<std::string, std::string>>& args) {
+                            const std::vector<std::pair<std::string, std::string>>& args,
+                            const std::set<std::string>& embedding_keys) {
   const std::string text = read_launch_text(path);
   const auto first = text.find_first_not_of(" \t\r\n");
   LaunchPlan plan = first != std::string::npos && text[first] == '<' ? read_ros_launch(path, package_path, args)
-                                                                    : read_launch_yaml(path, package_path);
+                                                                    : read_launch_yaml(path, package_path, embedding_keys);
   std::vector<std::string> problems;
   std::error_code ec;
   // No config: the URDF's gz_ros2_control plugin may name it (launcher.cpp).

@@ -2,6 +2,7 @@
 // launch XML such as the tutorial's gazebo_ros_control.launch (launch_ros_xml.cpp), both read into one LaunchPlan.
 #pragma once
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -12,9 +13,12 @@ namespace lcm_control::tools {
 // Reads either format (XML if the file starts with '<' after blanks, else YAML). `args`: NAME:=VALUE from the
 // command line, which a ROS launch file's <arg default=> take as roslaunch does (its <include>s followed, each with
 // its own <arg>s). Throws ModelError naming the file, line or key at fault.
+// `embedding_keys`: the keys of a file that embeds a launch in YAML (a scenario's timeline and checks), left to it.
 LaunchPlan read_launch_file(const std::string& path, const std::vector<std::string>& package_path,
-                            const std::vector<std::pair<std::string, std::string>>& args = {});
-LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::string>& package_path);
+                            const std::vector<std::pair<std::string, std::string>>& args = {},
+                            const std::set<std::string>& embedding_keys = {});
+LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::string>& package_path,
+                            const std::set<std::string>& embedding_keys = {});
 LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::string>& package_path,
                            const std::vector<std::pair<std::string, std::string>>& args = {});
 

@@ -19,7 +19,8 @@ namespace lcm_control::tools {
 
 // YAML: see config/turret_bot.launch.yaml for the keys.
 
-LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::string>& package_path) {
+LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::string>& package_path,
+                            const std::set<std::string>& embedding_keys) {
   const std::string text = read_launch_text(path);
   YAML::Node root;
   try {
@@ -88,7 +89,9 @@ LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::stri
     const std::string key = kv.first.as<std::string>();
     const YAML::Node& v = kv.second;
     try {
-      if (!known.count(key)) {
+      if (embedding_keys.count(key)) {
+        continue;
+      } else if (!known.count(key)) {
         problems.push_back(fmt::format("{}: unknown key; valid keys: {}", where(kv.first, key), fmt::join(known, ", ")));
       } else if (key == "urdf") {
         plan.urdf = absolute_from(str(v, key), dir);

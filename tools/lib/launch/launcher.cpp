@@ -159,6 +159,8 @@ void model_defaults(LaunchPlan& plan, const std::vector<std::string>& path, cons
                          model.config_path, names.empty() ? "no controllers" : fmt::format("{}", fmt::join(names, ", "))));
 }
 
+}  // namespace
+
 std::vector<std::string> with_ns(std::vector<std::string> argv, const std::string& ns) {
   if (!ns.empty()) {
     argv.push_back("--namespace");
@@ -166,11 +168,6 @@ std::vector<std::string> with_ns(std::vector<std::string> argv, const std::strin
   }
   return argv;
 }
-
-// The command line of each process launch starts for one robot.
-struct CommandLines {
-  std::vector<std::string> sim, cm, spawner, rsp, dash;
-};
 
 CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const std::string& hw_url, bool hw_apart) {
   CommandLines lines;
@@ -236,6 +233,8 @@ CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const
   dash.insert(dash.end(), urdf_args.begin(), urdf_args.end());
   return lines;
 }
+
+namespace {
 
 void print_dry_run(const LaunchPlan& plan, const LaunchOptions& o, const CommandLines& lines, const std::string& ns) {
   const auto& [sim, cm, spawner, rsp, dash] = lines;
@@ -448,7 +447,7 @@ LaunchPlan resolve_launch(const LaunchOptions& o) {
     throw CLI::ValidationError("--config", "goes with --urdf; a launch FILE names its own config");
   std::vector<std::pair<std::string, std::string>> args;
   for (const auto& a : o.args) args.push_back(parse_arg(a));
-  LaunchPlan plan = from_flags ? plan_from_flags(o) : read_launch_file(o.file, o.package_path, args);
+  LaunchPlan plan = from_flags ? plan_from_flags(o) : read_launch_file(o.file, o.package_path, args, o.embedding_keys);
   if (o.dashboard && (o.robots > 0 || !plan.robots.empty()))
     throw CLI::ValidationError("--dashboard",
                                "one dashboard shows one robot: with several, start one per robot "

@@ -3,6 +3,7 @@
 // flags into LaunchOptions and calls run_launch).
 #pragma once
 
+#include <set>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,7 @@ struct LaunchOptions {
   bool dashboard = false;
   int dashboard_port = 8080;
   BusFlags bus;
+  std::set<std::string> embedding_keys;  // a YAML file that embeds a launch (a scenario): its own keys, left to it
 };
 
 // The plan a launch file with only urdf: and config: makes, from --urdf and --config: sim_server and
@@ -63,6 +65,13 @@ int run_launch(const LaunchOptions& o);
 
 // Several robots (`robots:`, --robots): one launch of the file per robot namespace, supervised as one.
 int run_robots(const LaunchOptions& o, const LaunchPlan& plan);
+
+// The command line of each process launch starts for one robot, its namespace not yet given (with_ns).
+struct CommandLines {
+  std::vector<std::string> sim, cm, spawner, rsp, dash;
+};
+CommandLines command_lines(const LaunchPlan& plan, const LaunchOptions& o, const std::string& hw_url, bool hw_apart);
+std::vector<std::string> with_ns(std::vector<std::string> argv, const std::string& ns);
 
 // One line of launch's own on stdout, prefixed "[launch] ".
 void launch_say(const std::string& line);

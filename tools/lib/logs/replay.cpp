@@ -28,8 +28,7 @@
 #include "controller_manager/services.hpp"
 #include "description/load.hpp"
 #include "description/robot_file.hpp"
-#include "sim_server/program.hpp"
-#include "sim_server/sim_io.hpp"
+#include "tools/lib/logs/closed_loop.hpp"
 #include "rt/clock.hpp"
 #include "tools/lib/messages/fields.hpp"
 #include "lcm_control/run_config_t.hpp"
@@ -42,41 +41,6 @@
 namespace lcm_control::tools {
 
 namespace {
-
-// Keeps what the replayed manager publishes on joint_states, in order.
-struct Published {
-  std::deque<joint_state_t> joint_states;
-  void on(const lcm::ReceiveBuffer*, const std::string&, const joint_state_t* m) { joint_states.push_back(*m); }
-};
-
-cm::Registry registry_for(const RobotModel& model) {
-  cm::Registry registry = cm::builtin_registry();
-  cm::load_plugins(registry, cm::plugin_libraries(model));
-  return registry;
-}
-
-// A fresh controller manager on an in-process bus with its services, and the joint_states it publishes: what both
-// replays re-drive.
-struct ReplayedManager {
-  ReplayedManager(const RobotModel& model, Bus& b)
-      : bus(b), registry(registry_for(model)), manager(model, bus, registry), services(manager, bus) {
-    bus.lcm().subscribe(bus.channel(channels::kJointStates), &Published::on, &published);
-  }
-  ~ReplayedManager() { manager.shutdown(); }  // it answers what is pending while the services that answer are there
-  // Delivers what is queued on the bus, and what handling it publishes, until nothing is left.
-  void pump() {
-    for (bool more = true; more;) {
-      manager.flush_published();
-      more = false;
-      while (bus.lcm().handleTimeout(0) > 0) more = true;
-    }
-  }
-  Bus& bus;
-  cm::Registry registry;
-  cm::ControllerManager manager;
-  cm::Services services;
-  Published published;
-};
 
 // The `<controller>/command` channels a command source in the manager publishes on itself, from the command_source_t
 // requests handed over: a recorded message there is the source's, not an input.
@@ -526,7 +490,7 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
   Bus bus("memq://", model.ns);
   ReplayedManager replayed(model, bus);
   cm::ControllerManager& manager = replayed.manager;
-  Published& published = replayed.published;
+  std::deque<joint_state_t>& published = replayed.joint_states;
   const std::string js_channel = bus.channel(channels::kJointStates);
   Outputs outputs;  // compared where the log says which channels are inputs (its stamps)
   bus.lcm().subscribe(".*", &Outputs::on, &outputs);
@@ -542,10 +506,10 @@ ReplayReport replay_controllers(const ReplayOptions& o) {
   std::deque<joint_state_t> recorded_states;
   bool bound_checked = false;
   auto compare_published = [&] {
-    while (!recorded_states.empty() && !published.joint_states.empty()) {
-      compare_states(cmp, js_channel, recorded_states.front(), published.joint_states.front());
+    while (!recorded_states.empty() && !published.empty()) {
+      compare_states(cmp, js_channel, recorded_states.front(), published.front());
       recorded_states.pop_front();
-      published.joint_states.pop_front();
+      published.pop_front();
     }
   };
   // An input handed to the manager (a command source's channel is its own: it publishes there itself).
@@ -731,11 +695,7 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
   // sim_server's flags as it was started, its files replaced by the recorded texts.
   sim::ProgramFlags flags;
   try {
-    CLI::App app;
-    sim::add_program_flags(app, flags);
-    std::vector<std::string> args(sim_config->argv.begin() + (sim_config->argv.empty() ? 0 : 1), sim_config->argv.end());
-    std::reverse(args.begin(), args.end());  // CLI11 takes them last first
-    app.parse(args);
+    flags = parse_sim_command_line(sim_config->argv);
   } catch (const CLI::ParseError& e) {
     throw ReplayInputError(fmt::format("{}: sim_server's recorded command line ({}) is not this version's: {}", o.log,
                                        fmt::join(sim_config->argv, " "), e.what()));
@@ -748,22 +708,13 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
   // A --urdf or --config given replaces the recorded files on both sides (one robot, one controllers YAML).
   const std::string urdf = o.urdf.empty() ? cm_files.urdf : o.urdf;
   const std::vector<std::string> cm_configs = o.configs.empty() ? cm_files.configs : o.configs;
-  const std::vector<std::string> sim_configs = o.configs.empty() ? sim_files.configs : o.configs;
   flags.robot.files.urdf = o.urdf.empty() ? sim_files.urdf : o.urdf;
-  flags.robot.files.config = sim_configs;
+  flags.robot.files.config = o.configs.empty() ? sim_files.configs : o.configs;
   LoadOptions sim_load = load;
   sim_load.config_from_plugin = true;
-  const RobotModel sim_model = load_robot_model(flags.robot.files.urdf, sim_configs, sim_load);
-  const sim::RunPlan plan = sim::plan_run(flags, sim_model);
-  sim::Simulation simulation(sim_model, plan.rates, plan.start, plan.world,
-                             plan.mock ? sim::Backend::Mock : sim::Backend::Bullet);
-  if (!plan.mock) simulation.actuators().set_brakes(plan.brakes);
-
-  const RobotModel model = load_robot_model(urdf, cm_configs, load);
-  Bus bus("memq://", model.ns);
-  sim::SimIo io(bus, simulation, true, plan.clock_every);
-  ReplayedManager replayed(model, bus);
-  Published& published = replayed.published;
+  ClosedLoop loop(flags, sim_load, load_robot_model(urdf, cm_configs, load));
+  Bus& bus = loop.bus();
+  std::deque<joint_state_t>& published = loop.manager().joint_states;
   const std::string js_channel = bus.channel(channels::kJointStates);
   const std::string state_channel = bus.channel(channels::kHardwareState);
   const std::string command_channel = bus.channel(channels::kHardwareCommand);
@@ -802,32 +753,27 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
   if (last_step < 0) throw ReplayInputError(fmt::format("{}: no {} messages", o.log, state_channel));
   Comparison cmp(o.tolerance);
   SourcedChannels sourced(bus);
-  while (simulation.step_count() <= last_step) {
-    const int64_t step = simulation.step_count();
-    io.expect_step(step);
+  while (loop.step() <= last_step) {
+    const int64_t step = loop.step();
     if (const auto due = inputs_at.find({session, step}); due != inputs_at.end())
       for (const auto& [ch, bytes] : due->second) {
         if (!sourced.hand_over(ch, bytes.data(), bytes.size())) continue;
         bus.lcm().publish(ch, bytes.data(), static_cast<unsigned>(bytes.size()));
         ++report.fed;
       }
-    io.publish_state(1.0);
-    replayed.pump();
+    hardware_command_t answer = loop.cycle();
     ++report.states;
-    hardware_command_t answer = replayed.manager.last_command();
     if (const auto rec = recorded_commands.find(step); rec != recorded_commands.end()) {
       answer.session = rec->second.session;  // the replayed simulator's session is a new one
       compare_commands(cmp, command_channel, rec->second, answer);
     }
-    while (!recorded_states.empty() && !published.joint_states.empty()) {
-      compare_states(cmp, js_channel, recorded_states.front(), published.joint_states.front());
+    while (!recorded_states.empty() && !published.empty()) {
+      compare_states(cmp, js_channel, recorded_states.front(), published.front());
       recorded_states.pop_front();
-      published.joint_states.pop_front();
+      published.pop_front();
     }
     if (step == last_step) break;
-    if (!io.poll_until(monotonic_us(), true, false, step) || !io.take_command())
-      throw std::runtime_error(fmt::format("closed loop: no command for step {}", step));
-    simulation.step();
+    loop.advance();
   }
   report.channels = cmp.channels_;
   report.first = cmp.first_;

@@ -1,0 +1,78 @@
+#include "tools/lib/logs/closed_loop.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "bus/messages.hpp"
+#include "description/load.hpp"
+#include "rt/clock.hpp"
+
+namespace lcm_control::tools {
+
+sim::ProgramFlags parse_sim_command_line(const std::vector<std::string>& argv) {
+  sim::ProgramFlags flags;
+  CLI::App app;
+  sim::add_program_flags(app, flags);
+  std::vector<std::string> args(argv.begin() + (argv.empty() ? 0 : 1), argv.end());
+  std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+  app.parse(args);
+  return flags;
+}
+
+namespace {
+cm::Registry registry_for(const RobotModel& model) {
+  cm::Registry registry = cm::builtin_registry();
+  cm::load_plugins(registry, cm::plugin_libraries(model));
+  return registry;
+}
+}  // namespace
+
+ReplayedManager::ReplayedManager(const RobotModel& model, Bus& b, cm::ManagerOptions options)
+    : bus(b), registry(registry_for(model)), manager(model, bus, registry, std::move(options)), services(manager, bus) {
+  bus.lcm().subscribe(bus.channel(channels::kJointStates), &ReplayedManager::on_joint_states, this);
+}
+
+ReplayedManager::~ReplayedManager() { manager.shutdown(); }
+
+void ReplayedManager::on_joint_states(const lcm::ReceiveBuffer*, const std::string&, const joint_state_t* m) {
+  joint_states.push_back(*m);
+}
+
+void ReplayedManager::pump() {
+  for (bool more = true; more;) {
+    manager.flush_published();
+    more = false;
+    while (bus.lcm().handleTimeout(0) > 0) more = true;
+  }
+}
+
+ClosedLoop::ClosedLoop(const sim::ProgramFlags& flags, const LoadOptions& sim_load, const RobotModel& model,
+                       cm::ManagerOptions manager_options)
+    : sim_model_(load_robot_model(flags.robot.files.urdf, flags.robot.files.config, sim_load)),
+      plan_(sim::plan_run(flags, sim_model_)),
+      simulation_(std::make_unique<sim::Simulation>(sim_model_, plan_.rates, plan_.start, plan_.world,
+                                                    plan_.mock ? sim::Backend::Mock : sim::Backend::Bullet)),
+      bus_("memq://", model.ns) {
+  if (!plan_.mock) simulation_->actuators().set_brakes(plan_.brakes);
+  io_ = std::make_unique<sim::SimIo>(bus_, *simulation_, true, plan_.clock_every);
+  manager_ = std::make_unique<ReplayedManager>(model, bus_, std::move(manager_options));
+}
+
+double ClosedLoop::control_period_s() const { return simulation_->control_period(); }
+
+const hardware_command_t& ClosedLoop::cycle() {
+  io_->expect_step(step());
+  io_->publish_state(1.0);
+  manager_->pump();
+  return manager_->manager.last_command();
+}
+
+void ClosedLoop::advance() {
+  if (!io_->poll_until(monotonic_us(), true, false, step()) || !io_->take_command())
+    throw std::runtime_error(fmt::format("closed loop: no command for step {}", step()));
+  simulation_->step();
+}
+
+}  // namespace lcm_control::tools
