@@ -29,6 +29,7 @@ int main(int argc, char** argv) {
   run->add_option("--timeout", o.timeout_s, "wall seconds a scenario may take before it is stopped (default 600)")
       ->check(CLI::PositiveNumber);
   run->add_flag("!--no-golden", o.golden, "do not replay the scenarios' golden logs");
+  run->add_option("--skipped-exit", o.skipped_exit, "exit code when every scenario was skipped (default 0; ctest: 77)");
   run->add_flag("-v,--verbose", o.verbose, "every check with what it saw, not only those that failed");
   CLI::App* record = app.add_subcommand("record", "run one scenario and keep its whole bus as its golden log");
   record->add_option("FILE", file, "the scenario")->required()->check(CLI::ExistingFile);

@@ -24,8 +24,14 @@ namespace lcm_control::tools {
 
 const std::set<std::string>& scenario_keys() {
   static const std::set<std::string> keys = {"name", "launch", "launch_args", "duration", "requires",
-                                             "timeline", "checks", "golden"};
+                                             "timeline", "checks", "golden", "package_path"};
   return keys;
+}
+
+std::string scenario_name(const std::string& file) {
+  std::string name = fs::path(file).stem().string();
+  if (name.size() > 9 && name.compare(name.size() - 9, 9, ".scenario") == 0) name.resize(name.size() - 9);
+  return name;
 }
 
 namespace {
@@ -130,7 +136,7 @@ void read_entry(Reader& r, const YAML::Node& e, size_t index, Scenario& s) {
                                               "publish", "wrench"};
   if (!r.keys(e, "timeline", [] {
         std::set<std::string> k = kinds;
-        k.insert("at");
+        k.insert({"at", "every", "until"});
         return k;
       }()))
     return;
@@ -189,7 +195,7 @@ void read_entry(Reader& r, const YAML::Node& e, size_t index, Scenario& s) {
       r.problem(v, kind, err.what());
     }
   } else if (kind == "cmd_vel") {
-    if (!r.keys(v, kind, {"controller", "linear", "angular"})) return;
+    if (!r.keys(v, kind, {"controller", "linear", "angular", "channel"})) return;
     t.channel = controller(v) + "/cmd_vel";
     t.type = "twist_t";
     t.fields = {{"linear", v["linear"] ? vector3(r, v["linear"], "cmd_vel.linear") : vector3(r, YAML::Node(0), "")},
@@ -251,6 +257,7 @@ void read_entry(Reader& r, const YAML::Node& e, size_t index, Scenario& s) {
                 {"torque", v["torque"] ? vector3(r, v["torque"], "wrench.torque") : vector3(r, YAML::Node(0), "")},
                 {"duration", v["duration"] ? r.number(v["duration"], "wrench.duration").value_or(0) : 0.0}};
   }
+  if (kind == "cmd_vel" && v["channel"]) t.channel = r.text(v["channel"], "cmd_vel.channel");
   if (t.fields.is_object()) t.fields.erase("utime");
   if (!t.type.empty() && r.problems.empty()) {
     try {
@@ -258,6 +265,21 @@ void read_entry(Reader& r, const YAML::Node& e, size_t index, Scenario& s) {
     } catch (const std::exception& err) {
       r.problem(v, kind, err.what());
     }
+  }
+  // `every: S` with `until: T`: the same input again every S seconds up to T (a teleop's rate, a timeout fed).
+  if (e["every"] || e["until"]) {
+    const double every = e["every"] ? r.number(e["every"], "every").value_or(0) : 0;
+    const double until = e["until"] ? r.number(e["until"], "until").value_or(-1) : -1;
+    if (every <= 0 || until < t.at) {
+      r.problem(e, "timeline", "`every: S` (seconds, > 0) goes with `until: T` (a sim time not before `at`)");
+      return;
+    }
+    for (int64_t n = 0; t.at + double(n) * every <= until + 1e-9; ++n) {
+      TimelineEntry copy = t;
+      copy.at = t.at + double(n) * every;
+      s.timeline.push_back(std::move(copy));
+    }
+    return;
   }
   s.timeline.push_back(std::move(t));
 }
@@ -285,6 +307,8 @@ void read_check(Reader& r, const YAML::Node& c, Scenario& s) {
                      : k.from == k.to     ? fmt::format("at t={:g} s", k.to)
                      : k.from < 0         ? fmt::format("by t={:g} s", k.to)
                                           : fmt::format("over [{:g}, {:g}] s", k.from, k.to);
+  if (c["channel"] && !c["field"] && !c["odometry"])
+    r.problem(c, "check", "`channel:` goes with `field:` (or names an `odometry:` controller's own channel)");
   const int kinds = int(bool(c["field"])) + int(bool(c["tracking"])) + int(bool(c["goal"])) + int(bool(c["odometry"]));
   if (kinds != 1) {
     r.problem(c, "check", "names one thing to check: `channel:` with `field:`, `tracking: JOINT`, `goal: CONTROLLER` or "
@@ -319,7 +343,7 @@ void read_check(Reader& r, const YAML::Node& c, Scenario& s) {
     k.name = fmt::format("goal of {} {} {}", r.text(c["goal"], "goal"), k.result, when);
   } else {
     k.kind = Check::Kind::Odometry;
-    k.channel = r.text(c["odometry"], "odometry") + "/odom";
+    k.channel = c["channel"] ? r.text(c["channel"], "channel") : r.text(c["odometry"], "odometry") + "/odom";
     k.within_m = num("within").value_or(0);
     k.within_rad = num("within_yaw").value_or(0);
     if (!c["within"]) r.problem(c, "check", "odometry needs `within:` (m of ground truth; `within_yaw:` rad)");
@@ -343,8 +367,7 @@ Scenario read_scenario(const std::string& path, const std::vector<std::string>& 
   Reader r(path);
   Scenario s;
   s.file = path;
-  s.name = root["name"] ? r.text(root["name"], "name") : fs::path(path).stem().string();
-  if (s.name.size() > 9 && s.name.compare(s.name.size() - 9, 9, ".scenario") == 0) s.name.resize(s.name.size() - 9);
+  s.name = root["name"] ? r.text(root["name"], "name") : scenario_name(path);
   const std::string dir = fs::absolute(path).parent_path().string();
   if (root["requires"])
     for (const std::string& f : r.words(root["requires"], "requires")) s.requires_files.push_back(absolute_from(f, dir));
@@ -354,8 +377,11 @@ Scenario read_scenario(const std::string& path, const std::vector<std::string>& 
   else s.duration = r.number(root["duration"], "duration").value_or(0);
   if (root["duration"] && s.duration <= 0) r.problem(root["duration"], "duration", "must be more than 0");
   if (root["golden"]) s.golden = absolute_from(r.text(root["golden"], "golden"), dir);
+  if (root["package_path"])
+    for (const std::string& d : r.words(root["package_path"], "package_path")) s.package_path.push_back(absolute_from(d, dir));
   LaunchOptions o;
-  o.package_path = package_path;
+  o.package_path = s.package_path;
+  o.package_path.insert(o.package_path.end(), package_path.begin(), package_path.end());
   o.mode = "lockstep";
   o.cpu = "none";
   if (root["launch"]) {

@@ -52,11 +52,15 @@ struct Scenario {
   std::vector<std::string> requires_files;  // absent: skipped (a robot's files not in this checkout)
   std::vector<TimelineEntry> timeline;      // in time order (stable)
   std::vector<Check> checks;
+  std::vector<std::string> package_path;  // `package_path:` (absolute): where $(find) and package:// look, first
   std::string golden;  // a recorded golden log (scenario record) the run is replayed against; "" none
 };
 
 // Reads a scenario file; throws ModelError listing every problem (file:line: key: what to write instead).
 Scenario read_scenario(const std::string& path, const std::vector<std::string>& package_path = {});
+
+// A scenario's name from its file when the file does not say: "a/b.scenario.yaml" -> "b".
+std::string scenario_name(const std::string& file);
 
 // The keys a scenario file has beside a launch file's.
 const std::set<std::string>& scenario_keys();

@@ -177,7 +177,7 @@ CheckResult check_tracking(const Recording& rec, const Bus& bus, const Check& c)
         const double err = m->position[k] - *command;
         sum += err * err;
         ++n;
-        if (std::abs(err) > worst || std::isnan(err)) worst = std::abs(err), worst_at = e.t_us;
+        if (n == 1 || std::abs(err) > worst || std::isnan(err)) worst = std::abs(err), worst_at = e.t_us;
       }
   }
   if (n == 0) {
@@ -302,7 +302,11 @@ std::vector<std::string> problems_of(const ModelError& e) { return e.problems();
 
 ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResult result) {
   const CommandLines lines = command_lines(s.launch, LaunchOptions{}, "", false);
-  const std::vector<std::string> sim_argv = with_ns(lines.sim, s.launch.ns), cm_argv = with_ns(lines.cm, s.launch.ns);
+  std::vector<std::string> sim_argv = with_ns(lines.sim, s.launch.ns), cm_argv = with_ns(lines.cm, s.launch.ns);
+  std::vector<std::string> package_path = s.package_path;
+  package_path.insert(package_path.end(), o.package_path.begin(), o.package_path.end());
+  for (const std::string& dir : package_path)  // launch hands it to its children in their environment
+    for (auto* argv : {&sim_argv, &cm_argv}) argv->insert(argv->end(), {"--package-path", dir});
   const sim::ProgramFlags sim_flags = parse_sim_command_line(sim_argv);
   LoadOptions sim_load = load_options(sim_flags.robot.files, sim_flags.robot.bus);
   sim_load.config_from_plugin = true;
@@ -393,14 +397,16 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
     answered(req.request_id, "the command source of " + c.target);
   }
 
-  // The timeline, each input before the cycle of its time (counted from here: the controllers run).
+  // The timeline, each input before the cycle of its sim time. The controllers' first cycle (re)starts them on the
+  // first hardware state, which resets what a command gave them before it: an input due by then is handed over
+  // after it, at the next cycle.
   const double period = loop.control_period_s();
   const int64_t start = loop.step();
-  const int64_t steps = std::llround(s.duration / period);
+  const int64_t end = std::max<int64_t>(start, std::llround(s.duration / period));
   std::map<int64_t, std::string> inputs;  // request id -> the timeline entry it came from
   size_t next = 0;
-  for (int64_t k = 0; k <= steps; ++k) {
-    for (; next < s.timeline.size() && std::llround(s.timeline[next].at / period) <= k; ++next) {
+  for (int64_t k = start; k <= end; ++k) {
+    for (; k > start && next < s.timeline.size() && std::llround(s.timeline[next].at / period) <= k; ++next) {
       const TimelineEntry& t = s.timeline[next];
       const std::vector<uint8_t> bytes = message_from_json(t.type, t.fields, loop.simulation().time_us());
       if (t.fields.contains("request_id")) inputs[std::stoll(t.fields["request_id"].is_string()
@@ -426,7 +432,7 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
       }
       loop.io().answer(a);
     }
-    if (k == steps) break;
+    if (k == end) break;
     loop.advance();
   }
   m.pump();
@@ -437,7 +443,7 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
 
   for (const auto& [id, where] : inputs) {  // an input refused is a failure of the scenario, where it is written
     const auto it = answers.by_id.find(id);
-    CheckResult c{"input " + where, where, it != answers.by_id.end() && it->second.first, ""};
+    CheckResult c{"input accepted", where, it != answers.by_id.end() && it->second.first, ""};
     c.detail = it == answers.by_id.end() ? "not answered by the end" : it->second.second;
     if (!c.passed) result.checks.push_back(c);
   }
@@ -458,7 +464,7 @@ ScenarioResult run_scenario(const std::string& file, const ScenarioRunOptions& o
   const auto wall0 = std::chrono::steady_clock::now();
   ScenarioResult result;
   result.file = file;
-  result.name = fs::path(file).stem().string();
+  result.name = scenario_name(file);
   try {
     const Scenario s = read_scenario(file, o.package_path);
     result.name = s.name;

@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "description/robot_model.hpp"
+#include "tools/lib/scenarios/scenario.hpp"
 
 namespace fs = std::filesystem;
 
@@ -63,7 +64,7 @@ struct Child {
 ScenarioResult collect(const Child& c, const std::string& file, int status, bool timed_out, double timeout_s) {
   ScenarioResult r;
   r.file = file;
-  r.name = fs::path(file).stem().string();
+  r.name = scenario_name(file);
   std::ifstream in(c.result_file);
   std::stringstream text;
   text << in.rdbuf();
@@ -256,7 +257,10 @@ int run_scenarios(const SuiteOptions& o) {
     out << junit_xml(results);
     if (!out) throw std::runtime_error(fmt::format("cannot write the JUnit XML to {}", o.junit));
   }
-  int code = 0;
+  int code = std::all_of(results.begin(), results.end(),
+                         [](const ScenarioResult& r) { return r.outcome == ScenarioResult::Outcome::Skipped; })
+                 ? o.skipped_exit
+                 : 0;
   for (const auto& r : results) {
     if (r.outcome == ScenarioResult::Outcome::Error) code = 2;
     if (r.outcome == ScenarioResult::Outcome::Failed && code == 0) code = 1;

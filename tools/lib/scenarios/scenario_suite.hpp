@@ -17,7 +17,8 @@ struct SuiteOptions {
   std::vector<std::string> package_path;
   double timeout_s = 600;  // wall time per scenario
   bool golden = true;
-  bool verbose = false;  // every check in the table, with what it saw; else only those that failed
+  bool verbose = false;
+  int skipped_exit = 0;  // the exit code when every scenario was skipped (ctest's SKIP_RETURN_CODE: 77)  // every check in the table, with what it saw; else only those that failed
 };
 
 // The scenario files the paths name, each folder's *.scenario.yaml in name order; throws ModelError for a path that
