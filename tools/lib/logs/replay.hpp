@@ -56,6 +56,7 @@ struct ReplayReport {
   std::vector<std::string> notes;           // where the configuration came from
   std::vector<ChannelSummary> channels;
   std::optional<Divergence> first;
+  double replay_s = 0;  // the re-driving itself, from the configuration loaded to the comparison done (wall time)
   bool within_tolerance() const { return !first.has_value(); }
 };
 

@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <tinyxml2.h>
 #include <unistd.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <chrono>
@@ -93,13 +94,26 @@ std::vector<ScenarioResult> run_all(const std::vector<std::string>& files, const
   const size_t jobs = size_t(o.jobs > 0 ? o.jobs : cpus());
   std::vector<ScenarioResult> results(files.size());
   std::vector<Child> running;
+  // The longest first (by sim time), so that no long one starts last while the other CPUs idle; results stay in the
+  // files' order.
+  std::vector<size_t> order(files.size());
+  std::vector<double> sim_s(files.size(), 0);
+  for (size_t k = 0; k < files.size(); ++k) {
+    order[k] = k;
+    try {
+      sim_s[k] = YAML::LoadFile(files[k])["duration"].as<double>(0);
+    } catch (const std::exception&) {
+      // read again, and named, by its run
+    }
+  }
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return sim_s[a] > sim_s[b]; });
   size_t next = 0;
   std::fflush(stdout);
   std::fflush(stderr);
   while (next < files.size() || !running.empty()) {
     while (next < files.size() && running.size() < jobs) {
       Child c;
-      c.index = next++;
+      c.index = order[next++];
       c.result_file = (fs::temp_directory_path() / fmt::format("lcm_control_scenario_{}_{}.json", getpid(), c.index)).string();
       c.started = std::chrono::steady_clock::now();
       c.pid = fork();
