@@ -114,6 +114,29 @@ TEST(ScenarioFile, AScenarioWithoutChecksOrDurationIsRefusedAndAnUnknownLaunchKe
   EXPECT_NE(launch.find("'spawn_me': unknown key"), std::string::npos) << launch;
 }
 
+TEST(ScenarioFile, APauseIsAPauseAndAResumeAndAResetCarriesItsStartPose) {
+  const Scenario s = read_scenario(write_scenario("pause", robot() + R"(duration: 5
+timeline:
+  - {at: 1, pause: 0.5}
+  - {at: 3, reset: {j1: 0.2}}
+checks: [{field: "position[j1]", at: 5, min: 0}]
+)"));
+  ASSERT_EQ(s.timeline.size(), 3u);
+  EXPECT_TRUE(s.pauses_or_resets);
+  EXPECT_EQ(s.timeline[0].fields["op"], 1);  // PAUSE at 1, RESUME at 1.5
+  EXPECT_DOUBLE_EQ(s.timeline[1].at, 1.5);
+  EXPECT_EQ(s.timeline[1].fields["op"], 2);
+  EXPECT_EQ(s.timeline[2].channel, "sim_server/request");
+  EXPECT_EQ(s.timeline[2].fields["joint"], nlohmann::json::array({"j1"}));
+  const std::string golden = problems(write_scenario("pause_golden", robot() + R"(duration: 5
+golden: g.lcmlog
+timeline: [{at: 1, reset: {}}]
+checks: [{field: "position[j1]", at: 5, min: 0}]
+)"));
+  EXPECT_NE(golden.find("golden: a scenario that pauses or resets the simulation has no golden log yet"), std::string::npos)
+      << golden;
+}
+
 TEST(ScenarioFile, ARobotNotInThisCheckoutSkipsTheScenarioUnread) {
   const Scenario s = read_scenario(write_scenario("absent", "requires: [/no/such/robot.urdf]\nthis: is not read\n"));
   ASSERT_EQ(s.requires_files.size(), 1u);

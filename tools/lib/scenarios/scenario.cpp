@@ -133,7 +133,7 @@ nlohmann::json vector3(Reader& r, const YAML::Node& n, const std::string& key) {
 // One timeline entry: `at` and one input.
 void read_entry(Reader& r, const YAML::Node& e, size_t index, Scenario& s) {
   static const std::set<std::string> kinds = {"command", "goal", "cmd_vel", "switch", "e_stop", "command_source",
-                                              "publish", "wrench"};
+                                              "publish", "wrench", "pause", "reset"};
   if (!r.keys(e, "timeline", [] {
         std::set<std::string> k = kinds;
         k.insert({"at", "every", "until"});
@@ -244,6 +244,36 @@ void read_entry(Reader& r, const YAML::Node& e, size_t index, Scenario& s) {
     t.channel = v["channel"] ? r.text(v["channel"], "publish.channel") : "";
     t.type = v["type"] ? r.text(v["type"], "publish.type") : "";
     t.fields = v["message"] ? to_json(v["message"]) : nlohmann::json::object();
+  } else if (kind == "pause" || kind == "reset") {
+    // sim_server's requests: a pause holds sim time for S seconds of the scenario's (a PAUSE, then a RESUME); a
+    // reset puts every joint back at its start pose (`reset: {}`; `reset: {JOINT: POSITION}` moves that pose) and
+    // sim time to 0.
+    t.channel = channels::kSimRequest;
+    t.type = "sim_request_t";
+    t.fields = {{"request_id", int64_t(1000 + index)}, {"client", "scenario"}};
+    if (kind == "reset") {
+      t.fields["op"] = int(sim_request_t::RESET);
+      std::vector<std::string> joints;
+      std::vector<double> positions;
+      if (!v.IsMap()) r.problem(v, kind, "must be {} or a map of JOINT: POSITION (the start pose's changes)");
+      else
+        for (const auto& kv : v) {
+          joints.push_back(kv.first.as<std::string>());
+          positions.push_back(r.number(kv.second, "reset." + joints.back()).value_or(0));
+        }
+      t.fields["joint"] = joints;
+      t.fields["position"] = positions;
+    } else {
+      const double held = r.number(v, "pause").value_or(0);
+      if (held <= 0) r.problem(v, kind, "must be the seconds (of the scenario's time) sim time holds, more than 0");
+      t.fields["op"] = int(sim_request_t::PAUSE);
+      TimelineEntry resume = t;
+      resume.at = t.at + held;
+      resume.fields["op"] = int(sim_request_t::RESUME);
+      resume.fields["request_id"] = int64_t(100000 + index);
+      s.timeline.push_back(std::move(resume));
+    }
+    s.pauses_or_resets = true;
   } else if (kind == "wrench") {
     if (!r.keys(v, kind, {"link", "force", "torque", "duration"})) return;
     t.channel = channels::kSimRequest;
@@ -405,6 +435,10 @@ Scenario read_scenario(const std::string& path, const std::vector<std::string>& 
     r.problem(root, "checks", "needs at least one check: a scenario that checks nothing cannot fail");
   else
     for (const auto& c : root["checks"]) read_check(r, c, s);
+  if (s.pauses_or_resets && !s.golden.empty())
+    r.problems.push_back(fmt::format("{}: golden: a scenario that pauses or resets the simulation has no golden log yet "
+                                     "(replay --sim does not serve sim_server's requests); leave `golden:` out",
+                                     path));
   for (const auto& t : s.timeline)
     if (t.at > s.duration) r.problems.push_back(fmt::format("{}: at {:g} s is after the scenario's end ({:g} s)", t.where, t.at, s.duration));
   if (!r.problems.empty()) throw ModelError(r.problems);

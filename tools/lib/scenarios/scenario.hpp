@@ -14,7 +14,8 @@
 
 namespace lcm_control::tools {
 
-// One input: a message published on the robot's bus before the control cycle at sim time `at`.
+// One input: a message published on the robot's bus before the control cycle at time `at` of the scenario (sim
+// time, but for what a pause holds and a reset sets back).
 struct TimelineEntry {
   double at = 0;          // [s] of sim time
   std::string where;      // "file.yaml:12: command", for messages
@@ -53,6 +54,7 @@ struct Scenario {
   std::vector<TimelineEntry> timeline;      // in time order (stable)
   std::vector<Check> checks;
   std::vector<std::string> package_path;  // `package_path:` (absolute): where $(find) and package:// look, first
+  bool pauses_or_resets = false;  // the timeline pauses or resets the simulation
   std::string golden;  // a recorded golden log (scenario record) the run is replayed against; "" none
 };
 

@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include "bus/bus.hpp"
 #include "bus/messages.hpp"
@@ -23,6 +24,7 @@
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
 #include "lcm_control/command_source_t.hpp"
+#include "lcm_control/controller_info_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/odometry_t.hpp"
 #include "lcm_control/sim_response_t.hpp"
@@ -50,7 +52,8 @@ const char* outcome_name(ScenarioResult::Outcome o) {
 
 namespace {
 
-// Everything the bus carried, in order, each message at the sim time of the cycle it came in.
+// Everything the bus carried, in order, each message at the scenario's time of the cycle it came in: its cycles
+// since the start times the control period (sim time, but for what a pause holds and a reset sets back).
 struct Recording {
   struct Event {
     int64_t t_us;
@@ -58,11 +61,11 @@ struct Recording {
     std::vector<uint8_t> bytes;
   };
   std::vector<Event> events;
-  const sim::Simulation* sim = nullptr;
+  int64_t now_us = 0;
   std::unique_ptr<lcm::LogFile> log;
   void on(const lcm::ReceiveBuffer* rb, const std::string& channel) {
     const auto* b = static_cast<const uint8_t*>(rb->data);
-    events.push_back({sim->time_us(), channel, std::vector<uint8_t>(b, b + rb->data_size)});
+    events.push_back({now_us, channel, std::vector<uint8_t>(b, b + rb->data_size)});
     if (log) {
       lcm::LogEvent e{};
       e.eventnum = int64_t(events.size() - 1);
@@ -200,7 +203,9 @@ const char* status_name(int s) {
 
 CheckResult check_goal(const Recording& rec, const Bus& bus, const Check& c) {
   CheckResult r{c.name, c.where, false, ""};
-  const auto events = in_time(rec, bus.channel(c.channel), Check{Check::Kind::Goal, "", "", -1, c.to});
+  Check by = c;  // the last result by its time, whatever window it names
+  by.from = -1;
+  const auto events = in_time(rec, bus.channel(c.channel), by);
   if (events.empty()) {
     r.detail = fmt::format("no result on {}{}", bus.channel(c.channel), c.to >= 0 ? fmt::format(" by t={:g} s", c.to) : "");
     return r;
@@ -326,7 +331,6 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
                   manager_options);
   Bus& bus = loop.bus();
   Recording rec;
-  rec.sim = &loop.simulation();
   if (!o.record_log.empty()) {
     rec.log = std::make_unique<lcm::LogFile>(o.record_log, "w");
     if (!rec.log->good()) throw std::runtime_error(fmt::format("cannot write the log {}: {}", o.record_log, std::strerror(errno)));
@@ -405,7 +409,9 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
   const int64_t end = std::max<int64_t>(start, std::llround(s.duration / period));
   std::map<int64_t, std::string> inputs;  // request id -> the timeline entry it came from
   size_t next = 0;
+  bool paused = false;
   for (int64_t k = start; k <= end; ++k) {
+    rec.now_us = std::llround(double(k) * period * 1e6);
     for (; k > start && next < s.timeline.size() && std::llround(s.timeline[next].at / period) <= k; ++next) {
       const TimelineEntry& t = s.timeline[next];
       const std::vector<uint8_t> bytes = message_from_json(t.type, t.fields, loop.simulation().time_us());
@@ -415,29 +421,46 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
       inputs_in.publish(bus.channel(t.channel), bytes.data(), bytes.size());
     }
     inputs_in.cycle();
-    while (loop.io().has_request()) {  // a wrench (sim_server's Stepper serves it between steps)
+    bool reset = false;
+    while (loop.io().has_request()) {  // what sim_server's Stepper serves between steps, as it does in lockstep
       const sim_request_t req = loop.io().take_request();
       sim_response_t a{};
       a.request_id = req.request_id;
       a.op = req.op;
       a.ok = true;
+      sim::Simulation& sim = loop.simulation();
       if (req.op == sim_request_t::APPLY_WRENCH) {
-        const std::string why = loop.simulation().apply_wrench(req.link, {req.force.x, req.force.y, req.force.z},
-                                                              {req.torque.x, req.torque.y, req.torque.z}, req.duration);
-        a.ok = why.empty();
-        a.message = why;
+        a.message = sim.apply_wrench(req.link, {req.force.x, req.force.y, req.force.z},
+                                     {req.torque.x, req.torque.y, req.torque.z}, req.duration);
+        a.ok = a.message.empty();
+      } else if (req.op == sim_request_t::PAUSE || req.op == sim_request_t::RESUME) {
+        paused = req.op == sim_request_t::PAUSE;  // paused: the state is republished, sim time holds
+      } else if (req.op == sim_request_t::RESET) {
+        InitialPositions changes;
+        for (size_t j = 0; j < req.joint.size() && j < req.position.size(); ++j) changes[req.joint[j]] = req.position[j];
+        const int64_t previous = sim.step_count();
+        try {
+          for (const std::string& clamped : sim.reset(changes)) a.message += clamped + "; ";
+          loop.io().after_reset(previous);
+          reset = true;  // the next cycle publishes step 0, the answer to the last one is void
+        } catch (const ModelError& e) {
+          a.ok = false;
+          a.message = fmt::format("cannot reset: {}", e.what());
+        }
       } else {
         a.ok = false;
-        a.message = fmt::format("a scenario serves wrenches only, not op {}", int(req.op));
+        a.message = fmt::format("a scenario serves wrenches, pauses and resets, not sim_request_t op {}", int(req.op));
       }
+      a.paused = paused;
+      a.step = sim.step_count();
       loop.io().answer(a);
     }
     if (k == end) break;
-    loop.advance();
+    if (!paused && !reset) loop.advance();
   }
   m.pump();
-  result.steps = loop.step() - start;
-  result.sim_s = double(loop.step()) * period;
+  result.steps = end - start;
+  result.sim_s = double(end) * period;
   result.messages = int64_t(rec.events.size());
   rec.log.reset();
 
@@ -446,6 +469,22 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
     CheckResult c{"input accepted", where, it != answers.by_id.end() && it->second.first, ""};
     c.detail = it == answers.by_id.end() ? "not answered by the end" : it->second.second;
     if (!c.passed) result.checks.push_back(c);
+  }
+  {  // no controller error: what was started, and not stopped by the timeline, still runs at the end
+    std::set<std::string> expected(s.launch.controllers.begin(), s.launch.controllers.end());
+    for (const TimelineEntry& t : s.timeline)
+      if (t.type == "cm_request_t" && t.fields.value("op", 0) == int(cm_request_t::SWITCH)) {
+        for (const auto& n : t.fields.value("stop", std::vector<std::string>{})) expected.erase(n);
+        for (const auto& n : t.fields.value("start", std::vector<std::string>{})) expected.insert(n);
+      }
+    CheckResult c{"every controller started still running", s.file, true, ""};
+    std::vector<std::string> not_running;
+    for (const controller_info_t& i : m.manager.list())
+      if (expected.count(i.name) && i.state != "running") not_running.push_back(fmt::format("{} is {}", i.name, i.state));
+    c.passed = not_running.empty();
+    c.detail = c.passed ? fmt::format("{} controller(s) running at the end", expected.size())
+                        : fmt::format("at the end {}", fmt::join(not_running, ", "));
+    result.checks.push_back(c);
   }
   for (const Check& c : s.checks) {
     switch (c.kind) {
