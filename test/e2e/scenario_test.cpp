@@ -146,3 +146,26 @@ TEST(ScenarioRunner, AnInputTheControllerManagerRefusesFailsWhereItIsWritten) {
       << run.output();
   fs::remove_all(dir);
 }
+
+// A disturbance is an input of sim_server's: its recording replays closed loop with the wrench served at the step
+// its answer names (without it, j1 would not have been pushed 0.2 m off and the replay would diverge); a pause or a
+// reset is refused, pointing at the open loop.
+TEST(ScenarioRunner, AWrenchReplaysClosedLoopBitForBitAndAResetIsRefusedSayingWhy) {
+  const fs::path dir = scratch("wrench");
+  lt::ChildProcess record({lt::bin("scenario"), "record", lt::source("test/scenarios/turret_wrench_disturbance.scenario.yaml"),
+                           (dir / "w.lcmlog").string()});
+  ASSERT_EQ(record.wait(60), 0) << record.output();
+  lt::ChildProcess replay({lt::bin("replay"), (dir / "w.lcmlog").string(), "--sim"});
+  ASSERT_EQ(replay.wait(60), 0) << replay.output();
+  EXPECT_NE(replay.output().find("identical: 8001 hardware states replayed"), std::string::npos) << replay.output();
+  EXPECT_NE(replay.output().find("joint_states: 481 compared, 0 differ"), std::string::npos) << replay.output();
+
+  lt::ChildProcess reset_record({lt::bin("scenario"), "record", lt::source("test/scenarios/turret_pause_reset.scenario.yaml"),
+                                 (dir / "r.lcmlog").string()});
+  ASSERT_EQ(reset_record.wait(60), 0) << reset_record.output();
+  lt::ChildProcess refused({lt::bin("replay"), (dir / "r.lcmlog").string(), "--sim"});
+  ASSERT_EQ(refused.wait(60), 2) << refused.output();
+  EXPECT_NE(refused.output().find("sim_server was asked to reset (request 1001): a closed loop replays wrenches only"),
+            std::string::npos) << refused.output();
+  fs::remove_all(dir);
+}

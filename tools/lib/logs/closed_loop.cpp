@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <utility>
 #include <stdexcept>
 
 #include "bus/messages.hpp"
@@ -70,9 +71,44 @@ const hardware_command_t& ClosedLoop::cycle() {
 }
 
 void ClosedLoop::advance() {
+  if (std::exchange(reset_, false) || paused_) return;
   if (!io_->poll_until(monotonic_us(), true, false, step()) || !io_->take_command())
     throw std::runtime_error(fmt::format("closed loop: no command for step {}", step()));
   simulation_->step();
+}
+
+sim_response_t ClosedLoop::serve(const sim_request_t& req) {
+  sim_response_t a{};
+  a.request_id = req.request_id;
+  a.op = req.op;
+  a.ok = true;
+  sim::Simulation& sim = *simulation_;
+  if (req.op == sim_request_t::APPLY_WRENCH) {
+    a.message = sim.apply_wrench(req.link, {req.force.x, req.force.y, req.force.z},
+                                 {req.torque.x, req.torque.y, req.torque.z}, req.duration);
+    a.ok = a.message.empty();
+  } else if (req.op == sim_request_t::PAUSE || req.op == sim_request_t::RESUME) {
+    paused_ = req.op == sim_request_t::PAUSE;  // paused: the state is republished, sim time holds
+  } else if (req.op == sim_request_t::RESET) {
+    InitialPositions changes;
+    for (size_t j = 0; j < req.joint.size() && j < req.position.size(); ++j) changes[req.joint[j]] = req.position[j];
+    const int64_t previous = sim.step_count();
+    try {
+      for (const std::string& clamped : sim.reset(changes)) a.message += clamped + "; ";
+      io_->after_reset(previous);
+      reset_ = true;  // the next cycle publishes step 0; the answer to the last one is void
+    } catch (const ModelError& e) {
+      a.ok = false;
+      a.message = fmt::format("cannot reset: {}", e.what());
+    }
+  } else {
+    a.ok = false;
+    a.message = fmt::format("served here: wrenches, pauses and resets; not sim_request_t op {}", int(req.op));
+  }
+  a.utime = sim.time_us();
+  a.paused = paused_;
+  a.step = sim.step_count();
+  return a;
 }
 
 }  // namespace lcm_control::tools

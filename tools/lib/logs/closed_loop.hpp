@@ -16,6 +16,8 @@
 #include "description/robot_model.hpp"
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
+#include "lcm_control/sim_request_t.hpp"
+#include "lcm_control/sim_response_t.hpp"
 #include "sim_server/program.hpp"
 #include "sim_server/sim_io.hpp"
 #include "sim_server/simulation.hpp"
@@ -58,8 +60,15 @@ class ClosedLoop {
   // Publishes the current step's state and lets the manager take in what is queued before it and answer; returns
   // its answer (the command it sent for this step).
   const hardware_command_t& cycle();
-  // Hands the answer to the actuators and steps the physics; throws std::runtime_error when no answer came.
+  // Hands the answer to the actuators and steps the physics; throws std::runtime_error when no answer came. Paused,
+  // sim time holds (the next cycle republishes the state); after a reset, the next cycle publishes step 0.
   void advance();
+
+  // A sim_server request (sim_server/request), served between a cycle and the step after it as sim_server's
+  // Stepper serves it in lockstep: APPLY_WRENCH, PAUSE, RESUME and RESET; the others are refused. Returns the answer
+  // (request id, op, ok, message, paused, step).
+  sim_response_t serve(const sim_request_t& request);
+  bool paused() const { return paused_; }
 
  private:
   RobotModel sim_model_;
@@ -68,6 +77,7 @@ class ClosedLoop {
   Bus bus_;
   std::unique_ptr<sim::SimIo> io_;
   std::unique_ptr<ReplayedManager> manager_;
+  bool paused_ = false, reset_ = false;
 };
 
 }  // namespace lcm_control::tools

@@ -38,6 +38,8 @@
 #include "lcm_control/hardware_command_t.hpp"
 #include "lcm_control/hardware_state_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
+#include "lcm_control/sim_request_t.hpp"
+#include "lcm_control/sim_response_t.hpp"
 
 namespace lcm_control::tools {
 
@@ -744,6 +746,8 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
   std::map<InputSchedule::Cycle, std::vector<std::pair<std::string, std::vector<uint8_t>>>> inputs_at;
   std::map<int64_t, hardware_command_t> recorded_commands;
   std::deque<joint_state_t> recorded_states;
+  std::map<int64_t, sim_request_t> sim_requests;  // by request id: what sim_server was asked,
+  std::map<int64_t, int64_t> served_at;           // and the step its answer says it was served at (-1: refused)
   int64_t session = -1, last_step = -1, index = -1;
   for (const lcm::LogEvent* e = log.next(); e; e = log.next()) {
     ++index;
@@ -757,6 +761,12 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
       recorded_commands[c.step] = c;
     } else if (e->channel == js_channel) {
       recorded_states.push_back(decoded<joint_state_t>(o, *e));
+    } else if (e->channel == bus.channel(channels::kSimRequest)) {
+      const sim_request_t r = decoded<sim_request_t>(o, *e);
+      if (r.op != sim_request_t::STATUS && r.op != sim_request_t::CONFIG) sim_requests.emplace(r.request_id, r);
+    } else if (e->channel == bus.channel(channels::kSimResponse)) {
+      const sim_response_t r = decoded<sim_response_t>(o, *e);
+      served_at.emplace(r.request_id, r.ok ? r.step : -1);  // the first answer: a repeated request is answered again
     }
     const auto cycle = schedule.cycle_of.find(index);
     if (cycle != schedule.cycle_of.end())
@@ -765,6 +775,27 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
                                            static_cast<const uint8_t*>(e->data) + e->datalen));
   }
   if (last_step < 0) throw ReplayInputError(fmt::format("{}: no {} messages", o.log, state_channel));
+  // sim_server's requests, served between the cycle of the step their answer names and the step after it, as its
+  // Stepper serves them in lockstep; what sets sim time back or holds it is not replayed yet.
+  std::map<int64_t, std::vector<sim_request_t>> served;
+  for (const auto& [id, r] : sim_requests) {
+    const auto at = served_at.find(id);
+    if (r.op != sim_request_t::APPLY_WRENCH)
+      throw ReplayInputError(fmt::format("{}: sim_server was asked to {} (request {}): a closed loop replays "
+                                         "wrenches only, not pauses, steps, resets or failed components yet; replay it "
+                                         "open loop: --controllers",
+                                         o.log, r.op == sim_request_t::PAUSE     ? "pause"
+                                                : r.op == sim_request_t::RESUME ? "resume"
+                                                : r.op == sim_request_t::STEP   ? "step"
+                                                : r.op == sim_request_t::RESET  ? "reset"
+                                                                                : "fail a component",
+                                         id));
+    if (at == served_at.end())
+      throw ReplayInputError(fmt::format("{}: the log holds sim_server's request {} (a wrench on '{}') but not its "
+                                         "answer on {}, which says the step it acted at: record the whole bus",
+                                         o.log, id, r.link, bus.channel(channels::kSimResponse)));
+    if (at->second >= 0) served[at->second].push_back(r);
+  }
   Comparison cmp(o.tolerance);
   SourcedChannels sourced(bus);
   while (loop.step() <= last_step) {
@@ -787,6 +818,11 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
       published.pop_front();
     }
     if (step == last_step) break;
+    if (const auto due = served.find(step); due != served.end())
+      for (const sim_request_t& r : due->second) {
+        loop.serve(r);
+        ++report.fed;
+      }
     loop.advance();
   }
   report.channels = cmp.channels_;

@@ -5,7 +5,7 @@
 // without them: in the log's order), and what it commands (hardware/command) and publishes (joint_states, each
 // controller's own channels) is compared with what was recorded. A lockstep recording with unchanged code and
 // configuration replays bit for bit. Closed loop (replay_closed_loop): the simulation re-runs too, from sim_server's
-// recorded configuration.
+// recorded configuration, with its recorded wrenches.
 #pragma once
 
 #include <cstdint>
@@ -64,8 +64,9 @@ struct ReplayReport {
 ReplayReport replay_controllers(const ReplayOptions& options);
 
 // Closed loop (`--sim`): sim_server's simulation and a controller manager, both in this process and built from the
-// configurations the run recorded, stepped in lockstep with the recorded inputs fed at their cycles; the joint_states
-// and hardware/command they make are compared with the log's.
+// configurations the run recorded, stepped in lockstep with the recorded inputs fed at their cycles (sim_server's
+// wrenches at the step their answers name; a log with a pause, step or reset is refused); the joint_states and
+// hardware/command they make are compared with the log's.
 ReplayReport replay_closed_loop(const ReplayOptions& options);
 
 // "identical: ..." or "diverged: first at ...", then a line per channel.

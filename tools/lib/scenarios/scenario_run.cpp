@@ -409,7 +409,6 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
   const int64_t end = std::max<int64_t>(start, std::llround(s.duration / period));
   std::map<int64_t, std::string> inputs;  // request id -> the timeline entry it came from
   size_t next = 0;
-  bool paused = false;
   for (int64_t k = start; k <= end; ++k) {
     rec.now_us = std::llround(double(k) * period * 1e6);
     for (; k > start && next < s.timeline.size() && std::llround(s.timeline[next].at / period) <= k; ++next) {
@@ -421,42 +420,9 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
       inputs_in.publish(bus.channel(t.channel), bytes.data(), bytes.size());
     }
     inputs_in.cycle();
-    bool reset = false;
-    while (loop.io().has_request()) {  // what sim_server's Stepper serves between steps, as it does in lockstep
-      const sim_request_t req = loop.io().take_request();
-      sim_response_t a{};
-      a.request_id = req.request_id;
-      a.op = req.op;
-      a.ok = true;
-      sim::Simulation& sim = loop.simulation();
-      if (req.op == sim_request_t::APPLY_WRENCH) {
-        a.message = sim.apply_wrench(req.link, {req.force.x, req.force.y, req.force.z},
-                                     {req.torque.x, req.torque.y, req.torque.z}, req.duration);
-        a.ok = a.message.empty();
-      } else if (req.op == sim_request_t::PAUSE || req.op == sim_request_t::RESUME) {
-        paused = req.op == sim_request_t::PAUSE;  // paused: the state is republished, sim time holds
-      } else if (req.op == sim_request_t::RESET) {
-        InitialPositions changes;
-        for (size_t j = 0; j < req.joint.size() && j < req.position.size(); ++j) changes[req.joint[j]] = req.position[j];
-        const int64_t previous = sim.step_count();
-        try {
-          for (const std::string& clamped : sim.reset(changes)) a.message += clamped + "; ";
-          loop.io().after_reset(previous);
-          reset = true;  // the next cycle publishes step 0, the answer to the last one is void
-        } catch (const ModelError& e) {
-          a.ok = false;
-          a.message = fmt::format("cannot reset: {}", e.what());
-        }
-      } else {
-        a.ok = false;
-        a.message = fmt::format("a scenario serves wrenches, pauses and resets, not sim_request_t op {}", int(req.op));
-      }
-      a.paused = paused;
-      a.step = sim.step_count();
-      loop.io().answer(a);
-    }
+    while (loop.io().has_request()) loop.io().answer(loop.serve(loop.io().take_request()));
     if (k == end) break;
-    if (!paused && !reset) loop.advance();
+    loop.advance();
   }
   m.pump();
   result.steps = end - start;
