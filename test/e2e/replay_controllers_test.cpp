@@ -388,6 +388,12 @@ TEST(ReplaySim, ALogWithoutSimServersConfigurationOrInRealTimeIsRefusedSayingWhy
   EXPECT_EQ(r.rc, 2) << r.out;
   EXPECT_TRUE(has(r.out, "sim_server/config")) << r.out;
   EXPECT_TRUE(has(r.out, "record with bus record")) << r.out;
+  // Another robot than the log's: refused, naming the first actuator (and its joint) that does not match.
+  const Replayed other = replay({log, "--sim", "--urdf", source("test/robots/gripper.urdf"), "--config",
+                                 source("test/robots/gripper_action.yaml")});
+  EXPECT_EQ(other.rc, 2) << other.out;
+  EXPECT_TRUE(has(other.out, "the recorded robot is not ")) << other.out;
+  EXPECT_TRUE(has(other.out, "actuator 'finger_motor' (joint 'left_finger_joint') is missing")) << other.out;
   // A real-time recording: its cycles followed the wall clock; open loop is what replays it.
   const std::string real_time = record_demo(temp_dir("replay_sim_real_time"), 1, {"--mode", "realtime"});
   const Replayed rt = replay({real_time, "--sim"});

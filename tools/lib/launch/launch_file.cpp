@@ -21,6 +21,18 @@ std::string read_launch_text(const std::string& path) {
   return ss.str();
 }
 
+YAML::Node read_yaml_map(const std::string& path, const std::string& expected) {
+  const std::string text = read_launch_text(path);
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ModelError(fmt::format("{}:{}: malformed YAML: {}", path, e.mark.line + 1, e.msg));
+  }
+  if (!root.IsMap()) throw ModelError(fmt::format("{}: expected a map of {}", path, expected));
+  return root;
+}
+
 std::string absolute_from(const std::string& p, const std::string& base_dir) {
   if (p.empty()) return p;
   fs::path f(p);

@@ -2,6 +2,8 @@
 // launch XML such as the tutorial's gazebo_ros_control.launch (launch_ros_xml.cpp), both read into one LaunchPlan.
 #pragma once
 
+#include <yaml-cpp/yaml.h>
+
 #include <set>
 #include <string>
 #include <vector>
@@ -25,6 +27,9 @@ LaunchPlan read_ros_launch(const std::string& path, const std::vector<std::strin
 // What both readers share: the file's text (ModelError if it is not a file), a path made absolute from the launch
 // file's folder, and the fix named for an $(arg) without a value.
 std::string read_launch_text(const std::string& path);
+// A YAML file's top-level map; ModelError naming the file and line when it is not YAML, or the file and `expected`
+// when it is not a map.
+YAML::Node read_yaml_map(const std::string& path, const std::string& expected);
 std::string absolute_from(const std::string& p, const std::string& base_dir);
 inline constexpr const char* kLaunchArgFix = "add <arg name=\"{0}\" default=\"...\"/> or pass {0}:=VALUE";
 

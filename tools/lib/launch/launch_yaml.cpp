@@ -21,14 +21,7 @@ namespace lcm_control::tools {
 
 LaunchPlan read_launch_yaml(const std::string& path, const std::vector<std::string>& package_path,
                             const std::set<std::string>& embedding_keys) {
-  const std::string text = read_launch_text(path);
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw ModelError(fmt::format("{}:{}: malformed YAML: {}", path, e.mark.line + 1, e.msg));
-  }
-  if (!root.IsMap()) throw ModelError(fmt::format("{}: expected a map of launch keys (urdf, config, ...)", path));
+  const YAML::Node root = read_yaml_map(path, "launch keys (urdf, config, ...)");
   const std::string dir = fs::absolute(path).parent_path().string();
   LaunchPlan plan;
   plan.file = path;

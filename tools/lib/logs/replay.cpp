@@ -727,7 +727,8 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
   flags.robot.files.config = o.configs.empty() ? sim_files.configs : o.configs;
   LoadOptions sim_load = load;
   sim_load.config_from_plugin = true;
-  ClosedLoop loop(flags, sim_load, load_robot_model(urdf, cm_configs, load));
+  const RobotModel model = load_robot_model(urdf, cm_configs, load);
+  ClosedLoop loop(flags, sim_load, model);
   const int64_t started_us = monotonic_us();
   Bus& bus = loop.bus();
   std::deque<joint_state_t>& published = loop.manager().joint_states;
@@ -754,7 +755,13 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
     ++report.events;
     if (e->channel == state_channel) {
       const hardware_state_t st = decoded<hardware_state_t>(o, *e);
-      if (session < 0) session = st.session;
+      if (session < 0) {  // the robot of the log is the configuration's: every actuator matched by name
+        cm::Hardware hw(model);
+        hardware_command_t scratch;
+        if (const std::string why = hw.bind(st, scratch); !why.empty())
+          throw ReplayInputError(fmt::format("{}: the recorded robot is not {}'s: {}", o.log, urdf, why));
+        session = st.session;
+      }
       if (st.session == session) last_step = std::max(last_step, st.step);
     } else if (e->channel == command_channel) {
       const hardware_command_t c = decoded<hardware_command_t>(o, *e);

@@ -386,14 +386,7 @@ void read_check(Reader& r, const YAML::Node& c, Scenario& s) {
 }  // namespace
 
 Scenario read_scenario(const std::string& path, const std::vector<std::string>& package_path) {
-  const std::string text = read_launch_text(path);
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw ModelError(fmt::format("{}:{}: malformed YAML: {}", path, e.mark.line + 1, e.msg));
-  }
-  if (!root.IsMap()) throw ModelError(fmt::format("{}: expected a map (launch keys, duration, timeline, checks)", path));
+  const YAML::Node root = read_yaml_map(path, "launch keys, duration, timeline and checks");
   Reader r(path);
   Scenario s;
   s.file = path;
