@@ -50,6 +50,7 @@ timeline:
   - {at: 0.5, every: 0.5, until: 1.5, cmd_vel: {controller: base, linear: 0.2, angular: 0.1}}
   - {at: 1, switch: {start: [j1_controller], stop: [j2_controller]}}
   - {at: 1, goal: {controller: arm, joint_names: [j1, j2], points: [{positions: [0.1, 0.2], time_from_start: 1}]}}
+  - {at: 2.5, gripper: {controller: hand, position: 0.02}}
 checks:
   - {field: "position[j1]", at: 3, near: 0.25, tolerance: 0.01}
   - {tracking: j1, command: j1_controller/command, window: [2.5, 3], rms_below: 0.01}
@@ -61,7 +62,7 @@ checks:
   EXPECT_EQ(s.launch.mode, "lockstep");
   EXPECT_EQ(s.launch.controllers, (std::vector<std::string>{"joint_state_controller", "j1_controller"}));
   EXPECT_DOUBLE_EQ(s.duration, 3);
-  ASSERT_EQ(s.timeline.size(), 6u);  // cmd_vel at 0.5, 1, 1.5; then in time order, stable
+  ASSERT_EQ(s.timeline.size(), 7u);  // cmd_vel at 0.5, 1, 1.5; then in time order, stable
   EXPECT_DOUBLE_EQ(s.timeline[0].at, 0.5);
   EXPECT_EQ(s.timeline[0].channel, "base/cmd_vel");
   EXPECT_EQ(s.timeline[1].channel, "base/cmd_vel");
@@ -70,6 +71,9 @@ checks:
   EXPECT_EQ(s.timeline[3].type, "joint_trajectory_t");
   EXPECT_EQ(s.timeline[4].at, 1.5);
   EXPECT_EQ(s.timeline[5].type, "float64_t");
+  EXPECT_EQ(s.timeline[6].type, "gripper_command_t");
+  EXPECT_EQ(s.timeline[6].channel, "hand/command");
+  EXPECT_EQ(s.timeline[6].fields["goal_id"], 1004);
   const std::vector<uint8_t> cmd = message_from_json(s.timeline[5].type, s.timeline[5].fields, 2000000);
   EXPECT_EQ(cmd, build_message("float64_t", {"data=0.25"}, 2000000));
   ASSERT_EQ(s.checks.size(), 4u);

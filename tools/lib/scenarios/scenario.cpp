@@ -132,8 +132,8 @@ nlohmann::json vector3(Reader& r, const YAML::Node& n, const std::string& key) {
 
 // One timeline entry: `at` and one input.
 void read_entry(Reader& r, const YAML::Node& e, size_t index, Scenario& s) {
-  static const std::set<std::string> kinds = {"command", "goal", "cmd_vel", "switch", "e_stop", "command_source",
-                                              "publish", "wrench", "pause", "reset"};
+  static const std::set<std::string> kinds = {"command", "goal", "gripper", "cmd_vel", "switch", "e_stop",
+                                              "command_source", "publish", "wrench", "pause", "reset"};
   if (!r.keys(e, "timeline", [] {
         std::set<std::string> k = kinds;
         k.insert({"at", "every", "until"});
@@ -194,6 +194,14 @@ void read_entry(Reader& r, const YAML::Node& e, size_t index, Scenario& s) {
     } catch (const std::exception& err) {
       r.problem(v, kind, err.what());
     }
+  } else if (kind == "gripper") {
+    if (!r.keys(v, kind, {"controller", "position", "max_effort"})) return;
+    t.channel = controller(v) + "/command";
+    t.type = "gripper_command_t";
+    if (!v["position"]) r.problem(v, kind, "needs `position:` (where the gripper joint goes, rad or m)");
+    t.fields = {{"goal_id", int64_t(1000 + index)},
+                {"position", v["position"] ? r.number(v["position"], "gripper.position").value_or(0) : 0.0},
+                {"max_effort", v["max_effort"] ? r.number(v["max_effort"], "gripper.max_effort").value_or(0) : 0.0}};
   } else if (kind == "cmd_vel") {
     if (!r.keys(v, kind, {"controller", "linear", "angular", "channel"})) return;
     t.channel = controller(v) + "/cmd_vel";

@@ -25,6 +25,7 @@
 #include "lcm_control/cm_response_t.hpp"
 #include "lcm_control/command_source_t.hpp"
 #include "lcm_control/controller_info_t.hpp"
+#include "lcm_control/gripper_status_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/odometry_t.hpp"
 #include "lcm_control/sim_response_t.hpp"
@@ -210,14 +211,21 @@ CheckResult check_goal(const Recording& rec, const Bus& bus, const Check& c) {
     r.detail = fmt::format("no result on {}{}", bus.channel(c.channel), c.to >= 0 ? fmt::format(" by t={:g} s", c.to) : "");
     return r;
   }
-  const auto m = decoded<trajectory_status_t>(*events.back());
-  if (!m) {
-    r.detail = bus.channel(c.channel) + " does not carry trajectory_status_t";
+  // A trajectory controller's result, or a gripper action controller's (its own status numbers).
+  int64_t goal_id = 0;
+  std::string status, message;
+  if (const auto t = decoded<trajectory_status_t>(*events.back())) {
+    goal_id = t->goal_id, status = status_name(t->status), message = t->message;
+  } else if (const auto g = decoded<gripper_status_t>(*events.back())) {
+    static const char* names[] = {"ACTIVE", "SUCCEEDED", "REJECTED", "ABORTED", "PREEMPTED"};
+    goal_id = g->goal_id, status = g->status >= 0 && g->status < 5 ? names[g->status] : "?", message = g->message;
+  } else {
+    r.detail = bus.channel(c.channel) + " carries neither trajectory_status_t nor gripper_status_t";
     return r;
   }
-  r.passed = status_name(m->status) == c.result;
-  r.detail = fmt::format("goal {} {} at {}{}", m->goal_id, status_name(m->status), seconds(events.back()->t_us),
-                         m->message.empty() ? "" : ": " + m->message);
+  r.passed = status == c.result;
+  r.detail = fmt::format("goal {} {} at {}{}", goal_id, status, seconds(events.back()->t_us),
+                         message.empty() ? "" : ": " + message);
   return r;
 }
 
@@ -439,7 +447,8 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
   {  // no controller error: what was started, and not stopped by the timeline, still runs at the end
     std::set<std::string> expected(s.launch.controllers.begin(), s.launch.controllers.end());
     for (const TimelineEntry& t : s.timeline)
-      if (t.type == "cm_request_t" && t.fields.value("op", 0) == int(cm_request_t::SWITCH)) {
+      if (t.channel == channels::kCmRequest && t.fields.contains("op") && t.fields["op"].is_number_integer() &&
+          t.fields["op"].get<int>() == int(cm_request_t::SWITCH) && t.fields.contains("start")) {
         for (const auto& n : t.fields.value("stop", std::vector<std::string>{})) expected.erase(n);
         for (const auto& n : t.fields.value("start", std::vector<std::string>{})) expected.insert(n);
       }
