@@ -290,11 +290,15 @@ TEST(ReplayControllers, BadInputIsRefusedWithExitTwoNamingWhatToPass) {
   const Replayed truncated = replay({cut, "--controllers", "--urdf", urdf, "--config", yaml});
   EXPECT_EQ(truncated.rc, 2) << truncated.out;
   EXPECT_TRUE(has(truncated.out, "cut.lcmlog: truncated or corrupted after event ")) << truncated.out;
-  const std::string garbled = dir + "/garbled.lcmlog";  // 100 bytes overwritten in the middle
+  // 100 bytes overwritten from an event's start in the middle: its framing is gone. (A log has no checksum: bytes
+  // garbled inside a message that still decodes are a divergence, exit 1, not bad input.)
+  const std::string garbled = dir + "/garbled.lcmlog";
   {
     std::ifstream in(log, std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    bytes.replace(bytes.size() / 2, 100, std::string(100, 'Z'));
+    const size_t event = bytes.find("\xED\xA1\xDA\x01", bytes.size() / 2);
+    ASSERT_NE(event, std::string::npos);
+    bytes.replace(event, 100, std::string(100, 'Z'));
     std::ofstream(garbled, std::ios::binary) << bytes;
   }
   const Replayed corrupted = replay({garbled, "--controllers", "--urdf", urdf, "--config", yaml});
@@ -302,6 +306,17 @@ TEST(ReplayControllers, BadInputIsRefusedWithExitTwoNamingWhatToPass) {
   EXPECT_TRUE(std::regex_search(corrupted.out, std::regex(R"(garbled.lcmlog: (truncated or corrupted after event \d+ )"
                                                            R"(\(byte \d+ of \d+\)|event \d+ on '[^']+' does not decode))")))
       << corrupted.out;
+  // 16 bytes slipped in between two events: the log ends there, as liblcm ends it ("Invalid header after log data").
+  const std::string gap = dir + "/gap.lcmlog";
+  {
+    std::ifstream in(log, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    bytes.insert(bytes.find("\xED\xA1\xDA\x01", bytes.size() / 2), std::string(16, '\0'));
+    std::ofstream(gap, std::ios::binary) << bytes;
+  }
+  const Replayed gapped = replay({gap, "--controllers", "--urdf", urdf, "--config", yaml});
+  EXPECT_EQ(gapped.rc, 2) << gapped.out;
+  EXPECT_TRUE(has(gapped.out, "gap.lcmlog: truncated or corrupted after event ")) << gapped.out;
 
   // A recorder that lost a state lost an input: refused, naming the step. One that lost a command lost only what is
   // compared: the rest is compared and the loss counted.

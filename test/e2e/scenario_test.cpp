@@ -169,3 +169,23 @@ TEST(ScenarioRunner, AWrenchReplaysClosedLoopBitForBitAndAResetIsRefusedSayingWh
             std::string::npos) << refused.output();
   fs::remove_all(dir);
 }
+
+// A goal check judges the last goal sent by its time: an earlier goal's success does not pass for a later goal still
+// under way.
+TEST(ScenarioRunner, AGoalCheckJudgesTheLastGoalSentNotAnEarlierOnesResult) {
+  const fs::path dir = scratch("goals");
+  write(dir / "goals.scenario.yaml",
+        "launch: " + lt::source("config/turret_bot_trajectory.launch.yaml") + "\nduration: 4\ntimeline:\n"
+        "  - {at: 0.5, goal: {controller: trajectory_controller, joint_names: [j1, j2], points: [{positions: [0.2, 0.2], time_from_start: 1}]}}\n"
+        "  - {at: 3, goal: {controller: trajectory_controller, joint_names: [j1, j2], points: [{positions: [0.4, 0.4], time_from_start: 30}]}}\n"
+        "checks:\n  - {goal: trajectory_controller, result: SUCCEEDED, by: 2.9}\n"
+        "  - {goal: trajectory_controller, result: SUCCEEDED}\n  - {goal: trajectory_controller, result: ACTIVE}\n");
+  lt::ChildProcess run({lt::bin("scenario"), "run", "-v", (dir / "goals.scenario.yaml").string()});
+  ASSERT_EQ(run.wait(60), 1) << run.output();
+  EXPECT_TRUE(std::regex_search(run.output(), std::regex(R"(pass goal of trajectory_controller SUCCEEDED by t=2.9 s \(.*\): goal 1000 SUCCEEDED)")))
+      << run.output();
+  EXPECT_TRUE(std::regex_search(run.output(), std::regex(R"(FAIL goal of trajectory_controller SUCCEEDED at the end \(.*\): goal 1001: no result on trajectory_controller/result \(still ACTIVE\))")))
+      << run.output();
+  EXPECT_NE(run.output().find("pass goal of trajectory_controller ACTIVE at the end"), std::string::npos) << run.output();
+  fs::remove_all(dir);
+}

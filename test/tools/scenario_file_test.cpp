@@ -66,6 +66,8 @@ checks:
   EXPECT_DOUBLE_EQ(s.timeline[0].at, 0.5);
   EXPECT_EQ(s.timeline[0].channel, "base/cmd_vel");
   EXPECT_EQ(s.timeline[1].channel, "base/cmd_vel");
+  EXPECT_EQ(s.timeline[2].fields["request_id"], 1002);
+  EXPECT_EQ(s.timeline[3].fields["goal_id"], 1003);
   EXPECT_EQ(s.timeline[2].channel, "controller_manager/request");
   EXPECT_EQ(s.timeline[3].channel, "arm/command");
   EXPECT_EQ(s.timeline[3].type, "joint_trajectory_t");
@@ -73,7 +75,7 @@ checks:
   EXPECT_EQ(s.timeline[5].type, "float64_t");
   EXPECT_EQ(s.timeline[6].type, "gripper_command_t");
   EXPECT_EQ(s.timeline[6].channel, "hand/command");
-  EXPECT_EQ(s.timeline[6].fields["goal_id"], 1004);
+  EXPECT_EQ(s.timeline[6].fields["goal_id"], 1006);  // every request and goal its own id, 1000 + its place in time
   const std::vector<uint8_t> cmd = message_from_json(s.timeline[5].type, s.timeline[5].fields, 2000000);
   EXPECT_EQ(cmd, build_message("float64_t", {"data=0.25"}, 2000000));
   ASSERT_EQ(s.checks.size(), 4u);
@@ -139,6 +141,22 @@ checks: [{field: "position[j1]", at: 5, min: 0}]
 )"));
   EXPECT_NE(golden.find("golden: a scenario that pauses or resets the simulation has no golden log yet"), std::string::npos)
       << golden;
+  // A repeated wrench is a request of its own each time (one id would be answered again, not done again).
+  const Scenario repeated = read_scenario(write_scenario("wrenches", robot() + R"(duration: 5
+timeline: [{at: 1, every: 1, until: 3, wrench: {link: slider, force: [0, 10, 0], duration: 0.1}}]
+checks: [{field: "position[j1]", at: 5, min: 0}]
+)"));
+  ASSERT_EQ(repeated.timeline.size(), 3u);
+  EXPECT_NE(repeated.timeline[0].fields["request_id"], repeated.timeline[1].fields["request_id"]);
+  // A check after the end, a result that is none, two times for one check.
+  const std::string checks = problems(write_scenario("checks", robot() + R"(duration: 5
+checks:
+  - {field: "position[j1]", at: 6, min: 0}
+  - {goal: arm, result: SUCCEDED, at: 1, by: 2}
+)"));
+  EXPECT_NE(checks.find(":6: check: t=6 s is after the scenario's end (5 s)"), std::string::npos) << checks;
+  EXPECT_NE(checks.find(":7: result: 'SUCCEDED' is no result; one of"), std::string::npos) << checks;
+  EXPECT_NE(checks.find(":7: check: one of `at:`, `window:` or `by:`"), std::string::npos) << checks;
 }
 
 TEST(ScenarioFile, ARobotNotInThisCheckoutSkipsTheScenarioUnread) {

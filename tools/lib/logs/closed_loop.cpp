@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <utility>
 #include <stdexcept>
 
@@ -87,16 +88,19 @@ sim_response_t ClosedLoop::serve(const sim_request_t& req) {
     a.message = sim.apply_wrench(req.link, {req.force.x, req.force.y, req.force.z},
                                  {req.torque.x, req.torque.y, req.torque.z}, req.duration);
     a.ok = a.message.empty();
+    if (a.ok) a.message = fmt::format("applying the wrench on '{}' for {:g} s of sim time", req.link, req.duration);
   } else if (req.op == sim_request_t::PAUSE || req.op == sim_request_t::RESUME) {
     paused_ = req.op == sim_request_t::PAUSE;  // paused: the state is republished, sim time holds
   } else if (req.op == sim_request_t::RESET) {
     InitialPositions changes;
-    for (size_t j = 0; j < req.joint.size() && j < req.position.size(); ++j) changes[req.joint[j]] = req.position[j];
+    const size_t n = std::min({size_t(std::max(req.num_joints, 0)), req.joint.size(), req.position.size()});
+    for (size_t j = 0; j < n; ++j) changes[req.joint[j]] = req.position[j];
     const int64_t previous = sim.step_count();
     try {
       for (const std::string& clamped : sim.reset(changes)) a.message += clamped + "; ";
       io_->after_reset(previous);
-      reset_ = true;  // the next cycle publishes step 0; the answer to the last one is void
+      reset_ = true;
+      ++resets_;  // the next cycle publishes step 0; the answer to the last one is void
     } catch (const ModelError& e) {
       a.ok = false;
       a.message = fmt::format("cannot reset: {}", e.what());
@@ -107,7 +111,10 @@ sim_response_t ClosedLoop::serve(const sim_request_t& req) {
   }
   a.utime = sim.time_us();
   a.paused = paused_;
+  a.lockstep = true;
   a.step = sim.step_count();
+  a.period_us = int32_t(std::llround(sim.control_period() * 1e6));
+  a.resets = resets_;
   return a;
 }
 

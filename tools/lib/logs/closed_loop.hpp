@@ -78,6 +78,7 @@ class ClosedLoop {
   std::unique_ptr<sim::SimIo> io_;
   std::unique_ptr<ReplayedManager> manager_;
   bool paused_ = false, reset_ = false;
+  int64_t resets_ = 0;
 };
 
 }  // namespace lcm_control::tools

@@ -5,6 +5,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <utility>
 
 #include "description/robot_model.hpp"
 
@@ -42,13 +43,13 @@ int64_t big_endian(const uint8_t* b, int bytes) {
 const lcm::LogEvent* LogReader::next() {
   if (!file_) return nullptr;
   constexpr uint32_t kSync = 0xEDA1DA01u;
-  uint32_t sync = 0;
-  do {
+  uint32_t sync = std::exchange(synced_, false) ? kSync : 0;  // the sync word read after the last event
+  while (sync != kSync) {
     const int c = getc_unlocked(file_);
     if (c == EOF) return nullptr;
     ++offset_;
     sync = (sync << 8) | uint32_t(c);
-  } while (sync != kSync);
+  }
   uint8_t header[24];
   if (std::fread(header, 1, sizeof header, file_) != sizeof header) return nullptr;
   offset_ += sizeof header;
@@ -64,7 +65,15 @@ const lcm::LogEvent* LogReader::next() {
       std::fread(data_.data(), 1, size_t(data_length), file_) != size_t(data_length))
     return nullptr;
   offset_ += channel_length + data_length;
+  // Whole only when the next sync word or the end of the file follows it (liblcm's "Invalid header after log
+  // data"): an event whose lengths were garbled ends the log here, as lcm::LogFile ends it.
+  if (offset_ != size_) {
+    uint8_t next[4];
+    if (std::fread(next, 1, 4, file_) != 4 || uint32_t(big_endian(next, 4)) != kSync) return nullptr;
+    synced_ = true;
+  }
   end_ = offset_;
+  if (synced_) offset_ += 4;
   event_.data = data_.data();
   return &event_;
 }

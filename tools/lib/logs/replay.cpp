@@ -747,8 +747,8 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
   std::map<InputSchedule::Cycle, std::vector<std::pair<std::string, std::vector<uint8_t>>>> inputs_at;
   std::map<int64_t, hardware_command_t> recorded_commands;
   std::deque<joint_state_t> recorded_states;
-  std::map<int64_t, sim_request_t> sim_requests;  // by request id: what sim_server was asked,
-  std::map<int64_t, int64_t> served_at;           // and the step its answer says it was served at (-1: refused)
+  std::vector<sim_request_t> sim_requests;  // what sim_server was asked, in the log's order,
+  std::map<int64_t, int64_t> served_at;     // and, by request id, the step its answer says it was served at (-1: refused)
   int64_t session = -1, last_step = -1, index = -1;
   for (const lcm::LogEvent* e = log.next(); e; e = log.next()) {
     ++index;
@@ -770,7 +770,7 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
       recorded_states.push_back(decoded<joint_state_t>(o, *e));
     } else if (e->channel == bus.channel(channels::kSimRequest)) {
       const sim_request_t r = decoded<sim_request_t>(o, *e);
-      if (r.op != sim_request_t::STATUS && r.op != sim_request_t::CONFIG) sim_requests.emplace(r.request_id, r);
+      if (r.op != sim_request_t::STATUS && r.op != sim_request_t::CONFIG) sim_requests.push_back(r);
     } else if (e->channel == bus.channel(channels::kSimResponse)) {
       const sim_response_t r = decoded<sim_response_t>(o, *e);
       served_at.emplace(r.request_id, r.ok ? r.step : -1);  // the first answer: a repeated request is answered again
@@ -785,8 +785,11 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
   // sim_server's requests, served between the cycle of the step their answer names and the step after it, as its
   // Stepper serves them in lockstep; what sets sim time back or holds it is not replayed yet.
   std::map<int64_t, std::vector<sim_request_t>> served;
-  for (const auto& [id, r] : sim_requests) {
+  std::set<int64_t> taken;  // a request sent again (its answer lost) was served once
+  for (const sim_request_t& r : sim_requests) {
+    const int64_t id = r.request_id;
     const auto at = served_at.find(id);
+    if (!taken.insert(id).second || (at != served_at.end() && at->second < 0)) continue;  // again, or refused: nothing done
     if (r.op != sim_request_t::APPLY_WRENCH)
       throw ReplayInputError(fmt::format("{}: sim_server was asked to {} (request {}): a closed loop replays "
                                          "wrenches only, not pauses, steps, resets or failed components yet; replay it "

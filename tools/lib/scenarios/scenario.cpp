@@ -161,7 +161,8 @@ void read_entry(Reader& r, const YAML::Node& e, size_t index, Scenario& s) {
       r.problem(m, kind, "needs `controller:`");
       return std::string();
     }
-    return r.text(m["controller"], kind + ".controller");
+    t.controller = r.text(m["controller"], kind + ".controller");
+    return t.controller;
   };
   if (kind == "command") {
     if (!r.keys(v, kind, {"controller", "value", "values"})) return;
@@ -326,7 +327,7 @@ void read_check(Reader& r, const YAML::Node& c, Scenario& s) {
   static const std::set<std::string> valid = {"name",      "at",     "window",    "by",        "channel", "field",
                                               "near",      "tolerance", "min",   "max",       "tracking", "command",
                                               "rms_below", "max_below", "goal",  "result",    "odometry", "within",
-                                              "within_yaw"};
+                                              "within_yaw", "command_field"};
   if (!r.keys(c, "checks", valid)) return;
   Check k;
   k.where = r.where(c, "check");
@@ -340,7 +341,8 @@ void read_check(Reader& r, const YAML::Node& c, Scenario& s) {
     if (w.size() != 2 || w[0] > w[1]) r.problem(c["window"], "window", "must be [from, to] in seconds of sim time");
     else k.from = w[0], k.to = w[1];
   }
-  if (c["at"] && c["window"]) r.problem(c, "check", "`at:` or `window:`, not both");
+  if (int(bool(c["at"])) + int(bool(c["window"])) + int(bool(c["by"])) > 1)
+    r.problem(c, "check", "one of `at:`, `window:` or `by:`");
   std::string when = k.from < 0 && k.to < 0 ? "at the end"
                      : k.from == k.to     ? fmt::format("at t={:g} s", k.to)
                      : k.from < 0         ? fmt::format("by t={:g} s", k.to)
@@ -369,6 +371,7 @@ void read_check(Reader& r, const YAML::Node& c, Scenario& s) {
     k.kind = Check::Kind::Tracking;
     k.joint = r.text(c["tracking"], "tracking");
     k.channel = c["command"] ? r.text(c["command"], "command") : "";
+    if (c["command_field"]) k.command_field = r.text(c["command_field"], "command_field");
     if (k.channel.empty()) r.problem(c, "check", "tracking needs `command:` (the channel of the joint's command)");
     k.rms_below = num("rms_below");
     k.max_below = num("max_below");
@@ -376,8 +379,13 @@ void read_check(Reader& r, const YAML::Node& c, Scenario& s) {
     k.name = fmt::format("tracking {} {}", k.joint, when);
   } else if (c["goal"]) {
     k.kind = Check::Kind::Goal;
-    k.channel = r.text(c["goal"], "goal") + "/result";
+    k.controller = r.text(c["goal"], "goal");
+    k.channel = k.controller + "/result";
     k.result = c["result"] ? r.text(c["result"], "result") : "SUCCEEDED";
+    static const std::set<std::string> results = {"ACTIVE", "SUCCEEDED", "REJECTED", "PATH_TOLERANCE_VIOLATED",
+                                                  "GOAL_TOLERANCE_VIOLATED", "PREEMPTED", "ABORTED"};
+    if (!results.count(k.result))
+      r.problem(c["result"], "result", fmt::format("'{}' is no result; one of {}", k.result, fmt::join(results, ", ")));
     k.name = fmt::format("goal of {} {} {}", r.text(c["goal"], "goal"), k.result, when);
   } else {
     k.kind = Check::Kind::Odometry;
@@ -421,11 +429,18 @@ Scenario read_scenario(const std::string& path, const std::vector<std::string>& 
       if (!scenario_keys().count(kv.first.as<std::string>()))
         r.problem(kv.first, kv.first.as<std::string>(), "a scenario with `launch: FILE` takes its robot from that file: "
                                                         "put launch keys there, or drop `launch:` and write them here");
-    if (root["launch_args"])
-      for (const auto& kv : root["launch_args"]) o.args.push_back(kv.first.as<std::string>() + "=" + kv.second.as<std::string>());
+    if (root["launch_args"] && !root["launch_args"].IsMap())
+      r.problem(root["launch_args"], "launch_args", "must be a map of NAME: VALUE (the launch file's <arg>s)");
+    else if (root["launch_args"])
+      for (const auto& kv : root["launch_args"])
+        if (kv.second.IsScalar()) o.args.push_back(kv.first.as<std::string>() + "=" + kv.second.as<std::string>());
+        else r.problem(kv.second, "launch_args." + kv.first.as<std::string>(), "must be a single value");
   } else {
     o.file = path;
     o.embedding_keys = scenario_keys();
+    if (root["launch_args"])
+      r.problem(root["launch_args"], "launch_args", "goes with `launch: FILE`; here the launch keys are in this file "
+                                                    "(`args:` for the YAML's $(arg)s, `xacro_args:` for the robot's)");
   }
   if (root["timeline"]) {
     if (!root["timeline"].IsSequence()) r.problem(root["timeline"], "timeline", "must be a list of {at: T, INPUT: ...}");
@@ -440,6 +455,10 @@ Scenario read_scenario(const std::string& path, const std::vector<std::string>& 
     r.problems.push_back(fmt::format("{}: golden: a scenario that pauses or resets the simulation has no golden log yet "
                                      "(replay --sim does not serve sim_server's requests); leave `golden:` out",
                                      path));
+  for (const Check& c : s.checks)
+    if (std::max(c.from, c.to) > s.duration + 1e-9)
+      r.problems.push_back(fmt::format("{}: t={:g} s is after the scenario's end ({:g} s)", c.where,
+                                       std::max(c.from, c.to), s.duration));
   for (const auto& t : s.timeline)
     if (t.at > s.duration) r.problems.push_back(fmt::format("{}: at {:g} s is after the scenario's end ({:g} s)", t.where, t.at, s.duration));
   if (!r.problems.empty()) throw ModelError(r.problems);
@@ -453,6 +472,11 @@ Scenario read_scenario(const std::string& path, const std::vector<std::string>& 
   s.launch.cpu = "none";
   std::stable_sort(s.timeline.begin(), s.timeline.end(),
                    [](const TimelineEntry& a, const TimelineEntry& b) { return a.at < b.at; });
+  // Every request and goal its own id, in time order (a repeated one would be answered again, not done again).
+  for (size_t k = 0; k < s.timeline.size(); ++k)
+    for (const char* id : {"request_id", "goal_id"})
+      if (s.timeline[k].fields.is_object() && s.timeline[k].fields.contains(id))
+        s.timeline[k].fields[id] = int64_t(1000 + k);
   return s;
 }
 

@@ -21,6 +21,7 @@ struct TimelineEntry {
   std::string where;      // "file.yaml:12: command", for messages
   std::string channel;    // under the robot's namespace
   std::string type;       // as message_from_json takes it: "float64_t", "lcm_control.twist_t", ...
+  std::string controller;  // the controller it is for ("" for none): checked against the run's
   nlohmann::json fields;  // utime left out: the cycle's sim time
 };
 
@@ -35,13 +36,13 @@ struct Check {
   // Value: `channel`'s `field` (a path or label: position[j2]) near `near` within `tolerance`, or within [min, max].
   std::string channel, field;
   std::optional<double> near, tolerance, min, max;
-  // Tracking: joint_states' position of `joint` against the last value on `command` (its first number but utime):
-  // rms and largest error over the window.
-  std::string joint;
+  // Tracking: joint_states' position of `joint` against the last value on `command` (`command_field`, or its first
+  // number but utime): rms and largest error over the window.
+  std::string joint, command_field;
   std::optional<double> rms_below, max_below;
-  // Goal: the trajectory controller's (`channel` = <controller>/result) last result is `result` (SUCCEEDED, ...) by
-  // time `to`.
-  std::string result;
+  // Goal: the result (on `channel` = <controller>/result) of the last goal sent to the controller by time `to` is
+  // `result` (SUCCEEDED, ...).
+  std::string result, controller;
   // Odometry: <controller>/odom against sim_server/base_pose (ground truth), planar distance and heading.
   double within_m = 0, within_rad = 0;
 };

@@ -19,17 +19,23 @@
 #include "bus/run_config.hpp"
 #include "bus/digest.hpp"
 #include "lcm_control/cm_inputs_t.hpp"
+#include "controller_manager/input_stamps.hpp"
 #include "controller_manager/program.hpp"
 #include "description/load.hpp"
+#include "description/text.hpp"
 #include "lcm_control/cm_request_t.hpp"
 #include "lcm_control/cm_response_t.hpp"
 #include "lcm_control/command_source_t.hpp"
 #include "lcm_control/controller_info_t.hpp"
+#include "lcm_control/gripper_command_t.hpp"
 #include "lcm_control/gripper_status_t.hpp"
+#include "lcm_control/joint_trajectory_t.hpp"
 #include "lcm_control/joint_state_t.hpp"
 #include "lcm_control/odometry_t.hpp"
 #include "lcm_control/sim_response_t.hpp"
 #include "lcm_control/trajectory_status_t.hpp"
+#include "tools/lib/clients/gripper_goal.hpp"
+#include "tools/lib/clients/trajectory_goal.hpp"
 #include "tools/lib/launch/launcher.hpp"
 #include "tools/lib/logs/closed_loop.hpp"
 #include "tools/lib/logs/replay.hpp"
@@ -164,6 +170,16 @@ CheckResult check_tracking(const Recording& rec, const Bus& bus, const Check& c)
   const double from = c.from >= 0 ? c.from : 0, to = c.to >= 0 ? c.to : INFINITY;
   for (const auto& e : rec.events) {
     if (e.channel == cmd) {
+      if (!c.command_field.empty()) {
+        std::string why;
+        const auto v = field_value(e, c.command_field, &why);
+        if (!v) {
+          r.detail = why;
+          return r;
+        }
+        command = *v;
+        continue;
+      }
       const Decoded d = decode_fields(e.bytes.data(), e.bytes.size());
       for (const Field& f : d.fields)
         if (f.path != "utime" && !f.is_text && f.path != "size") {
@@ -196,36 +212,41 @@ CheckResult check_tracking(const Recording& rec, const Bus& bus, const Check& c)
   return r;
 }
 
-const char* status_name(int s) {
-  static const char* names[] = {"ACTIVE", "SUCCEEDED", "REJECTED", "PATH_TOLERANCE_VIOLATED", "GOAL_TOLERANCE_VIOLATED",
-                                "PREEMPTED", "ABORTED"};
-  return s >= 0 && s < 7 ? names[s] : "?";
-}
 
 CheckResult check_goal(const Recording& rec, const Bus& bus, const Check& c) {
   CheckResult r{c.name, c.where, false, ""};
-  Check by = c;  // the last result by its time, whatever window it names
-  by.from = -1;
-  const auto events = in_time(rec, bus.channel(c.channel), by);
-  if (events.empty()) {
-    r.detail = fmt::format("no result on {}{}", bus.channel(c.channel), c.to >= 0 ? fmt::format(" by t={:g} s", c.to) : "");
+  // The last goal sent to the controller by the check's time, and that goal's last result.
+  const std::string goals = bus.channel(c.controller + "/command"), results = bus.channel(c.channel);
+  const double end = c.to >= 0 ? c.to + 1e-9 : INFINITY;
+  std::optional<int64_t> sent;
+  struct Result {
+    int64_t goal_id = -1, t_us = 0;
+    std::string status, message;
+  };
+  std::optional<Result> last;
+  for (const auto& e : rec.events) {
+    if (e.t_us * 1e-6 > end) break;
+    if (e.channel == goals) {
+      if (const auto t = decoded<joint_trajectory_t>(e)) sent = t->goal_id, last.reset();
+      else if (const auto g = decoded<gripper_command_t>(e)) sent = g->goal_id, last.reset();
+    } else if (e.channel == results) {
+      if (const auto t = decoded<trajectory_status_t>(e))
+        last = Result{t->goal_id, e.t_us, status_name(t->status), t->message};
+      else if (const auto g = decoded<gripper_status_t>(e))
+        last = Result{g->goal_id, e.t_us, gripper_status_name(g->status), g->message};
+      if (last && sent && last->goal_id != *sent) last.reset();  // an earlier goal's
+    }
+  }
+  const std::string by = c.to >= 0 ? fmt::format(" by t={:g} s", c.to) : "";
+  if (!last) {
+    r.passed = c.result == "ACTIVE" && sent.has_value();
+    r.detail = sent ? fmt::format("goal {}: no result on {}{} (still ACTIVE)", *sent, results, by)
+                    : fmt::format("no goal on {} and no result on {}{}", goals, results, by);
     return r;
   }
-  // A trajectory controller's result, or a gripper action controller's (its own status numbers).
-  int64_t goal_id = 0;
-  std::string status, message;
-  if (const auto t = decoded<trajectory_status_t>(*events.back())) {
-    goal_id = t->goal_id, status = status_name(t->status), message = t->message;
-  } else if (const auto g = decoded<gripper_status_t>(*events.back())) {
-    static const char* names[] = {"ACTIVE", "SUCCEEDED", "REJECTED", "ABORTED", "PREEMPTED"};
-    goal_id = g->goal_id, status = g->status >= 0 && g->status < 5 ? names[g->status] : "?", message = g->message;
-  } else {
-    r.detail = bus.channel(c.channel) + " carries neither trajectory_status_t nor gripper_status_t";
-    return r;
-  }
-  r.passed = status == c.result;
-  r.detail = fmt::format("goal {} {} at {}{}", goal_id, status, seconds(events.back()->t_us),
-                         message.empty() ? "" : ": " + message);
+  r.passed = last->status == c.result;
+  r.detail = fmt::format("goal {} {} at {}{}", last->goal_id, last->status, seconds(last->t_us),
+                         last->message.empty() ? "" : ": " + last->message);
   return r;
 }
 
@@ -272,11 +293,14 @@ CheckResult check_odometry(const Recording& rec, const Bus& bus, const Check& c)
 // (cm_inputs_t, before the cycle that takes them): a recorded scenario replays closed loop with them at their cycles.
 class StampedInputs {
  public:
-  StampedInputs(ClosedLoop& loop) : loop_(loop), channel_(loop.bus().channel(channels::kCmInputs)) {}
+  StampedInputs(ClosedLoop& loop)
+      : loop_(loop), channel_(loop.bus().channel(channels::kCmInputs)), is_input_(loop.bus()) {}
   void publish(const std::string& channel, const void* data, size_t size) {
-    stamp_.channel.push_back(channel);
-    stamp_.digest.push_back(int64_t(message_digest(data, size)));
-    stamp_.size.push_back(int32_t(size));
+    if (is_input_(channel, data, size)) {  // what the controller manager takes in, as its program stamps it
+      stamp_.channel.push_back(channel);
+      stamp_.digest.push_back(int64_t(message_digest(data, size)));
+      stamp_.size.push_back(int32_t(size));
+    }
     loop_.bus().lcm().publish(channel, data, unsigned(size));
   }
   template <class T>
@@ -301,6 +325,7 @@ class StampedInputs {
  private:
   ClosedLoop& loop_;
   std::string channel_;
+  cm::InputFilter is_input_;
   cm_inputs_t stamp_{};
 };
 
@@ -335,8 +360,20 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
   cm_load.config_from_plugin = true;
   cm::ManagerOptions manager_options;
   manager_options.command_line = cm_argv;
-  ClosedLoop loop(sim_flags, sim_load, load_robot_model(cm_flags.robot.files.urdf, cm_flags.robot.files.config, cm_load),
-                  manager_options);
+  const RobotModel model = load_robot_model(cm_flags.robot.files.urdf, cm_flags.robot.files.config, cm_load);
+  {  // every input for a controller names one the YAML configures
+    std::vector<std::string> configured, problems;
+    for (const ControllerSpec& c : model.controllers) configured.push_back(c.name);
+    for (const TimelineEntry& t : s.timeline)
+      if (!t.controller.empty() && std::find(configured.begin(), configured.end(), t.controller) == configured.end()) {
+        const std::string near = closest_name(t.controller, configured, 3);
+        problems.push_back(fmt::format("{}: no controller '{}' in {}{}; configured: {}", t.where, t.controller,
+                                       model.config_path, near.empty() ? "" : fmt::format(" (did you mean '{}'?)", near),
+                                       fmt::join(configured, ", ")));
+      }
+    if (!problems.empty()) throw ModelError(problems);
+  }
+  ClosedLoop loop(sim_flags, sim_load, model, manager_options);
   Bus& bus = loop.bus();
   Recording rec;
   if (!o.record_log.empty()) {
@@ -416,12 +453,17 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
   const int64_t start = loop.step();
   const int64_t end = std::max<int64_t>(start, std::llround(s.duration / period));
   std::map<int64_t, std::string> inputs;  // request id -> the timeline entry it came from
+  std::map<int64_t, cm_request_t> switches;  // request id -> a switch the timeline asked for
   size_t next = 0;
   for (int64_t k = start; k <= end; ++k) {
     rec.now_us = std::llround(double(k) * period * 1e6);
     for (; k > start && next < s.timeline.size() && std::llround(s.timeline[next].at / period) <= k; ++next) {
       const TimelineEntry& t = s.timeline[next];
       const std::vector<uint8_t> bytes = message_from_json(t.type, t.fields, loop.simulation().time_us());
+      cm_request_t request;
+      if (t.channel == channels::kCmRequest && decode_guarded(request, bytes.data(), bytes.size()) &&
+          request.op == cm_request_t::SWITCH)
+        switches[request.request_id] = request;
       if (t.fields.contains("request_id")) inputs[std::stoll(t.fields["request_id"].is_string()
                                                                   ? t.fields["request_id"].get<std::string>()
                                                                   : std::to_string(t.fields["request_id"].get<int64_t>()))] = t.where;
@@ -446,12 +488,14 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
   }
   {  // no controller error: what was started, and not stopped by the timeline, still runs at the end
     std::set<std::string> expected(s.launch.controllers.begin(), s.launch.controllers.end());
-    for (const TimelineEntry& t : s.timeline)
-      if (t.channel == channels::kCmRequest && t.fields.contains("op") && t.fields["op"].is_number_integer() &&
-          t.fields["op"].get<int>() == int(cm_request_t::SWITCH) && t.fields.contains("start")) {
-        for (const auto& n : t.fields.value("stop", std::vector<std::string>{})) expected.erase(n);
-        for (const auto& n : t.fields.value("start", std::vector<std::string>{})) expected.insert(n);
-      }
+    for (const auto& [id, where] : inputs) {  // the switches the controller manager carried out, in time order
+      (void)where;
+      const auto answer = answers.by_id.find(id);
+      const auto sent = switches.find(id);
+      if (sent == switches.end() || answer == answers.by_id.end() || !answer->second.first) continue;
+      for (const auto& n : sent->second.stop) expected.erase(n);
+      for (const auto& n : sent->second.start) expected.insert(n);
+    }
     CheckResult c{"every controller started still running", s.file, true, ""};
     std::vector<std::string> not_running;
     for (const controller_info_t& i : m.manager.list())

@@ -10,6 +10,8 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -90,7 +92,6 @@ std::vector<ScenarioResult> run_all(const std::vector<std::string>& files, const
   ScenarioRunOptions ro;
   ro.package_path = o.package_path;
   ro.golden = o.golden;
-  if (files.size() == 1) return {run_scenario(files[0], ro)};
   const size_t jobs = size_t(o.jobs > 0 ? o.jobs : cpus());
   std::vector<ScenarioResult> results(files.size());
   std::vector<Child> running;
@@ -114,7 +115,15 @@ std::vector<ScenarioResult> run_all(const std::vector<std::string>& files, const
     while (next < files.size() && running.size() < jobs) {
       Child c;
       c.index = order[next++];
-      c.result_file = (fs::temp_directory_path() / fmt::format("lcm_control_scenario_{}_{}.json", getpid(), c.index)).string();
+      std::string pattern = (fs::temp_directory_path() / "lcm_control_scenario_XXXXXX").string();
+      const int fd = mkstemp(pattern.data());
+      if (fd < 0) {
+        results[c.index].file = files[c.index];
+        results[c.index].why = std::string("cannot make a file for its result: ") + std::strerror(errno);
+        continue;
+      }
+      close(fd);
+      c.result_file = pattern;
       c.started = std::chrono::steady_clock::now();
       c.pid = fork();
       if (c.pid == 0) {
@@ -131,26 +140,34 @@ std::vector<ScenarioResult> run_all(const std::vector<std::string>& files, const
       if (c.pid < 0) {
         results[c.index].file = files[c.index];
         results[c.index].why = std::string("cannot start a process: ") + std::strerror(errno);
+        std::error_code ec;
+        fs::remove(c.result_file, ec);
         continue;
       }
       running.push_back(c);
     }
-    int status = 0;
-    const pid_t done = waitpid(-1, &status, WNOHANG);
-    const auto now = std::chrono::steady_clock::now();
-    for (size_t k = 0; k < running.size(); ++k) {
-      const bool finished = done == running[k].pid;
-      const bool late = std::chrono::duration<double>(now - running[k].started).count() > o.timeout_s;
-      if (!finished && !late) continue;
-      if (!finished) {
-        kill(running[k].pid, SIGKILL);
-        waitpid(running[k].pid, &status, 0);
+    // The children that ended, each reaped by its own pid; then those past their time, stopped and reaped.
+    bool any = false;
+    for (size_t k = 0; k < running.size();) {
+      int status = 0;
+      const pid_t pid = running[k].pid;
+      const bool late = std::chrono::duration<double>(std::chrono::steady_clock::now() - running[k].started).count() >
+                        o.timeout_s;
+      pid_t done = waitpid(pid, &status, WNOHANG);
+      if (done == 0 && late) {
+        kill(pid, SIGKILL);
+        done = waitpid(pid, &status, 0);
       }
-      results[running[k].index] = collect(running[k], files[running[k].index], status, !finished, o.timeout_s);
+      if (done != pid) {
+        ++k;
+        continue;
+      }
+      results[running[k].index] = collect(running[k], files[running[k].index], status, done == pid && late &&
+                                          !(WIFEXITED(status) && WEXITSTATUS(status) == 0), o.timeout_s);
       running.erase(running.begin() + long(k));
-      break;
+      any = true;
     }
-    if (done <= 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (!any) std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   return results;
 }
@@ -201,7 +218,8 @@ std::string results_table(const std::vector<ScenarioResult>& results, bool verbo
         out += fmt::format("    {} {}\n", r.outcome == ScenarioResult::Outcome::Skipped ? "skipped:" : "error:", line);
     }
   }
-  out += fmt::format("{} scenario(s): {} passed, {} failed, {} error(s), {} skipped ({:.2f} s of scenario time)\n",
+  out += fmt::format("{} scenario(s): {} passed, {} failed, {} error(s), {} skipped ({:.2f} s of wall time summed "
+                     "over them)\n",
                      results.size(), counts[0], counts[1], counts[3], counts[2], wall);
   return out;
 }
