@@ -13,14 +13,26 @@
 
 namespace lcm_control::tools {
 
-sim::ProgramFlags parse_sim_command_line(const std::vector<std::string>& argv) {
-  sim::ProgramFlags flags;
+namespace {
+// A program's flags (added by add_flags) from its command line.
+template <class Flags, class Add>
+Flags parse_command_line(const std::vector<std::string>& argv, Add add_flags) {
+  Flags flags;
   CLI::App app;
-  sim::add_program_flags(app, flags);
+  add_flags(app, flags);
   std::vector<std::string> args(argv.begin() + (argv.empty() ? 0 : 1), argv.end());
   std::reverse(args.begin(), args.end());  // CLI11 takes them last first
   app.parse(args);
   return flags;
+}
+}  // namespace
+
+sim::ProgramFlags parse_sim_command_line(const std::vector<std::string>& argv) {
+  return parse_command_line<sim::ProgramFlags>(argv, sim::add_program_flags);
+}
+
+cm::ProgramFlags parse_manager_command_line(const std::vector<std::string>& argv) {
+  return parse_command_line<cm::ProgramFlags>(argv, cm::add_program_flags);
 }
 
 namespace {

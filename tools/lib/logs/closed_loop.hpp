@@ -12,6 +12,7 @@
 #include "bus/bus.hpp"
 #include "controller_manager/manager.hpp"
 #include "controller_manager/plugins.hpp"
+#include "controller_manager/program.hpp"
 #include "controller_manager/services.hpp"
 #include "description/robot_model.hpp"
 #include "lcm_control/hardware_command_t.hpp"
@@ -24,8 +25,10 @@
 
 namespace lcm_control::tools {
 
-// sim_server's flags from its command line (argv[0] first, as run_config_t records it); throws CLI::ParseError.
+// sim_server's and controller_manager's flags from their command lines (argv[0] first, as run_config_t records
+// them); throw CLI::ParseError.
 sim::ProgramFlags parse_sim_command_line(const std::vector<std::string>& argv);
+cm::ProgramFlags parse_manager_command_line(const std::vector<std::string>& argv);
 
 // A controller manager on a bus with its services, keeping the joint_states it publishes: what both replays re-drive.
 struct ReplayedManager {

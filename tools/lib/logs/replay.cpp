@@ -747,6 +747,7 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
   std::map<InputSchedule::Cycle, std::vector<std::pair<std::string, std::vector<uint8_t>>>> inputs_at;
   std::map<int64_t, hardware_command_t> recorded_commands;
   std::deque<joint_state_t> recorded_states;
+  const std::string request_channel = bus.channel(channels::kSimRequest), response_channel = bus.channel(channels::kSimResponse);
   std::vector<sim_request_t> sim_requests;  // what sim_server was asked, in the log's order,
   std::map<int64_t, int64_t> served_at;     // and, by request id, the step its answer says it was served at (-1: refused)
   int64_t session = -1, last_step = -1, index = -1;
@@ -768,10 +769,10 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
       recorded_commands[c.step] = c;
     } else if (e->channel == js_channel) {
       recorded_states.push_back(decoded<joint_state_t>(o, *e));
-    } else if (e->channel == bus.channel(channels::kSimRequest)) {
+    } else if (e->channel == request_channel) {
       const sim_request_t r = decoded<sim_request_t>(o, *e);
       if (r.op != sim_request_t::STATUS && r.op != sim_request_t::CONFIG) sim_requests.push_back(r);
-    } else if (e->channel == bus.channel(channels::kSimResponse)) {
+    } else if (e->channel == response_channel) {
       const sim_response_t r = decoded<sim_response_t>(o, *e);
       served_at.emplace(r.request_id, r.ok ? r.step : -1);  // the first answer: a repeated request is answered again
     }
@@ -803,7 +804,7 @@ ReplayReport replay_closed_loop(const ReplayOptions& o) {
     if (at == served_at.end())
       throw ReplayInputError(fmt::format("{}: the log holds sim_server's request {} (a wrench on '{}') but not its "
                                          "answer on {}, which says the step it acted at: record the whole bus",
-                                         o.log, id, r.link, bus.channel(channels::kSimResponse)));
+                                         o.log, id, r.link, response_channel));
     if (at->second >= 0) served[at->second].push_back(r);
   }
   Comparison cmp(o.tolerance);

@@ -336,8 +336,6 @@ struct Answers {
   void sim(const lcm::ReceiveBuffer*, const std::string&, const sim_response_t* m) { by_id[m->request_id] = {m->ok, m->message}; }
 };
 
-std::vector<std::string> problems_of(const ModelError& e) { return e.problems(); }
-
 ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResult result) {
   const CommandLines lines = command_lines(s.launch, LaunchOptions{}, "", false);
   std::vector<std::string> sim_argv = with_ns(lines.sim, s.launch.ns), cm_argv = with_ns(lines.cm, s.launch.ns);
@@ -348,14 +346,7 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
   const sim::ProgramFlags sim_flags = parse_sim_command_line(sim_argv);
   LoadOptions sim_load = load_options(sim_flags.robot.files, sim_flags.robot.bus);
   sim_load.config_from_plugin = true;
-  cm::ProgramFlags cm_flags;
-  {
-    CLI::App app;
-    cm::add_program_flags(app, cm_flags);
-    std::vector<std::string> args(cm_argv.begin() + 1, cm_argv.end());
-    std::reverse(args.begin(), args.end());
-    app.parse(args);
-  }
+  const cm::ProgramFlags cm_flags = parse_manager_command_line(cm_argv);
   LoadOptions cm_load = load_options(cm_flags.robot.files, cm_flags.robot.bus);
   cm_load.config_from_plugin = true;
   cm::ManagerOptions manager_options;
@@ -488,13 +479,11 @@ ScenarioResult run(const Scenario& s, const ScenarioRunOptions& o, ScenarioResul
   }
   {  // no controller error: what was started, and not stopped by the timeline, still runs at the end
     std::set<std::string> expected(s.launch.controllers.begin(), s.launch.controllers.end());
-    for (const auto& [id, where] : inputs) {  // the switches the controller manager carried out, in time order
-      (void)where;
+    for (const auto& [id, sent] : switches) {  // those the controller manager carried out (ids run in time order)
       const auto answer = answers.by_id.find(id);
-      const auto sent = switches.find(id);
-      if (sent == switches.end() || answer == answers.by_id.end() || !answer->second.first) continue;
-      for (const auto& n : sent->second.stop) expected.erase(n);
-      for (const auto& n : sent->second.start) expected.insert(n);
+      if (answer == answers.by_id.end() || !answer->second.first) continue;
+      for (const auto& n : sent.stop) expected.erase(n);
+      for (const auto& n : sent.start) expected.insert(n);
     }
     CheckResult c{"every controller started still running", s.file, true, ""};
     std::vector<std::string> not_running;
@@ -556,7 +545,7 @@ ScenarioResult run_scenario(const std::string& file, const ScenarioRunOptions& o
     result.outcome = passed ? ScenarioResult::Outcome::Passed : ScenarioResult::Outcome::Failed;
   } catch (const ModelError& e) {
     result.outcome = ScenarioResult::Outcome::Error;
-    result.why = fmt::format("{}", fmt::join(problems_of(e), "\n"));
+    result.why = fmt::format("{}", fmt::join(e.problems(), "\n"));
   } catch (const CLI::Error& e) {
     result.outcome = ScenarioResult::Outcome::Error;
     result.why = fmt::format("{}: {}", file, e.what());
